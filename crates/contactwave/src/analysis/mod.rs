@@ -1,0 +1,17 @@
+//! Signal analysis of the thesis (model.md section 6): spectra, band-filtered harmonic
+//! amplitudes `A_n`, sub-harmonic, two-tone sum and difference components, and the summary
+//! of a run.
+//!
+//! `A_n` is the peak of the band-filtered reflected particle velocity in the band
+//! `[n f0 - f0/2, n f0 + f0/2)`, computed as the peak of the envelope (modulus of the
+//! analytic band signal), which equals the peak of the band-filtered signal up to its
+//! sampling. Velocities enter as cell averages (differences of the exact displacement at
+//! the grid points divided by dt), whose spectrum is corrected by the known
+//! `sinc(pi f dt)` response: jumps of the reflected wave at closures then alias by
+//! O(1/samples_per_period^2) only.
+
+mod spectrum;
+mod summary;
+
+pub use spectrum::{Analyzer, BandAmplitudes, Spectrum};
+pub use summary::Summary;

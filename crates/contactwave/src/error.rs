@@ -1,0 +1,111 @@
+//! Errors are values: every failure on user input or in the numerics is an [`Error`],
+//! never a panic. Messages name the file, the field, the value and what is allowed.
+
+use std::path::PathBuf;
+
+/// Result alias of the library.
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Everything that can go wrong in contactwave.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A field of a scenario, sweep or data file holds a value outside its allowed range.
+    #[error("{file}: field `{field}` = {value}: {allowed}")]
+    Invalid {
+        /// File the value comes from (`<memory>` for scenarios built in code).
+        file: String,
+        /// Dotted key of the field, e.g. `interface.traction.stiffness`.
+        field: String,
+        /// The offending value, as the user wrote it.
+        value: String,
+        /// What is allowed, e.g. `must be > 0`.
+        allowed: String,
+    },
+    /// A file could not be parsed (syntax error, unknown key, wrong type).
+    #[error("{file}: {message}")]
+    Parse {
+        /// File being parsed.
+        file: String,
+        /// Parser message, one line, with the field path where known.
+        message: String,
+    },
+    /// The numerics failed: a non-finite state or a root-finder that cannot bracket.
+    #[error("numerical failure at t = {time:.9e} s: {message} (state: {state})")]
+    Numerical {
+        /// Simulation time of the failure, s.
+        time: f64,
+        /// What failed.
+        message: String,
+        /// The state at the failure, e.g. `gap = ..., beta = ...`.
+        state: String,
+    },
+    /// Input/output error on a path.
+    #[error("{path}: {source}")]
+    Io {
+        /// The path.
+        path: PathBuf,
+        /// The underlying error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The run was interrupted (Ctrl-C) before it finished.
+    #[error("interrupted")]
+    Interrupted,
+}
+
+impl Error {
+    /// Build an [`Error::Invalid`].
+    pub fn invalid(
+        file: impl Into<String>,
+        field: impl Into<String>,
+        value: impl std::fmt::Display,
+        allowed: impl Into<String>,
+    ) -> Self {
+        Error::Invalid {
+            file: file.into(),
+            field: field.into(),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+
+    /// Build an [`Error::Io`].
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+
+    /// Build an [`Error::Numerical`].
+    pub fn numerical(time: f64, message: impl Into<String>, state: impl Into<String>) -> Self {
+        Error::Numerical {
+            time,
+            message: message.into(),
+            state: state.into(),
+        }
+    }
+
+    /// Replace the file name of an `Invalid`/`Parse` error (used when a scenario built in
+    /// memory turns out to come from a file).
+    pub fn in_file(self, file: &str) -> Self {
+        match self {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+                ..
+            } => Error::Invalid {
+                file: file.to_string(),
+                field,
+                value,
+                allowed,
+            },
+            Error::Parse { message, .. } => Error::Parse {
+                file: file.to_string(),
+                message,
+            },
+            other => other,
+        }
+    }
+}

@@ -1,0 +1,137 @@
+//! Arbitrary incident waveform from a CSV file (time s, stress Pa), interpolated by
+//! monotone cubics (PCHIP) and optionally rescaled to a given peak.
+
+use super::Excitation;
+use crate::error::{Error, Result};
+use crate::numeric::pchip::Pchip;
+use std::path::Path;
+
+/// Waveform from samples.
+#[derive(Debug, Clone)]
+pub struct FileWaveform {
+    interp: Pchip,
+    t0: f64,
+    duration: f64,
+    scale: f64,
+    frequency: f64,
+}
+
+impl FileWaveform {
+    /// Read `path` (two columns: time, stress; an optional header line). Times must be
+    /// strictly increasing and finite; the waveform is shifted so it starts at t = 0.
+    pub fn read(path: &Path, field: &str) -> Result<(Vec<f64>, Vec<f64>)> {
+        let shown = path.display().to_string();
+        let mut rdr = csv::ReaderBuilder::new()
+            .has_headers(false)
+            .comment(Some(b'#'))
+            .flexible(true)
+            .from_path(path)
+            .map_err(|e| Error::invalid(&shown, field, &shown, format!("cannot read CSV: {e}")))?;
+        let (mut t, mut s) = (Vec::new(), Vec::new());
+        for (i, rec) in rdr.records().enumerate() {
+            let rec =
+                rec.map_err(|e| Error::invalid(&shown, field, &shown, format!("CSV error: {e}")))?;
+            if rec.len() < 2 {
+                return Err(Error::invalid(
+                    &shown,
+                    format!("row {}", i + 1),
+                    rec.len(),
+                    "need two columns: time (s), stress (Pa)",
+                ));
+            }
+            let (a, b) = (rec[0].trim().parse::<f64>(), rec[1].trim().parse::<f64>());
+            match (a, b) {
+                (Ok(a), Ok(b)) => {
+                    if !a.is_finite() || !b.is_finite() {
+                        return Err(Error::invalid(
+                            &shown,
+                            format!("row {}", i + 1),
+                            format!("{a}, {b}"),
+                            "time and stress must be finite",
+                        ));
+                    }
+                    if let Some(&last) = t.last() {
+                        if !(a > last) {
+                            return Err(Error::invalid(
+                                &shown,
+                                format!("row {} time", i + 1),
+                                a,
+                                "times must be strictly increasing",
+                            ));
+                        }
+                    }
+                    t.push(a);
+                    s.push(b);
+                }
+                _ if i == 0 => continue, // header
+                _ => {
+                    return Err(Error::invalid(
+                        &shown,
+                        format!("row {}", i + 1),
+                        format!("{}, {}", &rec[0], &rec[1]),
+                        "time and stress must be numbers",
+                    ));
+                }
+            }
+        }
+        if t.len() < 2 {
+            return Err(Error::invalid(
+                &shown,
+                field,
+                t.len(),
+                "need at least 2 samples",
+            ));
+        }
+        Ok((t, s))
+    }
+
+    /// From samples; `peak` rescales the waveform so that max |s| = peak (Pa).
+    pub fn new(time: &[f64], stress: &[f64], frequency: f64, peak: Option<f64>) -> Option<Self> {
+        let t0 = time[0];
+        let shifted: Vec<f64> = time.iter().map(|v| v - t0).collect();
+        let interp = Pchip::new(&shifted, stress)?;
+        let raw_peak = interp.max_abs();
+        let scale = match peak {
+            Some(p) if raw_peak > 0.0 => p / raw_peak,
+            _ => 1.0,
+        };
+        Some(FileWaveform {
+            duration: *shifted.last()?,
+            interp,
+            t0,
+            scale,
+            frequency,
+        })
+    }
+
+    /// Time of the first sample in the file, s.
+    pub fn file_start(&self) -> f64 {
+        self.t0
+    }
+}
+
+impl Excitation for FileWaveform {
+    fn stress(&self, t: f64) -> f64 {
+        if t < 0.0 || t > self.duration {
+            return 0.0;
+        }
+        self.scale * self.interp.eval(t)
+    }
+    fn duration(&self) -> f64 {
+        self.duration
+    }
+    fn fundamental(&self) -> f64 {
+        self.frequency
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        let k = self.interp.knots();
+        if k.len() <= 4096 {
+            k.to_vec()
+        } else {
+            vec![0.0, self.duration]
+        }
+    }
+    fn peak(&self) -> f64 {
+        self.scale * self.interp.max_abs()
+    }
+}

@@ -1,0 +1,65 @@
+//! Incident waves: `s_inc(t)`, the dynamic stress the incident wave alone would have at the
+//! interface, t = 0 when its front arrives (model.md section 2). A tone burst starts with
+//! its compressive half-cycle: `s_inc = -A window(t) sin(2 pi f0 t)`.
+
+mod file;
+mod tone_burst;
+mod two_tone;
+
+pub use file::FileWaveform;
+pub use tone_burst::{ToneBurst, Window};
+pub use two_tone::TwoTone;
+
+use std::fmt::Debug;
+
+/// An incident stress waveform.
+pub trait Excitation: Debug + Send + Sync {
+    /// Incident stress at the interface `s_inc(t)`, Pa (tension positive); 0 outside
+    /// `[0, duration]`.
+    fn stress(&self, t: f64) -> f64;
+    /// Duration of the waveform, s.
+    fn duration(&self) -> f64;
+    /// Fundamental frequency f0 used by the analysis and by xi, Hz.
+    fn fundamental(&self) -> f64;
+    /// Highest frequency of interest (sets the time step), Hz.
+    fn highest_frequency(&self) -> f64 {
+        self.fundamental()
+    }
+    /// Second frequency of a two-tone input, Hz.
+    fn second_frequency(&self) -> Option<f64> {
+        None
+    }
+    /// Times where the waveform is not smooth (window joints, file samples), s.
+    fn breakpoints(&self) -> Vec<f64>;
+    /// Peak of |s_inc|, Pa.
+    fn peak(&self) -> f64;
+}
+
+/// Peak of |f| over [0, d], found on a fine grid refined by golden-section search.
+pub(crate) fn numeric_peak(f: impl Fn(f64) -> f64, d: f64, n: usize) -> f64 {
+    let mut best_i = 0;
+    let mut best = 0.0;
+    for i in 0..=n {
+        let v = f(d * i as f64 / n as f64).abs();
+        if v > best {
+            best = v;
+            best_i = i;
+        }
+    }
+    let h = d / n as f64;
+    let (mut a, mut b) = (
+        (best_i as f64 - 1.0).max(0.0) * h,
+        ((best_i + 1) as f64 * h).min(d),
+    );
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..80 {
+        let x1 = b - g * (b - a);
+        let x2 = a + g * (b - a);
+        if f(x1).abs() > f(x2).abs() {
+            b = x2;
+        } else {
+            a = x1;
+        }
+    }
+    best.max(f(0.5 * (a + b)).abs())
+}

@@ -1,0 +1,162 @@
+//! Compression branches defined by a stiffness-pressure curve `K(p) = dp/d(closure)`
+//! (thesis section 4.2): the gap is `[u](p) = integral_p^p0 dp'/K(p')` (model.md section
+//! 3, `table` row), tabulated once on a pressure grid by Gauss-Legendre quadrature and
+//! inverted by Newton's method (`d[u]/dp = -1/K` exactly), so that the stress, the tangent
+//! (`K(p)` itself) and the energy are smooth to working precision.
+
+use crate::law::CompressionBranch;
+use crate::numeric::gauss4;
+
+/// A stiffness-pressure relation `K(p)`, Pa/m, for `p >= 0`, Pa. Must be positive for
+/// `p > 0` (it may vanish at p = 0 if `1/K` stays integrable).
+pub trait StiffnessPressure: std::fmt::Debug + Send + Sync {
+    /// K(p), Pa/m.
+    fn stiffness(&self, pressure: f64) -> f64;
+    /// Pressures where K is not smooth (grid nodes are put there).
+    fn kinks(&self) -> Vec<f64> {
+        Vec::new()
+    }
+}
+
+/// A compression branch built from any [`StiffnessPressure`] relation.
+#[derive(Debug)]
+pub struct StiffnessCurve<K: StiffnessPressure> {
+    /// The stiffness-pressure relation.
+    pub law: K,
+    static_pressure: f64,
+    /// Pressure grid, Pa (increasing, from 0).
+    p: Vec<f64>,
+    /// G(p_i) = integral_0^p_i dp/K.
+    g: Vec<f64>,
+    /// H(p_i) = integral_0^p_i p dp/K.
+    h: Vec<f64>,
+    g0: f64,
+    h0: f64,
+    name: &'static str,
+}
+
+impl<K: StiffnessPressure> StiffnessCurve<K> {
+    /// Tabulate the branch for static pressure `p0`, Pa.
+    pub fn new(law: K, static_pressure: f64, name: &'static str) -> Self {
+        let p0 = static_pressure;
+        let p_lin = (8.0 * p0).max(2e6);
+        let n_lin = 1024;
+        let mut p: Vec<f64> = (0..=n_lin)
+            .map(|i| p_lin * i as f64 / n_lin as f64)
+            .collect();
+        let mut q = p_lin;
+        while q < 1e10 {
+            q *= 1.02;
+            p.push(q);
+        }
+        p.extend(law.kinks().into_iter().filter(|k| *k > 0.0 && *k < q));
+        p.push(p0);
+        p.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        p.dedup();
+        let mut g = vec![0.0; p.len()];
+        let mut h = vec![0.0; p.len()];
+        for i in 1..p.len() {
+            g[i] = g[i - 1] + gauss4(p[i - 1], p[i], |x| 1.0 / law.stiffness(x));
+            h[i] = h[i - 1] + gauss4(p[i - 1], p[i], |x| x / law.stiffness(x));
+        }
+        let mut c = StiffnessCurve {
+            law,
+            static_pressure: p0,
+            p,
+            g,
+            h,
+            g0: 0.0,
+            h0: 0.0,
+            name,
+        };
+        let (g0, h0) = c.integrals(p0);
+        c.g0 = g0;
+        c.h0 = h0;
+        c
+    }
+
+    /// (G(p), H(p)) at any pressure.
+    fn integrals(&self, pr: f64) -> (f64, f64) {
+        let n = self.p.len();
+        if pr >= self.p[n - 1] {
+            let k = self.law.stiffness(self.p[n - 1]);
+            let dp = pr - self.p[n - 1];
+            return (
+                self.g[n - 1] + dp / k,
+                self.h[n - 1] + (pr * pr - self.p[n - 1] * self.p[n - 1]) / (2.0 * k),
+            );
+        }
+        let i = self.p.partition_point(|&v| v <= pr).saturating_sub(1);
+        let a = self.p[i];
+        (
+            self.g[i] + gauss4(a, pr, |x| 1.0 / self.law.stiffness(x)),
+            self.h[i] + gauss4(a, pr, |x| x / self.law.stiffness(x)),
+        )
+    }
+
+    fn g_only(&self, pr: f64) -> f64 {
+        let n = self.p.len();
+        if pr >= self.p[n - 1] {
+            return self.g[n - 1] + (pr - self.p[n - 1]) / self.law.stiffness(self.p[n - 1]);
+        }
+        let i = self.p.partition_point(|&v| v <= pr).saturating_sub(1);
+        self.g[i] + gauss4(self.p[i], pr, |x| 1.0 / self.law.stiffness(x))
+    }
+
+    /// Pressure at gap `[u]`, Pa (0 beyond `[u]_c`).
+    pub fn pressure(&self, gap: f64) -> f64 {
+        // G(p) = G(p0) - [u]
+        let target = self.g0 - gap;
+        if target <= 0.0 {
+            return 0.0;
+        }
+        let n = self.p.len();
+        if target >= self.g[n - 1] {
+            let k = self.law.stiffness(self.p[n - 1]);
+            return self.p[n - 1] + (target - self.g[n - 1]) * k;
+        }
+        let i = self.g.partition_point(|&v| v <= target).saturating_sub(1);
+        let (a, b) = (self.p[i], self.p[(i + 1).min(n - 1)]);
+        let (ga, gb) = (self.g[i], self.g[(i + 1).min(n - 1)]);
+        let mut x = if gb > ga {
+            a + (b - a) * (target - ga) / (gb - ga)
+        } else {
+            a
+        };
+        for _ in 0..30 {
+            let r = self.g_only(x) - target;
+            let k = self.law.stiffness(x).max(1e-300);
+            let nx = (x - r * k).clamp(a, b);
+            if (nx - x).abs() <= 1e-15 * b.max(1.0) {
+                x = nx;
+                break;
+            }
+            x = nx;
+        }
+        x
+    }
+}
+
+impl<K: StiffnessPressure> CompressionBranch for StiffnessCurve<K> {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+    fn critical_gap(&self) -> f64 {
+        self.g0
+    }
+    fn stress(&self, gap: f64) -> f64 {
+        -self.pressure(gap)
+    }
+    fn tangent(&self, gap: f64) -> f64 {
+        self.law.stiffness(self.pressure(gap))
+    }
+    fn energy(&self, gap: f64) -> f64 {
+        let pr = self.pressure(gap);
+        let (g, h) = self.integrals(pr);
+        // integral_{p0}^{p} (p' - p0)/K dp'
+        (h - self.h0) - self.static_pressure * (g - self.g0)
+    }
+    fn stiffness_at_rest(&self) -> f64 {
+        self.law.stiffness(self.static_pressure)
+    }
+}

@@ -1,0 +1,193 @@
+//! Contact laws: one *compression branch* joined to one *traction branch* at the gap
+//! `[u]_c` where the interface stress reaches zero (model.md section 3; thesis eqs.
+//! 2.10-2.17, 1.3, 4.4, 5.4).
+//!
+//! Conventions: stress `sigma` is tension-positive, the gap `[u]` is opening-positive and
+//! measured from the pre-loaded equilibrium, so `sigma(0) = -p0`. Every branch is one file
+//! behind one trait ([`CompressionBranch`], [`TractionBranch`]); the solvers ask a branch
+//! for its stress, tangent, energy and state update and never for its name. A new law is
+//! one new file plus one line in [`registry`].
+
+pub mod compression;
+pub mod registry;
+pub mod traction;
+
+use std::fmt::Debug;
+
+/// A compression branch: the interface stress for `[u] <= [u]_c`, with `sigma(0) = -p0`
+/// and `sigma([u]_c) = 0`.
+pub trait CompressionBranch: Debug + Send + Sync {
+    /// Short name, for reports.
+    fn name(&self) -> &'static str;
+    /// `true` for a rigid (Signorini) branch: `[u] >= 0` is a constraint, no stress function.
+    fn is_rigid(&self) -> bool {
+        false
+    }
+    /// Gap at contact loss `[u]_c`, m (0 for a rigid branch).
+    fn critical_gap(&self) -> f64;
+    /// Stress `sigma([u])`, Pa, for `[u] <= [u]_c` (tension positive, so <= 0 here).
+    fn stress(&self, gap: f64) -> f64;
+    /// Tangent stiffness `d sigma / d[u]`, Pa/m (>= 0).
+    fn tangent(&self, gap: f64) -> f64;
+    /// Energy stored from rest, `integral_0^[u] (sigma + p0) d[u]`, J/m^2.
+    fn energy(&self, gap: f64) -> f64;
+    /// Tangent stiffness at rest K(p0), Pa/m (`f64::INFINITY` for rigid); enters xi.
+    fn stiffness_at_rest(&self) -> f64 {
+        self.tangent(0.0)
+    }
+}
+
+/// A traction branch: the interface stress for an opening `d = [u] - [u]_c > 0`, possibly
+/// with an adhesion intensity `beta in [0, 1]` that damage can only decrease.
+///
+/// Damage evolves as `b dbeta/dt = min(phi(d, beta), 0)` (thesis eq. 2.12 for RCCM), with
+/// the driving force `phi` and the viscosity `b` given by the branch; `b = 0` is the
+/// rate-independent limit `phi = 0` while damaging.
+pub trait TractionBranch: Debug + Send + Sync {
+    /// Short name, for reports.
+    fn name(&self) -> &'static str;
+    /// `true` for a bonded branch: `d = 0` is a constraint (bilateral contact).
+    fn is_rigid(&self) -> bool {
+        false
+    }
+    /// Stress `sigma(d, beta)`, Pa (>= 0).
+    fn stress(&self, opening: f64, adhesion: f64) -> f64;
+    /// `d sigma / d d`, Pa/m.
+    fn tangent(&self, opening: f64, adhesion: f64) -> f64;
+    /// `d sigma / d beta`, Pa.
+    fn stress_d_adhesion(&self, _opening: f64, _adhesion: f64) -> f64 {
+        0.0
+    }
+    /// Elastic energy `psi(d, beta) = integral_0^d sigma dd`, J/m^2.
+    fn energy(&self, opening: f64, adhesion: f64) -> f64;
+    /// `d psi / d beta`, J/m^2: energy released per unit decrease of beta.
+    fn energy_d_adhesion(&self, _opening: f64, _adhesion: f64) -> f64 {
+        0.0
+    }
+    /// Whether the branch has a damage variable at all.
+    fn has_damage(&self) -> bool {
+        false
+    }
+    /// Damage driving force `phi(d, beta)`, J/m^2; beta decreases while `phi < 0`.
+    fn damage_driving_force(&self, _opening: f64, _adhesion: f64) -> f64 {
+        f64::INFINITY
+    }
+    /// `(d phi / d d, d phi / d beta)`.
+    fn damage_driving_force_gradient(&self, _opening: f64, _adhesion: f64) -> (f64, f64) {
+        (0.0, 0.0)
+    }
+    /// Damage viscosity b, J s/m^2 (0: rate-independent).
+    fn damage_viscosity(&self) -> f64 {
+        0.0
+    }
+    /// Implicit (backward-Euler) update of beta over `dt` at fixed opening: unconditionally
+    /// stable, never increases beta; `dt = f64::INFINITY` gives the rate-independent limit.
+    fn update_adhesion(&self, _opening: f64, adhesion: f64, _dt: f64) -> f64 {
+        adhesion
+    }
+    /// Adhesion energy term `w beta`, J/m^2: its decrease is the energy damage consumes in
+    /// the rate-independent limit.
+    fn adhesion_energy(&self, _adhesion: f64) -> f64 {
+        0.0
+    }
+    /// Tangent stiffness at `d = 0, beta = 1`, Pa/m (for relaxation-time estimates).
+    fn stiffness_at_contact(&self) -> f64 {
+        self.tangent(0.0, 1.0)
+    }
+}
+
+/// A complete contact law: static pressure, a compression and a traction branch.
+#[derive(Debug)]
+pub struct ContactLaw {
+    /// Static pressure p0, Pa (compression positive).
+    pub static_pressure: f64,
+    /// Compression branch.
+    pub compression: Box<dyn CompressionBranch>,
+    /// Traction branch.
+    pub traction: Box<dyn TractionBranch>,
+}
+
+impl ContactLaw {
+    /// Gap at contact loss `[u]_c`, m.
+    pub fn critical_gap(&self) -> f64 {
+        self.compression.critical_gap()
+    }
+
+    /// Stress at gap `[u]` for adhesion `beta` on the compliant parts of the law, Pa.
+    /// On a rigid compression branch, `[u] <= 0` gives `-p0` (the stress is then set by
+    /// the constraint, not by the law).
+    pub fn stress(&self, gap: f64, adhesion: f64) -> f64 {
+        let uc = self.critical_gap();
+        if gap <= uc {
+            if self.compression.is_rigid() {
+                -self.static_pressure
+            } else {
+                self.compression.stress(gap)
+            }
+        } else if self.traction.is_rigid() {
+            0.0
+        } else {
+            self.traction.stress(gap - uc, adhesion)
+        }
+    }
+
+    /// Energy stored in the interface from rest, J/m^2 (`integral (sigma + p0) d[u]` plus
+    /// the elastic energy of the traction branch at the current adhesion).
+    pub fn stored_energy(&self, gap: f64, adhesion: f64) -> f64 {
+        let uc = self.critical_gap();
+        if gap <= uc {
+            if self.compression.is_rigid() {
+                0.0
+            } else {
+                self.compression.energy(gap)
+            }
+        } else {
+            let d = gap - uc;
+            let base = if self.compression.is_rigid() {
+                0.0
+            } else {
+                self.compression.energy(uc)
+            };
+            let t = if self.traction.is_rigid() {
+                0.0
+            } else {
+                self.traction.energy(d, adhesion)
+            };
+            base + self.static_pressure * d + t
+        }
+    }
+
+    /// Monotone-loading stress-gap curve: `n` gaps from `gap_min` to `gap_max` and the
+    /// stress at each, damage evolving in its rate-independent limit. Rigid branches are
+    /// drawn as vertical segments (two points at the same gap).
+    pub fn curve(&self, gap_min: f64, gap_max: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
+        let uc = self.critical_gap();
+        let p0 = self.static_pressure;
+        let mut gaps = Vec::with_capacity(n + 4);
+        let mut stress = Vec::with_capacity(n + 4);
+        let mut beta = 1.0;
+        let n = n.max(2);
+        let span_stress = if p0 > 0.0 { p0 } else { 1e5 };
+        if self.compression.is_rigid() {
+            gaps.push(0.0);
+            stress.push(-p0 - span_stress);
+        }
+        for i in 0..n {
+            let g = gap_min + (gap_max - gap_min) * i as f64 / (n - 1) as f64;
+            if self.compression.is_rigid() && g < 0.0 {
+                continue;
+            }
+            if g > uc && self.traction.is_rigid() {
+                gaps.push(uc);
+                stress.push(span_stress);
+                break;
+            }
+            if g > uc {
+                beta = self.traction.update_adhesion(g - uc, beta, f64::INFINITY);
+            }
+            gaps.push(g);
+            stress.push(self.stress(g, beta));
+        }
+        (gaps, stress)
+    }
+}

@@ -1,0 +1,193 @@
+//! The one place where law names meet law types: scenario specs become boxed branches.
+//! Adding a law = one new file in `compression/` or `traction/` + one match arm here.
+
+use super::compression::{self, ModifiedPower, StiffnessCurve};
+use super::traction;
+use super::{CompressionBranch, ContactLaw, TractionBranch};
+use crate::error::{Error, Result};
+use crate::scenario::spec::{CompressionSpec, TractionSpec};
+
+fn positive(file: &str, field: &str, v: f64) -> Result<()> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            file,
+            field,
+            v,
+            "must be a finite number > 0",
+        ))
+    }
+}
+
+fn non_negative(file: &str, field: &str, v: f64) -> Result<()> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            file,
+            field,
+            v,
+            "must be a finite number >= 0",
+        ))
+    }
+}
+
+fn exponent(file: &str, field: &str, v: f64) -> Result<()> {
+    if v.is_finite() && v > 0.0 && v < 1.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(file, field, v, "must lie in (0, 1)"))
+    }
+}
+
+/// Build a compression branch for static pressure `p0` (Pa), validating its parameters.
+/// `prefix` is the dotted key of the spec (for messages), e.g. `interface.compression`.
+pub fn build_compression(
+    spec: &CompressionSpec,
+    p0: f64,
+    file: &str,
+    prefix: &str,
+) -> Result<Box<dyn CompressionBranch>> {
+    let key = |k: &str| format!("{prefix}.{k}");
+    Ok(match spec {
+        CompressionSpec::Rigid => Box::new(compression::Rigid {
+            static_pressure: p0,
+        }),
+        CompressionSpec::Linear { stiffness } => {
+            positive(file, &key("stiffness"), *stiffness)?;
+            Box::new(compression::Linear {
+                static_pressure: p0,
+                stiffness: *stiffness,
+            })
+        }
+        CompressionSpec::Quadratic { k0, k1 } => {
+            positive(file, &key("k0"), *k0)?;
+            if !k1.is_finite() {
+                return Err(Error::invalid(file, key("k1"), k1, "must be finite"));
+            }
+            Box::new(compression::Quadratic::new(p0, *k0, *k1).ok_or_else(|| {
+                Error::invalid(
+                    file,
+                    key("k1"),
+                    k1,
+                    format!(
+                        "must be <= k0^2 / (4 p0) = {:e} so that the stress reaches zero",
+                        k0 * k0 / (4.0 * p0)
+                    ),
+                )
+            })?)
+        }
+        CompressionSpec::Power { c, m } => {
+            positive(file, &key("c"), *c)?;
+            exponent(file, &key("m"), *m)?;
+            Box::new(compression::Power {
+                static_pressure: p0,
+                c: *c,
+                m: *m,
+            })
+        }
+        CompressionSpec::ModifiedPower {
+            c,
+            m,
+            transition_pressure,
+            zero_pressure_fraction,
+        } => {
+            positive(file, &key("c"), *c)?;
+            exponent(file, &key("m"), *m)?;
+            positive(file, &key("transition_pressure"), *transition_pressure)?;
+            exponent(
+                file,
+                &key("zero_pressure_fraction"),
+                *zero_pressure_fraction,
+            )?;
+            let k = compression::modified_power::ModifiedPowerStiffness {
+                c: *c,
+                m: *m,
+                transition_pressure: *transition_pressure,
+                zero_pressure_fraction: *zero_pressure_fraction,
+            };
+            let b: ModifiedPower = StiffnessCurve::new(k, p0, "modified_power");
+            Box::new(b)
+        }
+        CompressionSpec::Table {
+            pressure,
+            stiffness,
+        } => {
+            if pressure.len() < 2 || pressure.len() != stiffness.len() {
+                return Err(Error::invalid(
+                    file,
+                    key("pressure"),
+                    format!("{} values (stiffness: {})", pressure.len(), stiffness.len()),
+                    "pressure and stiffness need the same length, at least 2",
+                ));
+            }
+            for (i, p) in pressure.iter().enumerate() {
+                non_negative(file, &format!("{}[{i}]", key("pressure")), *p)?;
+                if i > 0 && !(*p > pressure[i - 1]) {
+                    return Err(Error::invalid(
+                        file,
+                        format!("{}[{i}]", key("pressure")),
+                        p,
+                        "pressures must be strictly increasing",
+                    ));
+                }
+            }
+            for (i, k) in stiffness.iter().enumerate() {
+                positive(file, &format!("{}[{i}]", key("stiffness")), *k)?;
+            }
+            let t = compression::table::TableStiffness::new(pressure, stiffness)
+                .ok_or_else(|| Error::invalid(file, key("pressure"), "table", "invalid table"))?;
+            Box::new(StiffnessCurve::new(t, p0, "table"))
+        }
+    })
+}
+
+/// Build a traction branch, validating its parameters.
+pub fn build_traction(
+    spec: &TractionSpec,
+    file: &str,
+    prefix: &str,
+) -> Result<Box<dyn TractionBranch>> {
+    let key = |k: &str| format!("{prefix}.{k}");
+    Ok(match spec {
+        TractionSpec::Free => Box::new(traction::Free),
+        TractionSpec::Linear { stiffness } => {
+            positive(file, &key("stiffness"), *stiffness)?;
+            Box::new(traction::Linear {
+                stiffness: *stiffness,
+            })
+        }
+        TractionSpec::Rccm {
+            stiffness,
+            energy,
+            viscosity,
+        } => {
+            positive(file, &key("stiffness"), *stiffness)?;
+            non_negative(file, &key("energy"), *energy)?;
+            non_negative(file, &key("viscosity"), *viscosity)?;
+            Box::new(traction::Rccm {
+                stiffness: *stiffness,
+                energy: *energy,
+                viscosity: *viscosity,
+            })
+        }
+        TractionSpec::Bonded => Box::new(traction::Bonded),
+    })
+}
+
+/// Build a whole contact law.
+pub fn build_law(
+    p0: f64,
+    compression: &CompressionSpec,
+    traction: &TractionSpec,
+    file: &str,
+    prefix: &str,
+) -> Result<ContactLaw> {
+    non_negative(file, &format!("{prefix}.static_pressure"), p0)?;
+    Ok(ContactLaw {
+        static_pressure: p0,
+        compression: build_compression(compression, p0, file, &format!("{prefix}.compression"))?,
+        traction: build_traction(traction, file, &format!("{prefix}.traction"))?,
+    })
+}

@@ -1,0 +1,95 @@
+//! RCCM adhesion with damage (Raous-Cangemi-Cocu-Monerie, normal part; thesis eqs.
+//! 2.11-2.12): `sigma = beta^2 C_N d`, free energy `psi = beta^2 C_N d^2 / 2 - w beta`,
+//! damage `b dbeta/dt = min(w - beta C_N d^2, 0)`.
+//!
+//! beta never increases; damage starts at `sigma_lim = sqrt(C_N w)` for `beta = 1`. The
+//! thesis writes the open-state stress as `C_N [u] beta^2 - p0`; contactwave uses the
+//! continuous form (stress zero at contact loss; model.md section 3). The backward-Euler
+//! update of beta is closed form and unconditionally stable, and `b = 0` is the
+//! rate-independent limit `beta = min(beta, w / (C_N d^2))`.
+
+use crate::law::TractionBranch;
+
+/// RCCM traction branch.
+#[derive(Debug, Clone, Copy)]
+pub struct Rccm {
+    /// Initial stiffness C_N, Pa/m.
+    pub stiffness: f64,
+    /// Decohesion energy w, J/m^2.
+    pub energy: f64,
+    /// Viscosity b, J s/m^2 (0 = rate-independent).
+    pub viscosity: f64,
+}
+
+impl TractionBranch for Rccm {
+    fn name(&self) -> &'static str {
+        "rccm"
+    }
+    fn stress(&self, d: f64, beta: f64) -> f64 {
+        beta * beta * self.stiffness * d
+    }
+    fn tangent(&self, _d: f64, beta: f64) -> f64 {
+        beta * beta * self.stiffness
+    }
+    fn stress_d_adhesion(&self, d: f64, beta: f64) -> f64 {
+        2.0 * beta * self.stiffness * d
+    }
+    fn energy(&self, d: f64, beta: f64) -> f64 {
+        0.5 * beta * beta * self.stiffness * d * d
+    }
+    fn energy_d_adhesion(&self, d: f64, beta: f64) -> f64 {
+        beta * self.stiffness * d * d
+    }
+    fn has_damage(&self) -> bool {
+        true
+    }
+    fn damage_driving_force(&self, d: f64, beta: f64) -> f64 {
+        self.energy - beta * self.stiffness * d * d
+    }
+    fn damage_driving_force_gradient(&self, d: f64, beta: f64) -> (f64, f64) {
+        (-2.0 * beta * self.stiffness * d, -self.stiffness * d * d)
+    }
+    fn damage_viscosity(&self) -> f64 {
+        self.viscosity
+    }
+    fn update_adhesion(&self, d: f64, beta: f64, dt: f64) -> f64 {
+        let cd2 = self.stiffness * d * d;
+        if beta * cd2 <= self.energy {
+            return beta;
+        }
+        // backward Euler: b (beta_new - beta) = dt (w - beta_new C d^2)
+        let new = if self.viscosity == 0.0 || dt.is_infinite() {
+            self.energy / cd2
+        } else {
+            (self.viscosity * beta + dt * self.energy) / (self.viscosity + dt * cd2)
+        };
+        new.clamp(0.0, beta)
+    }
+    fn adhesion_energy(&self, beta: f64) -> f64 {
+        self.energy * beta
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn update_never_increases_and_respects_threshold() {
+        let law = Rccm {
+            stiffness: 2e13,
+            energy: 0.1,
+            viscosity: 1e-8,
+        };
+        let d_lim = (law.energy / law.stiffness).sqrt();
+        assert_eq!(law.update_adhesion(0.99 * d_lim, 1.0, 1e-6), 1.0);
+        let mut beta = 1.0;
+        for k in 1..100 {
+            let nb = law.update_adhesion(d_lim * (1.0 + 0.05 * k as f64), beta, 1e-9);
+            assert!(nb <= beta && nb >= 0.0);
+            beta = nb;
+        }
+        // rate-independent limit
+        let b = law.update_adhesion(2.0 * d_lim, 1.0, f64::INFINITY);
+        assert!((b - 0.25).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,46 @@
+//! # contactwave
+//!
+//! Nonlinear interaction of elastic waves with contact interfaces (closed cracks, kissing
+//! bonds, rough and adhesive joints): contact laws built from any compression branch and
+//! any traction branch ([`law`]), an exact solver of the half-space problem
+//! ([`solver::halfspace`]), incident waves ([`excitation`]), the harmonic analysis of the
+//! thesis ([`analysis`]), scenario files ([`scenario`]), parameter studies ([`study`]) and
+//! result files ([`output`]).
+//!
+//! Conventions (model.md section 2): SI units; stress tension-positive; the static
+//! pre-stress is a compression `p0 >= 0`; the gap `[u] = u(0+) - u(0-)` is opening-positive
+//! and measured from the pre-loaded equilibrium.
+//!
+//! ```
+//! use contactwave::{scenario::Scenario, simulate};
+//! let s = Scenario::from_toml_str(r#"
+//!     [medium]
+//!     material = "pmma"
+//!     [interface]
+//!     static_pressure = 0.082e6
+//!     traction = { law = "rccm", stiffness = 2e13, energy = 0.1, viscosity = 1e-8 }
+//!     [incident]
+//!     frequency = 1e6
+//!     cycles = 15
+//!     amplitude = 0.82e6
+//! "#, "rccm.toml").unwrap();
+//! let r = simulate(&s).unwrap();
+//! // 0.82 MPa opens the interface without damaging it (thesis chapter 3)
+//! assert_eq!(r.summary.get("beta_end"), Some(1.0));
+//! assert!(r.summary.get("contact_loss_fraction").unwrap() > 0.0);
+//! ```
+
+pub mod analysis;
+pub mod error;
+pub mod excitation;
+pub mod law;
+pub mod material;
+pub mod numeric;
+pub mod output;
+mod run;
+pub mod scenario;
+pub mod solver;
+pub mod study;
+
+pub use error::{Error, Result};
+pub use run::{half_space, settings, simulate, simulate_summary, ProbeSeries, RunResult};

@@ -1,0 +1,239 @@
+//! One simulation of a scenario: solve, record the probe, analyse, summarise.
+
+use crate::analysis::{Analyzer, BandAmplitudes, Spectrum, Summary};
+use crate::error::Result;
+use crate::scenario::Scenario;
+use crate::solver::halfspace::{HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
+use std::cell::RefCell;
+
+/// Signals at the probe x < 0 (pure delays of the interface signals; model.md section 4).
+#[derive(Debug, Clone, Default)]
+pub struct ProbeSeries {
+    /// Probe position, m.
+    pub x: f64,
+    /// Probe times, s (same origin as the interface times: the incident front reaches the
+    /// probe at `t = x / c1 < 0`).
+    pub t: Vec<f64>,
+    /// Incident stress at the probe, Pa.
+    pub incident_stress: Vec<f64>,
+    /// Reflected stress at the probe, Pa.
+    pub reflected_stress: Vec<f64>,
+    /// Incident particle velocity, m/s (`-s_inc / Z1`).
+    pub incident_velocity: Vec<f64>,
+    /// Reflected particle velocity, m/s (`s_ref / Z1`).
+    pub reflected_velocity: Vec<f64>,
+    /// Total particle displacement at the probe, m.
+    pub displacement: Vec<f64>,
+    /// Start and end of the incident gate, s.
+    pub incident_gate: (f64, f64),
+    /// Start and end of the reflected gate, s.
+    pub reflected_gate: (f64, f64),
+}
+
+/// Everything one run produces.
+#[derive(Debug, Clone)]
+pub struct RunResult {
+    /// Interface histories (x = 0).
+    pub interface: HalfSpaceOutput,
+    /// Probe histories.
+    pub probe: ProbeSeries,
+    /// Amplitude spectrum of the incident particle velocity.
+    pub incident_spectrum: Spectrum,
+    /// Amplitude spectrum of the reflected particle velocity.
+    pub reflected_spectrum: Spectrum,
+    /// Band amplitudes of the incident velocity, m/s.
+    pub incident_bands: BandAmplitudes,
+    /// Band amplitudes of the reflected velocity, m/s.
+    pub reflected_bands: BandAmplitudes,
+    /// Scalars of `summary.json`.
+    pub summary: Summary,
+}
+
+thread_local! {
+    static ANALYZER: RefCell<Analyzer> = RefCell::new(Analyzer::new());
+}
+
+/// Cell-averaged velocities from displacements at the grid points.
+fn cell_velocity(disp: &[f64], dt: f64) -> Vec<f64> {
+    disp.windows(2).map(|w| (w[1] - w[0]) / dt).collect()
+}
+
+/// The half-space problem of a scenario.
+pub fn half_space(scenario: &Scenario) -> HalfSpace {
+    HalfSpace {
+        z1: scenario.medium.impedance(),
+        z2: scenario.z2(),
+        law: scenario.law.clone(),
+        incident: scenario.incident.clone(),
+    }
+}
+
+/// Solver settings of a scenario.
+pub fn settings(scenario: &Scenario) -> HalfSpaceSettings {
+    HalfSpaceSettings {
+        samples_per_period: scenario.spec.solver.samples_per_period,
+        tail_periods: scenario.spec.solver.tail_periods,
+    }
+}
+
+/// Run a scenario only through the solver and the harmonic analysis (what sweeps need):
+/// no probe series and no spectra.
+pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
+    let out = half_space(scenario).solve(&settings(scenario))?;
+    let (inc, refl) = bands(scenario, &out);
+    Ok(summarise(scenario, &out, &inc, &refl))
+}
+
+fn bands(scenario: &Scenario, out: &HalfSpaceOutput) -> (BandAmplitudes, BandAmplitudes) {
+    let f0 = scenario.incident.fundamental();
+    let f2 = scenario.incident.second_frequency();
+    let vr = cell_velocity(&out.reflected_displacement, out.dt);
+    let vi = cell_velocity(&out.incident_displacement, out.dt);
+    ANALYZER.with(|a| {
+        let mut a = a.borrow_mut();
+        (a.bands(&vi, out.dt, f0, f2), a.bands(&vr, out.dt, f0, f2))
+    })
+}
+
+/// Run a scenario: solve, probe, spectra, summary.
+///
+/// ```
+/// use contactwave::{scenario::Scenario, simulate};
+/// let s = Scenario::from_toml_str(r#"
+///     [medium]
+///     material = "pmma"
+///     [interface]
+///     static_pressure = 0.1e6
+///     [incident]
+///     frequency = 1e6
+///     cycles = 10
+///     xi = 0.35
+/// "#, "example.toml").unwrap();
+/// let r = simulate(&s).unwrap();
+/// // unilateral contact clapping at xi = 0.35 gives a strong second harmonic
+/// assert!(r.summary.get("A2_over_Ainc").unwrap() > 0.05);
+/// ```
+pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
+    let out = half_space(scenario).solve(&settings(scenario))?;
+    let (inc, refl) = bands(scenario, &out);
+    let summary = summarise(scenario, &out, &inc, &refl);
+    let f_max = 6.0 * scenario.incident.highest_frequency();
+    let vr = cell_velocity(&out.reflected_displacement, out.dt);
+    let vi = cell_velocity(&out.incident_displacement, out.dt);
+    let (incident_spectrum, reflected_spectrum) = ANALYZER.with(|a| {
+        let mut a = a.borrow_mut();
+        (
+            a.spectrum(&vi, out.dt, f_max),
+            a.spectrum(&vr, out.dt, f_max),
+        )
+    });
+    let probe = probe(scenario, &out);
+    Ok(RunResult {
+        interface: out,
+        probe,
+        incident_spectrum,
+        reflected_spectrum,
+        incident_bands: inc,
+        reflected_bands: refl,
+        summary,
+    })
+}
+
+/// Probe series: the reflected wave is the interface's delayed by |x|/c1 (exact on the
+/// probe grid), the incident wave is evaluated at the matching times.
+fn probe(scenario: &Scenario, out: &HalfSpaceOutput) -> ProbeSeries {
+    let x = scenario.probe_x;
+    let c1 = scenario.medium.wave_speed();
+    let z1 = scenario.medium.impedance();
+    let delay = x.abs() / c1;
+    let dt = out.dt;
+    let m = (2.0 * delay / dt).ceil() as usize;
+    let n = out.t.len();
+    let mut p = ProbeSeries {
+        x,
+        incident_gate: (-delay, out.burst_duration - delay),
+        reflected_gate: (delay, out.t.last().copied().unwrap_or(0.0) + delay),
+        ..Default::default()
+    };
+    let inc = &scenario.incident;
+    let mut disp_inc = 0.0;
+    let mut prev_t = None;
+    for k in 0..(m + n) {
+        let kk = k as isize - m as isize;
+        let t = kk as f64 * dt + delay; // probe time
+        let t_inc = t + delay; // incident argument
+        let s_inc = inc.stress(t_inc);
+        let (s_ref, d_ref) = if kk >= 0 {
+            let i = kk as usize;
+            (out.reflected_stress[i], out.reflected_displacement[i])
+        } else {
+            (0.0, 0.0)
+        };
+        if let Some(tp) = prev_t {
+            disp_inc -= crate::numeric::gauss4(tp, t_inc, |s| inc.stress(s)) / z1;
+        }
+        prev_t = Some(t_inc);
+        p.t.push(t);
+        p.incident_stress.push(s_inc);
+        p.reflected_stress.push(s_ref);
+        p.incident_velocity.push(-s_inc / z1);
+        p.reflected_velocity.push(s_ref / z1);
+        p.displacement.push(disp_inc + d_ref);
+    }
+    p
+}
+
+fn summarise(
+    scenario: &Scenario,
+    out: &HalfSpaceOutput,
+    inc: &BandAmplitudes,
+    refl: &BandAmplitudes,
+) -> Summary {
+    let z1 = scenario.medium.impedance();
+    let a_inc = scenario.incident.peak() / z1;
+    let a = &refl.harmonic;
+    let mut s = Summary::new();
+    s.set("xi", scenario.xi);
+    s.set("amplitude", scenario.incident.peak());
+    s.set("static_pressure", scenario.law.static_pressure);
+    s.set("frequency", scenario.incident.fundamental());
+    s.set("A_inc", a_inc);
+    for n in 1..=5 {
+        s.set(&format!("A{n}_over_Ainc"), a[n] / a_inc);
+    }
+    s.set("Asub_over_Ainc", refl.subharmonic / a_inc);
+    s.set("A2_over_A1", if a[1] > 0.0 { a[2] / a[1] } else { 0.0 });
+    s.set(
+        "beta_star",
+        if a[1] > 0.0 {
+            a[2] / (a[1] * a[1])
+        } else {
+            0.0
+        },
+    );
+    for n in 1..=5 {
+        s.set(&format!("incident_A{n}_over_Ainc"), inc.harmonic[n] / a_inc);
+    }
+    if scenario.incident.second_frequency().is_some() {
+        s.set("Af2_over_Ainc", refl.f2 / a_inc);
+        s.set("Asum_over_Ainc", refl.sum / a_inc);
+        s.set("Adiff_over_Ainc", refl.difference / a_inc);
+    }
+    s.set("beta_end", out.beta.last().copied().unwrap_or(1.0));
+    s.set("max_gap", out.max_gap);
+    s.set(
+        "contact_loss_fraction",
+        out.open_time_in_burst / out.burst_duration.max(f64::MIN_POSITIVE),
+    );
+    let e = &out.energy;
+    s.set("energy_closure_error", e.closure_error());
+    s.set("energy_incident", e.incident);
+    s.set("energy_reflected", e.reflected);
+    s.set("energy_transmitted", e.transmitted);
+    s.set("energy_stored_end", e.stored);
+    s.set("energy_damage", e.damage);
+    s.set("adhesion_energy_decrease", e.adhesion_decrease);
+    s.set("events", out.events as f64);
+    s.set("duration_simulated", out.t.last().copied().unwrap_or(0.0));
+    s
+}

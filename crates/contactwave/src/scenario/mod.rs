@@ -1,0 +1,374 @@
+//! Scenarios: the TOML contract ([`spec`]) and its validated, resolved form
+//! ([`Scenario`]) that the solvers run. Validation names the file, the field, the value and
+//! what is allowed; nothing downstream sees an invalid value.
+
+pub mod spec;
+mod value;
+
+pub use value::{parse_toml, set_dotted, table_to_spec};
+
+use crate::error::{Error, Result};
+use crate::excitation::{Excitation, FileWaveform, ToneBurst, TwoTone, Window};
+use crate::law::{registry, ContactLaw};
+use crate::material::Material;
+use spec::{CounterpartKind, IncidentKind, MaterialSpec, ScenarioSpec, WindowKind};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// A validated scenario, ready to run.
+#[derive(Debug, Clone)]
+pub struct Scenario {
+    /// The raw spec it came from.
+    pub spec: ScenarioSpec,
+    /// File it came from (`<memory>` if built in code).
+    pub file: String,
+    /// Medium 1.
+    pub medium: Material,
+    /// Medium 2, or `None` for a rigid wall.
+    pub counterpart: Option<Material>,
+    /// The contact law.
+    pub law: Arc<ContactLaw>,
+    /// The incident wave (amplitude resolved).
+    pub incident: Arc<dyn Excitation>,
+    /// Load ratio xi (model.md section 2), resolved from `amplitude` if not given.
+    pub xi: f64,
+    /// Probe position x, m (< 0).
+    pub probe_x: f64,
+}
+
+impl Scenario {
+    /// Load and validate a scenario file.
+    pub fn load(path: &Path) -> Result<Scenario> {
+        let table = value::read_table(path)?;
+        Scenario::from_table(table, path)
+    }
+
+    /// Validate a parsed TOML table that came from (or stands for) `path`; relative paths in
+    /// it are resolved against `path`'s folder.
+    pub fn from_table(table: toml::Table, path: &Path) -> Result<Scenario> {
+        let file = path.display().to_string();
+        let spec = table_to_spec(table, &file)?;
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        Scenario::from_spec(spec, &file, &dir)
+    }
+
+    /// Parse TOML text (syntax, unknown keys, types), then validate.
+    pub fn from_toml_str(text: &str, file: &str) -> Result<Scenario> {
+        let table = parse_toml(text, file)?;
+        let spec = table_to_spec(table, file)?;
+        Scenario::from_spec(spec, file, Path::new("."))
+    }
+
+    /// Validate and resolve a spec. `base_dir` resolves relative file paths.
+    pub fn from_spec(spec: ScenarioSpec, file: &str, base_dir: &Path) -> Result<Scenario> {
+        let medium = material(&spec.medium, file, "medium")?;
+        let counterpart = match spec.counterpart.kind {
+            CounterpartKind::Rigid => {
+                let c = &spec.counterpart;
+                if c.material.is_some() || c.youngs_modulus.is_some() || c.density.is_some() {
+                    return Err(Error::invalid(
+                        file,
+                        "counterpart.kind",
+                        "rigid",
+                        "a rigid wall takes no material; use kind = \"medium\"",
+                    ));
+                }
+                None
+            }
+            CounterpartKind::Medium => {
+                let c = &spec.counterpart;
+                Some(material(
+                    &MaterialSpec {
+                        material: c.material.clone(),
+                        youngs_modulus: c.youngs_modulus,
+                        density: c.density,
+                    },
+                    file,
+                    "counterpart",
+                )?)
+            }
+        };
+        let p0 = spec.interface.static_pressure;
+        let law = registry::build_law(
+            p0,
+            &spec.interface.compression,
+            &spec.interface.traction,
+            file,
+            "interface",
+        )?;
+        let probe_x = spec.probe.x;
+        if !probe_x.is_finite() || probe_x >= 0.0 {
+            return Err(Error::invalid(
+                file,
+                "probe.x",
+                probe_x,
+                "must be < 0 (the probe lies in medium 1, x < 0; the interface is at x = 0)",
+            ));
+        }
+        let spp = spec.solver.samples_per_period;
+        if !(16..=100_000).contains(&spp) {
+            return Err(Error::invalid(
+                file,
+                "solver.samples_per_period",
+                spp,
+                "must lie in [16, 100000]",
+            ));
+        }
+        if let Some(tp) = spec.solver.tail_periods {
+            if !(tp.is_finite() && tp > 0.0 && tp <= 1e5) {
+                return Err(Error::invalid(
+                    file,
+                    "solver.tail_periods",
+                    tp,
+                    "must lie in (0, 1e5]",
+                ));
+            }
+        }
+        let z1 = medium.impedance();
+        let z2 = counterpart.map(|m| m.impedance()).unwrap_or(f64::INFINITY);
+        let (incident, xi) = incident(&spec, file, base_dir, &law, z1, z2)?;
+        Ok(Scenario {
+            file: file.to_string(),
+            medium,
+            counterpart,
+            law: Arc::new(law),
+            incident,
+            xi,
+            probe_x,
+            spec,
+        })
+    }
+
+    /// Acoustic impedance of medium 2, Pa s/m (`inf` for a rigid wall).
+    pub fn z2(&self) -> f64 {
+        self.counterpart
+            .map(|m| m.impedance())
+            .unwrap_or(f64::INFINITY)
+    }
+
+    /// Ratio of blocked stress to incident stress, `2 Z2 / (Z1 + Z2)` (2 for a rigid wall).
+    pub fn blocked_factor(&self) -> f64 {
+        blocked_factor(self.medium.impedance(), self.z2())
+    }
+}
+
+/// `2 Z2 / (Z1 + Z2)`, 2 when Z2 is infinite.
+pub fn blocked_factor(z1: f64, z2: f64) -> f64 {
+    if z2.is_infinite() {
+        2.0
+    } else {
+        2.0 * z2 / (z1 + z2)
+    }
+}
+
+/// `sqrt(1 + (omega/omega1)^2)` of xi (thesis eq. 5.9) with `omega1 = K (1/Z1 + 1/Z2)`.
+pub fn xi_factor(law: &ContactLaw, z1: f64, z2: f64, frequency: f64) -> f64 {
+    let k = law.compression.stiffness_at_rest();
+    if k.is_infinite() {
+        return 1.0;
+    }
+    let omega1 = k * (1.0 / z1 + 1.0 / z2);
+    let omega = 2.0 * std::f64::consts::PI * frequency;
+    (1.0 + (omega / omega1).powi(2)).sqrt()
+}
+
+fn material(spec: &MaterialSpec, file: &str, prefix: &str) -> Result<Material> {
+    let mut m = match &spec.material {
+        Some(name) => Material::preset(name).ok_or_else(|| {
+            Error::invalid(
+                file,
+                format!("{prefix}.material"),
+                format!("\"{name}\""),
+                format!("must be one of {}", Material::PRESETS.join(", ")),
+            )
+        })?,
+        None => {
+            if spec.youngs_modulus.is_none() || spec.density.is_none() {
+                return Err(Error::invalid(
+                    file,
+                    format!("{prefix}.material"),
+                    "(missing)",
+                    "give a preset `material` or both `youngs_modulus` (Pa) and `density` (kg/m^3)",
+                ));
+            }
+            Material {
+                youngs_modulus: 0.0,
+                density: 0.0,
+            }
+        }
+    };
+    if let Some(e) = spec.youngs_modulus {
+        m.youngs_modulus = e;
+    }
+    if let Some(r) = spec.density {
+        m.density = r;
+    }
+    for (k, v) in [("youngs_modulus", m.youngs_modulus), ("density", m.density)] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(Error::invalid(
+                file,
+                format!("{prefix}.{k}"),
+                v,
+                "must be a finite number > 0",
+            ));
+        }
+    }
+    Ok(m)
+}
+
+fn positive_opt(file: &str, key: &str, v: Option<f64>, default: Option<f64>) -> Result<f64> {
+    match v.or(default) {
+        None => Err(Error::invalid(
+            file,
+            key,
+            "(missing)",
+            "required: a finite number > 0",
+        )),
+        Some(x) if x.is_finite() && x > 0.0 => Ok(x),
+        Some(x) => Err(Error::invalid(file, key, x, "must be a finite number > 0")),
+    }
+}
+
+fn incident(
+    spec: &ScenarioSpec,
+    file: &str,
+    base_dir: &Path,
+    law: &ContactLaw,
+    z1: f64,
+    z2: f64,
+) -> Result<(Arc<dyn Excitation>, f64)> {
+    let inc = &spec.incident;
+    let f0 = positive_opt(file, "incident.frequency", inc.frequency, None)?;
+    let cycles = positive_opt(file, "incident.cycles", inc.cycles, Some(15.0))?;
+    let window = match inc.window {
+        WindowKind::Rectangular => Window::Rectangular,
+        WindowKind::Hann => Window::Hann,
+        WindowKind::HannRamps => {
+            let r = inc.ramp_fraction.unwrap_or(0.25);
+            if !(r.is_finite() && r > 0.0 && r <= 0.5) {
+                return Err(Error::invalid(
+                    file,
+                    "incident.ramp_fraction",
+                    r,
+                    "must lie in (0, 0.5]",
+                ));
+            }
+            Window::HannRamps { ramp_fraction: r }
+        }
+    };
+    let p0 = spec.interface.static_pressure;
+    let bf = blocked_factor(z1, z2);
+    let xf = xi_factor(law, z1, z2, f0);
+    // amplitude <-> xi:  xi = p0 * xf / (bf * amplitude)
+    let amplitude = match (inc.amplitude, inc.xi) {
+        (Some(_), Some(_)) => {
+            return Err(Error::invalid(
+                file,
+                "incident.xi",
+                inc.xi.unwrap_or_default(),
+                "give either `amplitude` or `xi`, not both",
+            ))
+        }
+        (Some(a), None) => {
+            if !(a.is_finite() && a > 0.0) {
+                return Err(Error::invalid(
+                    file,
+                    "incident.amplitude",
+                    a,
+                    "must be a finite number > 0 (Pa)",
+                ));
+            }
+            Some(a)
+        }
+        (None, Some(x)) => {
+            if !(x.is_finite() && x > 0.0) {
+                return Err(Error::invalid(
+                    file,
+                    "incident.xi",
+                    x,
+                    "must be a finite number > 0",
+                ));
+            }
+            if p0 <= 0.0 {
+                return Err(Error::invalid(
+                    file,
+                    "incident.xi",
+                    x,
+                    "xi needs interface.static_pressure > 0; give `amplitude` instead",
+                ));
+            }
+            Some(p0 * xf / (bf * x))
+        }
+        (None, None) => {
+            if inc.kind != IncidentKind::File {
+                return Err(Error::invalid(
+                    file,
+                    "incident.amplitude",
+                    "(missing)",
+                    "give `amplitude` (Pa, > 0) or `xi` (> 0)",
+                ));
+            }
+            None
+        }
+    };
+    let exc: Arc<dyn Excitation> =
+        match inc.kind {
+            IncidentKind::ToneBurst => {
+                Arc::new(ToneBurst::new(amplitude.unwrap_or(0.0), f0, cycles, window))
+            }
+            IncidentKind::TwoTone => {
+                let f2 = positive_opt(file, "incident.frequency2", inc.frequency2, None)?;
+                if (f2 - f0).abs() <= 1e-9 * f0 {
+                    return Err(Error::invalid(
+                        file,
+                        "incident.frequency2",
+                        f2,
+                        "must differ from incident.frequency",
+                    ));
+                }
+                let r = positive_opt(
+                    file,
+                    "incident.amplitude_ratio",
+                    inc.amplitude_ratio,
+                    Some(1.0),
+                )?;
+                Arc::new(TwoTone::new(
+                    amplitude.unwrap_or(0.0),
+                    f0,
+                    f2,
+                    r,
+                    cycles,
+                    window,
+                ))
+            }
+            IncidentKind::File => {
+                let rel = inc.path.as_ref().ok_or_else(|| {
+                    Error::invalid(
+                        file,
+                        "incident.path",
+                        "(missing)",
+                        "a CSV file (time s, stress Pa) is required with kind = \"file\"",
+                    )
+                })?;
+                let p: PathBuf = base_dir.join(rel);
+                let (t, s) = FileWaveform::read(&p, "incident.path")?;
+                Arc::new(FileWaveform::new(&t, &s, f0, amplitude).ok_or_else(|| {
+                    Error::invalid(file, "incident.path", rel, "invalid waveform")
+                })?)
+            }
+        };
+    if !(exc.peak() > 0.0) {
+        return Err(Error::invalid(
+            file,
+            "incident.path",
+            "waveform",
+            "the waveform is identically zero",
+        ));
+    }
+    let xi = if p0 > 0.0 {
+        p0 * xf / (bf * exc.peak())
+    } else {
+        0.0
+    };
+    Ok((exc, xi))
+}

@@ -1,0 +1,277 @@
+//! The scenario file format (the contract with users; extend it, never rename keys).
+//!
+//! These are the raw, serde-level structures of a TOML scenario. [`super::Scenario`] is the
+//! validated, resolved form the solvers run. Every key is documented in `docs/scenario.md`.
+
+use serde::{Deserialize, Serialize};
+
+/// A whole scenario file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScenarioSpec {
+    /// Medium 1, where the incident wave travels (x < 0).
+    pub medium: MaterialSpec,
+    /// What lies beyond the interface (x > 0). Default: a rigid wall.
+    #[serde(default)]
+    pub counterpart: CounterpartSpec,
+    /// The contact interface at x = 0.
+    pub interface: InterfaceSpec,
+    /// The incident wave.
+    pub incident: IncidentSpec,
+    /// Where the reflected wave is recorded.
+    #[serde(default)]
+    pub probe: ProbeSpec,
+    /// Numerical method and resolution.
+    #[serde(default)]
+    pub solver: SolverSpec,
+}
+
+/// A material: a preset name or explicit `youngs_modulus` and `density`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Preset name: `pmma`, `aluminium`, `steel`.
+    pub material: Option<String>,
+    /// Young's modulus, Pa (overrides the preset's).
+    pub youngs_modulus: Option<f64>,
+    /// Density, kg/m^3 (overrides the preset's).
+    pub density: Option<f64>,
+}
+
+/// Kind of counterpart beyond the interface.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CounterpartKind {
+    /// Rigid wall (Z2 -> infinity).
+    #[default]
+    Rigid,
+    /// A second elastic half-space (medium 2).
+    Medium,
+}
+
+/// The counterpart: a rigid wall or a second half-space.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CounterpartSpec {
+    /// `rigid` (default) or `medium`.
+    #[serde(default)]
+    pub kind: CounterpartKind,
+    /// Preset of medium 2 (with `kind = "medium"`).
+    pub material: Option<String>,
+    /// Young's modulus of medium 2, Pa.
+    pub youngs_modulus: Option<f64>,
+    /// Density of medium 2, kg/m^3.
+    pub density: Option<f64>,
+}
+
+/// The interface: static pressure and the two branches of the contact law.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InterfaceSpec {
+    /// Static pressure p0, Pa, compression positive (interface stress at rest is -p0).
+    pub static_pressure: f64,
+    /// Compression branch (default: rigid, Signorini).
+    #[serde(default)]
+    pub compression: CompressionSpec,
+    /// Traction branch (default: free, unilateral contact).
+    #[serde(default)]
+    pub traction: TractionSpec,
+}
+
+/// Compression branch of the contact law (model.md section 3).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(tag = "law", rename_all = "snake_case", deny_unknown_fields)]
+pub enum CompressionSpec {
+    /// Signorini: no penetration, no penalty.
+    #[default]
+    Rigid,
+    /// `sigma = -p0 + K [u]`.
+    Linear {
+        /// K, Pa/m.
+        stiffness: f64,
+    },
+    /// `sigma = -p0 + K0 [u] - K1 [u]^2` (thesis eq. 1.3).
+    Quadratic {
+        /// K0, Pa/m.
+        k0: f64,
+        /// K1, Pa/m^2.
+        k1: f64,
+    },
+    /// Stiffness `dp/d(closure) = C p^m` (thesis eq. 4.4).
+    Power {
+        /// C, Pa^(1-m)/m.
+        c: f64,
+        /// m, dimensionless, in (0, 1).
+        m: f64,
+    },
+    /// Power law above `transition_pressure`, a smooth branch with an inflection below
+    /// (thesis section 4.2, Figure 63).
+    ModifiedPower {
+        /// C, Pa^(1-m)/m.
+        c: f64,
+        /// m, in (0, 1).
+        m: f64,
+        /// Transition pressure p_t, Pa (default 0.2e6).
+        #[serde(default = "default_transition_pressure")]
+        transition_pressure: f64,
+        /// Stiffness at zero pressure K(0) as a fraction of K(p_t) (default 0.3), in (0, 1).
+        #[serde(default = "default_zero_pressure_fraction")]
+        zero_pressure_fraction: f64,
+    },
+    /// Stiffness tabulated against pressure, monotone (PCHIP) interpolation.
+    Table {
+        /// Pressures, Pa, strictly increasing, >= 0.
+        pressure: Vec<f64>,
+        /// Stiffnesses at those pressures, Pa/m, > 0.
+        stiffness: Vec<f64>,
+    },
+}
+
+/// Default transition pressure of the modified power law, Pa.
+pub fn default_transition_pressure() -> f64 {
+    0.2e6
+}
+/// Default K(0)/K(p_t) of the modified power law.
+pub fn default_zero_pressure_fraction() -> f64 {
+    0.3
+}
+
+/// Traction branch of the contact law (model.md section 3).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(tag = "law", rename_all = "snake_case", deny_unknown_fields)]
+pub enum TractionSpec {
+    /// `sigma = 0` (unilateral contact, clapping).
+    #[default]
+    Free,
+    /// `sigma = K_t d`, d = [u] - [u]_c.
+    Linear {
+        /// K_t, Pa/m.
+        stiffness: f64,
+    },
+    /// RCCM adhesion with damage: `sigma = beta^2 C_N d`, `b dbeta/dt = min(w - beta C_N d^2, 0)`.
+    Rccm {
+        /// C_N, Pa/m.
+        stiffness: f64,
+        /// Decohesion energy w, J/m^2 (>= 0).
+        energy: f64,
+        /// Viscosity b, Pa s ... (J s/m^2); 0 = rate-independent limit.
+        #[serde(default)]
+        viscosity: f64,
+    },
+    /// Perfect bond: d = 0 (bilateral contact, the linear reference).
+    Bonded,
+}
+
+/// Kind of incident wave.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum IncidentKind {
+    /// Windowed sinusoid.
+    #[default]
+    ToneBurst,
+    /// Windowed sum of two sinusoids (f1, f2).
+    TwoTone,
+    /// Arbitrary waveform from a CSV file (time, stress).
+    File,
+}
+
+/// Window of a tone burst.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WindowKind {
+    /// Flat top with half-Hann ramps, each `ramp_fraction` of the burst (chapter 5).
+    #[default]
+    HannRamps,
+    /// Full Hann window.
+    Hann,
+    /// Rectangular (no window).
+    Rectangular,
+}
+
+/// The incident wave.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IncidentSpec {
+    /// `tone_burst` (default), `two_tone` or `file`.
+    #[serde(default)]
+    pub kind: IncidentKind,
+    /// Frequency f0 (f1 for two-tone; analysis fundamental for file), Hz.
+    pub frequency: Option<f64>,
+    /// Second frequency f2 of a two-tone burst, Hz.
+    pub frequency2: Option<f64>,
+    /// Amplitude of the f2 component relative to the f1 component (two-tone), default 1.
+    pub amplitude_ratio: Option<f64>,
+    /// Number of cycles of f0 in the burst (default 15).
+    pub cycles: Option<f64>,
+    /// Peak incident stress-wave amplitude |s_inc|, Pa. Give this or `xi`.
+    pub amplitude: Option<f64>,
+    /// Load ratio xi (model.md section 2). Give this or `amplitude`.
+    pub xi: Option<f64>,
+    /// Window (default `hann_ramps`).
+    #[serde(default)]
+    pub window: WindowKind,
+    /// Fraction of the burst covered by each ramp of `hann_ramps`, in (0, 0.5], default 0.25.
+    pub ramp_fraction: Option<f64>,
+    /// CSV file (time s, stress Pa) for `kind = "file"`, relative to the scenario file.
+    pub path: Option<String>,
+}
+
+/// The probe where the reflected wave is recorded.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProbeSpec {
+    /// Position x, m (must be < 0: in medium 1). Default -0.03.
+    #[serde(default = "default_probe_x")]
+    pub x: f64,
+}
+
+impl Default for ProbeSpec {
+    fn default() -> Self {
+        ProbeSpec {
+            x: default_probe_x(),
+        }
+    }
+}
+
+fn default_probe_x() -> f64 {
+    -0.03
+}
+
+/// Numerical method.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// Exact half-space solver (gap ODE with events).
+    #[default]
+    Exact,
+}
+
+/// Solver settings.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    /// `exact` (default).
+    #[serde(default)]
+    pub method: Method,
+    /// Time samples per period of the highest input frequency (default 200).
+    #[serde(default = "default_spp")]
+    pub samples_per_period: usize,
+    /// Time simulated after the burst has passed, in periods of f0 (default: automatic, from
+    /// the relaxation rate of the interface, between 5 and 200 periods).
+    pub tail_periods: Option<f64>,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        SolverSpec {
+            method: Method::Exact,
+            samples_per_period: default_spp(),
+            tail_periods: None,
+        }
+    }
+}
+
+/// Default samples per period.
+pub fn default_spp() -> usize {
+    200
+}

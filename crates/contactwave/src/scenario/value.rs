@@ -1,0 +1,88 @@
+//! TOML text -> table -> spec, with error messages that name the file, the field path,
+//! the value and what is allowed; and dotted-key overrides used by sweeps.
+
+use super::spec::ScenarioSpec;
+use crate::error::{Error, Result};
+use std::path::Path;
+
+/// Read a TOML file into a table.
+pub fn read_table(path: &Path) -> Result<toml::Table> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    parse_toml(&text, &path.display().to_string())
+}
+
+/// Parse TOML text into a table (syntax errors name the line and column).
+pub fn parse_toml(text: &str, file: &str) -> Result<toml::Table> {
+    text.parse::<toml::Table>().map_err(|e| {
+        let msg = e.message().replace('\n', " ");
+        let loc = e
+            .span()
+            .map(|s| {
+                let line = text[..s.start.min(text.len())].matches('\n').count() + 1;
+                format!("line {line}: ")
+            })
+            .unwrap_or_default();
+        Error::Parse {
+            file: file.to_string(),
+            message: format!("{loc}TOML syntax error: {msg}"),
+        }
+    })
+}
+
+/// Deserialize a table into a [`ScenarioSpec`], naming the field path on failure.
+pub fn table_to_spec(table: toml::Table, file: &str) -> Result<ScenarioSpec> {
+    let value = toml::Value::Table(table);
+    serde_path_to_error::deserialize::<_, ScenarioSpec>(value).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner().to_string().replace('\n', " ");
+        Error::Parse {
+            file: file.to_string(),
+            message: if path.is_empty() || path == "." {
+                inner
+            } else {
+                format!("field `{path}`: {inner}")
+            },
+        }
+    })
+}
+
+/// Set `key` (dotted, e.g. `incident.xi`) to `value` in `table`, creating tables on the
+/// way. Setting `incident.xi` removes `incident.amplitude` and vice versa (they are two
+/// ways to give the same quantity).
+pub fn set_dotted(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<()> {
+    let parts: Vec<&str> = key.split('.').collect();
+    if parts.iter().any(|p| p.is_empty()) {
+        return Err(Error::invalid(
+            "<sweep>",
+            "parameter",
+            key,
+            "a dotted scenario key such as `incident.xi`",
+        ));
+    }
+    let mut cur = table;
+    for p in &parts[..parts.len() - 1] {
+        let entry = cur
+            .entry(p.to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        cur = match entry {
+            toml::Value::Table(t) => t,
+            _ => {
+                return Err(Error::invalid(
+                    "<sweep>",
+                    "parameter",
+                    key,
+                    format!("`{p}` is not a table in the base scenario"),
+                ))
+            }
+        };
+    }
+    let last = parts[parts.len() - 1];
+    if key == "incident.xi" {
+        cur.remove("amplitude");
+    }
+    if key == "incident.amplitude" {
+        cur.remove("xi");
+    }
+    cur.insert(last.to_string(), value);
+    Ok(())
+}

@@ -1,0 +1,757 @@
+//! Exact solver of the half-space problem (model.md section 4; thesis eqs. 2.3-2.9, 5.5).
+//!
+//! Medium 1 fills x < 0, the interface is at x = 0, behind it a rigid wall or medium 2.
+//! d'Alembert's solution reduces the problem to one ODE for the gap,
+//!
+//! ```text
+//! d[u]/dt = 2 s_inc(t)/Z1 - (sigma([u], beta) + p0) (1/Z1 + 1/Z2)
+//! ```
+//!
+//! with `s_ref = sigma + p0 - s_inc` and `s_tr = sigma + p0` travelling away undistorted.
+//! The solver is exact in space. In time it integrates each phase (closed, compression,
+//! traction, damaging) with the 3-stage Radau IIA method (order 5, L-stable) on the
+//! output grid, splits steps at the waveform's breakpoints, and locates every opening,
+//! closing and damage event by a bracketing root-finder on the event function to machine
+//! precision. While a rigid branch is active (Signorini closed, or bonded) the gap is held
+//! exactly and the stress is the constraint stress. Energies (incident, reflected,
+//! transmitted, released by damage) are integrated with the same quadrature, so the energy
+//! audit closes to the integration error.
+
+use super::radau::{self, System};
+use crate::error::{Error, Result};
+use crate::excitation::Excitation;
+use crate::law::ContactLaw;
+use crate::numeric::root::brent_past;
+use crate::numeric::{GL4_NODES, GL4_WEIGHTS};
+use std::sync::Arc;
+
+/// Settings of the exact solver.
+#[derive(Debug, Clone, Copy)]
+pub struct HalfSpaceSettings {
+    /// Time samples per period of the highest input frequency.
+    pub samples_per_period: usize,
+    /// Fixed tail after the burst, periods of f0; `None` = automatic (until the interface
+    /// is back at rest, at least 3 and at most 400 periods).
+    pub tail_periods: Option<f64>,
+}
+
+impl Default for HalfSpaceSettings {
+    fn default() -> Self {
+        HalfSpaceSettings {
+            samples_per_period: 200,
+            tail_periods: None,
+        }
+    }
+}
+
+/// The half-space problem: media, law and incident wave.
+#[derive(Debug, Clone)]
+pub struct HalfSpace {
+    /// Impedance of medium 1, Pa s/m.
+    pub z1: f64,
+    /// Impedance of medium 2, Pa s/m (`inf`: rigid wall).
+    pub z2: f64,
+    /// Contact law.
+    pub law: Arc<ContactLaw>,
+    /// Incident wave.
+    pub incident: Arc<dyn Excitation>,
+}
+
+/// Energy audit of one run, J/m^2 (model.md; thesis has none).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EnergyAudit {
+    /// Energy brought by the incident wave, `int s_inc^2 / Z1 dt`.
+    pub incident: f64,
+    /// Energy carried away by the reflected wave, `int s_ref^2 / Z1 dt`.
+    pub reflected: f64,
+    /// Energy carried away by the transmitted wave, `int s_tr^2 / Z2 dt`.
+    pub transmitted: f64,
+    /// Energy stored in the interface at the end.
+    pub stored: f64,
+    /// Energy released by damage, `int (dpsi/dbeta) (-dbeta/dt) dt`.
+    pub damage: f64,
+    /// Decrease of the adhesion energy term (`w (beta_0 - beta_end)` for RCCM).
+    pub adhesion_decrease: f64,
+}
+
+impl EnergyAudit {
+    /// `|incident - reflected - transmitted - stored - damage| / incident`.
+    pub fn closure_error(&self) -> f64 {
+        (self.incident - self.reflected - self.transmitted - self.stored - self.damage).abs()
+            / self.incident.max(f64::MIN_POSITIVE)
+    }
+}
+
+/// Time histories at the interface (x = 0) on a uniform grid, SI units.
+#[derive(Debug, Clone, Default)]
+pub struct HalfSpaceOutput {
+    /// Time step, s.
+    pub dt: f64,
+    /// Times t_k = k dt, s (t = 0: the incident front reaches the interface).
+    pub t: Vec<f64>,
+    /// Gap [u], m.
+    pub gap: Vec<f64>,
+    /// Interface stress sigma, Pa (tension positive; -p0 at rest).
+    pub contact_stress: Vec<f64>,
+    /// Adhesion beta.
+    pub beta: Vec<f64>,
+    /// Incident stress at x = 0, Pa.
+    pub incident_stress: Vec<f64>,
+    /// Reflected stress at x = 0, Pa.
+    pub reflected_stress: Vec<f64>,
+    /// Transmitted stress at x = 0+, Pa.
+    pub transmitted_stress: Vec<f64>,
+    /// Reflected particle displacement at x = 0, `int s_ref/Z1 dt`, m (exact at the grid
+    /// points: differences give cell-averaged velocities free of aliasing from jumps).
+    pub reflected_displacement: Vec<f64>,
+    /// Incident particle displacement at x = 0, `-int s_inc/Z1 dt`, m.
+    pub incident_displacement: Vec<f64>,
+    /// Transmitted particle displacement at x = 0+, `-int s_tr/Z2 dt`, m (0 for a wall).
+    pub transmitted_displacement: Vec<f64>,
+    /// Energy audit.
+    pub energy: EnergyAudit,
+    /// Time the interface spent open (contact lost) while the burst was at it, s.
+    pub open_time_in_burst: f64,
+    /// Largest gap reached, m.
+    pub max_gap: f64,
+    /// Number of opening/closing/damage events located.
+    pub events: usize,
+    /// Duration of the incident burst, s.
+    pub burst_duration: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    /// Rigid compression active: gap held at 0.
+    Closed,
+    /// Bonded traction active: gap held at [u]_c.
+    Bonded,
+    /// Both branches rigid: gap held at 0 forever.
+    Locked,
+    /// Compliant compression branch.
+    Compression,
+    /// Traction branch, beta constant.
+    Traction,
+    /// Traction branch, damage evolving.
+    Damaging,
+}
+
+impl Phase {
+    fn is_stuck(self) -> bool {
+        matches!(self, Phase::Closed | Phase::Bonded | Phase::Locked)
+    }
+}
+
+/// The gap ODE in one phase, as a Radau system.
+struct GapOde<'a> {
+    hs: &'a HalfSpace,
+    phase: Phase,
+    k: f64,
+    p0: f64,
+    uc: f64,
+    two_over_z1: f64,
+}
+
+impl GapOde<'_> {
+    #[inline]
+    fn sigma(&self, y: [f64; 2]) -> f64 {
+        match self.phase {
+            Phase::Compression => self.hs.law.compression.stress(y[0].min(self.uc)),
+            _ => self.hs.law.traction.stress((y[0] - self.uc).max(0.0), y[1]),
+        }
+    }
+    #[inline]
+    fn gap_rate(&self, t: f64, y: [f64; 2]) -> f64 {
+        self.two_over_z1 * self.hs.incident.stress(t) - self.k * (self.sigma(y) + self.p0)
+    }
+}
+
+impl System for GapOde<'_> {
+    fn mass(&self) -> [f64; 2] {
+        if self.phase == Phase::Damaging {
+            [1.0, self.hs.law.traction.damage_viscosity()]
+        } else {
+            [1.0, 1.0]
+        }
+    }
+    fn rhs(&self, t: f64, y: [f64; 2]) -> [f64; 2] {
+        let f1 = if self.phase == Phase::Damaging {
+            self.hs
+                .law
+                .traction
+                .damage_driving_force((y[0] - self.uc).max(0.0), y[1])
+        } else {
+            0.0
+        };
+        [self.gap_rate(t, y), f1]
+    }
+    fn jacobian(&self, _t: f64, y: [f64; 2]) -> [[f64; 2]; 2] {
+        match self.phase {
+            Phase::Compression => [
+                [
+                    -self.k * self.hs.law.compression.tangent(y[0].min(self.uc)),
+                    0.0,
+                ],
+                [0.0, 0.0],
+            ],
+            _ => {
+                let tr = &self.hs.law.traction;
+                let d = (y[0] - self.uc).max(0.0);
+                let row0 = [
+                    -self.k * tr.tangent(d, y[1]),
+                    -self.k * tr.stress_d_adhesion(d, y[1]),
+                ];
+                if self.phase == Phase::Damaging {
+                    let (a, b) = tr.damage_driving_force_gradient(d, y[1]);
+                    [row0, [a, b]]
+                } else {
+                    [row0, [0.0, 0.0]]
+                }
+            }
+        }
+    }
+}
+
+/// Running integrals.
+#[derive(Debug, Default, Clone, Copy)]
+struct Acc {
+    disp_ref: f64,
+    disp_inc: f64,
+    disp_tr: f64,
+    e_inc: f64,
+    e_ref: f64,
+    e_tr: f64,
+    e_damage: f64,
+    open_in_burst: f64,
+}
+
+impl HalfSpace {
+    /// `1/Z1 + 1/Z2`, m/(Pa s).
+    pub fn compliance(&self) -> f64 {
+        1.0 / self.z1
+            + if self.z2.is_finite() {
+                1.0 / self.z2
+            } else {
+                0.0
+            }
+    }
+
+    /// Initial phase at rest.
+    fn rest_phase(&self) -> Phase {
+        match (
+            self.law.compression.is_rigid(),
+            self.law.traction.is_rigid(),
+        ) {
+            (true, true) => Phase::Locked,
+            (true, false) => Phase::Closed,
+            _ => Phase::Compression,
+        }
+    }
+
+    /// Run the solver.
+    pub fn solve(&self, settings: &HalfSpaceSettings) -> Result<HalfSpaceOutput> {
+        Runner::new(self, settings).run()
+    }
+}
+
+struct Runner<'a> {
+    hs: &'a HalfSpace,
+    ode: GapOde<'a>,
+    h: f64,
+    duration: f64,
+    breaks: Vec<f64>,
+    scale: [f64; 2],
+    ainv: [[f64; 3]; 3],
+    settings: HalfSpaceSettings,
+    f0: f64,
+    events: usize,
+    max_gap: f64,
+}
+
+impl<'a> Runner<'a> {
+    fn new(hs: &'a HalfSpace, settings: &HalfSpaceSettings) -> Self {
+        let k = hs.compliance();
+        let p0 = hs.law.static_pressure;
+        let uc = hs.law.critical_gap();
+        let fmax = hs.incident.highest_frequency();
+        let f0 = hs.incident.fundamental();
+        let h = 1.0 / (fmax * settings.samples_per_period as f64);
+        let mut breaks = hs.incident.breakpoints();
+        breaks.retain(|b| b.is_finite() && *b > 0.0);
+        breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        // typical gap: blocked stress over impedance and frequency, or [u]_c
+        let omega = 2.0 * std::f64::consts::PI * f0;
+        let gap_scale = (2.0 * hs.incident.peak() / hs.z1 / omega)
+            .max(uc.abs())
+            .max(1e-30);
+        Runner {
+            hs,
+            ode: GapOde {
+                hs,
+                phase: hs.rest_phase(),
+                k,
+                p0,
+                uc,
+                two_over_z1: 2.0 / hs.z1,
+            },
+            h,
+            duration: hs.incident.duration(),
+            breaks,
+            scale: [gap_scale, 1.0],
+            ainv: radau::a_inverse(),
+            settings: *settings,
+            f0,
+            events: 0,
+            max_gap: 0.0,
+        }
+    }
+
+    /// Interface stress plus p0 (S = sigma + p0) in a stuck phase at time t.
+    #[inline]
+    fn stuck_s(&self, t: f64) -> f64 {
+        self.ode.two_over_z1 * self.hs.incident.stress(t) / self.ode.k
+    }
+
+    /// Event function of a stuck phase (exit when > 0).
+    #[inline]
+    fn stuck_event(&self, phase: Phase, t: f64) -> f64 {
+        let sigma = self.stuck_s(t) - self.ode.p0;
+        match phase {
+            Phase::Closed => sigma,
+            Phase::Bonded => -sigma,
+            _ => f64::NEG_INFINITY,
+        }
+    }
+
+    /// Event functions of an ODE phase at state y (exit when > 0): returns the largest
+    /// one together with which event it is.
+    fn ode_events(&self, phase: Phase, t: f64, y: [f64; 2]) -> [f64; 2] {
+        let tr = &self.hs.law.traction;
+        let uc = self.ode.uc;
+        match phase {
+            Phase::Compression => [(y[0] - uc) / self.scale[0], f64::NEG_INFINITY],
+            Phase::Traction => {
+                let dmg = if tr.has_damage() {
+                    -tr.damage_driving_force((y[0] - uc).max(0.0), y[1])
+                        / tr.adhesion_energy(1.0).abs().max(1e-300)
+                } else {
+                    f64::NEG_INFINITY
+                };
+                [(uc - y[0]) / self.scale[0], dmg]
+            }
+            Phase::Damaging => {
+                let heal = if tr.damage_viscosity() > 0.0 {
+                    tr.damage_driving_force((y[0] - uc).max(0.0), y[1])
+                        / tr.adhesion_energy(1.0).abs().max(1e-300)
+                } else {
+                    // rate-independent: damage stops when the opening stops growing
+                    -self.ode.gap_rate(t, y) * self.h / self.scale[0]
+                };
+                [(uc - y[0]) / self.scale[0], heal]
+            }
+            _ => [f64::NEG_INFINITY; 2],
+        }
+    }
+
+    fn step_ode(&self, t: f64, y: [f64; 2], h: f64) -> Result<radau::Step> {
+        if let Some(s) = radau::step(&self.ode, t, y, h, self.scale) {
+            return Ok(s);
+        }
+        // Newton failed: try two half steps (composition), a few levels deep.
+        self.step_ode_split(t, y, h, 0)
+    }
+
+    fn step_ode_split(&self, t: f64, y: [f64; 2], h: f64, depth: usize) -> Result<radau::Step> {
+        if depth > 12 {
+            return Err(Error::numerical(
+                t,
+                format!("Newton iteration of the gap equation did not converge (step {h:e} s)"),
+                format!(
+                    "gap = {:e} m, beta = {}, phase = {:?}",
+                    y[0], y[1], self.ode.phase
+                ),
+            ));
+        }
+        let half = 0.5 * h;
+        let a = match radau::step(&self.ode, t, y, half, self.scale) {
+            Some(s) => s,
+            None => self.step_ode_split(t, y, half, depth + 1)?,
+        };
+        let b = match radau::step(&self.ode, t + half, a.end(), half, self.scale) {
+            Some(s) => s,
+            None => self.step_ode_split(t + half, a.end(), half, depth + 1)?,
+        };
+        // Stage values of a composed step are not collocation values of one step; return
+        // the end state in all three (used only for the end value and coarse checks).
+        Ok(radau::Step {
+            stages: [a.end(), b.end(), b.end()],
+        })
+    }
+
+    /// Accumulate integrals over [t, t + h] of a stuck phase (explicit, GL4).
+    fn acc_stuck(&self, acc: &mut Acc, t: f64, h: f64) {
+        let z1 = self.hs.z1;
+        let z2 = self.hs.z2;
+        for i in 0..4 {
+            let tt = t + GL4_NODES[i] * h;
+            let w = GL4_WEIGHTS[i] * h;
+            let sinc = self.hs.incident.stress(tt);
+            let s = self.stuck_s(tt);
+            self.acc_point(acc, w, sinc, s, z1, z2);
+        }
+    }
+
+    #[inline]
+    fn acc_point(&self, acc: &mut Acc, w: f64, sinc: f64, s: f64, z1: f64, z2: f64) {
+        let sref = s - sinc;
+        acc.disp_ref += w * sref / z1;
+        acc.disp_inc -= w * sinc / z1;
+        acc.e_inc += w * sinc * sinc / z1;
+        acc.e_ref += w * sref * sref / z1;
+        if z2.is_finite() {
+            acc.disp_tr -= w * s / z2;
+            acc.e_tr += w * s * s / z2;
+        }
+    }
+
+    /// Accumulate integrals of an ODE step with its stages (Radau quadrature).
+    fn acc_ode(&self, acc: &mut Acc, t: f64, h: f64, y0: [f64; 2], st: &radau::Step) {
+        let z1 = self.hs.z1;
+        let z2 = self.hs.z2;
+        let p0 = self.ode.p0;
+        for j in 0..3 {
+            let tt = t + radau::C[j] * h;
+            let w = radau::B[j] * h;
+            let sinc = self.hs.incident.stress(tt);
+            let s = self.ode.sigma(st.stages[j]) + p0;
+            self.acc_point(acc, w, sinc, s, z1, z2);
+        }
+        if self.ode.phase == Phase::Damaging {
+            let tr = &self.hs.law.traction;
+            for j in 0..3 {
+                let mut dbeta = 0.0;
+                for l in 0..3 {
+                    dbeta += self.ainv[j][l] * (st.stages[l][1] - y0[1]);
+                }
+                dbeta /= h;
+                let yj = st.stages[j];
+                let d = (yj[0] - self.ode.uc).max(0.0);
+                acc.e_damage += radau::B[j] * h * tr.energy_d_adhesion(d, yj[1]) * (-dbeta);
+            }
+        }
+        if matches!(self.ode.phase, Phase::Traction | Phase::Damaging) {
+            let lo = t.max(0.0);
+            let hi = (t + h).min(self.duration);
+            if hi > lo {
+                acc.open_in_burst += hi - lo;
+            }
+        }
+    }
+
+    /// Switch phase after an event at time t with state y (already projected).
+    fn switch(&mut self, from: Phase, which: usize, t: f64, y: &mut [f64; 2]) {
+        let comp_rigid = self.hs.law.compression.is_rigid();
+        let trac_rigid = self.hs.law.traction.is_rigid();
+        let uc = self.ode.uc;
+        self.events += 1;
+        let to = match (from, which) {
+            (Phase::Closed, _) => {
+                y[0] = 0.0;
+                Phase::Traction
+            }
+            (Phase::Bonded, _) => {
+                y[0] = uc;
+                Phase::Compression
+            }
+            (Phase::Compression, _) => {
+                y[0] = uc;
+                if trac_rigid {
+                    Phase::Bonded
+                } else {
+                    Phase::Traction
+                }
+            }
+            (Phase::Traction | Phase::Damaging, 0) => {
+                y[0] = uc;
+                if comp_rigid {
+                    Phase::Closed
+                } else {
+                    Phase::Compression
+                }
+            }
+            (Phase::Traction, _) => Phase::Damaging,
+            (Phase::Damaging, _) => Phase::Traction,
+            (p, _) => p,
+        };
+        // Closed entered with a tensile constraint stress (grazing): stay open.
+        if to == Phase::Closed && self.stuck_event(Phase::Closed, t) > 0.0 {
+            self.ode.phase = Phase::Traction;
+            return;
+        }
+        self.ode.phase = to;
+    }
+
+    /// Advance from t to t_end (no breakpoint inside), updating y, the phase, the
+    /// integrals. Returns when t_end is reached.
+    fn advance(&mut self, acc: &mut Acc, mut t: f64, t_end: f64, y: &mut [f64; 2]) -> Result<()> {
+        let mut guard = 0usize;
+        while t < t_end {
+            guard += 1;
+            if guard > 10_000 {
+                return Err(Error::numerical(
+                    t,
+                    "too many events in one time step (chattering)",
+                    format!(
+                        "gap = {:e} m, beta = {}, phase = {:?}",
+                        y[0], y[1], self.ode.phase
+                    ),
+                ));
+            }
+            let h = t_end - t;
+            let phase = self.ode.phase;
+            if phase.is_stuck() {
+                if phase == Phase::Locked {
+                    self.acc_stuck(acc, t, h);
+                    return Ok(());
+                }
+                let e0 = self.stuck_event(phase, t);
+                // look for a sign change at the GL nodes and the end
+                let mut hit = None;
+                let mut prev_t = t;
+                let mut prev_e = e0;
+                for tau in GL4_NODES
+                    .iter()
+                    .map(|c| t + c * h)
+                    .chain(std::iter::once(t_end))
+                {
+                    let e = self.stuck_event(phase, tau);
+                    if e > 0.0 && prev_e <= 0.0 {
+                        hit = Some((prev_t, prev_e, tau, e));
+                        break;
+                    }
+                    prev_t = tau;
+                    prev_e = e;
+                }
+                match hit {
+                    None => {
+                        self.acc_stuck(acc, t, h);
+                        t = t_end;
+                    }
+                    Some((a, fa, b, fb)) => {
+                        let fa = if fa == 0.0 { -f64::MIN_POSITIVE } else { fa };
+                        let te = brent_past(|s| self.stuck_event(phase, s), a, b, fa, fb, 200)
+                            .ok_or_else(|| {
+                                Error::numerical(
+                                    a,
+                                    "cannot bracket the opening event",
+                                    format!("phase = {phase:?}"),
+                                )
+                            })?;
+                        self.acc_stuck(acc, t, te - t);
+                        t = te;
+                        self.switch(phase, 0, t, y);
+                    }
+                }
+                continue;
+            }
+            // ODE phase
+            let y0 = *y;
+            let st = self.step_ode(t, y0, h)?;
+            let e_start = self.ode_events(phase, t, y0);
+            let mut first: Option<(usize, f64)> = None; // (which, tau_hi)
+            for which in 0..2 {
+                if e_start[which] > 0.0 {
+                    continue;
+                }
+                let e_end = self.ode_events(phase, t_end, st.end())[which];
+                if e_end > 0.0 {
+                    if first.map_or(true, |(_, th)| h < th) {
+                        first = Some((which, h));
+                    }
+                    continue;
+                }
+                for j in 0..2 {
+                    let tj = t + radau::C[j] * h;
+                    if self.ode_events(phase, tj, st.stages[j])[which] > 0.0 {
+                        let hj = radau::C[j] * h;
+                        let sj = self.step_ode(t, y0, hj)?;
+                        if self.ode_events(phase, tj, sj.end())[which] > 0.0
+                            && first.map_or(true, |(_, th)| hj < th)
+                        {
+                            first = Some((which, hj));
+                        }
+                        break;
+                    }
+                }
+            }
+            match first {
+                None => {
+                    if !(st.end()[0].is_finite() && st.end()[1].is_finite()) {
+                        return Err(Error::numerical(
+                            t,
+                            "non-finite state",
+                            format!("{:?}", st.end()),
+                        ));
+                    }
+                    for s in &st.stages {
+                        self.max_gap = self.max_gap.max(s[0]);
+                    }
+                    self.acc_ode(acc, t, h, y0, &st);
+                    *y = st.end();
+                    t = t_end;
+                }
+                Some((which, hi)) => {
+                    let fa = e_start[which].min(-f64::MIN_POSITIVE);
+                    let f_hi = {
+                        let s = self.step_ode(t, y0, hi)?;
+                        self.ode_events(phase, t + hi, s.end())[which]
+                    };
+                    let mut fail = None;
+                    let tau = brent_past(
+                        |tau| match self.step_ode(t, y0, tau) {
+                            Ok(s) => self.ode_events(phase, t + tau, s.end())[which],
+                            Err(e) => {
+                                fail = Some(e);
+                                f64::NAN
+                            }
+                        },
+                        0.0,
+                        hi,
+                        fa,
+                        f_hi,
+                        200,
+                    );
+                    if let Some(e) = fail {
+                        return Err(e);
+                    }
+                    let tau = tau.ok_or_else(|| {
+                        Error::numerical(
+                            t,
+                            "cannot bracket a contact event",
+                            format!("gap = {:e} m, beta = {}", y0[0], y0[1]),
+                        )
+                    })?;
+                    let se = self.step_ode(t, y0, tau)?;
+                    for s in &se.stages {
+                        self.max_gap = self.max_gap.max(s[0]);
+                    }
+                    self.acc_ode(acc, t, tau, y0, &se);
+                    *y = se.end();
+                    t += tau;
+                    self.switch(phase, which, t, y);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn record(&self, out: &mut HalfSpaceOutput, acc: &Acc, t: f64, y: [f64; 2]) {
+        let sinc = self.hs.incident.stress(t);
+        let sigma = if self.ode.phase.is_stuck() {
+            self.stuck_s(t) - self.ode.p0
+        } else {
+            self.ode.sigma(y)
+        };
+        let s = sigma + self.ode.p0;
+        out.t.push(t);
+        out.gap.push(y[0]);
+        out.contact_stress.push(sigma);
+        out.beta.push(y[1]);
+        out.incident_stress.push(sinc);
+        out.reflected_stress.push(s - sinc);
+        out.transmitted_stress.push(s);
+        out.reflected_displacement.push(acc.disp_ref);
+        out.incident_displacement.push(acc.disp_inc);
+        out.transmitted_displacement.push(acc.disp_tr);
+    }
+
+    fn at_rest(&self, y: [f64; 2]) -> bool {
+        match self.ode.phase {
+            Phase::Closed | Phase::Locked => true,
+            Phase::Compression => y[0].abs() < 1e-9 * self.scale[0],
+            _ => false,
+        }
+    }
+
+    fn run(mut self) -> Result<HalfSpaceOutput> {
+        let h = self.h;
+        let period = 1.0 / self.f0;
+        let (min_tail, max_tail) = match self.settings.tail_periods {
+            Some(p) => (p * period, p * period),
+            None => (3.0 * period, 400.0 * period),
+        };
+        let n_min = ((self.duration + min_tail) / h).ceil() as usize;
+        let n_max = ((self.duration + max_tail) / h).ceil() as usize;
+        let mut out = HalfSpaceOutput {
+            dt: h,
+            burst_duration: self.duration,
+            ..Default::default()
+        };
+        for v in [
+            &mut out.t,
+            &mut out.gap,
+            &mut out.contact_stress,
+            &mut out.beta,
+            &mut out.incident_stress,
+            &mut out.reflected_stress,
+            &mut out.transmitted_stress,
+            &mut out.reflected_displacement,
+            &mut out.incident_displacement,
+            &mut out.transmitted_displacement,
+        ] {
+            v.reserve(n_min + 1);
+        }
+        let mut acc = Acc::default();
+        let mut y = [0.0, 1.0];
+        self.record(&mut out, &acc, 0.0, y);
+        let mut bi = 0usize;
+        let mut k = 0usize;
+        let mut rest_count = 0usize;
+        while k < n_max {
+            let ta = k as f64 * h;
+            let tb = (k + 1) as f64 * h;
+            let mut t = ta;
+            while bi < self.breaks.len() && self.breaks[bi] <= ta {
+                bi += 1;
+            }
+            while bi < self.breaks.len() && self.breaks[bi] < tb {
+                let tbk = self.breaks[bi];
+                self.advance(&mut acc, t, tbk, &mut y)?;
+                t = tbk;
+                bi += 1;
+            }
+            self.advance(&mut acc, t, tb, &mut y)?;
+            k += 1;
+            self.max_gap = self.max_gap.max(y[0]);
+            self.record(&mut out, &acc, tb, y);
+            if k >= n_min && tb > self.duration {
+                if self.settings.tail_periods.is_some() {
+                    break;
+                }
+                if self.at_rest(y) {
+                    rest_count += 1;
+                    if rest_count as f64 * h >= period {
+                        break;
+                    }
+                } else {
+                    rest_count = 0;
+                }
+            }
+        }
+        let law = &self.hs.law;
+        let yend = y;
+        out.energy = EnergyAudit {
+            incident: acc.e_inc,
+            reflected: acc.e_ref,
+            transmitted: acc.e_tr,
+            stored: law.stored_energy(yend[0], yend[1]),
+            damage: acc.e_damage,
+            adhesion_decrease: law.traction.adhesion_energy(1.0)
+                - law.traction.adhesion_energy(yend[1]),
+        };
+        out.open_time_in_burst = acc.open_in_burst;
+        out.max_gap = self.max_gap;
+        out.events = self.events;
+        Ok(out)
+    }
+}

@@ -1,0 +1,214 @@
+//! Three-stage Radau IIA collocation (order 5, L-stable, stiffly accurate) for the small
+//! stiff systems of the interface: `M y' = f(t, y)` with `y = ([u], beta)` and a diagonal
+//! mass `M` whose damage row may be 0 (the rate-independent limit, an index-1 DAE).
+//! Newton's method on the 6 stage unknowns; no allocation.
+
+/// Collocation nodes c_j.
+pub const C: [f64; 3] = [
+    (4.0 - 2.449_489_742_783_178) / 10.0,
+    (4.0 + 2.449_489_742_783_178) / 10.0,
+    1.0,
+];
+
+const S6: f64 = 2.449_489_742_783_178;
+
+/// Butcher matrix A (row-major); its last row is the weights b.
+pub const A: [[f64; 3]; 3] = [
+    [
+        (88.0 - 7.0 * S6) / 360.0,
+        (296.0 - 169.0 * S6) / 1800.0,
+        (-2.0 + 3.0 * S6) / 225.0,
+    ],
+    [
+        (296.0 + 169.0 * S6) / 1800.0,
+        (88.0 + 7.0 * S6) / 360.0,
+        (-2.0 - 3.0 * S6) / 225.0,
+    ],
+    [(16.0 - S6) / 36.0, (16.0 + S6) / 36.0, 1.0 / 9.0],
+];
+
+/// Quadrature weights b (= last row of A).
+pub const B: [f64; 3] = A[2];
+
+/// Inverse of A: stage derivatives from stage increments, `Y'_j = (1/h) sum_l Ainv_jl Z_l`.
+pub fn a_inverse() -> [[f64; 3]; 3] {
+    let a = A;
+    let det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1])
+        - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+        + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    let mut inv = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            let (r0, r1) = match j {
+                0 => (1, 2),
+                1 => (0, 2),
+                _ => (0, 1),
+            };
+            let (c0, c1) = match i {
+                0 => (1, 2),
+                1 => (0, 2),
+                _ => (0, 1),
+            };
+            let minor = a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0];
+            let sign = if (i + j) % 2 == 0 { 1.0 } else { -1.0 };
+            inv[i][j] = sign * minor / det;
+        }
+    }
+    inv
+}
+
+/// A system `M y' = f(t, y)` of dimension 2.
+pub trait System {
+    /// Diagonal of the mass matrix.
+    fn mass(&self) -> [f64; 2];
+    /// Right-hand side f(t, y).
+    fn rhs(&self, t: f64, y: [f64; 2]) -> [f64; 2];
+    /// Jacobian df/dy, row-major.
+    fn jacobian(&self, t: f64, y: [f64; 2]) -> [[f64; 2]; 2];
+}
+
+/// Result of one step.
+#[derive(Debug, Clone, Copy)]
+pub struct Step {
+    /// Stage values Y_j (the last one is the end value).
+    pub stages: [[f64; 2]; 3],
+}
+
+impl Step {
+    /// State at the end of the step.
+    pub fn end(&self) -> [f64; 2] {
+        self.stages[2]
+    }
+}
+
+/// One Radau IIA step of size `h` from `(t, y)`. `scale` gives the magnitude of each
+/// component for the convergence test. Returns `None` if Newton does not converge.
+pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) -> Option<Step> {
+    let m = sys.mass();
+    let f0 = sys.rhs(t, y);
+    let j0 = sys.jacobian(t, y);
+    let stiff = h * j0[0][0].abs() > 1.0 || h * j0[1][1].abs() > m[1].abs();
+    let mut z = [[0.0f64; 2]; 3];
+    if !stiff {
+        for (j, zj) in z.iter_mut().enumerate() {
+            for i in 0..2 {
+                if m[i] != 0.0 {
+                    zj[i] = C[j] * h * f0[i] / m[i];
+                }
+            }
+        }
+    }
+    let mut jac = [0.0f64; 36];
+    let mut rhs = [0.0f64; 6];
+    for _iter in 0..25 {
+        let mut f = [[0.0; 2]; 3];
+        let mut jj = [[[0.0; 2]; 2]; 3];
+        for l in 0..3 {
+            let yl = [y[0] + z[l][0], y[1] + z[l][1]];
+            let tl = t + C[l] * h;
+            f[l] = sys.rhs(tl, yl);
+            jj[l] = sys.jacobian(tl, yl);
+        }
+        // residual R_{j,i} = m_i z_{j,i} - h sum_l a_jl f_{l,i}; Jacobian dR/dz
+        for j in 0..3 {
+            for i in 0..2 {
+                let r = j * 2 + i;
+                let mut s = m[i] * z[j][i];
+                for l in 0..3 {
+                    s -= h * A[j][l] * f[l][i];
+                }
+                rhs[r] = s;
+                for l in 0..3 {
+                    for k in 0..2 {
+                        let c = l * 2 + k;
+                        let mut v = -h * A[j][l] * jj[l][i][k];
+                        if j == l && i == k {
+                            v += m[i];
+                        }
+                        jac[r * 6 + c] = v;
+                    }
+                }
+            }
+        }
+        if !rhs.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        if !crate::numeric::solve_dense(&mut jac, &mut rhs, 6) {
+            return None;
+        }
+        let mut err = 0.0f64;
+        for j in 0..3 {
+            for i in 0..2 {
+                let d = rhs[j * 2 + i];
+                z[j][i] -= d;
+                err = err.max(d.abs() / scale[i]);
+            }
+        }
+        if !err.is_finite() {
+            return None;
+        }
+        if err < 1e-13 {
+            let mut stages = [[0.0; 2]; 3];
+            for j in 0..3 {
+                stages[j] = [y[0] + z[j][0], y[1] + z[j][1]];
+            }
+            return Some(Step { stages });
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    struct Decay(f64);
+    impl System for Decay {
+        fn mass(&self) -> [f64; 2] {
+            [1.0, 1.0]
+        }
+        fn rhs(&self, t: f64, y: [f64; 2]) -> [f64; 2] {
+            [-self.0 * (y[0] - t.cos()), 0.0]
+        }
+        fn jacobian(&self, _t: f64, _y: [f64; 2]) -> [[f64; 2]; 2] {
+            [[-self.0, 0.0], [0.0, 0.0]]
+        }
+    }
+    #[test]
+    fn fifth_order_convergence() {
+        // y' = -(y - cos t), exact: y = (cos t + sin t)/2 + (y0 - 1/2) e^-t
+        let sys = Decay(1.0);
+        let exact = |t: f64| 0.5 * (t.cos() + t.sin()) + 0.5 * (-t).exp();
+        let err = |n: usize| {
+            let h = 2.0 / n as f64;
+            let mut y = [1.0, 0.0];
+            for k in 0..n {
+                y = step(&sys, k as f64 * h, y, h, [1.0, 1.0]).unwrap().end();
+            }
+            (y[0] - exact(2.0)).abs()
+        };
+        let (e1, e2) = (err(10), err(20));
+        let order = (e1 / e2).log2();
+        assert!(order > 4.6, "observed order {order}");
+    }
+    #[test]
+    fn l_stable_on_very_stiff_problem() {
+        let sys = Decay(1e12);
+        let mut y = [5.0, 0.0];
+        for k in 0..10 {
+            y = step(&sys, k as f64 * 0.1, y, 0.1, [1.0, 1.0])
+                .unwrap()
+                .end();
+        }
+        assert!((y[0] - 1.0f64.cos()).abs() < 1e-9);
+    }
+    #[test]
+    fn a_inverse_is_inverse() {
+        let inv = a_inverse();
+        for i in 0..3 {
+            for j in 0..3 {
+                let s: f64 = (0..3).map(|k| A[i][k] * inv[k][j]).sum();
+                assert!((s - if i == j { 1.0 } else { 0.0 }).abs() < 1e-12);
+            }
+        }
+    }
+}
