@@ -31,6 +31,7 @@
 //! ```
 
 pub mod analysis;
+pub mod analytic;
 pub mod error;
 pub mod excitation;
 pub mod law;

@@ -153,11 +153,35 @@ struct GapOde<'a> {
 }
 
 impl GapOde<'_> {
+    /// Damage in its rate-independent limit (b = 0): beta is an algebraic function of the
+    /// opening, `beta = update_adhesion(d, beta_start, inf)`, and the ODE is scalar.
+    #[inline]
+    fn algebraic_damage(&self) -> bool {
+        self.phase == Phase::Damaging && self.hs.law.traction.damage_viscosity() == 0.0
+    }
+
+    /// Adhesion in effect at state y.
+    #[inline]
+    fn beta(&self, y: [f64; 2]) -> f64 {
+        if self.algebraic_damage() {
+            self.hs
+                .law
+                .traction
+                .update_adhesion((y[0] - self.uc).max(0.0), y[1], f64::INFINITY)
+        } else {
+            y[1]
+        }
+    }
+
     #[inline]
     fn sigma(&self, y: [f64; 2]) -> f64 {
         match self.phase {
             Phase::Compression => self.hs.law.compression.stress(y[0].min(self.uc)),
-            _ => self.hs.law.traction.stress((y[0] - self.uc).max(0.0), y[1]),
+            _ => self
+                .hs
+                .law
+                .traction
+                .stress((y[0] - self.uc).max(0.0), self.beta(y)),
         }
     }
     #[inline]
@@ -168,14 +192,14 @@ impl GapOde<'_> {
 
 impl System for GapOde<'_> {
     fn mass(&self) -> [f64; 2] {
-        if self.phase == Phase::Damaging {
+        if self.phase == Phase::Damaging && !self.algebraic_damage() {
             [1.0, self.hs.law.traction.damage_viscosity()]
         } else {
             [1.0, 1.0]
         }
     }
     fn rhs(&self, t: f64, y: [f64; 2]) -> [f64; 2] {
-        let f1 = if self.phase == Phase::Damaging {
+        let f1 = if self.phase == Phase::Damaging && !self.algebraic_damage() {
             self.hs
                 .law
                 .traction
@@ -194,6 +218,20 @@ impl System for GapOde<'_> {
                 ],
                 [0.0, 0.0],
             ],
+            _ if self.algebraic_damage() => {
+                let tr = &self.hs.law.traction;
+                let d = (y[0] - self.uc).max(0.0);
+                let beta = self.beta(y);
+                let mut ds = tr.tangent(d, beta);
+                if beta < y[1] {
+                    // on the damage surface phi(d, beta) = 0: dbeta/dd = -phi_d / phi_beta
+                    let (pd, pb) = tr.damage_driving_force_gradient(d, beta);
+                    if pb != 0.0 {
+                        ds += tr.stress_d_adhesion(d, beta) * (-pd / pb);
+                    }
+                }
+                [[-self.k * ds, 0.0], [0.0, 0.0]]
+            }
             _ => {
                 let tr = &self.hs.law.traction;
                 let d = (y[0] - self.uc).max(0.0);
@@ -428,15 +466,20 @@ impl<'a> Runner<'a> {
         }
         if self.ode.phase == Phase::Damaging {
             let tr = &self.hs.law.traction;
+            let b0 = self.ode.beta(y0);
+            let betas = [
+                self.ode.beta(st.stages[0]),
+                self.ode.beta(st.stages[1]),
+                self.ode.beta(st.stages[2]),
+            ];
             for j in 0..3 {
                 let mut dbeta = 0.0;
                 for l in 0..3 {
-                    dbeta += self.ainv[j][l] * (st.stages[l][1] - y0[1]);
+                    dbeta += self.ainv[j][l] * (betas[l] - b0);
                 }
                 dbeta /= h;
-                let yj = st.stages[j];
-                let d = (yj[0] - self.ode.uc).max(0.0);
-                acc.e_damage += radau::B[j] * h * tr.energy_d_adhesion(d, yj[1]) * (-dbeta);
+                let d = (st.stages[j][0] - self.ode.uc).max(0.0);
+                acc.e_damage += radau::B[j] * h * tr.energy_d_adhesion(d, betas[j]) * (-dbeta);
             }
         }
         if matches!(self.ode.phase, Phase::Traction | Phase::Damaging) {
@@ -598,6 +641,7 @@ impl<'a> Runner<'a> {
                     }
                     self.acc_ode(acc, t, h, y0, &st);
                     *y = st.end();
+                    y[1] = self.ode.beta(*y);
                     t = t_end;
                 }
                 Some((which, hi)) => {
@@ -637,6 +681,7 @@ impl<'a> Runner<'a> {
                     }
                     self.acc_ode(acc, t, tau, y0, &se);
                     *y = se.end();
+                    y[1] = self.ode.beta(*y);
                     t += tau;
                     self.switch(phase, which, t, y);
                 }
@@ -656,7 +701,7 @@ impl<'a> Runner<'a> {
         out.t.push(t);
         out.gap.push(y[0]);
         out.contact_stress.push(sigma);
-        out.beta.push(y[1]);
+        out.beta.push(self.ode.beta(y));
         out.incident_stress.push(sinc);
         out.reflected_stress.push(s - sinc);
         out.transmitted_stress.push(s);

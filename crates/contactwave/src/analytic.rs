@@ -1,0 +1,164 @@
+//! Analytical solutions of the half-space problem against a rigid wall (thesis section
+//! 5.2.1, eqs. 5.2-5.15), used as references by the tests and `contactwave validate`.
+//!
+//! Incident stress `s_inc(t) = -S sin(omega t)` switched on at t = 0 (rectangular window),
+//! gap equation `Z [u]' + (sigma + p0) = 2 s_inc` (eq. 5.5). With a linear compression
+//! spring `K_c` and a linear traction spring `K_t` (continuous bilinear law,
+//! `sigma = K_t ([u] - [u]_c)` beyond `[u]_c = p0 / K_c`), each phase is linear:
+//!
+//! ```text
+//! compression:  [u]' + w1 [u] = (2/Z) s_inc,                       w1 = K_c / Z
+//! open:         [u]' + w2 [u] = (2/Z) s_inc - (p0 - K_t [u]_c)/Z,  w2 = K_t / Z
+//! ```
+//!
+//! and is solved in closed form (sinusoid + constant + decaying exponential). The
+//! constant term of the open phase is the one eq. 5.10 omits, and the transient decays at
+//! the open-phase rate w2 (model.md section 4). Phase changes at `[u] = [u]_c` are found
+//! by bisection on the closed form to machine precision; the trajectory from rest is the
+//! exact solution of the same initial-value problem the solver integrates, and iterating
+//! it over periods gives the periodic steady state (times T1, T2 of eqs. 5.11-5.15).
+
+/// Parameters of the bilinear problem, SI units.
+#[derive(Debug, Clone, Copy)]
+pub struct Bilinear {
+    /// Incident stress amplitude S, Pa.
+    pub amplitude: f64,
+    /// Angular frequency omega, rad/s.
+    pub omega: f64,
+    /// Impedance Z of the medium, Pa s/m.
+    pub impedance: f64,
+    /// Static pressure p0, Pa.
+    pub static_pressure: f64,
+    /// Compression stiffness K_c, Pa/m.
+    pub compression_stiffness: f64,
+    /// Traction stiffness K_t, Pa/m (0: traction-free).
+    pub traction_stiffness: f64,
+}
+
+/// Piecewise closed-form trajectory: phase starts `(t_start, u_start, open)`.
+#[derive(Debug, Clone)]
+pub struct BilinearSolution {
+    p: Bilinear,
+    starts: Vec<(f64, f64, bool)>,
+}
+
+impl Bilinear {
+    fn uc(&self) -> f64 {
+        self.static_pressure / self.compression_stiffness
+    }
+    fn rate(&self, open: bool) -> f64 {
+        if open {
+            self.traction_stiffness / self.impedance
+        } else {
+            self.compression_stiffness / self.impedance
+        }
+    }
+    /// Particular solution of the phase at time t.
+    fn particular(&self, open: bool, t: f64) -> f64 {
+        let lam = self.rate(open);
+        let w = self.omega;
+        let f = -2.0 * self.amplitude / self.impedance; // forcing f sin(wt)
+        let sinus = f * (lam * (w * t).sin() - w * (w * t).cos()) / (lam * lam + w * w);
+        let constant = if open {
+            let b = -(self.static_pressure - self.traction_stiffness * self.uc()) / self.impedance;
+            if lam > 0.0 {
+                b / lam
+            } else {
+                0.0
+            }
+        } else {
+            0.0
+        };
+        sinus + constant
+    }
+    /// Gap at time t in a phase started at (ts, us).
+    fn phase_gap(&self, open: bool, ts: f64, us: f64, t: f64) -> f64 {
+        let lam = self.rate(open);
+        if open && lam == 0.0 {
+            // u' = (2/Z) s_inc - p0/Z: integrate exactly
+            let w = self.omega;
+            let f = -2.0 * self.amplitude / self.impedance;
+            let b = -self.static_pressure / self.impedance;
+            return us + f * ((w * ts).cos() - (w * t).cos()) / w + b * (t - ts);
+        }
+        self.particular(open, t) + (us - self.particular(open, ts)) * (-lam * (t - ts)).exp()
+    }
+
+    /// Integrate from rest over `[0, t_end]`.
+    pub fn solve(&self, t_end: f64) -> BilinearSolution {
+        let uc = self.uc();
+        let mut starts = vec![(0.0, 0.0, false)];
+        let period = 2.0 * std::f64::consts::PI / self.omega;
+        let dt = period / 400.0;
+        let (mut ts, mut us, mut open) = (0.0, 0.0, false);
+        let mut t = 0.0;
+        while t < t_end {
+            let t1 = (t + dt).min(t_end);
+            let g0 = self.phase_gap(open, ts, us, t) - uc;
+            let g1 = self.phase_gap(open, ts, us, t1) - uc;
+            let crossed = if open {
+                g1 < 0.0 && g0 >= 0.0
+            } else {
+                g1 > 0.0 && g0 <= 0.0
+            };
+            if crossed {
+                let (mut a, mut b) = (t, t1);
+                for _ in 0..200 {
+                    let m = 0.5 * (a + b);
+                    if m <= a || m >= b {
+                        break;
+                    }
+                    let gm = self.phase_gap(open, ts, us, m) - uc;
+                    let past = if open { gm < 0.0 } else { gm > 0.0 };
+                    if past {
+                        b = m;
+                    } else {
+                        a = m;
+                    }
+                }
+                ts = b;
+                us = uc;
+                open = !open;
+                starts.push((ts, us, open));
+                t = b;
+            } else {
+                t = t1;
+            }
+        }
+        BilinearSolution { p: *self, starts }
+    }
+
+    /// Steady amplitude of the gap of the linear spring without contact loss (eq. 5.6),
+    /// `(2 S / Z) / sqrt(omega^2 + w1^2)`, m, and its phase lag `atan(omega / w1)` with
+    /// respect to `-sin(omega t)`, rad.
+    pub fn linear_steady_state(&self) -> (f64, f64) {
+        let w1 = self.rate(false);
+        (
+            2.0 * self.amplitude / self.impedance / (self.omega.powi(2) + w1 * w1).sqrt(),
+            (self.omega / w1).atan(),
+        )
+    }
+}
+
+impl BilinearSolution {
+    /// Gap at time t, m.
+    pub fn gap(&self, t: f64) -> f64 {
+        let i = self.starts.partition_point(|s| s.0 <= t).max(1) - 1;
+        let (ts, us, open) = self.starts[i];
+        self.p.phase_gap(open, ts, us, t)
+    }
+    /// Interface stress at time t, Pa.
+    pub fn stress(&self, t: f64) -> f64 {
+        let u = self.gap(t);
+        let uc = self.p.uc();
+        if u <= uc {
+            -self.p.static_pressure + self.p.compression_stiffness * u
+        } else {
+            self.p.traction_stiffness * (u - uc)
+        }
+    }
+    /// Times where contact is lost (T1) and regained (T2).
+    pub fn events(&self) -> impl Iterator<Item = (f64, bool)> + '_ {
+        self.starts.iter().skip(1).map(|s| (s.0, s.2))
+    }
+}
