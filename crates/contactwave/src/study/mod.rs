@@ -1,1 +1,16 @@
-//! Parameter studies: sweeps over dotted scenario keys.
+//! Parameter studies: sweeps over dotted scenario keys ([`Sweep`], [`run_sweep`]) and the
+//! validation cases of `contactwave validate` ([`validation`]).
+//!
+//! This module owns the sweep file format (TOML), the grid it resolves to, the resumable
+//! `sweep.csv` it writes and the hash that ties a CSV to the sweep that produced it. It
+//! never touches the physics: every grid point is a [`crate::scenario::Scenario`] built
+//! from the base scenario with [`crate::scenario::set_dotted`] and run through
+//! [`crate::simulate_summary`].
+
+mod sweep;
+pub mod validation;
+
+pub use sweep::{
+    grid, linspace, logspace, read_sweep_csv, run_sweep, Axis, AxisSpec, Sweep, SweepOptions,
+    SweepReport, SweepTable,
+};
