@@ -1,1 +1,350 @@
 //! Result files: CSV tables, `summary.json`, SVG plots.
+//!
+//! This module owns the layout of an output folder. Everything is rendered in memory first
+//! ([`run_files`], [`law_files`], [`sweep_svg`]) and only then written
+//! ([`write_files`]), so a failure while computing or rendering never creates or touches
+//! the output folder. Each file is written to a temporary name in the folder and renamed
+//! into place.
+//!
+//! Files of a run (`contactwave run`), all SI units:
+//!
+//! | file | content |
+//! |---|---|
+//! | `summary.json` | `scenario` (file name) then the [`crate::analysis::Summary`] keys in order (non-finite values as `null`) |
+//! | `timeseries.csv` | `t,gap,contact_stress,beta,incident_stress,reflected_stress,transmitted_stress` at the interface: s, m, Pa, -, Pa, Pa, Pa |
+//! | `probe.csv` | `t,incident_stress,reflected_stress,incident_velocity,reflected_velocity,displacement` at the probe: s, Pa, Pa, m/s, m/s, m |
+//! | `spectrum.csv` | `frequency,incident,reflected`: Hz and amplitude spectra of the incident and reflected particle velocity, m/s |
+//! | `time_histories.svg` | gap, contact stress and adhesion beta against time (three panels) |
+//! | `waves.svg` | incident and reflected stress at the probe |
+//! | `spectrum.svg` | spectra in dB relative to the incident peak, with markers at the harmonics n f0 |
+//! | `stress_gap.svg` | contact stress against gap over the run (the hysteresis loop) |
+//!
+//! Files of a law (`contactwave law`): `law_curve.csv` (`gap,stress`: m, Pa; monotone
+//! loading, damage in its rate-independent limit, see [`ContactLaw::curve`]) and
+//! `law_curve.svg`.
+//!
+//! Numbers are written so that they parse back to the same `f64`.
+
+mod plot;
+
+use crate::analysis::Summary;
+use crate::error::{Error, Result};
+use crate::law::ContactLaw;
+use crate::scenario::Scenario;
+use crate::study::{read_sweep_csv, Sweep};
+use crate::RunResult;
+use serde::ser::{Serialize, SerializeMap, Serializer};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Header of `timeseries.csv`.
+pub const TIMESERIES_HEADER: &str =
+    "t,gap,contact_stress,beta,incident_stress,reflected_stress,transmitted_stress";
+/// Header of `probe.csv`.
+pub const PROBE_HEADER: &str =
+    "t,incident_stress,reflected_stress,incident_velocity,reflected_velocity,displacement";
+/// Header of `spectrum.csv`.
+pub const SPECTRUM_HEADER: &str = "frequency,incident,reflected";
+/// Header of `law_curve.csv`.
+pub const LAW_CURVE_HEADER: &str = "gap,stress";
+
+/// A rendered output file: its name in the output folder and its contents.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutputFile {
+    /// File name (no folder).
+    pub name: String,
+    /// Contents.
+    pub contents: String,
+}
+
+impl OutputFile {
+    fn new(name: &str, contents: String) -> Self {
+        OutputFile {
+            name: name.to_string(),
+            contents,
+        }
+    }
+}
+
+/// CSV text from a header and equally long columns (the shortest column sets the length).
+pub fn csv_columns(header: &str, columns: &[&[f64]]) -> String {
+    let n = columns.iter().map(|c| c.len()).min().unwrap_or(0);
+    let mut s = String::with_capacity(header.len() + 1 + n * columns.len() * 24);
+    s.push_str(header);
+    s.push('\n');
+    for i in 0..n {
+        for (k, c) in columns.iter().enumerate() {
+            if k > 0 {
+                s.push(',');
+            }
+            let _ = write!(s, "{:?}", c[i]);
+        }
+        s.push('\n');
+    }
+    s
+}
+
+struct SummaryJson<'a> {
+    scenario: &'a str,
+    summary: &'a Summary,
+}
+
+impl Serialize for SummaryJson<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(None)?;
+        m.serialize_entry("scenario", self.scenario)?;
+        for (k, v) in self.summary.iter() {
+            if v.is_finite() {
+                m.serialize_entry(k, &v)?;
+            } else {
+                m.serialize_entry(k, &Option::<f64>::None)?;
+            }
+        }
+        m.end()
+    }
+}
+
+/// `summary.json`: `{"scenario": <file>, <summary keys in order>...}`.
+pub fn summary_json(scenario_file: &str, summary: &Summary) -> String {
+    let mut s = serde_json::to_string_pretty(&SummaryJson {
+        scenario: scenario_file,
+        summary,
+    })
+    .unwrap_or_else(|_| "{}".to_string());
+    s.push('\n');
+    s
+}
+
+/// `timeseries.csv` of a run (interface values, SI).
+pub fn timeseries_csv(result: &RunResult) -> String {
+    let o = &result.interface;
+    csv_columns(
+        TIMESERIES_HEADER,
+        &[
+            &o.t,
+            &o.gap,
+            &o.contact_stress,
+            &o.beta,
+            &o.incident_stress,
+            &o.reflected_stress,
+            &o.transmitted_stress,
+        ],
+    )
+}
+
+/// `probe.csv` of a run (probe values, SI).
+pub fn probe_csv(result: &RunResult) -> String {
+    let p = &result.probe;
+    csv_columns(
+        PROBE_HEADER,
+        &[
+            &p.t,
+            &p.incident_stress,
+            &p.reflected_stress,
+            &p.incident_velocity,
+            &p.reflected_velocity,
+            &p.displacement,
+        ],
+    )
+}
+
+/// `spectrum.csv` of a run: frequency (Hz), incident and reflected velocity magnitudes
+/// (m/s) on the incident spectrum's frequency grid.
+pub fn spectrum_csv(result: &RunResult) -> String {
+    csv_columns(
+        SPECTRUM_HEADER,
+        &[
+            &result.incident_spectrum.frequency,
+            &result.incident_spectrum.magnitude,
+            &result.reflected_spectrum.magnitude,
+        ],
+    )
+}
+
+/// Every file of a run, rendered in memory (see the module doc for the list).
+pub fn run_files(result: &RunResult, scenario: &Scenario) -> Result<Vec<OutputFile>> {
+    Ok(vec![
+        OutputFile::new(
+            "summary.json",
+            summary_json(&scenario.file, &result.summary),
+        ),
+        OutputFile::new("timeseries.csv", timeseries_csv(result)),
+        OutputFile::new("probe.csv", probe_csv(result)),
+        OutputFile::new("spectrum.csv", spectrum_csv(result)),
+        OutputFile::new("time_histories.svg", plot::time_histories(result)?),
+        OutputFile::new("waves.svg", plot::waves(result)?),
+        OutputFile::new(
+            "spectrum.svg",
+            plot::spectrum(result, scenario.incident.fundamental())?,
+        ),
+        OutputFile::new("stress_gap.svg", plot::stress_gap(result)?),
+    ])
+}
+
+/// Gap range `(min, max)`, m, that shows a law's shape: the compression branch down to
+/// `-[u]_c` (or a little below zero for a rigid branch) and the traction branch up to
+/// four times its length scale (`sqrt(w / C_N)` with damage, `p0 / K_t` for a linear
+/// branch, `[u]_c` otherwise).
+pub fn law_gap_range(law: &ContactLaw) -> (f64, f64) {
+    let uc = law.critical_gap().max(0.0);
+    let p0 = law.static_pressure;
+    let t = &law.traction;
+    let kt = if t.is_rigid() {
+        f64::INFINITY
+    } else {
+        t.stiffness_at_contact()
+    };
+    let mut d = 0.0f64;
+    if t.has_damage() {
+        let w = t.damage_driving_force(0.0, 1.0);
+        if w.is_finite() && w > 0.0 && kt.is_finite() && kt > 0.0 {
+            d = (w / kt).sqrt();
+        }
+    }
+    if d == 0.0 && kt.is_finite() && kt > 0.0 && p0 > 0.0 {
+        d = p0 / kt;
+    }
+    if d == 0.0 || !d.is_finite() {
+        d = uc;
+    }
+    if d == 0.0 {
+        let k = law.compression.stiffness_at_rest();
+        d = if k.is_finite() && k > 0.0 && p0 > 0.0 {
+            p0 / k
+        } else {
+            1e-9
+        };
+    }
+    let low = if uc > 0.0 { -uc } else { -0.5 * d };
+    (low, uc + 4.0 * d)
+}
+
+/// `law_curve.csv` and `law_curve.svg` of a law, rendered in memory.
+pub fn law_files(law: &ContactLaw) -> Result<Vec<OutputFile>> {
+    let (g0, g1) = law_gap_range(law);
+    let (gap, stress) = law.curve(g0, g1, 801);
+    Ok(vec![
+        OutputFile::new(
+            "law_curve.csv",
+            csv_columns(LAW_CURVE_HEADER, &[&gap, &stress]),
+        ),
+        OutputFile::new("law_curve.svg", plot::law_curve(law, &gap, &stress)?),
+    ])
+}
+
+/// Plot of a sweep CSV: `A1_over_Ainc` and `A2_over_Ainc` (two panels) against the first
+/// axis, one curve per combination of the other axes' values. `None` when the CSV has no
+/// rows (every point failed).
+pub fn sweep_svg(sweep: &Sweep, csv: &Path) -> Result<Option<String>> {
+    let table = read_sweep_csv(csv)?;
+    if table.rows.is_empty() {
+        return Ok(None);
+    }
+    plot::sweep(sweep, &table).map(Some)
+}
+
+/// Create `dir` (and its parents) and write the files into it, each through a temporary
+/// name and a rename. Returns the paths written.
+pub fn write_files(dir: &Path, files: &[OutputFile]) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let mut written = Vec::with_capacity(files.len());
+    for f in files {
+        let path = dir.join(&f.name);
+        let tmp = dir.join(format!(".{}.tmp{}", f.name, std::process::id()));
+        std::fs::write(&tmp, &f.contents).map_err(|e| Error::io(&tmp, e))?;
+        std::fs::rename(&tmp, &path).map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            Error::io(&path, e)
+        })?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+/// Render and write every file of a run into `dir` (created if needed).
+pub fn write_run(result: &RunResult, scenario: &Scenario, dir: &Path) -> Result<Vec<PathBuf>> {
+    let files = run_files(result, scenario)?;
+    write_files(dir, &files)
+}
+
+/// Render and write `law_curve.csv` and `law_curve.svg` into `dir` (created if needed).
+pub fn write_law_curve(law: &ContactLaw, dir: &Path) -> Result<Vec<PathBuf>> {
+    let files = law_files(law)?;
+    write_files(dir, &files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn csv_round_trips_floats() {
+        let a = [0.1, 1e-8, -2.5e300, f64::NAN];
+        let b = [1.0, 2.0, 3.0, 4.0, 5.0];
+        let s = csv_columns("a,b", &[&a, &b]);
+        let lines: Vec<&str> = s.lines().collect();
+        assert_eq!(lines.len(), 5);
+        assert_eq!(lines[0], "a,b");
+        for (i, l) in lines[1..].iter().enumerate() {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            assert!(v[0] == a[i] || (v[0].is_nan() && a[i].is_nan()));
+            assert_eq!(v[1], b[i]);
+        }
+    }
+
+    #[test]
+    fn summary_json_keeps_order_and_nulls_nan() {
+        let mut s = Summary::new();
+        s.set("xi", 0.35);
+        s.set("bad", f64::NAN);
+        let j = summary_json("a.toml", &s);
+        let v: serde_json::Value = serde_json::from_str(&j).unwrap();
+        assert_eq!(v["scenario"], "a.toml");
+        assert_eq!(v["xi"], 0.35);
+        assert!(v["bad"].is_null());
+        assert!(j.find("scenario").unwrap() < j.find("xi").unwrap());
+    }
+
+    #[test]
+    fn run_and_law_files_render() {
+        let s = Scenario::from_toml_str(
+            r#"
+            [medium]
+            material = "pmma"
+            [interface]
+            static_pressure = 0.082e6
+            traction = { law = "rccm", stiffness = 2e13, energy = 0.1, viscosity = 1e-8 }
+            [incident]
+            frequency = 1e6
+            cycles = 3
+            amplitude = 0.82e6
+            "#,
+            "t.toml",
+        )
+        .unwrap();
+        let r = crate::simulate(&s).unwrap();
+        let files = run_files(&r, &s).unwrap();
+        assert_eq!(files.len(), 8);
+        let ts = &files[1].contents;
+        assert!(ts.starts_with(&format!("{TIMESERIES_HEADER}\n")));
+        for f in &files {
+            if f.name.ends_with(".svg") {
+                assert!(f.contents.contains("<svg"), "{}", f.name);
+                assert!(f.contents.len() < 3_000_000, "{} too big", f.name);
+            }
+        }
+        let law = law_files(&s.law).unwrap();
+        assert!(law[0].contents.starts_with("gap,stress\n"));
+        assert!(law[0].contents.lines().count() > 100);
+        // rigid compression + free traction and a bonded law render too
+        for toml in [
+            "[medium]\nmaterial = \"pmma\"\n[interface]\nstatic_pressure = 0.1e6\n[incident]\nfrequency = 1e6\nxi = 0.3\n",
+            "[medium]\nmaterial = \"pmma\"\n[interface]\nstatic_pressure = 0.1e6\ntraction = { law = \"bonded\" }\ncompression = { law = \"linear\", stiffness = 1e12 }\n[incident]\nfrequency = 1e6\nxi = 0.3\n",
+        ] {
+            let s = Scenario::from_toml_str(toml, "u.toml").unwrap();
+            let (g0, g1) = law_gap_range(&s.law);
+            assert!(g0 < 0.0 && g1 > 0.0 && g1.is_finite());
+            law_files(&s.law).unwrap();
+        }
+    }
+}
