@@ -572,11 +572,12 @@ fn parse_axis(a: &toml::Value, i: usize, file: &str) -> Result<Axis> {
                     }
                 }
             }
-            _ => return Err(Error::invalid(
-                file,
-                field,
-                show(raw),
-                format!(
+            _ => {
+                return Err(Error::invalid(
+                    file,
+                    field,
+                    show(raw),
+                    format!(
                     "must be {what}: finite numbers{} and n an integer in [1, {MAX_AXIS_POINTS}]",
                     if key == "logspace" {
                         " in [-300, 300]"
@@ -584,7 +585,8 @@ fn parse_axis(a: &toml::Value, i: usize, file: &str) -> Result<Axis> {
                         ""
                     }
                 ),
-            )),
+                ))
+            }
         }
     };
     let values = spec.values();
