@@ -78,21 +78,19 @@ pub fn settings(scenario: &Scenario) -> HalfSpaceSettings {
 
 /// Run a scenario only through the solver and the harmonic analysis (what sweeps need):
 /// no probe series and no spectra.
+/// The summary has the keys of [`simulate`]'s except the incident burst's own ratios
+/// (`incident_A*_over_Ainc`).
 pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
     let out = half_space(scenario).solve(&settings(scenario))?;
-    let (inc, refl) = bands(scenario, &out);
-    Ok(summarise(scenario, &out, &inc, &refl))
+    let refl = bands(scenario, &out.reflected_displacement, out.dt);
+    Ok(summarise(scenario, &out, None, &refl))
 }
 
-fn bands(scenario: &Scenario, out: &HalfSpaceOutput) -> (BandAmplitudes, BandAmplitudes) {
+fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
     let f0 = scenario.incident.fundamental();
     let f2 = scenario.incident.second_frequency();
-    let vr = cell_velocity(&out.reflected_displacement, out.dt);
-    let vi = cell_velocity(&out.incident_displacement, out.dt);
-    ANALYZER.with(|a| {
-        let mut a = a.borrow_mut();
-        (a.bands(&vi, out.dt, f0, f2), a.bands(&vr, out.dt, f0, f2))
-    })
+    let v = cell_velocity(displacement, dt);
+    ANALYZER.with(|a| a.borrow_mut().bands(&v, dt, f0, f2))
 }
 
 /// Run a scenario: solve, probe, spectra, summary.
@@ -115,8 +113,9 @@ fn bands(scenario: &Scenario, out: &HalfSpaceOutput) -> (BandAmplitudes, BandAmp
 /// ```
 pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
     let out = half_space(scenario).solve(&settings(scenario))?;
-    let (inc, refl) = bands(scenario, &out);
-    let summary = summarise(scenario, &out, &inc, &refl);
+    let inc = bands(scenario, &out.incident_displacement, out.dt);
+    let refl = bands(scenario, &out.reflected_displacement, out.dt);
+    let summary = summarise(scenario, &out, Some(&inc), &refl);
     let f_max = 6.0 * scenario.incident.highest_frequency();
     let vr = cell_velocity(&out.reflected_displacement, out.dt);
     let vi = cell_velocity(&out.incident_displacement, out.dt);
@@ -186,7 +185,7 @@ fn probe(scenario: &Scenario, out: &HalfSpaceOutput) -> ProbeSeries {
 fn summarise(
     scenario: &Scenario,
     out: &HalfSpaceOutput,
-    inc: &BandAmplitudes,
+    inc: Option<&BandAmplitudes>,
     refl: &BandAmplitudes,
 ) -> Summary {
     let z1 = scenario.medium.impedance();
@@ -211,8 +210,10 @@ fn summarise(
             0.0
         },
     );
-    for n in 1..=5 {
-        s.set(&format!("incident_A{n}_over_Ainc"), inc.harmonic[n] / a_inc);
+    if let Some(inc) = inc {
+        for n in 1..=5 {
+            s.set(&format!("incident_A{n}_over_Ainc"), inc.harmonic[n] / a_inc);
+        }
     }
     if scenario.incident.second_frequency().is_some() {
         s.set("Af2_over_Ainc", refl.f2 / a_inc);

@@ -68,7 +68,7 @@ impl Analyzer {
     /// of two at least `2 len`, with the cell-average response divided out. Leaves the
     /// spectrum in `self.spec`; returns (n_fft, df).
     fn transform(&mut self, x: &[f64], dt: f64) -> (usize, f64) {
-        let n_fft = (2 * x.len()).next_power_of_two().max(64);
+        let n_fft = fast_len(x.len() + x.len() / 8 + 16);
         let plan = self.real.plan_fft_forward(n_fft);
         self.input.clear();
         self.input.extend_from_slice(x);
@@ -78,17 +78,11 @@ impl Analyzer {
             .resize(plan.get_scratch_len(), Complex::new(0.0, 0.0));
         // lengths are consistent by construction
         let _ = plan.process_with_scratch(&mut self.input, &mut self.spec, &mut self.scratch);
-        let df = 1.0 / (n_fft as f64 * dt);
-        for (k, c) in self.spec.iter_mut().enumerate() {
-            let a = std::f64::consts::PI * k as f64 * df * dt;
-            let sinc = if a == 0.0 { 1.0 } else { a.sin() / a };
-            *c /= sinc.max(1e-3);
-        }
-        (n_fft, df)
+        (n_fft, 1.0 / (n_fft as f64 * dt))
     }
 
     /// Peak of the envelope of the signal band-limited to `[f_lo, f_hi)`.
-    fn band_peak(&mut self, n_fft: usize, df: f64, f_lo: f64, f_hi: f64) -> f64 {
+    fn band_peak(&mut self, n_fft: usize, df: f64, dt: f64, f_lo: f64, f_hi: f64) -> f64 {
         let k_lo = (f_lo / df).ceil().max(1.0) as usize;
         let k_hi = ((f_hi / df).ceil() as usize).min(self.spec.len());
         if k_hi <= k_lo {
@@ -97,14 +91,19 @@ impl Analyzer {
         let nb = k_hi - k_lo;
         let m = (16 * nb).next_power_of_two().max(64);
         self.band.clear();
-        self.band.extend_from_slice(&self.spec[k_lo..k_hi]);
+        // divide out the cell-average response sinc(pi f dt)
+        self.band
+            .extend(self.spec[k_lo..k_hi].iter().enumerate().map(|(i, c)| {
+                let a = std::f64::consts::PI * (k_lo + i) as f64 * df * dt;
+                c / (a.sin() / a).max(1e-3)
+            }));
         self.band.resize(m, Complex::new(0.0, 0.0));
         let plan = self.cplx.plan_fft_inverse(m);
         self.scratch
             .resize(plan.get_inplace_scratch_len(), Complex::new(0.0, 0.0));
         plan.process_with_scratch(&mut self.band, &mut self.scratch);
-        let peak = self.band.iter().fold(0.0f64, |p, c| p.max(c.norm()));
-        2.0 * peak / n_fft as f64
+        let peak2 = self.band.iter().fold(0.0f64, |p, c| p.max(c.norm_sqr()));
+        2.0 * peak2.sqrt() / n_fft as f64
     }
 
     /// Band amplitudes of the cell-averaged signal `x` (step `dt`) for fundamental `f0`
@@ -114,15 +113,15 @@ impl Analyzer {
         let mut out = BandAmplitudes::default();
         for n in 1..=5 {
             let c = n as f64 * f0;
-            out.harmonic[n] = self.band_peak(n_fft, df, c - 0.5 * f0, c + 0.5 * f0);
+            out.harmonic[n] = self.band_peak(n_fft, df, dt, c - 0.5 * f0, c + 0.5 * f0);
         }
-        out.subharmonic = self.band_peak(n_fft, df, 0.25 * f0, 0.75 * f0);
+        out.subharmonic = self.band_peak(n_fft, df, dt, 0.25 * f0, 0.75 * f0);
         if let Some(f2) = f2 {
             let diff = (f2 - f0).abs();
             let hw = 0.25 * f0.min(f2).min(diff);
-            out.f2 = self.band_peak(n_fft, df, f2 - hw, f2 + hw);
-            out.sum = self.band_peak(n_fft, df, f0 + f2 - hw, f0 + f2 + hw);
-            out.difference = self.band_peak(n_fft, df, diff - hw, diff + hw);
+            out.f2 = self.band_peak(n_fft, df, dt, f2 - hw, f2 + hw);
+            out.sum = self.band_peak(n_fft, df, dt, f0 + f2 - hw, f0 + f2 + hw);
+            out.difference = self.band_peak(n_fft, df, dt, diff - hw, diff + hw);
         }
         out
     }
@@ -132,11 +131,42 @@ impl Analyzer {
     pub fn spectrum(&mut self, x: &[f64], dt: f64, f_max: f64) -> Spectrum {
         let (_n, df) = self.transform(x, dt);
         let kmax = ((f_max / df).ceil() as usize).min(self.spec.len());
+        let sinc = |k: usize| {
+            let a = std::f64::consts::PI * k as f64 * df * dt;
+            if k == 0 {
+                1.0
+            } else {
+                (a.sin() / a).max(1e-3)
+            }
+        };
         Spectrum {
             frequency: (0..kmax).map(|k| k as f64 * df).collect(),
-            magnitude: self.spec[..kmax].iter().map(|c| c.norm() * dt).collect(),
+            magnitude: self.spec[..kmax]
+                .iter()
+                .enumerate()
+                .map(|(k, c)| c.norm() * dt / sinc(k))
+                .collect(),
         }
     }
+}
+
+/// Smallest length >= n of the form 2^a 3^b 5^c (fast for RustFFT).
+fn fast_len(n: usize) -> usize {
+    let mut best = n.next_power_of_two();
+    let mut p5 = 1;
+    while p5 < best {
+        let mut p35 = p5;
+        while p35 < best {
+            let mut v = p35;
+            while v < n {
+                v *= 2;
+            }
+            best = best.min(v);
+            p35 *= 3;
+        }
+        p5 *= 5;
+    }
+    best
 }
 
 #[cfg(test)]

@@ -120,6 +120,10 @@ pub struct HalfSpaceOutput {
     pub burst_duration: f64,
 }
 
+/// Normalised threshold of the damage on/off event functions (phi / w and the scaled
+/// opening rate) below which no switch is made.
+const EVENT_HYSTERESIS: f64 = 1e-10;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Phase {
     /// Rigid compression active: gap held at 0.
@@ -145,6 +149,9 @@ impl Phase {
 /// The gap ODE in one phase, as a Radau system.
 struct GapOde<'a> {
     hs: &'a HalfSpace,
+    /// The last two evaluations of the incident stress (time, value): the end of a step is
+    /// the start of the next one and the time of the recorded sample.
+    cache: std::cell::Cell<[(f64, f64); 2]>,
     phase: Phase,
     k: f64,
     p0: f64,
@@ -191,6 +198,13 @@ impl GapOde<'_> {
 }
 
 impl System for GapOde<'_> {
+    fn dim(&self) -> usize {
+        if self.phase == Phase::Damaging && !self.algebraic_damage() {
+            2
+        } else {
+            1
+        }
+    }
     fn mass(&self) -> [f64; 2] {
         if self.phase == Phase::Damaging && !self.algebraic_damage() {
             [1.0, self.hs.law.traction.damage_viscosity()]
@@ -198,16 +212,34 @@ impl System for GapOde<'_> {
             [1.0, 1.0]
         }
     }
-    fn rhs(&self, t: f64, y: [f64; 2]) -> [f64; 2] {
+    #[inline]
+    fn forcing(&self, t: f64) -> f64 {
+        let c = self.cache.get();
+        if c[0].0 == t {
+            return c[0].1;
+        }
+        if c[1].0 == t {
+            return c[1].1;
+        }
+        let v = self.hs.incident.stress(t);
+        self.cache.set([c[1], (t, v)]);
+        v
+    }
+    fn rhs_forced(&self, _t: f64, s_inc: f64, y: [f64; 2]) -> [f64; 2] {
         let f1 = if self.phase == Phase::Damaging && !self.algebraic_damage() {
+            // b dbeta/dt = min(phi, 0): beta never increases
             self.hs
                 .law
                 .traction
                 .damage_driving_force((y[0] - self.uc).max(0.0), y[1])
+                .min(0.0)
         } else {
             0.0
         };
-        [self.gap_rate(t, y), f1]
+        [
+            self.two_over_z1 * s_inc - self.k * (self.sigma(y) + self.p0),
+            f1,
+        ]
     }
     fn jacobian(&self, _t: f64, y: [f64; 2]) -> [[f64; 2]; 2] {
         match self.phase {
@@ -239,7 +271,7 @@ impl System for GapOde<'_> {
                     -self.k * tr.tangent(d, y[1]),
                     -self.k * tr.stress_d_adhesion(d, y[1]),
                 ];
-                if self.phase == Phase::Damaging {
+                if self.phase == Phase::Damaging && tr.damage_driving_force(d, y[1]) < 0.0 {
                     let (a, b) = tr.damage_driving_force_gradient(d, y[1]);
                     [row0, [a, b]]
                 } else {
@@ -304,6 +336,12 @@ struct Runner<'a> {
     f0: f64,
     events: usize,
     max_gap: f64,
+    /// After a phase switch into a stiff phase: the current sub-step size that resolves the
+    /// boundary layer (doubled after each sub-step until it reaches the grid step).
+    ramp: Option<f64>,
+    /// Time of the last damage on/off switch: a second one at the very same time is a
+    /// grazing point where both modes agree, and is skipped (no chattering).
+    last_mode_switch: f64,
 }
 
 impl<'a> Runner<'a> {
@@ -326,6 +364,7 @@ impl<'a> Runner<'a> {
             hs,
             ode: GapOde {
                 hs,
+                cache: std::cell::Cell::new([(f64::NAN, 0.0); 2]),
                 phase: hs.rest_phase(),
                 k,
                 p0,
@@ -341,13 +380,15 @@ impl<'a> Runner<'a> {
             f0,
             events: 0,
             max_gap: 0.0,
+            ramp: None,
+            last_mode_switch: f64::NAN,
         }
     }
 
     /// Interface stress plus p0 (S = sigma + p0) in a stuck phase at time t.
     #[inline]
     fn stuck_s(&self, t: f64) -> f64 {
-        self.ode.two_over_z1 * self.hs.incident.stress(t) / self.ode.k
+        self.ode.two_over_z1 * self.ode.forcing(t) / self.ode.k
     }
 
     /// Event function of a stuck phase (exit when > 0).
@@ -421,8 +462,10 @@ impl<'a> Runner<'a> {
         };
         // Stage values of a composed step are not collocation values of one step; return
         // the end state in all three (used only for the end value and coarse checks).
+        let _ = t;
         Ok(radau::Step {
             stages: [a.end(), b.end(), b.end()],
+            forcing: [a.forcing[2], b.forcing[2], b.forcing[2]],
         })
     }
 
@@ -431,12 +474,29 @@ impl<'a> Runner<'a> {
         let z1 = self.hs.z1;
         let z2 = self.hs.z2;
         for i in 0..4 {
-            let tt = t + GL4_NODES[i] * h;
-            let w = GL4_WEIGHTS[i] * h;
-            let sinc = self.hs.incident.stress(tt);
-            let s = self.stuck_s(tt);
-            self.acc_point(acc, w, sinc, s, z1, z2);
+            let sinc = self.hs.incident.stress(t + GL4_NODES[i] * h);
+            self.acc_point(acc, GL4_WEIGHTS[i] * h, sinc, self.s_of(sinc), z1, z2);
         }
+    }
+
+    /// Accumulate a stuck step from the incident stress already evaluated at its GL nodes.
+    fn acc_stuck_cached(&self, acc: &mut Acc, h: f64, sinc: &[f64; 4]) {
+        for i in 0..4 {
+            self.acc_point(
+                acc,
+                GL4_WEIGHTS[i] * h,
+                sinc[i],
+                self.s_of(sinc[i]),
+                self.hs.z1,
+                self.hs.z2,
+            );
+        }
+    }
+
+    /// S = sigma + p0 in a stuck phase from the incident stress.
+    #[inline]
+    fn s_of(&self, sinc: f64) -> f64 {
+        self.ode.two_over_z1 * sinc / self.ode.k
     }
 
     #[inline]
@@ -458,9 +518,8 @@ impl<'a> Runner<'a> {
         let z2 = self.hs.z2;
         let p0 = self.ode.p0;
         for j in 0..3 {
-            let tt = t + radau::C[j] * h;
             let w = radau::B[j] * h;
-            let sinc = self.hs.incident.stress(tt);
+            let sinc = st.forcing[j];
             let s = self.ode.sigma(st.stages[j]) + p0;
             self.acc_point(acc, w, sinc, s, z1, z2);
         }
@@ -527,11 +586,21 @@ impl<'a> Runner<'a> {
             (p, _) => p,
         };
         // Closed entered with a tensile constraint stress (grazing): stay open.
-        if to == Phase::Closed && self.stuck_event(Phase::Closed, t) > 0.0 {
-            self.ode.phase = Phase::Traction;
-            return;
-        }
+        let to = if to == Phase::Closed && self.stuck_event(Phase::Closed, t) > 0.0 {
+            Phase::Traction
+        } else {
+            to
+        };
         self.ode.phase = to;
+        // A stiff phase entered with a velocity far from its quasi-static one has a
+        // boundary layer of duration ~1/lambda: resolve it with growing sub-steps.
+        self.ramp = None;
+        if !to.is_stuck() {
+            let lambda = self.ode.jacobian(t, *y)[0][0].abs();
+            if lambda * self.h > 2.0 {
+                self.ramp = Some(0.05 / lambda);
+            }
+        }
     }
 
     /// Advance from t to t_end (no breakpoint inside), updating y, the phase, the
@@ -558,16 +627,29 @@ impl<'a> Runner<'a> {
                     return Ok(());
                 }
                 let e0 = self.stuck_event(phase, t);
-                // look for a sign change at the GL nodes and the end
+                // incident stress at the GL nodes: used for the event check and the
+                // quadrature alike
+                let mut sinc = [0.0; 4];
+                for (i, c) in GL4_NODES.iter().enumerate() {
+                    sinc[i] = self.hs.incident.stress(t + c * h);
+                }
+                let ev = |s: f64| {
+                    let sigma = self.s_of(s) - self.ode.p0;
+                    if phase == Phase::Closed {
+                        sigma
+                    } else {
+                        -sigma
+                    }
+                };
                 let mut hit = None;
                 let mut prev_t = t;
                 let mut prev_e = e0;
-                for tau in GL4_NODES
-                    .iter()
-                    .map(|c| t + c * h)
-                    .chain(std::iter::once(t_end))
-                {
-                    let e = self.stuck_event(phase, tau);
+                for i in 0..5 {
+                    let (tau, e) = if i < 4 {
+                        (t + GL4_NODES[i] * h, ev(sinc[i]))
+                    } else {
+                        (t_end, self.stuck_event(phase, t_end))
+                    };
                     if e > 0.0 && prev_e <= 0.0 {
                         hit = Some((prev_t, prev_e, tau, e));
                         break;
@@ -577,7 +659,7 @@ impl<'a> Runner<'a> {
                 }
                 match hit {
                     None => {
-                        self.acc_stuck(acc, t, h);
+                        self.acc_stuck_cached(acc, h, &sinc);
                         t = t_end;
                     }
                     Some((a, fa, b, fb)) => {
@@ -597,17 +679,27 @@ impl<'a> Runner<'a> {
                 }
                 continue;
             }
-            // ODE phase
+            // ODE phase (sub-steps growing from the boundary-layer scale after a switch)
+            let (h, t_end) = match self.ramp {
+                Some(r) if r < h => (r, t + r),
+                _ => {
+                    self.ramp = None;
+                    (h, t_end)
+                }
+            };
             let y0 = *y;
             let st = self.step_ode(t, y0, h)?;
             let e_start = self.ode_events(phase, t, y0);
             let mut first: Option<(usize, f64)> = None; // (which, tau_hi)
             for which in 0..2 {
-                if e_start[which] > 0.0 {
+                if e_start[which] > 0.0 || (which == 1 && t == self.last_mode_switch) {
                     continue;
                 }
+                // damage on/off switches happen where the opening turns (grazing): a
+                // small hysteresis keeps round-off from chattering between the modes
+                let thr = if which == 1 { EVENT_HYSTERESIS } else { 0.0 };
                 let e_end = self.ode_events(phase, t_end, st.end())[which];
-                if e_end > 0.0 {
+                if e_end > thr {
                     if first.map_or(true, |(_, th)| h < th) {
                         first = Some((which, h));
                     }
@@ -615,10 +707,10 @@ impl<'a> Runner<'a> {
                 }
                 for j in 0..2 {
                     let tj = t + radau::C[j] * h;
-                    if self.ode_events(phase, tj, st.stages[j])[which] > 0.0 {
+                    if self.ode_events(phase, tj, st.stages[j])[which] > thr {
                         let hj = radau::C[j] * h;
                         let sj = self.step_ode(t, y0, hj)?;
-                        if self.ode_events(phase, tj, sj.end())[which] > 0.0
+                        if self.ode_events(phase, tj, sj.end())[which] > thr
                             && first.map_or(true, |(_, th)| hj < th)
                         {
                             first = Some((which, hj));
@@ -641,8 +733,11 @@ impl<'a> Runner<'a> {
                     }
                     self.acc_ode(acc, t, h, y0, &st);
                     *y = st.end();
-                    y[1] = self.ode.beta(*y);
+                    y[1] = self.ode.beta(*y).min(y0[1]);
                     t = t_end;
+                    if let Some(r) = self.ramp.as_mut() {
+                        *r *= 2.0;
+                    }
                 }
                 Some((which, hi)) => {
                     let fa = e_start[which].min(-f64::MIN_POSITIVE);
@@ -681,8 +776,11 @@ impl<'a> Runner<'a> {
                     }
                     self.acc_ode(acc, t, tau, y0, &se);
                     *y = se.end();
-                    y[1] = self.ode.beta(*y);
+                    y[1] = self.ode.beta(*y).min(y0[1]);
                     t += tau;
+                    if which == 1 {
+                        self.last_mode_switch = t;
+                    }
                     self.switch(phase, which, t, y);
                 }
             }
@@ -691,7 +789,7 @@ impl<'a> Runner<'a> {
     }
 
     fn record(&self, out: &mut HalfSpaceOutput, acc: &Acc, t: f64, y: [f64; 2]) {
-        let sinc = self.hs.incident.stress(t);
+        let sinc = self.ode.forcing(t);
         let sigma = if self.ode.phase.is_stuck() {
             self.stuck_s(t) - self.ode.p0
         } else {

@@ -61,10 +61,23 @@ pub fn a_inverse() -> [[f64; 3]; 3] {
 pub trait System {
     /// Diagonal of the mass matrix.
     fn mass(&self) -> [f64; 2];
+    /// Time-dependent forcing g(t) (evaluated once per stage time and step).
+    fn forcing(&self, _t: f64) -> f64 {
+        0.0
+    }
+    /// Right-hand side f(t, y) given the forcing g(t).
+    fn rhs_forced(&self, t: f64, g: f64, y: [f64; 2]) -> [f64; 2];
     /// Right-hand side f(t, y).
-    fn rhs(&self, t: f64, y: [f64; 2]) -> [f64; 2];
+    fn rhs(&self, t: f64, y: [f64; 2]) -> [f64; 2] {
+        self.rhs_forced(t, self.forcing(t), y)
+    }
     /// Jacobian df/dy, row-major.
     fn jacobian(&self, t: f64, y: [f64; 2]) -> [[f64; 2]; 2];
+    /// Number of evolving components: 1 if the second one is frozen (its rhs and
+    /// Jacobian row vanish and its mass is 1), else 2.
+    fn dim(&self) -> usize {
+        2
+    }
 }
 
 /// Result of one step.
@@ -72,6 +85,8 @@ pub trait System {
 pub struct Step {
     /// Stage values Y_j (the last one is the end value).
     pub stages: [[f64; 2]; 3],
+    /// Forcing at the stage times.
+    pub forcing: [f64; 3],
 }
 
 impl Step {
@@ -85,61 +100,82 @@ impl Step {
 /// component for the convergence test. Returns `None` if Newton does not converge.
 pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) -> Option<Step> {
     let m = sys.mass();
+    let n = sys.dim();
     let f0 = sys.rhs(t, y);
     let j0 = sys.jacobian(t, y);
-    let stiff = h * j0[0][0].abs() > 1.0 || h * j0[1][1].abs() > m[1].abs();
+    let g = [
+        sys.forcing(t + C[0] * h),
+        sys.forcing(t + C[1] * h),
+        sys.forcing(t + C[2] * h),
+    ];
+    let stiff = h * j0[0][0].abs() > 1.0 || (n == 2 && h * j0[1][1].abs() > m[1].abs());
     let mut z = [[0.0f64; 2]; 3];
     if !stiff {
         for (j, zj) in z.iter_mut().enumerate() {
-            for i in 0..2 {
+            for i in 0..n {
                 if m[i] != 0.0 {
                     zj[i] = C[j] * h * f0[i] / m[i];
                 }
             }
         }
     }
+    let nn = 3 * n;
     let mut jac = [0.0f64; 36];
     let mut rhs = [0.0f64; 6];
-    for _iter in 0..25 {
-        let mut f = [[0.0; 2]; 3];
-        let mut jj = [[[0.0; 2]; 2]; 3];
+    let mut f = [[0.0; 2]; 3];
+    for iter in 0..25 {
         for l in 0..3 {
-            let yl = [y[0] + z[l][0], y[1] + z[l][1]];
-            let tl = t + C[l] * h;
-            f[l] = sys.rhs(tl, yl);
-            jj[l] = sys.jacobian(tl, yl);
+            f[l] = sys.rhs_forced(t + C[l] * h, g[l], [y[0] + z[l][0], y[1] + z[l][1]]);
         }
-        // residual R_{j,i} = m_i z_{j,i} - h sum_l a_jl f_{l,i}; Jacobian dR/dz
+        // residual R_{j,i} = m_i z_{j,i} - h sum_l a_jl f_{l,i}
+        let mut res = 0.0f64;
         for j in 0..3 {
-            for i in 0..2 {
-                let r = j * 2 + i;
+            for i in 0..n {
                 let mut s = m[i] * z[j][i];
                 for l in 0..3 {
                     s -= h * A[j][l] * f[l][i];
                 }
-                rhs[r] = s;
+                rhs[j * n + i] = s;
+                res = res.max(s.abs() / scale[i]);
+            }
+        }
+        if !res.is_finite() {
+            return None;
+        }
+        if iter > 0 && res < 1e-14 {
+            break;
+        }
+        let mut jj = [[[0.0; 2]; 2]; 3];
+        for l in 0..3 {
+            jj[l] = sys.jacobian(t + C[l] * h, [y[0] + z[l][0], y[1] + z[l][1]]);
+        }
+        for j in 0..3 {
+            for i in 0..n {
+                let r = j * n + i;
                 for l in 0..3 {
-                    for k in 0..2 {
-                        let c = l * 2 + k;
+                    for k in 0..n {
+                        let c = l * n + k;
                         let mut v = -h * A[j][l] * jj[l][i][k];
                         if j == l && i == k {
                             v += m[i];
                         }
-                        jac[r * 6 + c] = v;
+                        jac[r * nn + c] = v;
                     }
                 }
             }
         }
-        if !rhs.iter().all(|v| v.is_finite()) {
-            return None;
-        }
-        if !crate::numeric::solve_dense(&mut jac, &mut rhs, 6) {
+        let ok = if n == 1 {
+            solve3(&jac, &mut rhs)
+        } else {
+            crate::numeric::solve_dense(&mut jac[..nn * nn], &mut rhs[..nn], nn)
+        };
+        if !ok {
             return None;
         }
         let mut err = 0.0f64;
         for j in 0..3 {
-            for i in 0..2 {
-                let d = rhs[j * 2 + i];
+            for i in 0..n {
+                let d = rhs[j * n + i];
                 z[j][i] -= d;
                 err = err.max(d.abs() / scale[i]);
             }
@@ -148,14 +184,40 @@ pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) ->
             return None;
         }
         if err < 1e-13 {
-            let mut stages = [[0.0; 2]; 3];
-            for j in 0..3 {
-                stages[j] = [y[0] + z[j][0], y[1] + z[j][1]];
-            }
-            return Some(Step { stages });
+            break;
+        }
+        if iter == 24 {
+            return None;
         }
     }
-    None
+    let mut stages = [[0.0; 2]; 3];
+    for j in 0..3 {
+        stages[j] = [y[0] + z[j][0], y[1] + z[j][1]];
+    }
+    Some(Step { stages, forcing: g })
+}
+
+/// Solve the 3x3 system (row-major in `a[..9]`) by Cramer's rule, in place in `b[..3]`.
+#[inline]
+fn solve3(a: &[f64; 36], b: &mut [f64; 6]) -> bool {
+    let m = |r: usize, c: usize| a[r * 3 + c];
+    let det = m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
+        - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
+        + m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
+    if !(det.abs() > 0.0) || !det.is_finite() {
+        return false;
+    }
+    let (b0, b1, b2) = (b[0], b[1], b[2]);
+    let x0 = b0 * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1)) - m(0, 1) * (b1 * m(2, 2) - m(1, 2) * b2)
+        + m(0, 2) * (b1 * m(2, 1) - m(1, 1) * b2);
+    let x1 = m(0, 0) * (b1 * m(2, 2) - m(1, 2) * b2) - b0 * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
+        + m(0, 2) * (m(1, 0) * b2 - b1 * m(2, 0));
+    let x2 = m(0, 0) * (m(1, 1) * b2 - b1 * m(2, 1)) - m(0, 1) * (m(1, 0) * b2 - b1 * m(2, 0))
+        + b0 * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
+    b[0] = x0 / det;
+    b[1] = x1 / det;
+    b[2] = x2 / det;
+    true
 }
 
 #[cfg(test)]
@@ -166,7 +228,7 @@ mod tests {
         fn mass(&self) -> [f64; 2] {
             [1.0, 1.0]
         }
-        fn rhs(&self, t: f64, y: [f64; 2]) -> [f64; 2] {
+        fn rhs_forced(&self, t: f64, _g: f64, y: [f64; 2]) -> [f64; 2] {
             [-self.0 * (y[0] - t.cos()), 0.0]
         }
         fn jacobian(&self, _t: f64, _y: [f64; 2]) -> [[f64; 2]; 2] {
