@@ -1,1 +1,358 @@
-fn main() {}
+//! `contactwave`: command-line interface of the contactwave library.
+//!
+//! Exit codes: 0 success; 1 `validate` found a case outside its tolerance; 2 invalid input
+//! (scenario or sweep file, missing file, output path, I/O); 3 numerical failure of a
+//! simulation; 130 interrupted (Ctrl-C). Every error is one line on stderr starting with
+//! `error: `, and no output folder is created or modified when an input is invalid or the
+//! simulation fails.
+
+use clap::{Parser, Subcommand};
+use contactwave::output;
+use contactwave::scenario::{parse_toml, set_dotted, Scenario};
+use contactwave::study::{self, Sweep, SweepOptions};
+use contactwave::Error;
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::Instant;
+
+/// Set by Ctrl-C; sweeps check it before each point.
+static CANCEL: AtomicBool = AtomicBool::new(false);
+
+const AFTER_HELP: &str = "\
+Units are SI throughout: Pa (stress, p0, amplitude), m (gap, probe position), s, Hz,
+kg/m^3, Pa/m (interface stiffness), J/m^2 (decohesion energy). Stress is tension-positive;
+p0 is a compression.
+
+Exit codes: 0 success, 1 validation case outside tolerance, 2 invalid input or I/O error,
+3 numerical failure, 130 interrupted.";
+
+#[derive(Parser)]
+#[command(
+    name = "contactwave",
+    version,
+    about = "Simulate elastic waves interacting with nonlinear contact interfaces",
+    after_help = AFTER_HELP
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Simulate one scenario and write summary.json, timeseries.csv, probe.csv,
+    /// spectrum.csv and SVG plots into DIR (SI units: s, m, Pa, m/s, Hz).
+    Run {
+        /// Scenario file (TOML; see docs/scenario.md).
+        scenario: PathBuf,
+        /// Output folder (created if needed; files in it are replaced).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
+    /// Write the contact law of a scenario as law_curve.csv (gap m, stress Pa) and
+    /// law_curve.svg into DIR.
+    Law {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        /// Output folder (created if needed).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
+    /// Run a parameter sweep and write DIR/sweep.csv (one row per point: point index,
+    /// swept parameters in their SI units, summary values), DIR/sweep.csv.hash and
+    /// DIR/sweep.svg. Points whose simulation fails are listed in DIR/sweep_errors.csv.
+    Sweep {
+        /// Sweep file (TOML: `base = "scenario.toml"` and `[[axis]]` tables).
+        sweep: PathBuf,
+        /// Output folder (created if needed).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Keep the rows of an existing sweep.csv of the same sweep and compute only the
+        /// missing points (refused if the sweep, its base scenario or the version changed).
+        #[arg(long)]
+        resume: bool,
+        /// Worker threads (default: one per core).
+        #[arg(long, value_name = "N",
+              value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..))]
+        threads: Option<usize>,
+    },
+    /// Run the validation cases and print `case | reference | computed | rel. error`
+    /// (exit code 1 if a case exceeds its tolerance).
+    Validate,
+    /// Time one simulation of the thesis' chapter-3 RCCM scenario (PMMA, p0 = 0.082 MPa,
+    /// 1 MHz, 15 cycles, amplitude 0.82 MPa; median of --runs runs, one thread) and a sweep
+    /// of --points load ratios xi in [0.05, 1.2] on all cores (in memory, no files).
+    Bench {
+        /// Points of the xi sweep.
+        #[arg(long, default_value_t = 100,
+              value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..))]
+        points: usize,
+        /// Repetitions of the single simulation (the median is reported).
+        #[arg(long, default_value_t = 50,
+              value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..))]
+        runs: usize,
+    },
+}
+
+/// The chapter-3 RCCM scenario of `bench`.
+const BENCH_SCENARIO: &str = r#"
+[medium]
+material = "pmma"
+[interface]
+static_pressure = 0.082e6
+traction = { law = "rccm", stiffness = 2e13, energy = 0.1, viscosity = 1e-8 }
+[incident]
+frequency = 1e6
+cycles = 15
+amplitude = 0.82e6
+[probe]
+x = -0.03
+"#;
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match dispatch(cli.command) {
+        Ok(code) => ExitCode::from(code),
+        Err(e) => {
+            let code = match e {
+                Error::Numerical { .. } => 3,
+                Error::Interrupted => 130,
+                _ => 2,
+            };
+            let msg = e.to_string().replace(['\n', '\r'], " ");
+            eprintln!("error: {msg}");
+            ExitCode::from(code)
+        }
+    }
+}
+
+fn dispatch(cmd: Command) -> contactwave::Result<u8> {
+    match cmd {
+        Command::Run { scenario, out } => run(&scenario, &out),
+        Command::Law { scenario, out } => law(&scenario, &out),
+        Command::Sweep {
+            sweep,
+            out,
+            resume,
+            threads,
+        } => sweep_cmd(&sweep, &out, resume, threads),
+        Command::Validate => validate(),
+        Command::Bench { points, runs } => bench(points, runs),
+    }
+}
+
+/// Refuse an output path that exists and is not a folder (before any work is done).
+fn check_out_dir(out: &Path) -> contactwave::Result<()> {
+    if out.exists() && !out.is_dir() {
+        return Err(Error::io(
+            out,
+            std::io::Error::other("exists and is not a directory"),
+        ));
+    }
+    Ok(())
+}
+
+fn run(path: &Path, out: &Path) -> contactwave::Result<u8> {
+    let scenario = Scenario::load(path)?;
+    check_out_dir(out)?;
+    let t0 = Instant::now();
+    let result = contactwave::simulate(&scenario)?;
+    let wall = t0.elapsed();
+    let files = output::run_files(&result, &scenario)?;
+    output::write_files(out, &files)?;
+    let s = &result.summary;
+    let get = |k: &str| s.get(k).unwrap_or(f64::NAN);
+    println!("scenario               {}", path.display());
+    println!("xi                     {:.6}", get("xi"));
+    println!("A1/Ainc                {:.6e}", get("A1_over_Ainc"));
+    println!("A2/Ainc                {:.6e}", get("A2_over_Ainc"));
+    println!("A2/A1                  {:.6e}", get("A2_over_A1"));
+    println!("beta_end               {:.6}", get("beta_end"));
+    println!("contact loss fraction  {:.6}", get("contact_loss_fraction"));
+    println!("energy closure error   {:.3e}", get("energy_closure_error"));
+    println!("wall time              {:.1} ms", wall.as_secs_f64() * 1e3);
+    println!("wrote {} files to {}", files.len(), out.display());
+    Ok(0)
+}
+
+fn law(path: &Path, out: &Path) -> contactwave::Result<u8> {
+    let scenario = Scenario::load(path)?;
+    check_out_dir(out)?;
+    let files = output::law_files(&scenario.law)?;
+    let written = output::write_files(out, &files)?;
+    for p in written {
+        println!("wrote {}", p.display());
+    }
+    Ok(0)
+}
+
+fn sweep_cmd(
+    path: &Path,
+    out: &Path,
+    resume: bool,
+    threads: Option<usize>,
+) -> contactwave::Result<u8> {
+    let sweep = Sweep::load(path)?;
+    // validate every point before creating anything
+    sweep.scenarios()?;
+    check_out_dir(out)?;
+    std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
+    let _ = ctrlc::set_handler(|| {
+        if CANCEL.swap(true, Ordering::SeqCst) {
+            // second Ctrl-C: give up at once (finished rows are on disk already)
+            std::process::exit(130);
+        }
+    });
+    let total = sweep.points.len();
+    let bar = if std::io::stderr().is_terminal() {
+        let b = ProgressBar::new(total as u64);
+        if let Ok(style) = ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} points  {elapsed_precise} elapsed, eta {eta}",
+        ) {
+            b.set_style(style);
+        }
+        b
+    } else {
+        ProgressBar::hidden()
+    };
+    let done = AtomicUsize::new(0);
+    let progress = |d: usize, _total: usize| {
+        done.store(d, Ordering::SeqCst);
+        bar.set_position(d as u64);
+    };
+    let csv = out.join("sweep.csv");
+    let opts = SweepOptions { threads, resume };
+    match study::run_sweep(&sweep, &csv, &opts, &progress, &CANCEL) {
+        Ok(report) => {
+            bar.finish_and_clear();
+            let mut plotted = false;
+            if let Some(svg) = output::sweep_svg(&sweep, &csv)? {
+                output::write_files(
+                    out,
+                    &[output::OutputFile {
+                        name: "sweep.svg".into(),
+                        contents: svg,
+                    }],
+                )?;
+                plotted = true;
+            }
+            println!(
+                "{} points: {} computed, {} already done, {} failed",
+                report.total, report.computed, report.skipped, report.failed
+            );
+            println!("wrote {}", csv.display());
+            if plotted {
+                println!("wrote {}", out.join("sweep.svg").display());
+            }
+            if let Some(e) = report.errors_csv {
+                eprintln!(
+                    "warning: {} points failed; messages in {}",
+                    report.failed,
+                    e.display()
+                );
+            }
+            Ok(0)
+        }
+        Err(Error::Interrupted) => {
+            bar.abandon();
+            eprintln!(
+                "interrupted: {} of {} points done; rerun with --resume",
+                done.load(Ordering::SeqCst),
+                total
+            );
+            Ok(130)
+        }
+        Err(e) => {
+            bar.abandon();
+            Err(e)
+        }
+    }
+}
+
+fn validate() -> contactwave::Result<u8> {
+    let cases = study::validation::run_all()?;
+    let w = cases.iter().map(|c| c.name.len()).max().unwrap_or(4).max(4);
+    println!(
+        "{:<w$} | {:>12} | {:>12} | {:>10} | {:>9} | ok",
+        "case", "reference", "computed", "rel. error", "tolerance"
+    );
+    println!("{}", "-".repeat(w + 62));
+    let mut failed = 0;
+    for c in &cases {
+        let ok = c.passed();
+        if !ok {
+            failed += 1;
+        }
+        println!(
+            "{:<w$} | {:>12.6e} | {:>12.6e} | {:>10.3e} | {:>9.1e} | {}",
+            c.name,
+            c.reference,
+            c.computed,
+            c.rel_error,
+            c.tolerance,
+            if ok { "yes" } else { "NO" }
+        );
+    }
+    println!(
+        "{} of {} cases within tolerance",
+        cases.len() - failed,
+        cases.len()
+    );
+    Ok(if failed > 0 { 1 } else { 0 })
+}
+
+fn bench(points: usize, runs: usize) -> contactwave::Result<u8> {
+    let file = "<bench: chapter-3 RCCM scenario>";
+    let table = parse_toml(BENCH_SCENARIO, file)?;
+    let scenario = Scenario::from_table(table.clone(), Path::new(file))?;
+    // (a) one simulation, single thread, median of `runs`
+    let mut times = Vec::with_capacity(runs);
+    for _ in 0..runs {
+        let t0 = Instant::now();
+        let s = contactwave::simulate_summary(&scenario)?;
+        times.push(t0.elapsed().as_secs_f64());
+        std::hint::black_box(s);
+    }
+    times.sort_by(f64::total_cmp);
+    let median = times[times.len() / 2];
+    // (b) xi sweep on all cores, in memory
+    let xis = study::linspace(0.05, 1.2, points);
+    let scenarios = xis
+        .iter()
+        .map(|&xi| {
+            let mut t = table.clone();
+            set_dotted(&mut t, "incident.xi", toml::Value::Float(xi))?;
+            Scenario::from_table(t, Path::new(file))
+        })
+        .collect::<contactwave::Result<Vec<_>>>()?;
+    let t0 = Instant::now();
+    let results = scenarios
+        .par_iter()
+        .map(contactwave::simulate_summary)
+        .collect::<contactwave::Result<Vec<_>>>()?;
+    let sweep_s = t0.elapsed().as_secs_f64();
+    std::hint::black_box(results);
+    println!("single simulation (chapter-3 RCCM, 0.82 MPa, 1 thread):");
+    println!(
+        "  median {:.3} ms per simulation over {} runs (min {:.3} ms, max {:.3} ms)",
+        median * 1e3,
+        runs,
+        times[0] * 1e3,
+        times[times.len() - 1] * 1e3
+    );
+    println!(
+        "xi sweep ({} points in [0.05, 1.2], {} threads):",
+        points,
+        rayon::current_num_threads()
+    );
+    println!(
+        "  total {:.1} ms ({:.3} ms per point)",
+        sweep_s * 1e3,
+        sweep_s * 1e3 / points as f64
+    );
+    Ok(0)
+}

@@ -126,6 +126,29 @@ fn range<'a>(points: impl Iterator<Item = &'a f64>) -> std::ops::Range<f64> {
     (lo - pad)..(hi + pad)
 }
 
+/// A short label for a value: 4 significant digits.
+fn short(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || (1e-3..1e4).contains(&a) {
+        let s = format!("{v:.4}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    } else {
+        let s = format!("{v:.3e}");
+        match s.split_once('e') {
+            Some((m, e)) => {
+                let m = if m.contains('.') {
+                    m.trim_end_matches('0').trim_end_matches('.')
+                } else {
+                    m
+                };
+                format!("{m}e{e}")
+            }
+            None => s,
+        }
+    }
+}
+
 struct Curve {
     label: String,
     points: Vec<(f64, f64)>,
@@ -160,10 +183,10 @@ fn panel(
     let yr =
         fixed_y.unwrap_or_else(|| range(curves.iter().flat_map(|c| c.points.iter().map(|p| &p.1))));
     let mut chart = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", 16))
+        .caption(title, ("sans-serif", 22))
         .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
         .build_cartesian_2d(xr.clone(), yr.clone())?;
     chart
         .configure_mesh()
@@ -171,6 +194,8 @@ fn panel(
         .y_desc(ylabel)
         .x_labels(8)
         .y_labels(6)
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 17))
         .x_label_formatter(&|v| format!("{}", (v * 1e4).round() / 1e4))
         .y_label_formatter(&|v| format!("{}", (v * 1e4).round() / 1e4))
         .draw()?;
@@ -201,6 +226,7 @@ fn panel(
             .configure_series_labels()
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
+            .label_font(("sans-serif", 14))
             .position(SeriesLabelPosition::UpperRight)
             .draw()?;
     }
@@ -455,7 +481,7 @@ pub fn sweep(sw: &Sweep, table: &SweepTable) -> Result<String> {
                     others
                         .iter()
                         .zip(key)
-                        .map(|((_, n), v)| format!("{n} = {v:e}"))
+                        .map(|((_, n), v)| format!("{n} = {}", short(*v)))
                         .collect::<Vec<_>>()
                         .join(", ")
                 };

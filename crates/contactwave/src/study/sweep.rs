@@ -779,7 +779,7 @@ impl Writer {
                 .map_err(|e| Error::io(&self.csv_path, e))?;
             self.header = Some(h);
         }
-        let header = self.header.as_ref().map(Vec::as_slice).unwrap_or(&[]);
+        let header = self.header.as_deref().unwrap_or(&[]);
         let n_axes = sweep.axes.len();
         let mut line = i.to_string();
         for v in &sweep.points[i] {

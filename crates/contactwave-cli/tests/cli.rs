@@ -1,0 +1,402 @@
+//! End-to-end tests of the `contactwave` binary: outputs of `run`, one-line errors with
+//! exit code 2 and no output folder on bad input, resumable sweeps.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_contactwave"))
+}
+
+/// A fresh, unique temporary folder.
+fn tmpdir(name: &str) -> PathBuf {
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let d = std::env::temp_dir().join(format!(
+        "contactwave-cli-{name}-{}-{}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::SeqCst)
+    ));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+const BASE: &str = r#"[medium]
+material = "pmma"
+
+[interface]
+static_pressure = 0.1e6
+
+[incident]
+frequency = 1e6
+cycles = 5
+xi = 0.35
+"#;
+
+#[test]
+fn run_writes_summary_and_timeseries() {
+    let d = tmpdir("run");
+    // a fast copy of the chapter-3 example (5 cycles)
+    let text = std::fs::read_to_string(examples().join("rccm_1.6MPa.toml"))
+        .unwrap()
+        .replace("cycles = 15", "cycles = 5");
+    let scenario = d.join("rccm.toml");
+    std::fs::write(&scenario, text).unwrap();
+    let out = d.join("out");
+    let o = bin()
+        .arg("run")
+        .arg(&scenario)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    for key in [
+        "xi",
+        "A1_over_Ainc",
+        "A2_over_Ainc",
+        "A3_over_Ainc",
+        "A2_over_A1",
+        "beta_star",
+        "beta_end",
+        "max_gap",
+        "contact_loss_fraction",
+        "energy_closure_error",
+    ] {
+        assert!(summary[key].is_number(), "summary.json lacks {key}");
+    }
+    let ts = std::fs::read_to_string(out.join("timeseries.csv")).unwrap();
+    let mut lines = ts.lines();
+    assert_eq!(
+        lines.next(),
+        Some("t,gap,contact_stress,beta,incident_stress,reflected_stress,transmitted_stress")
+    );
+    let first: Vec<f64> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    assert_eq!(first.len(), 7);
+    for f in [
+        "probe.csv",
+        "spectrum.csv",
+        "time_histories.svg",
+        "waves.svg",
+        "spectrum.svg",
+        "stress_gap.svg",
+    ] {
+        assert!(out.join(f).is_file(), "missing {f}");
+    }
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("beta_end"), "{stdout}");
+    // law curve
+    let law = d.join("law");
+    let o = bin()
+        .arg("law")
+        .arg(&scenario)
+        .arg("--out")
+        .arg(&law)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(law.join("law_curve.csv")).unwrap();
+    assert!(csv.starts_with("gap,stress\n"));
+    assert!(law.join("law_curve.svg").is_file());
+    let _ = std::fs::remove_dir_all(d);
+}
+
+#[test]
+fn every_example_loads() {
+    for entry in std::fs::read_dir(examples()).unwrap() {
+        let p = entry.unwrap().path();
+        if p.extension().and_then(|e| e.to_str()) != Some("toml") {
+            continue;
+        }
+        let table: toml::Table = std::fs::read_to_string(&p).unwrap().parse().unwrap();
+        if table.contains_key("axis") {
+            let s = contactwave::study::Sweep::load(&p).unwrap();
+            s.scenarios().unwrap();
+        } else {
+            contactwave::scenario::Scenario::load(&p).unwrap();
+        }
+    }
+}
+
+/// Replace `from` by `to` in the base scenario (asserting that `from` occurs).
+fn edit(from: &str, to: &str) -> String {
+    assert!(BASE.contains(from), "{from}");
+    BASE.replacen(from, to, 1)
+}
+
+#[test]
+fn bad_inputs_fail_with_one_line_and_no_output() {
+    let with_traction = |t: &str| {
+        edit(
+            "static_pressure = 0.1e6",
+            &format!("static_pressure = 0.1e6\n{t}"),
+        )
+    };
+    let cases: Vec<(&str, String, &str)> = vec![
+        ("syntax", edit("[medium]", "[medium"), "line"),
+        (
+            "unknown_key",
+            edit("cycles = 5", "cycles = 5\ncolour = 1"),
+            "colour",
+        ),
+        (
+            "unknown_law",
+            with_traction("traction = { law = \"glue\" }"),
+            "interface.traction",
+        ),
+        (
+            "missing_field",
+            edit("frequency = 1e6\n", ""),
+            "incident.frequency",
+        ),
+        (
+            "zero_stiffness",
+            with_traction("traction = { law = \"linear\", stiffness = 0.0 }"),
+            "interface.traction.stiffness",
+        ),
+        (
+            "negative_stiffness",
+            with_traction("compression = { law = \"linear\", stiffness = -1e12 }"),
+            "interface.compression.stiffness",
+        ),
+        (
+            "negative_density",
+            edit(
+                "material = \"pmma\"",
+                "material = \"pmma\"\ndensity = -1190.0",
+            ),
+            "medium.density",
+        ),
+        (
+            "zero_frequency",
+            edit("frequency = 1e6", "frequency = 0.0"),
+            "incident.frequency",
+        ),
+        (
+            "negative_cycles",
+            edit("cycles = 5", "cycles = -3"),
+            "incident.cycles",
+        ),
+        (
+            "m_above_one",
+            with_traction("compression = { law = \"power\", c = 1.81e10, m = 1.5 }"),
+            "interface.compression.m",
+        ),
+        (
+            "m_zero",
+            with_traction("compression = { law = \"power\", c = 1.81e10, m = 0.0 }"),
+            "interface.compression.m",
+        ),
+        (
+            "nan_amplitude",
+            edit("xi = 0.35", "amplitude = nan"),
+            "incident.amplitude",
+        ),
+        (
+            "inf_pressure",
+            edit("static_pressure = 0.1e6", "static_pressure = inf"),
+            "interface.static_pressure",
+        ),
+        ("nan_xi", edit("xi = 0.35", "xi = nan"), "incident.xi"),
+        ("zero_xi", edit("xi = 0.35", "xi = 0.0"), "incident.xi"),
+        ("negative_xi", edit("xi = 0.35", "xi = -0.2"), "incident.xi"),
+        (
+            "probe_x_zero",
+            format!("{BASE}\n[probe]\nx = 0.0\n"),
+            "probe.x",
+        ),
+        (
+            "probe_x_positive",
+            format!("{BASE}\n[probe]\nx = 0.03\n"),
+            "probe.x",
+        ),
+    ];
+    let d = tmpdir("bad");
+    for (name, text, field) in &cases {
+        let file = d.join(format!("{name}.toml"));
+        std::fs::write(&file, text).unwrap();
+        for cmd in ["run", "law"] {
+            let out = d.join(format!("out_{cmd}_{name}"));
+            let o = bin()
+                .arg(cmd)
+                .arg(&file)
+                .arg("--out")
+                .arg(&out)
+                .output()
+                .unwrap();
+            let err = stderr(&o);
+            assert_eq!(o.status.code(), Some(2), "{cmd} {name}: {err}");
+            assert_eq!(err.lines().count(), 1, "{cmd} {name}: {err}");
+            assert!(err.starts_with("error: "), "{cmd} {name}: {err}");
+            assert!(err.contains(&format!("{name}.toml")), "{cmd} {name}: {err}");
+            assert!(err.contains(field), "{cmd} {name}: {err}");
+            assert!(!out.exists(), "{cmd} {name}: output folder created");
+            assert!(o.stdout.is_empty(), "{cmd} {name}: stdout not empty");
+        }
+    }
+    // missing scenario file
+    let out = d.join("out_missing");
+    let o = bin()
+        .arg("run")
+        .arg(d.join("nope.toml"))
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(stderr(&o).lines().count(), 1);
+    assert!(stderr(&o).contains("nope.toml"));
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(d);
+}
+
+fn write_sweep(d: &Path, axis: &str) -> PathBuf {
+    std::fs::write(d.join("base.toml"), BASE).unwrap();
+    let s = d.join("sweep.toml");
+    std::fs::write(&s, format!("base = \"base.toml\"\n\n[[axis]]\n{axis}\n")).unwrap();
+    s
+}
+
+fn csv_points(csv: &Path) -> Vec<usize> {
+    let text = std::fs::read_to_string(csv).unwrap();
+    let mut lines = text.lines();
+    assert!(lines.next().unwrap().starts_with("point,incident.xi,"));
+    lines
+        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn sweep_resume_computes_only_missing_points() {
+    let d = tmpdir("sweep");
+    let s = write_sweep(&d, "parameter = \"incident.xi\"\nlinspace = [0.1, 1.1, 6]");
+    let out = d.join("out");
+    let o = bin()
+        .args([
+            "sweep",
+            s.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--threads",
+            "2",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = out.join("sweep.csv");
+    let mut pts = csv_points(&csv);
+    pts.sort();
+    assert_eq!(pts, (0..6).collect::<Vec<_>>());
+    assert!(out.join("sweep.csv.hash").is_file());
+    assert!(out.join("sweep.svg").is_file());
+    // keep the header and the rows of points 0, 1, 2 (in grid order), drop the rest
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().to_string();
+    let mut rows: Vec<&str> = lines.collect();
+    rows.sort_by_key(|l| l.split(',').next().unwrap().parse::<usize>().unwrap());
+    let kept = format!("{header}\n{}\n{}\n{}\n", rows[0], rows[1], rows[2]);
+    std::fs::write(&csv, &kept).unwrap();
+    let o = bin()
+        .args([
+            "sweep",
+            s.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--resume",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("3 computed, 3 already done"), "{stdout}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(text.starts_with(&kept), "resume rewrote existing rows");
+    let mut pts = csv_points(&csv);
+    assert_eq!(pts.len(), 6);
+    pts.sort();
+    pts.dedup();
+    assert_eq!(pts, (0..6).collect::<Vec<_>>());
+    // a changed sweep refuses to resume into the old CSV and leaves it untouched
+    std::fs::write(
+        &s,
+        "base = \"base.toml\"\n\n[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.1, 1.1, 7]\n",
+    )
+    .unwrap();
+    let o = bin()
+        .args([
+            "sweep",
+            s.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--resume",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(stderr(&o).lines().count(), 1);
+    assert!(stderr(&o).contains("hash"));
+    assert_eq!(std::fs::read_to_string(&csv).unwrap(), text);
+    let _ = std::fs::remove_dir_all(d);
+}
+
+#[test]
+fn bad_sweeps_fail_fast_without_output() {
+    let cases = [
+        (
+            "parameter = \"incident.xi\"\nlinspace = [0.1, 1.1]",
+            "axis[0].linspace",
+        ),
+        (
+            "parameter = \"incident.xi\"\nlogspace = [-1, 0, 0]",
+            "axis[0].logspace",
+        ),
+        (
+            "parameter = \"incident.xi\"\nvalues = [0.2]\nstep = 1",
+            "axis[0].step",
+        ),
+        ("parameter = \"incident.xi\"", "axis[0]"),
+        // a grid point that is not a valid scenario
+        (
+            "parameter = \"incident.xi\"\nvalues = [0.3, -0.1]",
+            "incident.xi",
+        ),
+        (
+            "parameter = \"interface.static_pressure\"\nvalues = [1e5, inf]",
+            "axis[0].values",
+        ),
+    ];
+    for (k, (axis, field)) in cases.iter().enumerate() {
+        let d = tmpdir(&format!("badsweep{k}"));
+        let s = write_sweep(&d, axis);
+        let out = d.join("out");
+        let o = bin()
+            .args(["sweep", s.to_str().unwrap(), "--out", out.to_str().unwrap()])
+            .output()
+            .unwrap();
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{axis}: {err}");
+        assert_eq!(err.lines().count(), 1, "{axis}: {err}");
+        assert!(err.starts_with("error: "), "{err}");
+        assert!(err.contains(field), "{axis}: {err}");
+        assert!(err.contains("sweep.toml"), "{axis}: {err}");
+        assert!(!out.exists(), "{axis}: output folder created");
+        let _ = std::fs::remove_dir_all(d);
+    }
+}
