@@ -118,18 +118,25 @@ fn run_writes_summary_and_timeseries() {
 }
 
 #[test]
-fn every_example_loads() {
+fn every_example_loads_and_runs() {
     for entry in std::fs::read_dir(examples()).unwrap() {
         let p = entry.unwrap().path();
         if p.extension().and_then(|e| e.to_str()) != Some("toml") {
             continue;
         }
         let table: toml::Table = std::fs::read_to_string(&p).unwrap().parse().unwrap();
-        if table.contains_key("axis") {
-            let s = contactwave::study::Sweep::load(&p).unwrap();
-            s.scenarios().unwrap();
+        let scenarios = if table.contains_key("axis") {
+            contactwave::study::Sweep::load(&p)
+                .unwrap()
+                .scenarios()
+                .unwrap()
         } else {
-            contactwave::scenario::Scenario::load(&p).unwrap();
+            vec![contactwave::scenario::Scenario::load(&p).unwrap()]
+        };
+        for s in &scenarios {
+            let summary =
+                contactwave::simulate_summary(s).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            assert!(summary.get("A1_over_Ainc").unwrap().is_finite());
         }
     }
 }
