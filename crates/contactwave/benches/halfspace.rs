@@ -1,1 +1,91 @@
-fn main() {}
+//! Criterion benchmarks of the exact half-space solver (docs/performance.md).
+//!
+//! - `simulate_summary/rccm_0.82MPa`: one run of the thesis' chapter-3 RCCM scenario
+//!   (PMMA, p0 = 0.082 MPa, C_N = 2e13 Pa/m, w = 0.1 J/m^2, b = 1e-8, 1 MHz, 15 cycles,
+//!   amplitude 0.82 MPa), solver plus harmonic analysis, one thread;
+//! - `simulate_summary/unilateral_xi0.35`: unilateral contact (rigid x free) at xi = 0.35;
+//! - `xi_sweep/rccm_100_points`: 100 load ratios xi in [0.05, 1.2] of the RCCM scenario,
+//!   scenarios built beforehand, run with rayon `par_iter` on all cores.
+//!
+//! Sample sizes are small so that `cargo bench -p contactwave` finishes in a few minutes on
+//! two cores.
+
+use contactwave::scenario::Scenario;
+use contactwave::simulate_summary;
+use criterion::{criterion_group, criterion_main, Criterion};
+use rayon::prelude::*;
+use std::hint::black_box;
+use std::time::Duration;
+
+/// The chapter-3 RCCM scenario (thesis chapter 3; `contactwave bench` runs the same one).
+const RCCM: &str = r#"
+[medium]
+material = "pmma"
+[interface]
+static_pressure = 0.082e6
+traction = { law = "rccm", stiffness = 2e13, energy = 0.1, viscosity = 1e-8 }
+[incident]
+frequency = 1e6
+cycles = 15
+amplitude = 0.82e6
+"#;
+
+/// Unilateral contact (rigid compression, free traction) at load ratio xi = 0.35.
+const UNILATERAL: &str = r#"
+[medium]
+material = "pmma"
+[interface]
+static_pressure = 0.1e6
+[incident]
+frequency = 1e6
+cycles = 15
+xi = 0.35
+"#;
+
+/// Number of points of the xi sweep.
+const SWEEP_POINTS: usize = 100;
+
+fn scenario(text: &str, name: &str) -> Scenario {
+    Scenario::from_toml_str(text, name).expect("benchmark scenario is valid")
+}
+
+/// The RCCM scenario with its amplitude replaced by load ratio `xi`.
+fn rccm_at_xi(xi: f64) -> Scenario {
+    let text = RCCM.replace("amplitude = 0.82e6", &format!("xi = {xi:?}"));
+    scenario(&text, "rccm_xi.toml")
+}
+
+fn single_runs(c: &mut Criterion) {
+    let rccm = scenario(RCCM, "rccm_0.82MPa.toml");
+    let unilateral = scenario(UNILATERAL, "unilateral.toml");
+    let mut g = c.benchmark_group("simulate_summary");
+    g.sample_size(20).measurement_time(Duration::from_secs(5));
+    g.bench_function("rccm_0.82MPa", |b| {
+        b.iter(|| simulate_summary(black_box(&rccm)).expect("run succeeds"))
+    });
+    g.bench_function("unilateral_xi0.35", |b| {
+        b.iter(|| simulate_summary(black_box(&unilateral)).expect("run succeeds"))
+    });
+    g.finish();
+}
+
+fn xi_sweep(c: &mut Criterion) {
+    let n = SWEEP_POINTS;
+    let scenarios: Vec<Scenario> = (0..n)
+        .map(|i| rccm_at_xi(0.05 + (1.2 - 0.05) * i as f64 / (n - 1) as f64))
+        .collect();
+    let mut g = c.benchmark_group("xi_sweep");
+    g.sample_size(10).measurement_time(Duration::from_secs(20));
+    g.bench_function("rccm_100_points", |b| {
+        b.iter(|| {
+            scenarios
+                .par_iter()
+                .map(|s| simulate_summary(s).expect("run succeeds"))
+                .collect::<Vec<_>>()
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, single_runs, xi_sweep);
+criterion_main!(benches);
