@@ -2,6 +2,7 @@
 
 use crate::analysis::{Analyzer, BandAmplitudes, Spectrum, Summary};
 use crate::error::Result;
+use crate::scenario::spec::Method;
 use crate::scenario::Scenario;
 use crate::solver::halfspace::{HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
 use std::cell::RefCell;
@@ -68,10 +69,18 @@ pub fn half_space(scenario: &Scenario) -> HalfSpace {
     }
 }
 
+/// Interface histories by the scenario's method (`exact` or `fd`).
+pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
+    match scenario.spec.solver.method {
+        Method::Exact => half_space(scenario).solve(&settings(scenario)),
+        Method::Fd => crate::solver::halfspace_fd::solve(scenario),
+    }
+}
+
 /// Solver settings of a scenario.
 pub fn settings(scenario: &Scenario) -> HalfSpaceSettings {
     HalfSpaceSettings {
-        samples_per_period: scenario.spec.solver.samples_per_period,
+        samples_per_period: scenario.spec.solver.samples_per_period(),
         tail_periods: scenario.spec.solver.tail_periods,
     }
 }
@@ -81,7 +90,7 @@ pub fn settings(scenario: &Scenario) -> HalfSpaceSettings {
 /// The summary has the keys of [`simulate`]'s except the incident burst's own ratios
 /// (`incident_A*_over_Ainc`).
 pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
-    let out = half_space(scenario).solve(&settings(scenario))?;
+    let out = solve(scenario)?;
     let refl = bands(scenario, &out.reflected_displacement, out.dt);
     Ok(summarise(scenario, &out, None, &refl))
 }
@@ -112,7 +121,7 @@ fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
 /// assert!(r.summary.get("A2_over_Ainc").unwrap() > 0.05);
 /// ```
 pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
-    let out = half_space(scenario).solve(&settings(scenario))?;
+    let out = solve(scenario)?;
     let inc = bands(scenario, &out.incident_displacement, out.dt);
     let refl = bands(scenario, &out.reflected_displacement, out.dt);
     let summary = summarise(scenario, &out, Some(&inc), &refl);

@@ -105,7 +105,7 @@ impl Scenario {
                 "must be < 0 (the probe lies in medium 1, x < 0; the interface is at x = 0)",
             ));
         }
-        let spp = spec.solver.samples_per_period;
+        let spp = spec.solver.samples_per_period();
         if !(16..=100_000).contains(&spp) {
             return Err(Error::invalid(
                 file,

@@ -244,18 +244,21 @@ pub enum Method {
     /// Exact half-space solver (gap ODE with events).
     #[default]
     Exact,
+    /// Explicit finite differences (bar-stack scheme at Courant number 1), the thesis'
+    /// method: an independent check of the exact solver.
+    Fd,
 }
 
 /// Solver settings.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
-    /// `exact` (default).
+    /// `exact` (default) or `fd`.
     #[serde(default)]
     pub method: Method,
-    /// Time samples per period of the highest input frequency (default 200).
-    #[serde(default = "default_spp")]
-    pub samples_per_period: usize,
+    /// Time samples per period of the highest input frequency (default 200 for `exact`,
+    /// 1000 for `fd`, which is first order in time at a clapping interface).
+    pub samples_per_period: Option<usize>,
     /// Time simulated after the burst has passed, in periods of f0 (default: automatic, from
     /// the relaxation rate of the interface, between 5 and 200 periods).
     pub tail_periods: Option<f64>,
@@ -265,13 +268,23 @@ impl Default for SolverSpec {
     fn default() -> Self {
         SolverSpec {
             method: Method::Exact,
-            samples_per_period: default_spp(),
+            samples_per_period: None,
             tail_periods: None,
         }
     }
 }
 
-/// Default samples per period.
-pub fn default_spp() -> usize {
-    200
+/// Default samples per period of the exact solver.
+pub const DEFAULT_SPP_EXACT: usize = 200;
+/// Default samples per period of the FD solver.
+pub const DEFAULT_SPP_FD: usize = 1000;
+
+impl SolverSpec {
+    /// Samples per period in effect (the default depends on the method).
+    pub fn samples_per_period(&self) -> usize {
+        self.samples_per_period.unwrap_or(match self.method {
+            Method::Exact => DEFAULT_SPP_EXACT,
+            Method::Fd => DEFAULT_SPP_FD,
+        })
+    }
 }

@@ -342,6 +342,8 @@ struct Runner<'a> {
     /// Time of the last damage on/off switch: a second one at the very same time is a
     /// grazing point where both modes agree, and is skipped (no chattering).
     last_mode_switch: f64,
+    /// Time of the last phase switch of an ODE phase.
+    last_switch: f64,
 }
 
 impl<'a> Runner<'a> {
@@ -382,6 +384,7 @@ impl<'a> Runner<'a> {
             max_gap: 0.0,
             ramp: None,
             last_mode_switch: f64::NAN,
+            last_switch: f64::NAN,
         }
     }
 
@@ -719,7 +722,45 @@ impl<'a> Runner<'a> {
                     }
                 }
             }
-            match first {
+            // an event found again at the very time of the previous switch is a grazing
+            // touch (both phases agree there): step on without switching
+            let mut event = None;
+            if let Some((which, hi)) = first {
+                let fa = e_start[which].min(-f64::MIN_POSITIVE);
+                let f_hi = {
+                    let s = self.step_ode(t, y0, hi)?;
+                    self.ode_events(phase, t + hi, s.end())[which]
+                };
+                let mut fail = None;
+                let tau = brent_past(
+                    |tau| match self.step_ode(t, y0, tau) {
+                        Ok(s) => self.ode_events(phase, t + tau, s.end())[which],
+                        Err(e) => {
+                            fail = Some(e);
+                            f64::NAN
+                        }
+                    },
+                    0.0,
+                    hi,
+                    fa,
+                    f_hi,
+                    200,
+                );
+                if let Some(e) = fail {
+                    return Err(e);
+                }
+                let tau = tau.ok_or_else(|| {
+                    Error::numerical(
+                        t,
+                        "cannot bracket a contact event",
+                        format!("gap = {:e} m, beta = {}", y0[0], y0[1]),
+                    )
+                })?;
+                if !(t + tau <= t && t == self.last_switch) {
+                    event = Some((which, tau));
+                }
+            }
+            match event {
                 None => {
                     if !(st.end()[0].is_finite() && st.end()[1].is_finite()) {
                         return Err(Error::numerical(
@@ -739,37 +780,7 @@ impl<'a> Runner<'a> {
                         *r *= 2.0;
                     }
                 }
-                Some((which, hi)) => {
-                    let fa = e_start[which].min(-f64::MIN_POSITIVE);
-                    let f_hi = {
-                        let s = self.step_ode(t, y0, hi)?;
-                        self.ode_events(phase, t + hi, s.end())[which]
-                    };
-                    let mut fail = None;
-                    let tau = brent_past(
-                        |tau| match self.step_ode(t, y0, tau) {
-                            Ok(s) => self.ode_events(phase, t + tau, s.end())[which],
-                            Err(e) => {
-                                fail = Some(e);
-                                f64::NAN
-                            }
-                        },
-                        0.0,
-                        hi,
-                        fa,
-                        f_hi,
-                        200,
-                    );
-                    if let Some(e) = fail {
-                        return Err(e);
-                    }
-                    let tau = tau.ok_or_else(|| {
-                        Error::numerical(
-                            t,
-                            "cannot bracket a contact event",
-                            format!("gap = {:e} m, beta = {}", y0[0], y0[1]),
-                        )
-                    })?;
+                Some((which, tau)) => {
                     let se = self.step_ode(t, y0, tau)?;
                     for s in &se.stages {
                         self.max_gap = self.max_gap.max(s[0]);
@@ -781,6 +792,7 @@ impl<'a> Runner<'a> {
                     if which == 1 {
                         self.last_mode_switch = t;
                     }
+                    self.last_switch = t;
                     self.switch(phase, which, t, y);
                 }
             }

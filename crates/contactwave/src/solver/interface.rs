@@ -1,0 +1,140 @@
+//! Per-step interface update of the explicit finite-difference solvers (thesis eqs.
+//! 2.23-2.37): given the predicted gap `g~` the two interface nodes would reach with no
+//! interface force, and the compliance `chi` (gap change per unit dynamic stress), find the
+//! gap `g` and the dynamic stress `S = sigma + p0` with
+//!
+//! ```text
+//! g = g~ - chi S,    S = sigma(g, beta_new) + p0
+//! ```
+//!
+//! exactly (to machine precision): Signorini with no penetration and no penalty, bonded
+//! locking, compliant branches by a bracketing root-finder on the monotone function
+//! `F(g) = S(g) + (g - g~)/chi` (safeguarded secant/bisection; never fails silently), and
+//! damage by the law's unconditionally stable backward-Euler update inside `S(g)`.
+
+use crate::error::{Error, Result};
+use crate::law::ContactLaw;
+use crate::numeric::root::brent_past;
+
+/// Result of one interface update.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InterfaceUpdate {
+    /// Gap [u], m.
+    pub gap: f64,
+    /// Dynamic interface stress S = sigma + p0, Pa.
+    pub dynamic_stress: f64,
+    /// Adhesion beta after the step.
+    pub adhesion: f64,
+}
+
+/// Stress of the law at gap `g` with adhesion updated from `beta_old` over `dt`.
+fn s_of(law: &ContactLaw, g: f64, beta_old: f64, dt: f64) -> (f64, f64) {
+    let uc = law.critical_gap();
+    let p0 = law.static_pressure;
+    if g <= uc {
+        (law.compression.stress(g) + p0, beta_old)
+    } else {
+        let d = g - uc;
+        let b = law.traction.update_adhesion(d, beta_old, dt);
+        (law.traction.stress(d, b) + p0, b)
+    }
+}
+
+/// Solve the interface update. `t` is only used in error messages.
+pub fn update(
+    law: &ContactLaw,
+    predicted_gap: f64,
+    chi: f64,
+    beta_old: f64,
+    dt: f64,
+    t: f64,
+) -> Result<InterfaceUpdate> {
+    let uc = law.critical_gap();
+    let p0 = law.static_pressure;
+    let gt = predicted_gap;
+    let c_rigid = law.compression.is_rigid();
+    let t_rigid = law.traction.is_rigid();
+    // Where does the solution lie? F(uc) = p0 + (uc - g~)/chi: >= 0 -> compression side.
+    let f_uc = p0 + (uc - gt) / chi;
+    if f_uc >= 0.0 {
+        if c_rigid {
+            // closed: g = 0, S = g~/chi (sigma = S - p0 <= 0)
+            return Ok(InterfaceUpdate {
+                gap: 0.0,
+                dynamic_stress: (gt - 0.0) / chi,
+                adhesion: beta_old,
+            });
+        }
+        let f = |g: f64| law.compression.stress(g) + p0 + (g - gt) / chi;
+        // bracket below uc
+        let mut step = (uc.abs() + (gt - uc).abs()).max(1e-15);
+        let mut lo = uc - step;
+        let mut flo = f(lo);
+        let mut k = 0;
+        while flo > 0.0 {
+            step *= 2.0;
+            lo = uc - step;
+            flo = f(lo);
+            k += 1;
+            if k > 200 || !flo.is_finite() {
+                return Err(Error::numerical(
+                    t,
+                    "cannot bracket the compression interface update",
+                    format!("predicted gap = {gt:e} m"),
+                ));
+            }
+        }
+        if f_uc == 0.0 {
+            return Ok(InterfaceUpdate {
+                gap: uc,
+                dynamic_stress: p0,
+                adhesion: beta_old,
+            });
+        }
+        let g = brent_past(f, lo, uc, flo, f_uc, 300).ok_or_else(|| {
+            Error::numerical(
+                t,
+                "interface update (compression) failed",
+                format!("predicted gap = {gt:e} m"),
+            )
+        })?;
+        return Ok(InterfaceUpdate {
+            gap: g,
+            dynamic_stress: (gt - g) / chi,
+            adhesion: beta_old,
+        });
+    }
+    // traction side
+    if t_rigid {
+        return Ok(InterfaceUpdate {
+            gap: uc,
+            dynamic_stress: (gt - uc) / chi,
+            adhesion: beta_old,
+        });
+    }
+    let f = |g: f64| s_of(law, g, beta_old, dt).0 + (g - gt) / chi;
+    // F(uc) < 0; F(g~) = S(g~) >= 0 since S >= p0 >= 0 in traction
+    let hi = gt.max(uc);
+    let fhi = f(hi);
+    if fhi <= 0.0 {
+        let (s, b) = s_of(law, hi, beta_old, dt);
+        return Ok(InterfaceUpdate {
+            gap: hi,
+            dynamic_stress: s,
+            adhesion: b,
+        });
+    }
+    let g = brent_past(f, uc, hi, f_uc, fhi, 300).ok_or_else(|| {
+        Error::numerical(
+            t,
+            "interface update (traction) failed",
+            format!("predicted gap = {gt:e} m, beta = {beta_old}"),
+        )
+    })?;
+    let (_s, b) = s_of(law, g, beta_old, dt);
+    Ok(InterfaceUpdate {
+        gap: g,
+        dynamic_stress: (gt - g) / chi,
+        adhesion: b,
+    })
+}
