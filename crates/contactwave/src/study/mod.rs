@@ -7,10 +7,12 @@
 //! from the base scenario with [`crate::scenario::set_dotted`] and run through
 //! [`crate::simulate_summary`].
 
+mod shard;
 mod sweep;
 pub mod validation;
 
+pub use shard::{merge_sweep_csvs, MergeReport, Shard};
 pub use sweep::{
-    grid, linspace, logspace, read_sweep_csv, run_sweep, Axis, AxisSpec, Sweep, SweepOptions,
-    SweepReport, SweepTable,
+    errors_path, grid, hash_path, linspace, logspace, point_table, read_sweep_csv, run_sweep,
+    run_sweep_shard, Axis, AxisSpec, Sweep, SweepOptions, SweepReport, SweepTable,
 };

@@ -42,6 +42,7 @@
 //! points have no row in `sweep.csv`, so `--resume` retries them; the errors file is
 //! rewritten by every run.
 
+use super::shard::Shard;
 use crate::analysis::Summary;
 use crate::error::{Error, Result};
 use crate::scenario::{parse_toml, set_dotted, Scenario};
@@ -318,31 +319,7 @@ impl Sweep {
             }
             axes.push(axis);
         }
-        let has = |k: &str| axes.iter().any(|a| a.parameter == k);
-        if has("incident.xi") && has("incident.amplitude") {
-            return Err(Error::invalid(
-                &file,
-                "axis",
-                "incident.xi, incident.amplitude",
-                "sweep `incident.xi` or `incident.amplitude`, not both (they give the same \
-                 quantity)",
-            ));
-        }
-        let total = axes
-            .iter()
-            .try_fold(1usize, |acc, a| acc.checked_mul(a.values.len()))
-            .filter(|&n| n <= MAX_GRID_POINTS);
-        if total.is_none() {
-            return Err(Error::invalid(
-                &file,
-                "axis",
-                axes.iter()
-                    .map(|a| a.values.len().to_string())
-                    .collect::<Vec<_>>()
-                    .join(" x "),
-                format!("the grid may have at most {MAX_GRID_POINTS} points"),
-            ));
-        }
+        check_axes(&file, &axes)?;
         let base = path
             .parent()
             .map(Path::to_path_buf)
@@ -350,17 +327,86 @@ impl Sweep {
             .join(&base_rel);
         let base_text = std::fs::read_to_string(&base).map_err(|e| Error::io(&base, e))?;
         let base_table = parse_toml(&base_text, &base.display().to_string())?;
+        Ok(Sweep::assemble(path, base, base_table, axes))
+    }
+
+    /// Build a sweep in code (the Python bindings' `sweep`): a base scenario table that came
+    /// from (or stands for) `base`, and `(dotted key, values)` axes, first axis slowest.
+    /// `file` names the sweep in error messages and [`Sweep::file`]. The axes are checked
+    /// like a sweep file's `values` axes; the grid and the hash are built the same way, so a
+    /// sweep file with the same base table and values has the same [`Sweep::hash`].
+    pub fn from_parts(
+        file: &Path,
+        base: PathBuf,
+        base_table: toml::Table,
+        axes: Vec<(String, Vec<f64>)>,
+    ) -> Result<Sweep> {
+        let name = file.display().to_string();
+        if axes.is_empty() {
+            return Err(Error::invalid(
+                &name,
+                "axis",
+                "(none)",
+                "required: one or more axes (dotted key -> values)",
+            ));
+        }
+        let mut out: Vec<Axis> = Vec::with_capacity(axes.len());
+        for (i, (parameter, values)) in axes.into_iter().enumerate() {
+            if parameter.is_empty() || parameter.split('.').any(|p| p.trim().is_empty()) {
+                return Err(Error::invalid(
+                    &name,
+                    format!("axis[{i}].parameter"),
+                    format!("\"{parameter}\""),
+                    "must be a dotted scenario key such as \"incident.xi\"",
+                ));
+            }
+            let field = format!("axis[{i}].values");
+            if values.is_empty() || values.len() > MAX_AXIS_POINTS {
+                return Err(Error::invalid(
+                    &name,
+                    field,
+                    format!("({} values)", values.len()),
+                    format!("must hold 1 to {MAX_AXIS_POINTS} numbers"),
+                ));
+            }
+            if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+                return Err(Error::invalid(
+                    &name,
+                    field,
+                    fmt_f64(*v),
+                    "every value must be a finite number",
+                ));
+            }
+            if out.iter().any(|b| b.parameter == parameter) {
+                return Err(Error::invalid(
+                    &name,
+                    format!("axis[{i}].parameter"),
+                    format!("\"{parameter}\""),
+                    "is swept by an earlier axis already",
+                ));
+            }
+            out.push(Axis {
+                parameter,
+                spec: AxisSpec::Values(values.clone()),
+                values,
+            });
+        }
+        check_axes(&name, &out)?;
+        Ok(Sweep::assemble(file, base, base_table, out))
+    }
+
+    fn assemble(file: &Path, base: PathBuf, base_table: toml::Table, axes: Vec<Axis>) -> Sweep {
         let values: Vec<Vec<f64>> = axes.iter().map(|a| a.values.clone()).collect();
         let points = grid(&values);
         let hash = hash_sweep(&base_table, &axes, &points);
-        Ok(Sweep {
-            file: path.to_path_buf(),
+        Sweep {
+            file: file.to_path_buf(),
             base,
             base_table,
             axes,
             points,
             hash,
-        })
+        }
     }
 
     /// Column names of the swept parameters (the axes' dotted keys).
@@ -370,24 +416,13 @@ impl Sweep {
 
     /// The scenario table of grid point `i` (base table with the point's values written in).
     pub fn point_table(&self, i: usize) -> Result<toml::Table> {
-        let mut table = self.base_table.clone();
-        for (k, (axis, &v)) in self.axes.iter().zip(&self.points[i]).enumerate() {
-            let value = if wants_integer(&axis.parameter) && v.fract() == 0.0 {
-                toml::Value::Integer(v as i64)
-            } else {
-                toml::Value::Float(v)
-            };
-            set_dotted(&mut table, &axis.parameter, value).map_err(|e| match e {
-                Error::Invalid { value, allowed, .. } => Error::Invalid {
-                    file: self.file.display().to_string(),
-                    field: format!("axis[{k}].parameter"),
-                    value,
-                    allowed,
-                },
-                other => other,
-            })?;
-        }
-        Ok(table)
+        let params = self.parameters();
+        point_table(
+            &self.base_table,
+            &params,
+            &self.points[i],
+            &self.file.display().to_string(),
+        )
     }
 
     /// Validate every grid point and return the scenarios, in grid order. The first invalid
@@ -422,6 +457,65 @@ impl Sweep {
             .map(str::to_string)
             .collect()
     }
+}
+
+/// A base scenario table with `values[k]` written at the dotted key `parameters[k]`
+/// (what a sweep does at each grid point, [`Sweep::point_table`]). Errors from a bad key
+/// name `file` and the field `axis[k].parameter`.
+pub fn point_table(
+    base_table: &toml::Table,
+    parameters: &[&str],
+    values: &[f64],
+    file: &str,
+) -> Result<toml::Table> {
+    let mut table = base_table.clone();
+    for (k, (parameter, &v)) in parameters.iter().zip(values).enumerate() {
+        let value = if wants_integer(parameter) && v.fract() == 0.0 {
+            toml::Value::Integer(v as i64)
+        } else {
+            toml::Value::Float(v)
+        };
+        set_dotted(&mut table, parameter, value).map_err(|e| match e {
+            Error::Invalid { value, allowed, .. } => Error::Invalid {
+                file: file.to_string(),
+                field: format!("axis[{k}].parameter"),
+                value,
+                allowed,
+            },
+            other => other,
+        })?;
+    }
+    Ok(table)
+}
+
+/// Checks that need every axis: not both `incident.xi` and `incident.amplitude`, grid size.
+fn check_axes(file: &str, axes: &[Axis]) -> Result<()> {
+    let has = |k: &str| axes.iter().any(|a| a.parameter == k);
+    if has("incident.xi") && has("incident.amplitude") {
+        return Err(Error::invalid(
+            file,
+            "axis",
+            "incident.xi, incident.amplitude",
+            "sweep `incident.xi` or `incident.amplitude`, not both (they give the same \
+                 quantity)",
+        ));
+    }
+    let total = axes
+        .iter()
+        .try_fold(1usize, |acc, a| acc.checked_mul(a.values.len()))
+        .filter(|&n| n <= MAX_GRID_POINTS);
+    if total.is_none() {
+        return Err(Error::invalid(
+            file,
+            "axis",
+            axes.iter()
+                .map(|a| a.values.len().to_string())
+                .collect::<Vec<_>>()
+                .join(" x "),
+            format!("the grid may have at most {MAX_GRID_POINTS} points"),
+        ));
+    }
+    Ok(())
 }
 
 /// Whether the swept key is an integer in the scenario format (written as a TOML integer
@@ -840,11 +934,28 @@ pub fn run_sweep(
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: &AtomicBool,
 ) -> Result<SweepReport> {
+    run_sweep_shard(sweep, Shard::ALL, out_csv, opts, progress, cancel)
+}
+
+/// [`run_sweep`] restricted to one shard of the grid: only the points `i` with
+/// `shard.contains(i)` (`i % N == K - 1` for shard `K/N`) run and are written. The CSV's
+/// header and hash file are those of the whole sweep, the same for every shard, so shard
+/// CSVs can be merged ([`crate::study::merge_sweep_csvs`]) and resumed like whole ones.
+/// [`SweepReport::total`] and `progress`'s total count the shard's points.
+pub fn run_sweep_shard(
+    sweep: &Sweep,
+    shard: Shard,
+    out_csv: &Path,
+    opts: &SweepOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+) -> Result<SweepReport> {
     let scenarios = sweep.scenarios()?;
-    let total = scenarios.len();
+    let grid_total = scenarios.len();
+    let total = (0..grid_total).filter(|&i| shard.contains(i)).count();
     let hash_file = hash_path(out_csv);
     let errors_file = errors_path(out_csv);
-    let mut done = vec![false; total];
+    let mut done = vec![false; grid_total];
     let mut header = None;
     let csv = if opts.resume && out_csv.exists() {
         let stored = std::fs::read_to_string(&hash_file).map_err(|e| {
@@ -888,7 +999,7 @@ pub fn run_sweep(
             }
             for r in &table.rows {
                 let p = r[0];
-                if p >= 0.0 && p.fract() == 0.0 && (p as usize) < total {
+                if p >= 0.0 && p.fract() == 0.0 && (p as usize) < grid_total {
                     done[p as usize] = true;
                 }
             }
@@ -914,8 +1025,10 @@ pub fn run_sweep(
     if errors_file.exists() {
         std::fs::remove_file(&errors_file).map_err(|e| Error::io(&errors_file, e))?;
     }
-    let skipped = done.iter().filter(|d| **d).count();
-    let todo: Vec<usize> = (0..total).filter(|&i| !done[i]).collect();
+    let todo: Vec<usize> = (0..grid_total)
+        .filter(|&i| shard.contains(i) && !done[i])
+        .collect();
+    let skipped = total - todo.len();
     let writer = Mutex::new(Writer {
         csv,
         csv_path: out_csv.to_path_buf(),
