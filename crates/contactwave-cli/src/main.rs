@@ -79,6 +79,24 @@ enum Command {
         #[arg(long, value_name = "N",
               value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..))]
         threads: Option<usize>,
+        /// Run only shard K of N: the points whose index i has i % N == K - 1 (1 <= K <= N).
+        /// Header and hash file are those of the whole sweep; combine shards with `merge`.
+        #[arg(long, value_name = "K/N", value_parser = study::Shard::parse)]
+        shard: Option<study::Shard>,
+    },
+    /// Merge the sweep.csv files of the shards of one sweep (`sweep --shard K/N`) into OUT
+    /// (rows sorted by point) and OUT.hash, after checking that the shards have the same
+    /// hash file and that no point is missing or duplicated.
+    Merge {
+        /// Merged CSV to write (its folder is created if needed).
+        out: PathBuf,
+        /// The shards' CSV files.
+        #[arg(required = true)]
+        shards: Vec<PathBuf>,
+        /// The sweep file: check the shards against its hash and its whole grid (without
+        /// it, the points must be 0 to the largest point found).
+        #[arg(long, value_name = "FILE")]
+        sweep: Option<PathBuf>,
     },
     /// Run the validation cases and print `case | reference | computed | rel. error`
     /// (exit code 1 if a case exceeds its tolerance).
@@ -139,7 +157,9 @@ fn dispatch(cmd: Command) -> contactwave::Result<u8> {
             out,
             resume,
             threads,
-        } => sweep_cmd(&sweep, &out, resume, threads),
+            shard,
+        } => sweep_cmd(&sweep, &out, resume, threads, shard),
+        Command::Merge { out, shards, sweep } => merge_cmd(&out, &shards, sweep.as_deref()),
         Command::Validate => validate(),
         Command::Bench { points, runs } => bench(points, runs),
     }
@@ -195,6 +215,7 @@ fn sweep_cmd(
     out: &Path,
     resume: bool,
     threads: Option<usize>,
+    shard: Option<study::Shard>,
 ) -> contactwave::Result<u8> {
     let sweep = Sweep::load(path)?;
     // validate every point before creating anything
@@ -207,7 +228,10 @@ fn sweep_cmd(
             std::process::exit(130);
         }
     });
-    let total = sweep.points.len();
+    let shard = shard.unwrap_or(study::Shard::ALL);
+    let total = (0..sweep.points.len())
+        .filter(|&i| shard.contains(i))
+        .count();
     let bar = if std::io::stderr().is_terminal() {
         let b = ProgressBar::new(total as u64);
         if let Ok(style) = ProgressStyle::with_template(
@@ -226,7 +250,7 @@ fn sweep_cmd(
     };
     let csv = out.join("sweep.csv");
     let opts = SweepOptions { threads, resume };
-    match study::run_sweep(&sweep, &csv, &opts, &progress, &CANCEL) {
+    match study::run_sweep_shard(&sweep, shard, &csv, &opts, &progress, &CANCEL) {
         Ok(report) => {
             bar.finish_and_clear();
             let mut plotted = false;
@@ -271,6 +295,25 @@ fn sweep_cmd(
             Err(e)
         }
     }
+}
+
+/// `merge`: shard CSVs -> one CSV sorted by point, plus its hash file.
+fn merge_cmd(out: &Path, shards: &[PathBuf], sweep: Option<&Path>) -> contactwave::Result<u8> {
+    let sweep = sweep.map(Sweep::load).transpose()?;
+    if out.is_dir() {
+        return Err(Error::io(
+            out,
+            std::io::Error::other("is a directory; give the merged CSV's file name"),
+        ));
+    }
+    let report = study::merge_sweep_csvs(out, shards, sweep.as_ref())?;
+    println!(
+        "merged {} points from {} shards",
+        report.points, report.shards
+    );
+    println!("wrote {}", report.csv.display());
+    println!("wrote {}", report.hash_file.display());
+    Ok(0)
 }
 
 fn validate() -> contactwave::Result<u8> {
