@@ -1,0 +1,596 @@
+//! `contactwave._core`: the compiled half of the `contactwave` Python package.
+//!
+//! The pure-Python package (`python/contactwave/`) wraps these functions into the public
+//! API (`load_scenario`, `run`, `law_curve`, `sweep`, `fit_power_law`) and documents it;
+//! this module only converts between Python and the library, and releases the GIL around
+//! every computation.
+//!
+//! Errors: invalid input ([`contactwave::Error::Invalid`] / `Parse`) raises `ValueError`
+//! with the library's message (file, field, value, allowed range); a missing file raises
+//! `FileNotFoundError` (other I/O errors `OSError`); a numerical failure raises
+//! `contactwave.SimulationError` (a `RuntimeError`); an interrupted sweep raises
+//! `KeyboardInterrupt`.
+
+use contactwave::scenario::{parse_toml, Scenario};
+use contactwave::study::{point_table, Sweep};
+use contactwave::Error;
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRuntimeError};
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Condvar, Mutex};
+use std::time::{Duration, Instant};
+
+create_exception!(
+    contactwave,
+    SimulationError,
+    PyRuntimeError,
+    "A simulation failed numerically (non-finite state, root-finder failure)."
+);
+
+/// How often a waiting sweep checks for Ctrl-C.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+fn to_py(e: Error) -> PyErr {
+    let msg = e.to_string();
+    match e {
+        Error::Invalid { .. } | Error::Parse { .. } => PyValueError::new_err(msg),
+        Error::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound => {
+            PyFileNotFoundError::new_err(msg)
+        }
+        Error::Io { .. } => PyOSError::new_err(msg),
+        Error::Numerical { .. } => SimulationError::new_err(msg),
+        Error::Interrupted => PyKeyboardInterrupt::new_err(msg),
+    }
+}
+
+/// A validated scenario (built by `load_scenario` or from a dict).
+#[pyclass(name = "Scenario", module = "contactwave._core", frozen)]
+struct PyScenario {
+    inner: Arc<Scenario>,
+    /// The scenario table as given (before validation resolved defaults).
+    table: toml::Table,
+    /// The file it came from, or `<dict>` (relative paths resolve against its folder).
+    path: PathBuf,
+}
+
+#[pymethods]
+impl PyScenario {
+    /// File the scenario came from (`<dict>` for one built from a dict).
+    #[getter]
+    fn file(&self) -> String {
+        self.inner.file.clone()
+    }
+
+    /// Load ratio xi (resolved from the amplitude when the scenario gives `amplitude`).
+    #[getter]
+    fn xi(&self) -> f64 {
+        self.inner.xi
+    }
+
+    /// Path the scenario stands for: its file, or `<dict>` (its folder resolves the
+    /// scenario's relative paths).
+    #[getter]
+    fn path(&self) -> PathBuf {
+        self.path.clone()
+    }
+
+    /// The scenario's keys as given (no defaults filled in), as JSON text.
+    fn to_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.table).map_err(|e| PyValueError::new_err(e.to_string()))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Scenario(file={:?}, xi={:?})",
+            self.inner.file, self.inner.xi
+        )
+    }
+}
+
+/// JSON value -> TOML value; `null` is an error naming the dotted key.
+fn json_to_toml(v: &serde_json::Value, key: &str, file: &str) -> Result<toml::Value, Error> {
+    use serde_json::Value as J;
+    Ok(match v {
+        J::Null => {
+            return Err(Error::invalid(
+                file,
+                key,
+                "None",
+                "None is not a value; leave the key out to get its default",
+            ))
+        }
+        J::Bool(b) => toml::Value::Boolean(*b),
+        J::Number(n) => match n.as_i64() {
+            Some(i) => toml::Value::Integer(i),
+            None => toml::Value::Float(n.as_f64().unwrap_or(f64::NAN)),
+        },
+        J::String(s) => toml::Value::String(s.clone()),
+        J::Array(a) => toml::Value::Array(
+            a.iter()
+                .enumerate()
+                .map(|(i, x)| json_to_toml(x, &format!("{key}[{i}]"), file))
+                .collect::<Result<_, _>>()?,
+        ),
+        J::Object(o) => toml::Value::Table(json_object_to_table(o, key, file)?),
+    })
+}
+
+fn json_object_to_table(
+    o: &serde_json::Map<String, serde_json::Value>,
+    prefix: &str,
+    file: &str,
+) -> Result<toml::Table, Error> {
+    let mut t = toml::Table::new();
+    for (k, v) in o {
+        let key = if prefix.is_empty() {
+            k.clone()
+        } else {
+            format!("{prefix}.{k}")
+        };
+        t.insert(k.clone(), json_to_toml(v, &key, file)?);
+    }
+    Ok(t)
+}
+
+/// A JSON object's text -> TOML table (`file` names it in errors).
+fn table_from_json(text: &str, file: &str) -> Result<toml::Table, Error> {
+    let v: serde_json::Value = serde_json::from_str(text).map_err(|e| Error::Parse {
+        file: file.to_string(),
+        message: format!("not valid JSON: {e}"),
+    })?;
+    match &v {
+        serde_json::Value::Object(o) => json_object_to_table(o, "", file),
+        _ => Err(Error::Parse {
+            file: file.to_string(),
+            message: "a scenario must be a dict (mapping of section names to dicts)".into(),
+        }),
+    }
+}
+
+/// Load and validate a scenario file (TOML).
+#[pyfunction]
+fn load_scenario(path: PathBuf) -> PyResult<PyScenario> {
+    let text = std::fs::read_to_string(&path).map_err(|e| to_py(Error::io(&path, e)))?;
+    let table = parse_toml(&text, &path.display().to_string()).map_err(to_py)?;
+    let inner = Scenario::from_table(table.clone(), &path).map_err(to_py)?;
+    Ok(PyScenario {
+        inner: Arc::new(inner),
+        table,
+        path,
+    })
+}
+
+/// Validate a scenario given as JSON text (a dict's `json.dumps`). `file` names it in
+/// errors and its folder resolves relative paths (`<dict>`: the working directory).
+#[pyfunction]
+#[pyo3(signature = (text, file = "<dict>"))]
+fn scenario_from_json(text: &str, file: &str) -> PyResult<PyScenario> {
+    let table = table_from_json(text, file).map_err(to_py)?;
+    let path = PathBuf::from(file);
+    let inner = Scenario::from_table(table.clone(), &path).map_err(to_py)?;
+    Ok(PyScenario {
+        inner: Arc::new(inner),
+        table,
+        path,
+    })
+}
+
+fn summary_dict<'py>(
+    py: Python<'py>,
+    file: Option<&str>,
+    s: &contactwave::analysis::Summary,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    if let Some(f) = file {
+        d.set_item("scenario", f)?;
+    }
+    for (k, v) in s.iter() {
+        d.set_item(k, v)?;
+    }
+    Ok(d)
+}
+
+fn bands_dict<'py>(
+    py: Python<'py>,
+    b: &contactwave::analysis::BandAmplitudes,
+    two_tone: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for n in 1..=5 {
+        d.set_item(format!("A{n}"), b.harmonic[n])?;
+    }
+    d.set_item("Asub", b.subharmonic)?;
+    if two_tone {
+        d.set_item("Af2", b.f2)?;
+        d.set_item("Asum", b.sum)?;
+        d.set_item("Adiff", b.difference)?;
+    }
+    Ok(d)
+}
+
+/// Run a scenario (GIL released while it runs). Returns a dict: the interface arrays
+/// (`t`, `gap`, ...), the probe arrays (`probe_t`, ...), `summary` (dict), `spectrum`
+/// (frequency, incident, reflected arrays), `incident_bands` / `reflected_bands` (dicts
+/// of band amplitudes in m/s), `A_inc` (m/s), `dt` (s), `probe_x` (m).
+#[pyfunction]
+fn simulate<'py>(py: Python<'py>, scenario: &PyScenario) -> PyResult<Bound<'py, PyDict>> {
+    let sc = scenario.inner.clone();
+    let r = py
+        .detach(move || contactwave::simulate(&sc))
+        .map_err(to_py)?;
+    let sc = &scenario.inner;
+    let d = PyDict::new(py);
+    let o = r.interface;
+    d.set_item("dt", o.dt)?;
+    d.set_item("t", o.t.into_pyarray(py))?;
+    d.set_item("gap", o.gap.into_pyarray(py))?;
+    d.set_item("contact_stress", o.contact_stress.into_pyarray(py))?;
+    d.set_item("beta", o.beta.into_pyarray(py))?;
+    d.set_item("incident_stress", o.incident_stress.into_pyarray(py))?;
+    d.set_item("reflected_stress", o.reflected_stress.into_pyarray(py))?;
+    d.set_item("transmitted_stress", o.transmitted_stress.into_pyarray(py))?;
+    let p = r.probe;
+    d.set_item("probe_x", p.x)?;
+    d.set_item("probe_t", p.t.into_pyarray(py))?;
+    d.set_item("probe_incident_stress", p.incident_stress.into_pyarray(py))?;
+    d.set_item(
+        "probe_reflected_stress",
+        p.reflected_stress.into_pyarray(py),
+    )?;
+    d.set_item(
+        "probe_incident_velocity",
+        p.incident_velocity.into_pyarray(py),
+    )?;
+    d.set_item(
+        "probe_reflected_velocity",
+        p.reflected_velocity.into_pyarray(py),
+    )?;
+    d.set_item("probe_displacement", p.displacement.into_pyarray(py))?;
+    d.set_item("summary", summary_dict(py, Some(&sc.file), &r.summary)?)?;
+    let n = r
+        .incident_spectrum
+        .frequency
+        .len()
+        .min(r.reflected_spectrum.magnitude.len());
+    let mut fi = r.incident_spectrum;
+    let mut fr = r.reflected_spectrum;
+    fi.frequency.truncate(n);
+    fi.magnitude.truncate(n);
+    fr.magnitude.truncate(n);
+    d.set_item(
+        "spectrum",
+        (
+            fi.frequency.into_pyarray(py),
+            fi.magnitude.into_pyarray(py),
+            fr.magnitude.into_pyarray(py),
+        ),
+    )?;
+    let two_tone = sc.incident.second_frequency().is_some();
+    d.set_item(
+        "incident_bands",
+        bands_dict(py, &r.incident_bands, two_tone)?,
+    )?;
+    d.set_item(
+        "reflected_bands",
+        bands_dict(py, &r.reflected_bands, two_tone)?,
+    )?;
+    d.set_item("A_inc", sc.incident.peak() / sc.medium.impedance())?;
+    Ok(d)
+}
+
+/// Time `n` runs of the Rust `simulate` of a scenario (GIL released): the wall time of
+/// each, in seconds. For measuring the Python overhead of `run`.
+#[pyfunction]
+fn bench_simulate(py: Python<'_>, scenario: &PyScenario, n: usize) -> PyResult<Vec<f64>> {
+    let sc = scenario.inner.clone();
+    py.detach(move || {
+        (0..n)
+            .map(|_| {
+                let t0 = Instant::now();
+                let r = contactwave::simulate(&sc)?;
+                let dt = t0.elapsed().as_secs_f64();
+                std::hint::black_box(r);
+                Ok(dt)
+            })
+            .collect::<Result<Vec<f64>, Error>>()
+    })
+    .map_err(to_py)
+}
+
+/// Stress (Pa) of the scenario's contact law at each gap (m), on the monotone-loading
+/// curve: the adhesion beta evolves in its rate-independent limit as the gap increases
+/// through the given values (taken in increasing order, whatever their order in `gap`),
+/// like `ContactLaw::curve`. On a rigid compression branch, gaps <= 0 give `-p0`; on a
+/// bonded traction branch, openings give 0 (the constraint sets the stress there).
+#[pyfunction]
+fn law_curve<'py>(
+    py: Python<'py>,
+    scenario: &PyScenario,
+    gap: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
+    let gaps: Vec<f64> = gap.as_array().iter().copied().collect();
+    if let Some(g) = gaps.iter().find(|g| g.is_nan()) {
+        return Err(PyValueError::new_err(format!(
+            "gap: {g} is not a number; every gap must be a number (m)"
+        )));
+    }
+    let law = scenario.inner.law.clone();
+    let stress = py.detach(move || {
+        let uc = law.critical_gap();
+        let mut order: Vec<usize> = (0..gaps.len()).collect();
+        order.sort_by(|&a, &b| gaps[a].total_cmp(&gaps[b]));
+        let mut stress = vec![0.0; gaps.len()];
+        let mut beta = 1.0;
+        for i in order {
+            let g = gaps[i];
+            if g > uc && !law.traction.is_rigid() {
+                beta = law.traction.update_adhesion(g - uc, beta, f64::INFINITY);
+            }
+            stress[i] = law.stress(g, beta);
+        }
+        stress
+    });
+    Ok(stress.into_pyarray(py))
+}
+
+/// Least-squares fit of `K = C p^m` in log-log: dict `{c, m, r2}`.
+#[pyfunction]
+fn fit_power_law<'py>(
+    py: Python<'py>,
+    pressure: PyReadonlyArray1<'py, f64>,
+    stiffness: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let p: Vec<f64> = pressure.as_array().iter().copied().collect();
+    let k: Vec<f64> = stiffness.as_array().iter().copied().collect();
+    let f = contactwave::analysis::fit::fit_power_law(&p, &k).map_err(to_py)?;
+    let d = PyDict::new(py);
+    d.set_item("c", f.c)?;
+    d.set_item("m", f.m)?;
+    d.set_item("r2", f.r2)?;
+    Ok(d)
+}
+
+/// What one sweep point gave: its summary or its error message.
+type Outcome = Result<contactwave::analysis::Summary, String>;
+
+fn run_one(scenario: &Scenario) -> Outcome {
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        contactwave::simulate_summary(scenario)
+    })) {
+        Ok(Ok(s)) => Ok(s),
+        Ok(Err(e)) => Err(e.to_string()),
+        Err(panic) => Err(format!(
+            "internal error (panic): {}",
+            panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".into())
+        )),
+    }
+}
+
+/// Outcomes -> `(keys, values[n_points, n_keys], errors[(row, message)])`. Keys: those of
+/// the first successful point, then any new key of later points; missing values are NaN
+/// (so are all values of a failed point).
+type Table<'py> = (
+    Vec<String>,
+    Bound<'py, numpy::PyArray2<f64>>,
+    Vec<(usize, String)>,
+);
+
+fn outcomes_table(py: Python<'_>, outcomes: Vec<Outcome>) -> PyResult<Table<'_>> {
+    let mut keys: Vec<String> = Vec::new();
+    for s in outcomes.iter().flatten() {
+        for k in s.keys() {
+            if !keys.iter().any(|x| x == k) {
+                keys.push(k.to_string());
+            }
+        }
+    }
+    let mut data = vec![f64::NAN; outcomes.len() * keys.len()];
+    let mut errors = Vec::new();
+    for (i, o) in outcomes.into_iter().enumerate() {
+        match o {
+            Ok(s) => {
+                for (k, key) in keys.iter().enumerate() {
+                    data[i * keys.len() + k] = s.get(key).unwrap_or(f64::NAN);
+                }
+            }
+            Err(e) => errors.push((i, e)),
+        }
+    }
+    let rows = data.len().checked_div(keys.len()).unwrap_or(errors.len());
+    let arr = Array2::from_shape_vec((rows, keys.len()), data)
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    Ok((keys, arr.into_pyarray(py), errors))
+}
+
+/// Build and validate a sweep (base scenario table as JSON, axes `(key, values)`); returns
+/// `(points[n, n_axes], hash)`. Every point is validated as a scenario (ValueError naming
+/// the field and the point otherwise).
+#[pyfunction]
+#[pyo3(signature = (base_json, base_path, axes))]
+fn sweep_plan<'py>(
+    py: Python<'py>,
+    base_json: &str,
+    base_path: PathBuf,
+    axes: Vec<(String, Vec<f64>)>,
+) -> PyResult<(Bound<'py, numpy::PyArray2<f64>>, String)> {
+    let file = base_path.display().to_string();
+    let table = table_from_json(base_json, &file).map_err(to_py)?;
+    let sweep = py
+        .detach(move || -> Result<Sweep, Error> {
+            let sweep = Sweep::from_parts(Path::new("<sweep>"), base_path, table, axes)?;
+            sweep.scenarios()?;
+            Ok(sweep)
+        })
+        .map_err(to_py)?;
+    Ok((points_array(py, &sweep)?, sweep.hash))
+}
+
+/// Run a whole sweep on local cores (rayon; `threads=None`: all cores) with the GIL
+/// released; Ctrl-C cancels it (KeyboardInterrupt once the running points finish).
+/// Returns `(points[n, n_axes], hash, (keys, values[n_points, n_keys], errors[(point,
+/// message)]))` in grid order.
+#[pyfunction]
+#[pyo3(signature = (base_json, base_path, axes, threads = None))]
+fn sweep_local<'py>(
+    py: Python<'py>,
+    base_json: &str,
+    base_path: PathBuf,
+    axes: Vec<(String, Vec<f64>)>,
+    threads: Option<usize>,
+) -> PyResult<(Bound<'py, numpy::PyArray2<f64>>, String, Table<'py>)> {
+    let file = base_path.display().to_string();
+    let table = table_from_json(base_json, &file).map_err(to_py)?;
+    let (sweep, scenarios) = py
+        .detach(move || -> Result<_, Error> {
+            let sweep = Sweep::from_parts(Path::new("<sweep>"), base_path, table, axes)?;
+            let scenarios = sweep.scenarios()?;
+            Ok((sweep, scenarios))
+        })
+        .map_err(to_py)?;
+    let pool = match threads {
+        Some(0) => return Err(PyValueError::new_err("threads: must be >= 1 (or None)")),
+        Some(n) => Some(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?,
+        ),
+        None => None,
+    };
+    let outcomes = run_interruptibly(py, &scenarios, pool.as_ref())?;
+    Ok((
+        points_array(py, &sweep)?,
+        sweep.hash.clone(),
+        outcomes_table(py, outcomes)?,
+    ))
+}
+
+fn points_array<'py>(py: Python<'py>, sweep: &Sweep) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+    let flat: Vec<f64> = sweep.points.iter().flatten().copied().collect();
+    let arr = Array2::from_shape_vec((sweep.points.len(), sweep.axes.len()), flat)
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    Ok(arr.into_pyarray(py))
+}
+
+/// Run `scenarios` on rayon in a helper thread while this thread (GIL released between
+/// polls) checks for signals every [`SIGNAL_POLL`]; on a signal, set the cancel flag,
+/// wait for the running points and return the signal's exception.
+fn run_interruptibly(
+    py: Python<'_>,
+    scenarios: &[Scenario],
+    pool: Option<&rayon::ThreadPool>,
+) -> PyResult<Vec<Outcome>> {
+    use rayon::prelude::*;
+    let cancel = AtomicBool::new(false);
+    let finished = (Mutex::new(false), Condvar::new());
+    std::thread::scope(|s| {
+        let worker = s.spawn(|| {
+            let work = || -> Vec<Outcome> {
+                scenarios
+                    .par_iter()
+                    .with_max_len(1)
+                    .map(|sc| {
+                        if cancel.load(Ordering::Relaxed) {
+                            Err("cancelled".to_string())
+                        } else {
+                            run_one(sc)
+                        }
+                    })
+                    .collect()
+            };
+            let out = match pool {
+                Some(p) => p.install(work),
+                None => work(),
+            };
+            let (m, cv) = &finished;
+            *m.lock().unwrap_or_else(|p| p.into_inner()) = true;
+            cv.notify_all();
+            out
+        });
+        loop {
+            let done = py.detach(|| {
+                let (m, cv) = &finished;
+                let g = m.lock().unwrap_or_else(|p| p.into_inner());
+                let (g, _) = cv
+                    .wait_timeout_while(g, SIGNAL_POLL, |d| !*d)
+                    .unwrap_or_else(|p| p.into_inner());
+                *g
+            });
+            if done {
+                break;
+            }
+            if let Err(e) = py.check_signals() {
+                cancel.store(true, Ordering::SeqCst);
+                let _ = py.detach(|| worker.join());
+                return Err(e);
+            }
+        }
+        py.detach(|| worker.join())
+            .map_err(|_| PyRuntimeError::new_err("sweep worker thread panicked"))
+    })
+}
+
+/// Run a list of sweep points, one after the other (what one distributed task does):
+/// `points[i]` holds the values of the dotted keys `parameters` for point `i`, written
+/// into the base table (JSON) exactly as a local sweep does, so the values are
+/// bit-identical to the local run's. GIL released. Returns the table of `sweep_local`.
+#[pyfunction]
+fn run_points<'py>(
+    py: Python<'py>,
+    base_json: &str,
+    base_path: PathBuf,
+    parameters: Vec<String>,
+    points: PyReadonlyArray2<'py, f64>,
+) -> PyResult<Table<'py>> {
+    let file = base_path.display().to_string();
+    let table = table_from_json(base_json, &file).map_err(to_py)?;
+    let pts = points.as_array();
+    if pts.ncols() != parameters.len() {
+        return Err(PyTypeError::new_err(format!(
+            "points: {} columns for {} parameters",
+            pts.ncols(),
+            parameters.len()
+        )));
+    }
+    let rows: Vec<Vec<f64>> = pts.outer_iter().map(|r| r.to_vec()).collect();
+    let outcomes = py.detach(move || {
+        let params: Vec<&str> = parameters.iter().map(String::as_str).collect();
+        rows.iter()
+            .map(|values| {
+                point_table(&table, &params, values, "<sweep>")
+                    .and_then(|t| Scenario::from_table(t, &base_path))
+                    .map_err(|e| e.to_string())
+                    .and_then(|sc| run_one(&sc))
+            })
+            .collect::<Vec<Outcome>>()
+    });
+    outcomes_table(py, outcomes)
+}
+
+/// The compiled core of the `contactwave` package.
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyScenario>()?;
+    m.add("SimulationError", m.py().get_type::<SimulationError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_function(wrap_pyfunction!(load_scenario, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario_from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(bench_simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(law_curve, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_power_law, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_local, m)?)?;
+    m.add_function(wrap_pyfunction!(run_points, m)?)?;
+    Ok(())
+}

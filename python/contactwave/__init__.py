@@ -1,0 +1,451 @@
+"""contactwave: elastic waves at nonlinear contact interfaces, from Python.
+
+The simulations run in the compiled Rust library (``contactwave._core``); this package
+converts inputs and outputs. Every long call releases the GIL. SI units throughout: s, m,
+Pa, m/s, Hz, Pa/m, J/m^2; stress is tension-positive, the static pressure ``p0`` is a
+compression given as a positive number.
+
+Quick tour::
+
+    import contactwave as cw
+    s = cw.load_scenario("examples/rccm_0.82MPa.toml")
+    r = cw.run(s)                       # Result: numpy arrays, summary, spectrum, harmonics
+    r.summary["A2_over_Ainc"]
+    df = cw.sweep("examples/unilateral.toml", {"incident.xi": np.linspace(0.05, 1.2, 47)})
+
+Scenarios are TOML files (docs/scenario.md) or plain dicts with the same keys::
+
+    cw.run({"medium": {"material": "pmma"},
+            "interface": {"static_pressure": 0.1e6},
+            "incident": {"frequency": 1e6, "cycles": 10, "xi": 0.35}})
+
+Invalid scenarios raise ``ValueError`` with the library's message (file, field, value,
+allowed range); a numerical failure raises :class:`SimulationError`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import warnings
+from typing import Any, Dict, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from ._core import Scenario, SimulationError
+
+__all__ = [
+    "Scenario",
+    "SimulationError",
+    "Result",
+    "Spectrum",
+    "load_scenario",
+    "scenario_from_dict",
+    "run",
+    "law_curve",
+    "fit_power_law",
+    "sweep",
+    "__version__",
+]
+
+__version__: str = _core.__version__
+
+ScenarioLike = Union[Scenario, Mapping[str, Any], str, "os.PathLike[str]"]
+
+#: Points per task when a sweep runs on an executor (see :func:`sweep`).
+DEFAULT_CHUNK_SIZE = 64
+
+
+# ---------------------------------------------------------------------------------------
+# Scenarios
+# ---------------------------------------------------------------------------------------
+
+
+def load_scenario(path: Union[str, "os.PathLike[str]"]) -> Scenario:
+    """Load and validate a scenario file (TOML, keys of docs/scenario.md).
+
+    Raises ``ValueError`` for an invalid scenario (the message names the file, the field,
+    the value and what is allowed) and ``FileNotFoundError`` for a missing file.
+    """
+    return _core.load_scenario(os.fspath(path))
+
+
+def _plain(value: Any, key: str, file: str) -> Any:
+    """A JSON-ready copy of a scenario value: numpy scalars and arrays become Python
+    numbers and lists, paths strings; non-finite numbers are refused with the key."""
+    if isinstance(value, Mapping):
+        out = {}
+        for k, v in value.items():
+            if not isinstance(k, str):
+                raise ValueError(f"{file}: key {k!r} under `{key or '.'}`: keys must be strings")
+            out[k] = _plain(v, f"{key}.{k}" if key else k, file)
+        return out
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    if isinstance(value, (list, tuple)):
+        return [_plain(v, f"{key}[{i}]", file) for i, v in enumerate(value)]
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, os.PathLike):
+        value = os.fspath(value)
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ValueError(f"{file}: field `{key}` = {value}: must be a finite number")
+    return value
+
+
+def _to_json(d: Mapping[str, Any], file: str) -> str:
+    if not isinstance(d, Mapping):
+        raise TypeError(f"a scenario dict must be a mapping, not {type(d).__name__}")
+    return json.dumps(_plain(d, "", file))
+
+
+def scenario_from_dict(d: Mapping[str, Any], file: str = "<dict>") -> Scenario:
+    """Validate a scenario given as a dict with the keys of a scenario file, e.g.
+    ``{"medium": {"material": "pmma"}, "interface": {"static_pressure": 1e5}, ...}``.
+
+    Laws are nested dicts: ``"traction": {"law": "rccm", "stiffness": 2e13, "energy": 0.1}``.
+    Numbers may be Python or numpy numbers. ``file`` names the scenario in error messages;
+    relative paths in it (``incident.path``) resolve against its folder (``<dict>``: the
+    working directory). Raises ``ValueError`` naming the field for an invalid dict.
+    """
+    return _core.scenario_from_json(_to_json(d, file), file)
+
+
+def _as_scenario(s: ScenarioLike) -> Scenario:
+    if isinstance(s, Scenario):
+        return s
+    if isinstance(s, Mapping):
+        return scenario_from_dict(s)
+    if isinstance(s, (str, os.PathLike)):
+        return load_scenario(s)
+    raise TypeError(
+        f"expected a Scenario, a dict or a scenario file path, not {type(s).__name__}"
+    )
+
+
+# ---------------------------------------------------------------------------------------
+# One run
+# ---------------------------------------------------------------------------------------
+
+
+class Spectrum(NamedTuple):
+    """Amplitude spectra of the incident and reflected particle velocity (``|X(f)| dt``,
+    m/s x s) on one frequency grid (Hz), up to 6 times the highest input frequency."""
+
+    frequency: np.ndarray
+    incident: np.ndarray
+    reflected: np.ndarray
+
+
+class Result:
+    """Everything one run produces (see :func:`run`). All arrays are float64 numpy arrays.
+
+    Interface histories at x = 0, on one time grid (columns of ``timeseries.csv``):
+    ``t`` (s), ``gap`` (m, opening-positive), ``contact_stress`` (Pa), ``beta`` (adhesion,
+    -), ``incident_stress``, ``reflected_stress``, ``transmitted_stress`` (Pa).
+
+    Probe histories at ``probe_x`` < 0 (columns of ``probe.csv``): ``probe_t`` (s),
+    ``probe_incident_stress``, ``probe_reflected_stress`` (Pa),
+    ``probe_incident_velocity``, ``probe_reflected_velocity`` (m/s),
+    ``probe_displacement`` (m).
+
+    ``summary``: dict with the keys of ``summary.json`` in order (``scenario``, then the
+    scalars: ``xi``, ``A1_over_Ainc`` ... ``A5_over_Ainc``, ``A2_over_A1``, ``beta_star``,
+    ``beta_end``, energies, ...); ``dt``: time step (s); ``scenario``: the Scenario run.
+    """
+
+    t: np.ndarray
+    gap: np.ndarray
+    contact_stress: np.ndarray
+    beta: np.ndarray
+    incident_stress: np.ndarray
+    reflected_stress: np.ndarray
+    transmitted_stress: np.ndarray
+    probe_t: np.ndarray
+    probe_incident_stress: np.ndarray
+    probe_reflected_stress: np.ndarray
+    probe_incident_velocity: np.ndarray
+    probe_reflected_velocity: np.ndarray
+    probe_displacement: np.ndarray
+    probe_x: float
+    dt: float
+    summary: Dict[str, Any]
+
+    _ARRAYS = (
+        "t",
+        "gap",
+        "contact_stress",
+        "beta",
+        "incident_stress",
+        "reflected_stress",
+        "transmitted_stress",
+        "probe_t",
+        "probe_incident_stress",
+        "probe_reflected_stress",
+        "probe_incident_velocity",
+        "probe_reflected_velocity",
+        "probe_displacement",
+    )
+
+    def __init__(self, raw: Dict[str, Any], scenario: Scenario) -> None:
+        self.scenario = scenario
+        for k in self._ARRAYS:
+            setattr(self, k, raw[k])
+        self.probe_x = raw["probe_x"]
+        self.dt = raw["dt"]
+        self.summary = raw["summary"]
+        self._spectrum = Spectrum(*raw["spectrum"])
+        self._bands = (raw["incident_bands"], raw["reflected_bands"], raw["A_inc"])
+
+    def spectrum(self) -> Spectrum:
+        """The spectra of ``spectrum.csv``: ``(frequency, incident, reflected)`` arrays."""
+        return self._spectrum
+
+    def harmonics(self) -> Dict[str, float]:
+        """Band amplitudes of the reflected particle velocity (m/s): ``A1`` ... ``A5``
+        (band ``[n f0 - f0/2, n f0 + f0/2)``), ``Asub`` (f0/2) and, for two-tone bursts,
+        ``Af2``, ``Asum``, ``Adiff``; the incident amplitude ``A_inc`` (m/s); the ratios
+        ``A1_over_Ainc`` ... ``A5_over_Ainc``, ``A2_over_A1``, ``beta_star`` (A2/A1^2);
+        and the incident burst's own bands as ``incident_A1`` ... ``incident_Asub``."""
+        inc, refl, a_inc = self._bands
+        h: Dict[str, float] = dict(refl)
+        h["A_inc"] = a_inc
+        for n in range(1, 6):
+            h[f"A{n}_over_Ainc"] = refl[f"A{n}"] / a_inc
+        a1, a2 = refl["A1"], refl["A2"]
+        h["A2_over_A1"] = a2 / a1 if a1 > 0 else 0.0
+        h["beta_star"] = a2 / (a1 * a1) if a1 > 0 else 0.0
+        for k, v in inc.items():
+            h[f"incident_{k}"] = v
+        return h
+
+    def __repr__(self) -> str:
+        s = self.summary
+        return (
+            f"Result(scenario={s.get('scenario')!r}, samples={len(self.t)}, "
+            f"xi={s.get('xi'):.6g}, A2_over_Ainc={s.get('A2_over_Ainc'):.6g})"
+        )
+
+
+def run(scenario: ScenarioLike) -> Result:
+    """Simulate one scenario (a :class:`Scenario`, a dict, or a TOML file path) and return
+    a :class:`Result`: the arrays of ``timeseries.csv`` and ``probe.csv``, the summary of
+    ``summary.json``, ``spectrum()`` and ``harmonics()``.
+
+    The GIL is released while the simulation runs. Raises ``ValueError`` for an invalid
+    scenario and :class:`SimulationError` for a numerical failure.
+    """
+    s = _as_scenario(scenario)
+    return Result(_core.simulate(s), s)
+
+
+def _bench_simulate(scenario: ScenarioLike, n: int) -> List[float]:
+    """Wall times (s) of ``n`` runs of the Rust ``simulate`` alone (no conversion to
+    Python), for measuring the overhead of :func:`run`."""
+    return _core.bench_simulate(_as_scenario(scenario), int(n))
+
+
+# ---------------------------------------------------------------------------------------
+# Laws and fits
+# ---------------------------------------------------------------------------------------
+
+#: What a bare law dict is completed with to make a scenario (only the law is used).
+_LAW_CARRIER = {"medium": {"material": "pmma"}, "incident": {"frequency": 1e6, "amplitude": 1.0}}
+
+
+def law_curve(scenario_or_law: Union[ScenarioLike, Mapping[str, Any]], gap: Any) -> np.ndarray:
+    """Stress (Pa, tension-positive) of a contact law at each gap (m, opening-positive).
+
+    ``scenario_or_law``: a scenario (Scenario, dict or path), or a law dict with the keys
+    of a scenario's ``[interface]`` table, e.g. ``{"static_pressure": 1e5, "compression":
+    {"law": "power", "c": 1.81e10, "m": 0.35}, "traction": {"law": "rccm", "stiffness":
+    2e13, "energy": 0.1}}`` (error messages then name the fields ``interface.*``).
+
+    The stress is that of the monotone-loading curve: damage evolves in its
+    rate-independent limit as the gap increases through the given values (in increasing
+    order, whatever their order in ``gap``), as in ``contactwave law``. On a rigid
+    compression branch, gaps <= 0 give ``-p0``; on a bonded traction branch, openings
+    give 0 (a constraint sets the stress there). Returns an array shaped like ``gap``.
+    """
+    if isinstance(scenario_or_law, Mapping) and not (
+        {"medium", "interface", "incident"} & set(scenario_or_law)
+    ):
+        d = dict(_LAW_CARRIER)
+        d["interface"] = dict(scenario_or_law)
+        s = scenario_from_dict(d, file="<law>")
+    else:
+        s = _as_scenario(scenario_or_law)  # type: ignore[arg-type]
+    g = np.asarray(gap, dtype=np.float64)
+    out = _core.law_curve(s, np.ascontiguousarray(g.ravel()))
+    return out.reshape(g.shape)
+
+
+def fit_power_law(pressure: Any, stiffness: Any) -> Dict[str, float]:
+    """Least-squares fit of ``K = C p^m`` on ``(ln p, ln K)`` (thesis eq. 4.4): pressures
+    in Pa, stiffnesses in Pa/m, all > 0, at least two distinct pressures. Returns
+    ``{"c": C (Pa^(1-m)/m), "m": m, "r2": coefficient of determination}``."""
+    p = np.ascontiguousarray(np.asarray(pressure, dtype=np.float64).ravel())
+    k = np.ascontiguousarray(np.asarray(stiffness, dtype=np.float64).ravel())
+    return _core.fit_power_law(p, k)
+
+
+# ---------------------------------------------------------------------------------------
+# Sweeps
+# ---------------------------------------------------------------------------------------
+
+
+def _base(base: ScenarioLike) -> Tuple[str, str]:
+    """(table as JSON, path standing for it) of a sweep's base scenario."""
+    if isinstance(base, Mapping):
+        return _to_json(base, "<dict>"), "<dict>"
+    s = _as_scenario(base)
+    return s.to_json(), os.fspath(s.path)
+
+
+def _axes(axes: Union[Mapping[str, Any], Sequence[Tuple[str, Any]]]) -> List[Tuple[str, List[float]]]:
+    items = axes.items() if isinstance(axes, Mapping) else axes
+    out = []
+    for key, values in items:
+        v = np.asarray(values, dtype=np.float64)
+        if v.ndim > 1:
+            raise ValueError(f"axis `{key}`: values must be one-dimensional, not shape {v.shape}")
+        out.append((str(key), v.ravel().tolist()))
+    if not out:
+        raise ValueError("axes: give at least one axis (dotted key -> values)")
+    return out
+
+
+def _run_chunk(
+    base_json: str, base_path: str, parameters: List[str], points: np.ndarray
+) -> Tuple[List[str], np.ndarray, List[Tuple[int, str]]]:
+    """One distributed task: run the sweep points ``points`` (rows of axis values)."""
+    from contactwave import _core as core
+
+    return core.run_points(base_json, base_path, parameters, points)
+
+
+def _is_dask_client(executor: Any) -> bool:
+    return hasattr(executor, "gather") and hasattr(executor, "scatter")
+
+
+def _run_on_executor(
+    executor: Any,
+    base_json: str,
+    base_path: str,
+    parameters: List[str],
+    points: np.ndarray,
+    chunk_size: int,
+) -> List[Tuple[List[str], np.ndarray, List[Tuple[int, str]]]]:
+    chunks = [
+        np.ascontiguousarray(points[i : i + chunk_size])
+        for i in range(0, len(points), chunk_size)
+    ]
+    dask = _is_dask_client(executor)
+    kw = {"pure": False} if dask else {}
+    futures = [
+        executor.submit(_run_chunk, base_json, base_path, parameters, c, **kw) for c in chunks
+    ]
+    try:
+        if dask:
+            return list(executor.gather(futures))
+        return [f.result() for f in futures]
+    except BaseException:
+        for f in futures:
+            f.cancel()
+        raise
+
+
+def sweep(
+    base: ScenarioLike,
+    axes: Union[Mapping[str, Any], Sequence[Tuple[str, Any]]],
+    executor: Any = None,
+    *,
+    threads: Optional[int] = None,
+    chunk_size: int = DEFAULT_CHUNK_SIZE,
+    as_frame: Optional[bool] = None,
+) -> Any:
+    """Run a parameter sweep: the grid of ``axes`` over the ``base`` scenario.
+
+    ``base``: a Scenario, a dict or a scenario file path. ``axes``: maps dotted scenario
+    keys to value arrays, e.g. ``{"incident.xi": np.linspace(0.05, 1.2, 47),
+    "interface.traction.stiffness": [1e12, 1e13]}``; several axes form a grid, first axis
+    slowest, exactly like a sweep file's ``[[axis]]`` tables. Every point is validated
+    before anything runs (``ValueError`` naming the field and the point).
+
+    ``executor=None``: all local cores (``threads`` to limit them), in Rust with the GIL
+    released; Ctrl-C stops the sweep (``KeyboardInterrupt``). Otherwise a
+    ``concurrent.futures.Executor`` or a ``dask.distributed.Client`` (any deployment:
+    ``LocalCluster``, ``dask_jobqueue.SLURMCluster``, ...): the points go out as tasks of
+    ``chunk_size`` points and come back in grid order. The results are bit-identical to a
+    local run.
+
+    Returns a pandas DataFrame if pandas is importable (``as_frame=False``: a dict of
+    numpy arrays): ``point`` (grid index), one column per axis, then the summary keys of
+    ``sweep.csv`` (``xi``, ``A1_over_Ainc``, ...). A point whose simulation fails has NaN
+    values; a warning names the failed points, and the DataFrame's
+    ``attrs["errors"]`` maps them to their messages. ``attrs["hash"]`` is the sweep's
+    hash, the one ``contactwave sweep`` writes to ``sweep.csv.hash`` for the same base
+    scenario and axis values.
+    """
+    base_json, base_path = _base(base)
+    ax = _axes(axes)
+    parameters = [k for k, _ in ax]
+    if executor is None:
+        points, sweep_hash, (keys, values, errors) = _core.sweep_local(
+            base_json, base_path, ax, threads
+        )
+    else:
+        if int(chunk_size) < 1:
+            raise ValueError(f"chunk_size: {chunk_size}: must be >= 1")
+        points, sweep_hash = _core.sweep_plan(base_json, base_path, ax)
+        parts = _run_on_executor(executor, base_json, base_path, parameters, points, int(chunk_size))
+        keys, values, errors = _join(parts, len(points), int(chunk_size))
+    columns: Dict[str, np.ndarray] = {"point": np.arange(len(points), dtype=np.int64)}
+    for k, name in enumerate(parameters):
+        columns[name] = np.ascontiguousarray(points[:, k])
+    for k, name in enumerate(keys):
+        if name not in columns:
+            columns[name] = np.ascontiguousarray(values[:, k])
+    errs = {int(i): str(m) for i, m in errors}
+    if errs:
+        first = sorted(errs)[:3]
+        warnings.warn(
+            f"{len(errs)} of {len(points)} sweep points failed (values NaN); first: "
+            + "; ".join(f"point {i}: {errs[i]}" for i in first),
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    if as_frame is None or as_frame:
+        try:
+            import pandas as pd
+        except ImportError:
+            if as_frame:
+                raise
+        else:
+            df = pd.DataFrame(columns)
+            df.attrs["errors"] = errs
+            df.attrs["hash"] = sweep_hash
+            return df
+    return columns
+
+
+def _join(
+    parts: List[Tuple[List[str], np.ndarray, List[Tuple[int, str]]]], n: int, chunk: int
+) -> Tuple[List[str], np.ndarray, List[Tuple[int, str]]]:
+    """Chunk tables -> one table in grid order (keys: first chunk's, then new ones)."""
+    keys: List[str] = []
+    for k, _v, _e in parts:
+        for name in k:
+            if name not in keys:
+                keys.append(name)
+    values = np.full((n, len(keys)), np.nan)
+    errors: List[Tuple[int, str]] = []
+    for c, (k, v, e) in enumerate(parts):
+        row0 = c * chunk
+        if len(k):
+            idx = [keys.index(name) for name in k]
+            values[row0 : row0 + v.shape[0], idx] = v
+        errors.extend((row0 + int(i), m) for i, m in e)
+    return keys, values, errors
