@@ -8,6 +8,7 @@
 
 use clap::{Parser, Subcommand};
 use contactwave::output;
+use contactwave::scenario::bar_stack::BarStackScenario;
 use contactwave::scenario::{parse_toml, set_dotted, Scenario};
 use contactwave::study::{self, Sweep, SweepOptions};
 use contactwave::Error;
@@ -42,8 +43,31 @@ struct Cli {
     command: Command,
 }
 
+/// What `fit` fits.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum FitKind {
+    /// Contact stiffness vs pressure, K = C p^m (thesis eq. 4.4).
+    PowerLaw,
+}
+
 #[derive(Subcommand)]
 enum Command {
+    /// Fit a stiffness-pressure law to measured data: `fit power-law data.csv` (pressure in
+    /// Pa, stiffness in Pa/m; least squares in log-log) prints C, m and R^2.
+    Fit {
+        /// What to fit.
+        #[arg(value_enum)]
+        what: FitKind,
+        /// CSV file with a header line.
+        data: PathBuf,
+        /// Pressure and stiffness columns by header name, e.g. `--columns P,K` (default:
+        /// the first two columns).
+        #[arg(long, value_name = "P,K")]
+        columns: Option<String>,
+        /// Print a JSON object with keys c, m, r2.
+        #[arg(long)]
+        json: bool,
+    },
     /// Simulate one scenario and write summary.json, timeseries.csv, probe.csv,
     /// spectrum.csv and SVG plots into DIR (SI units: s, m, Pa, m/s, Hz).
     Run {
@@ -161,6 +185,14 @@ fn dispatch(cmd: Command) -> contactwave::Result<u8> {
         } => sweep_cmd(&sweep, &out, resume, threads, shard),
         Command::Merge { out, shards, sweep } => merge_cmd(&out, &shards, sweep.as_deref()),
         Command::Validate => validate(),
+        Command::Fit {
+            what,
+            data,
+            columns,
+            json,
+        } => match what {
+            FitKind::PowerLaw => fit_cmd(&data, columns.as_deref(), json),
+        },
         Command::Bench { points, runs } => bench(points, runs),
     }
 }
@@ -177,7 +209,12 @@ fn check_out_dir(out: &Path) -> contactwave::Result<()> {
 }
 
 fn run(path: &Path, out: &Path) -> contactwave::Result<u8> {
-    let scenario = Scenario::load(path)?;
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let table = parse_toml(&text, &path.display().to_string())?;
+    if BarStackScenario::is_bar_stack(&table) {
+        return run_bar_stack(table, path, out);
+    }
+    let scenario = Scenario::from_table(table, path)?;
     check_out_dir(out)?;
     let t0 = Instant::now();
     let result = contactwave::simulate(&scenario)?;
@@ -196,6 +233,115 @@ fn run(path: &Path, out: &Path) -> contactwave::Result<u8> {
     println!("energy closure error   {:.3e}", get("energy_closure_error"));
     println!("wall time              {:.1} ms", wall.as_secs_f64() * 1e3);
     println!("wrote {} files to {}", files.len(), out.display());
+    Ok(0)
+}
+
+/// `run` on a bar-stack scenario: the hammer test, FRF and modes (thesis chapter 4).
+fn run_bar_stack(table: toml::Table, path: &Path, out: &Path) -> contactwave::Result<u8> {
+    let scenario = BarStackScenario::from_table(table, path)?;
+    check_out_dir(out)?;
+    let t0 = Instant::now();
+    let result = contactwave::simulate_bar_stack(&scenario)?;
+    let wall = t0.elapsed();
+    let files = output::bar_stack_files(&result, &path.display().to_string())?;
+    output::write_files(out, &files)?;
+    let get = |k: &str| result.summary.get(k).unwrap_or(f64::NAN);
+    println!("scenario               {}", path.display());
+    for (i, p) in scenario.static_pressure.iter().enumerate() {
+        println!("static pressure [{i}]    {p:.6e} Pa");
+    }
+    println!("first mode             {:.2} Hz", get("first_mode_hz"));
+    println!("second harmonic        {:.2} Hz", get("second_harmonic_hz"));
+    println!("A2/A1                  {:.4e}", get("A2_over_A1"));
+    println!("guide mode             {:.1} Hz", get("guide_mode_hz"));
+    println!(
+        "min contact pressure   {:.4e} Pa",
+        get("min_contact_pressure")
+    );
+    println!("wall time              {:.1} ms", wall.as_secs_f64() * 1e3);
+    println!("wrote {} files to {}", files.len(), out.display());
+    Ok(0)
+}
+
+/// `fit power-law`: least squares of K = C p^m in log-log on two columns of a CSV file.
+fn fit_cmd(path: &Path, columns: Option<&str>, json: bool) -> contactwave::Result<u8> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let mut rdr = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let header: Vec<String> = rdr
+        .headers()
+        .map_err(|e| Error::invalid(&file, "header", "?", format!("CSV error: {e}")))?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    let (ip, ik) = match columns {
+        None => (0, 1),
+        Some(c) => {
+            let parts: Vec<&str> = c.split(',').map(str::trim).collect();
+            let find = |name: &str| header.iter().position(|h| h == name);
+            match parts.as_slice() {
+                [p, k] => match (find(p), find(k)) {
+                    (Some(a), Some(b)) => (a, b),
+                    _ => {
+                        return Err(Error::invalid(
+                            &file,
+                            "--columns",
+                            c,
+                            format!("column names from the header: {}", header.join(", ")),
+                        ))
+                    }
+                },
+                _ => {
+                    return Err(Error::invalid(
+                        &file,
+                        "--columns",
+                        c,
+                        "two column names: PRESSURE,STIFFNESS",
+                    ))
+                }
+            }
+        }
+    };
+    let (mut p, mut k) = (Vec::new(), Vec::new());
+    for (row, rec) in rdr.records().enumerate() {
+        let rec = rec.map_err(|e| {
+            Error::invalid(
+                &file,
+                format!("row {}", row + 1),
+                "?",
+                format!("CSV error: {e}"),
+            )
+        })?;
+        let val = |i: usize, name: &str| -> contactwave::Result<f64> {
+            rec.get(i)
+                .and_then(|v| v.parse::<f64>().ok())
+                .ok_or_else(|| {
+                    Error::invalid(
+                        &file,
+                        format!("row {} {name}", row + 1),
+                        rec.get(i).unwrap_or(""),
+                        "a number",
+                    )
+                })
+        };
+        p.push(val(ip, "pressure")?);
+        k.push(val(ik, "stiffness")?);
+    }
+    let fit = contactwave::analysis::fit::fit_power_law(&p, &k).map_err(|e| e.in_file(&file))?;
+    if json {
+        println!(
+            "{}",
+            serde_json::json!({"c": fit.c, "m": fit.m, "r2": fit.r2})
+        );
+    } else {
+        println!("K = C p^m fitted on {} points of {file}", p.len());
+        println!("C  = {:.6e} Pa^(1-m)/m", fit.c);
+        println!("m  = {:.6}", fit.m);
+        println!("R2 = {:.6}", fit.r2);
+    }
     Ok(0)
 }
 

@@ -125,6 +125,13 @@ fn every_example_loads_and_runs() {
             continue;
         }
         let table: toml::Table = std::fs::read_to_string(&p).unwrap().parse().unwrap();
+        if contactwave::scenario::bar_stack::BarStackScenario::is_bar_stack(&table) {
+            let s =
+                contactwave::scenario::bar_stack::BarStackScenario::from_table(table, &p).unwrap();
+            let r = contactwave::simulate_bar_stack(&s).unwrap();
+            assert!(r.summary.get("first_mode_hz").unwrap().is_finite());
+            continue;
+        }
         let scenarios = if table.contains_key("axis") {
             contactwave::study::Sweep::load(&p)
                 .unwrap()

@@ -45,9 +45,11 @@ pub mod material;
 pub mod numeric;
 pub mod output;
 mod run;
+mod run_bar;
 pub mod scenario;
 pub mod solver;
 pub mod study;
 
 pub use error::{Error, Result};
 pub use run::{half_space, settings, simulate, simulate_summary, ProbeSeries, RunResult};
+pub use run_bar::{simulate_bar_stack, BarStackResult, Frf};

@@ -25,7 +25,10 @@
 //!
 //! Numbers are written so that they parse back to the same `f64`.
 
+mod bar;
 mod plot;
+
+pub use bar::{bar_stack_files, FRF_HEADER};
 
 use crate::analysis::Summary;
 use crate::error::{Error, Result};

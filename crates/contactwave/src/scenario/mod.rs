@@ -2,6 +2,7 @@
 //! ([`Scenario`]) that the solvers run. Validation names the file, the field, the value and
 //! what is allowed; nothing downstream sees an invalid value.
 
+pub mod bar_stack;
 pub mod spec;
 mod value;
 
@@ -61,7 +62,7 @@ impl Scenario {
 
     /// Validate and resolve a spec. `base_dir` resolves relative file paths.
     pub fn from_spec(spec: ScenarioSpec, file: &str, base_dir: &Path) -> Result<Scenario> {
-        let medium = material(&spec.medium, file, "medium")?;
+        let medium = material_of(&spec.medium, file, "medium")?;
         let counterpart = match spec.counterpart.kind {
             CounterpartKind::Rigid => {
                 let c = &spec.counterpart;
@@ -77,7 +78,7 @@ impl Scenario {
             }
             CounterpartKind::Medium => {
                 let c = &spec.counterpart;
-                Some(material(
+                Some(material_of(
                     &MaterialSpec {
                         material: c.material.clone(),
                         youngs_modulus: c.youngs_modulus,
@@ -172,7 +173,7 @@ pub fn xi_factor(law: &ContactLaw, z1: f64, z2: f64, frequency: f64) -> f64 {
     (1.0 + (omega / omega1).powi(2)).sqrt()
 }
 
-fn material(spec: &MaterialSpec, file: &str, prefix: &str) -> Result<Material> {
+pub(crate) fn material_of(spec: &MaterialSpec, file: &str, prefix: &str) -> Result<Material> {
     let mut m = match &spec.material {
         Some(name) => Material::preset(name).ok_or_else(|| {
             Error::invalid(

@@ -1,7 +1,7 @@
 //! Explicit finite-difference solver of a stack of elastic bars separated by contact
 //! interfaces (model.md section 5; thesis sections 2.3.1-2.3.5, eqs. 2.2, 2.18-2.37).
 //!
-//! Each segment is meshed with `n_i = ceil(L_i / (c_i dt))` cells, so its Courant number
+//! Each segment is meshed with `n_i = floor(L_i / (c_i dt))` cells, so its Courant number
 //! `r_i = c_i dt / dx_i <= 1` and equals 1 (dispersion-free in 1D) when the length is a
 //! multiple of `c_i dt`. The scheme is the lumped-mass form of the thesis' centred scheme:
 //! interior nodes `u+ = 2u - u- + r^2 (u_{j+1} - 2u_j + u_{j-1})` (eq. 2.18 at the
@@ -113,7 +113,7 @@ impl BarStack {
         let mut n = 0;
         for s in &self.segments {
             let c = s.material.wave_speed();
-            let k = ((s.length / (c * dt)) * (1.0 - 1e-12)).ceil().max(1.0) as usize;
+            let k = ((s.length / (c * dt)) * (1.0 + 1e-12)).floor().max(1.0) as usize;
             offset.push(n);
             cells.push(k);
             dx.push(s.length / k as f64);
@@ -333,7 +333,7 @@ impl BarStack {
                 }
                 End::Obstacle(law) => {
                     let i = n_if - 1;
-                    let chi = inv_mass[0] / damp_p[0] / self.area;
+                    let chi = inv_mass[0] / damp_p[0] * self.area;
                     let upd = interface::update(law, u_next[0], chi, beta[i], dt, t1)?;
                     u_next[0] -= chi * upd.dynamic_stress;
                     gaps[i] = upd.gap;
@@ -351,7 +351,7 @@ impl BarStack {
                 }
                 End::Obstacle(law) => {
                     let i = self.interfaces.len();
-                    let chi = inv_mass[last] / damp_p[last] / self.area;
+                    let chi = inv_mass[last] / damp_p[last] * self.area;
                     let upd = interface::update(law, -u_next[last], chi, beta[i], dt, t1)?;
                     u_next[last] += chi * upd.dynamic_stress;
                     gaps[i] = upd.gap;
@@ -363,8 +363,8 @@ impl BarStack {
             for (i, law) in self.interfaces.iter().enumerate() {
                 let a = mesh.offset[i] + mesh.cells[i];
                 let b = mesh.offset[i + 1];
-                let chi_a = inv_mass[a] / damp_p[a] / self.area;
-                let chi_b = inv_mass[b] / damp_p[b] / self.area;
+                let chi_a = inv_mass[a] / damp_p[a] * self.area;
+                let chi_b = inv_mass[b] / damp_p[b] * self.area;
                 let upd =
                     interface::update(law, u_next[b] - u_next[a], chi_a + chi_b, beta[i], dt, t1)?;
                 u_next[a] += chi_a * upd.dynamic_stress;

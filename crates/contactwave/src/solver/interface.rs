@@ -91,13 +91,51 @@ pub fn update(
                 adhesion: beta_old,
             });
         }
-        let g = brent_past(f, lo, uc, flo, f_uc, 300).ok_or_else(|| {
-            Error::numerical(
-                t,
-                "interface update (compression) failed",
-                format!("predicted gap = {gt:e} m"),
-            )
-        })?;
+        // safeguarded Newton (thesis eq. 2.31): F' = K(g) + 1/chi > 0; falls back to the
+        // bracketing root-finder if an iterate leaves the bracket or stalls
+        let (mut a, mut b) = (lo, uc);
+        let mut g = (gt - chi * p0).clamp(a, b);
+        let mut done = false;
+        for _ in 0..30 {
+            let fg = f(g);
+            if fg == 0.0 {
+                done = true;
+                break;
+            }
+            if fg < 0.0 {
+                a = g;
+            } else {
+                b = g;
+            }
+            let d = law.compression.tangent(g) + 1.0 / chi;
+            let ng = g - fg / d;
+            if !(ng > a && ng < b) {
+                break;
+            }
+            if (ng - g).abs() <= 4.0 * f64::EPSILON * g.abs().max(uc.abs()) {
+                g = ng;
+                done = true;
+                break;
+            }
+            g = ng;
+        }
+        let _ = flo;
+        let g = if done {
+            g
+        } else {
+            let (fa, fb) = (f(a), f(b));
+            if fb == 0.0 {
+                b
+            } else {
+                brent_past(f, a, b, fa.min(-f64::MIN_POSITIVE), fb, 300).ok_or_else(|| {
+                    Error::numerical(
+                        t,
+                        "interface update (compression) failed",
+                        format!("predicted gap = {gt:e} m"),
+                    )
+                })?
+            }
+        };
         return Ok(InterfaceUpdate {
             gap: g,
             dynamic_stress: (gt - g) / chi,

@@ -1,0 +1,68 @@
+//! Result files of a bar-stack run: `summary.json` (per-interface values as arrays),
+//! `frf.csv` and `timeseries.csv`.
+
+use super::{csv_columns, OutputFile};
+use crate::error::Result;
+use crate::BarStackResult;
+
+/// Header of `frf.csv`.
+pub const FRF_HEADER: &str = "frequency,receptance,receptance_phase,accelerance";
+
+/// The files of a bar-stack run, rendered in memory.
+pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<OutputFile>> {
+    let mut obj = serde_json::Map::new();
+    obj.insert("scenario".into(), scenario_file.into());
+    let mut per: std::collections::BTreeMap<String, Vec<f64>> = Default::default();
+    for (k, v) in r.summary.iter() {
+        match k
+            .rsplit_once('_')
+            .filter(|(_, i)| i.parse::<usize>().is_ok())
+        {
+            // one value per interface: an array under the base name
+            Some((base, _)) => per.entry(base.to_string()).or_default().push(v),
+            None => {
+                obj.insert(
+                    k.to_string(),
+                    serde_json::json!(Some(v).filter(|x| x.is_finite())),
+                );
+            }
+        }
+    }
+    for (k, v) in per {
+        let key = match k.as_str() {
+            "min_contact_pressure" => "min_contact_pressure_per_interface".to_string(),
+            _ => k,
+        };
+        obj.insert(key, serde_json::json!(v));
+    }
+    let mut summary =
+        serde_json::to_string_pretty(&serde_json::Value::Object(obj)).unwrap_or_default();
+    summary.push('\n');
+    let f = &r.frf;
+    let frf = csv_columns(
+        FRF_HEADER,
+        &[&f.frequency, &f.receptance, &f.phase, &f.accelerance],
+    );
+    let mut header = String::from("t,force,displacement,acceleration");
+    let mut cols: Vec<&[f64]> = vec![&r.t, &r.force, &r.displacement, &r.acceleration];
+    for i in 0..r.gap.len() {
+        header.push_str(&format!(",gap_{i},pressure_{i}"));
+        cols.push(&r.gap[i]);
+        cols.push(&r.pressure[i]);
+    }
+    let ts = csv_columns(&header, &cols);
+    Ok(vec![
+        OutputFile {
+            name: "summary.json".into(),
+            contents: summary,
+        },
+        OutputFile {
+            name: "frf.csv".into(),
+            contents: frf,
+        },
+        OutputFile {
+            name: "timeseries.csv".into(),
+            contents: ts,
+        },
+    ])
+}

@@ -1,0 +1,481 @@
+//! Bar-stack scenarios (`[model] kind = "bar_stack"`, model.md section 5; thesis sections
+//! 2.3.1-2.3.5 and chapter 4): segments, interfaces with any law of the library, end
+//! conditions, gravity, damping, a hammer force, and the static step that computes the
+//! pre-loaded interface pressures before the dynamics start.
+
+use super::spec::{CompressionSpec, MaterialSpec, TractionSpec};
+use crate::error::{Error, Result};
+use crate::law::{registry, ContactLaw};
+use crate::numeric::pchip::Pchip;
+use crate::solver::barstack::{BarStack, End, Segment, Signal};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+use std::sync::Arc;
+
+/// The whole bar-stack file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BarStackSpec {
+    /// Model settings.
+    pub model: ModelSpec,
+    /// Segments from the first end (x = 0, e.g. the top) to the last.
+    #[serde(rename = "segment")]
+    pub segments: Vec<SegmentSpec>,
+    /// Interfaces between consecutive segments, and the obstacle interface.
+    #[serde(rename = "interface", default)]
+    pub interfaces: Vec<InterfaceSpec>,
+    /// The hammer (force at a node).
+    pub excitation: ForceSpec,
+    /// Analysis settings.
+    #[serde(default)]
+    pub analysis: AnalysisSpec,
+}
+
+/// `[model]`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSpec {
+    /// Must be `bar_stack`.
+    pub kind: String,
+    /// Common cross-section S, m^2.
+    pub area: f64,
+    /// Gravity along +x (from the first segment towards the last), m/s^2 (default 0).
+    #[serde(default)]
+    pub gravity: f64,
+    /// Static force on the first node along +x, N (default 0).
+    #[serde(default)]
+    pub static_force: f64,
+    /// End condition at x = 0: `free` (default), `fixed`, `transparent`.
+    #[serde(default = "free")]
+    pub first_end: String,
+    /// End condition at the far end: `free`, `fixed`, `transparent`, `obstacle` (default;
+    /// needs an interface `between = [last segment, "obstacle"]`).
+    #[serde(default = "obstacle")]
+    pub last_end: String,
+    /// Simulated time, s (default 0.2).
+    #[serde(default = "default_duration")]
+    pub duration: f64,
+    /// Target cell size, m (default: the shortest segment / 4).
+    pub cell_size: Option<f64>,
+}
+
+fn free() -> String {
+    "free".into()
+}
+fn obstacle() -> String {
+    "obstacle".into()
+}
+fn default_duration() -> f64 {
+    0.2
+}
+
+/// `[[segment]]`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SegmentSpec {
+    /// Name.
+    pub name: String,
+    /// Length, m.
+    pub length: f64,
+    /// Material preset.
+    pub material: Option<String>,
+    /// Young's modulus, Pa.
+    pub youngs_modulus: Option<f64>,
+    /// Density, kg/m^3.
+    pub density: Option<f64>,
+    /// Mass, kg: sets an equivalent density `mass / (area length)` at the common
+    /// cross-section, with E scaled by the same factor (the wave speed is kept).
+    pub mass: Option<f64>,
+    /// Viscous damping h of eq. 2.2, 1/s (default 0).
+    #[serde(default)]
+    pub damping: f64,
+}
+
+/// `[[interface]]`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InterfaceSpec {
+    /// The two segment names it joins, in order (`"obstacle"` for the rigid obstacle).
+    pub between: [String; 2],
+    /// Compression branch.
+    #[serde(default)]
+    pub compression: CompressionSpec,
+    /// Traction branch.
+    #[serde(default)]
+    pub traction: TractionSpec,
+}
+
+/// `[excitation]`: a half-sine force pulse or a force file, at the first node.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ForceSpec {
+    /// `force_pulse` (default) or `force_file`.
+    #[serde(default = "pulse")]
+    pub kind: String,
+    /// Peak force, N (positive: along +x, into the stack).
+    pub peak: Option<f64>,
+    /// Pulse duration, s (default 1.0e-3).
+    pub duration: Option<f64>,
+    /// CSV file (time s, force N), relative to the scenario file.
+    pub path: Option<String>,
+}
+
+fn pulse() -> String {
+    "force_pulse".into()
+}
+
+/// `[analysis]`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnalysisSpec {
+    /// Lowest frequency searched for the first mode, Hz (default 100).
+    #[serde(default = "fmin")]
+    pub first_mode_min: f64,
+    /// Highest frequency searched for the first mode, Hz (default 3000).
+    #[serde(default = "fmax")]
+    pub first_mode_max: f64,
+}
+
+impl Default for AnalysisSpec {
+    fn default() -> Self {
+        AnalysisSpec {
+            first_mode_min: fmin(),
+            first_mode_max: fmax(),
+        }
+    }
+}
+fn fmin() -> f64 {
+    100.0
+}
+fn fmax() -> f64 {
+    3000.0
+}
+
+/// Half-sine force pulse, N.
+#[derive(Debug, Clone, Copy)]
+pub struct HalfSine {
+    /// Peak, N.
+    pub peak: f64,
+    /// Duration, s.
+    pub duration: f64,
+}
+
+impl Signal for HalfSine {
+    fn value(&self, t: f64) -> f64 {
+        if t < 0.0 || t > self.duration {
+            0.0
+        } else {
+            self.peak * (std::f64::consts::PI * t / self.duration).sin()
+        }
+    }
+}
+
+/// Force interpolated from samples (PCHIP), N.
+#[derive(Debug, Clone)]
+pub struct ForceFile(Pchip, f64);
+
+impl Signal for ForceFile {
+    fn value(&self, t: f64) -> f64 {
+        if t < 0.0 || t > self.1 {
+            0.0
+        } else {
+            self.0.eval(t)
+        }
+    }
+}
+
+/// A validated bar-stack scenario.
+#[derive(Debug, Clone)]
+pub struct BarStackScenario {
+    /// The spec.
+    pub spec: BarStackSpec,
+    /// File it came from.
+    pub file: String,
+    /// The stack, interfaces built at the static pressures.
+    pub stack: BarStack,
+    /// Static interface pressures (between segments, then the obstacle), Pa.
+    pub static_pressure: Vec<f64>,
+    /// The force signal at node 0, N.
+    pub force: Arc<dyn Signal>,
+    /// Time step, s.
+    pub dt: f64,
+}
+
+fn inv(file: &str, field: impl Into<String>, v: impl std::fmt::Display, allowed: &str) -> Error {
+    Error::invalid(file, field, v, allowed)
+}
+
+fn pos(file: &str, field: &str, v: f64) -> Result<()> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(inv(file, field, v, "must be a finite number > 0"))
+    }
+}
+
+impl BarStackScenario {
+    /// Does this TOML table describe a bar stack?
+    pub fn is_bar_stack(table: &toml::Table) -> bool {
+        table
+            .get("model")
+            .and_then(|m| m.get("kind"))
+            .and_then(|k| k.as_str())
+            == Some("bar_stack")
+    }
+
+    /// Validate a parsed table.
+    pub fn from_table(table: toml::Table, path: &Path) -> Result<Self> {
+        let file = path.display().to_string();
+        let spec: BarStackSpec = serde_path_to_error::deserialize(toml::Value::Table(table))
+            .map_err(|e| {
+                let p = e.path().to_string();
+                Error::Parse {
+                    file: file.clone(),
+                    message: format!(
+                        "field `{p}`: {}",
+                        e.into_inner().to_string().replace('\n', " ")
+                    ),
+                }
+            })?;
+        Self::from_spec(spec, &file, path.parent().unwrap_or(Path::new(".")))
+    }
+
+    /// Validate a spec.
+    pub fn from_spec(spec: BarStackSpec, file: &str, dir: &Path) -> Result<Self> {
+        let m = &spec.model;
+        pos(file, "model.area", m.area)?;
+        if !m.gravity.is_finite() {
+            return Err(inv(
+                file,
+                "model.gravity",
+                m.gravity,
+                "must be finite (m/s^2)",
+            ));
+        }
+        if !m.static_force.is_finite() {
+            return Err(inv(
+                file,
+                "model.static_force",
+                m.static_force,
+                "must be finite (N)",
+            ));
+        }
+        pos(file, "model.duration", m.duration)?;
+        if spec.segments.is_empty() {
+            return Err(inv(file, "segment", "none", "at least one [[segment]]"));
+        }
+        let mut segments = Vec::new();
+        for (i, s) in spec.segments.iter().enumerate() {
+            let key = |k: &str| format!("segment[{i}].{k}");
+            pos(file, &key("length"), s.length)?;
+            let mut mat = super::material_of(
+                &MaterialSpec {
+                    material: s.material.clone(),
+                    youngs_modulus: s.youngs_modulus,
+                    density: s.density,
+                },
+                file,
+                &format!("segment[{i}]"),
+            )?;
+            if let Some(mass) = s.mass {
+                pos(file, &key("mass"), mass)?;
+                let rho_eq = mass / (m.area * s.length);
+                mat.youngs_modulus *= rho_eq / mat.density;
+                mat.density = rho_eq;
+            }
+            if !(s.damping.is_finite() && s.damping >= 0.0) {
+                return Err(inv(file, key("damping"), s.damping, "must be >= 0 (1/s)"));
+            }
+            if spec.segments[..i].iter().any(|o| o.name == s.name) || s.name == "obstacle" {
+                return Err(inv(
+                    file,
+                    key("name"),
+                    &s.name,
+                    "segment names must be unique and not `obstacle`",
+                ));
+            }
+            segments.push(Segment {
+                name: s.name.clone(),
+                length: s.length,
+                material: mat,
+                damping: s.damping,
+            });
+        }
+        // static step: pressure at each interface = (static force + weight above) / area
+        let weight_above = |k: usize| -> f64 {
+            segments[..=k]
+                .iter()
+                .map(|s| s.material.density * s.length * m.area * m.gravity)
+                .sum::<f64>()
+        };
+        let n = segments.len();
+        let mut laws: Vec<Option<Arc<ContactLaw>>> = vec![None; n];
+        let mut pressures = vec![0.0; n];
+        for (j, itf) in spec.interfaces.iter().enumerate() {
+            let [a, b] = &itf.between;
+            let ia = spec.segments.iter().position(|s| &s.name == a);
+            let ib = if b == "obstacle" {
+                Some(n)
+            } else {
+                spec.segments.iter().position(|s| &s.name == b)
+            };
+            let (ia, ib) = match (ia, ib) {
+                (Some(x), Some(y)) if y == x + 1 => (x, y),
+                _ => {
+                    return Err(inv(
+                        file,
+                        format!("interface[{j}].between"),
+                        format!("[\"{a}\", \"{b}\"]"),
+                        "must name two consecutive segments in order (or the last segment and \"obstacle\")",
+                    ))
+                }
+            };
+            let _ = ib;
+            if laws[ia].is_some() {
+                return Err(inv(
+                    file,
+                    format!("interface[{j}].between"),
+                    a,
+                    "one interface per pair of segments",
+                ));
+            }
+            let p = (m.static_force + weight_above(ia)) / m.area;
+            if p < 0.0 {
+                return Err(inv(
+                    file,
+                    format!("interface[{j}]"),
+                    p,
+                    "the static step gives a tensile interface load: the stack would fall apart",
+                ));
+            }
+            let law = registry::build_law(
+                p,
+                &itf.compression,
+                &itf.traction,
+                file,
+                &format!("interface[{j}]"),
+            )?;
+            pressures[ia] = p;
+            laws[ia] = Some(Arc::new(law));
+        }
+        let mut interfaces = Vec::new();
+        let mut static_pressure = Vec::new();
+        for k in 0..n - 1 {
+            match &laws[k] {
+                Some(l) => {
+                    interfaces.push(l.clone());
+                    static_pressure.push(pressures[k]);
+                }
+                None => {
+                    return Err(inv(
+                        file,
+                        "interface",
+                        format!("{} / {}", segments[k].name, segments[k + 1].name),
+                        "every pair of consecutive segments needs an [[interface]]",
+                    ))
+                }
+            }
+        }
+        let mut end = |s: &str, key: &str, last: bool| -> Result<End> {
+            Ok(match s {
+                "free" => End::Free,
+                "fixed" => End::Fixed,
+                "transparent" => End::Transparent,
+                "obstacle" if last => match &laws[n - 1] {
+                    Some(l) => {
+                        static_pressure.push(pressures[n - 1]);
+                        End::Obstacle(l.clone())
+                    }
+                    None => return Err(inv(file, key, s, "an obstacle end needs an [[interface]] with between = [last segment, \"obstacle\"]")),
+                },
+                _ => return Err(inv(file, key, s, if last { "free, fixed, transparent or obstacle" } else { "free, fixed or transparent" })),
+            })
+        };
+        let left = end(&m.first_end, "model.first_end", false)?;
+        let right = end(&m.last_end, "model.last_end", true)?;
+        let force: Arc<dyn Signal> = match spec.excitation.kind.as_str() {
+            "force_pulse" => {
+                let peak = spec
+                    .excitation
+                    .peak
+                    .ok_or_else(|| inv(file, "excitation.peak", "(missing)", "peak force in N"))?;
+                if !peak.is_finite() {
+                    return Err(inv(file, "excitation.peak", peak, "must be finite (N)"));
+                }
+                let d = spec.excitation.duration.unwrap_or(1.0e-3);
+                pos(file, "excitation.duration", d)?;
+                Arc::new(HalfSine { peak, duration: d })
+            }
+            "force_file" => {
+                let rel = spec.excitation.path.as_ref().ok_or_else(|| {
+                    inv(
+                        file,
+                        "excitation.path",
+                        "(missing)",
+                        "a CSV file (time s, force N)",
+                    )
+                })?;
+                let (t, f) =
+                    crate::excitation::FileWaveform::read(&dir.join(rel), "excitation.path")?;
+                let t0 = t[0];
+                let ts: Vec<f64> = t.iter().map(|v| v - t0).collect();
+                let p = Pchip::new(&ts, &f)
+                    .ok_or_else(|| inv(file, "excitation.path", rel, "invalid force samples"))?;
+                let d = *ts.last().unwrap_or(&0.0);
+                Arc::new(ForceFile(p, d))
+            }
+            other => {
+                return Err(inv(
+                    file,
+                    "excitation.kind",
+                    other,
+                    "force_pulse or force_file",
+                ))
+            }
+        };
+        let shortest = segments
+            .iter()
+            .map(|s| s.length)
+            .fold(f64::INFINITY, f64::min);
+        let dx = m.cell_size.unwrap_or(shortest / 4.0);
+        pos(file, "model.cell_size", dx)?;
+        let cmax = segments
+            .iter()
+            .map(|s| s.material.wave_speed())
+            .fold(0.0, f64::max);
+        let dt = dx / cmax;
+        let steps = m.duration / dt;
+        if steps > 5e8 {
+            return Err(inv(
+                file,
+                "model.duration",
+                m.duration,
+                &format!("too many time steps ({steps:.2e}); raise model.cell_size"),
+            ));
+        }
+        let a = &spec.analysis;
+        if !(a.first_mode_min > 0.0 && a.first_mode_max > a.first_mode_min) {
+            return Err(inv(
+                file,
+                "analysis.first_mode_max",
+                a.first_mode_max,
+                "must exceed analysis.first_mode_min > 0",
+            ));
+        }
+        Ok(BarStackScenario {
+            stack: BarStack {
+                area: m.area,
+                segments,
+                interfaces,
+                left,
+                right,
+                incident: None,
+            },
+            static_pressure,
+            force,
+            dt,
+            file: file.to_string(),
+            spec,
+        })
+    }
+}

@@ -1,0 +1,154 @@
+//! Bar-stack model (issue 3): static step, Tribobrake FRF peaks, amplitude trends of
+//! thesis chapter 4, bad input.
+
+use contactwave::scenario::bar_stack::BarStackScenario;
+use contactwave::{simulate_bar_stack, Error};
+use std::path::Path;
+
+fn tribobrake() -> String {
+    std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/tribobrake.toml"),
+    )
+    .unwrap()
+}
+
+fn load(text: &str) -> Result<BarStackScenario, Error> {
+    let table: toml::Table = text.parse().expect("toml");
+    BarStackScenario::from_table(table, Path::new("tribobrake.toml"))
+}
+
+fn with(law: &str, peak: f64) -> String {
+    let t = tribobrake().replace("peak = 32.0", &format!("peak = {peak:?}"));
+    match law {
+        "power" => t.replace("law = \"modified_power\"", "law = \"power\""),
+        "linear" => t.replace(
+            "{ law = \"modified_power\", c = 1.81e10, m = 0.35 }",
+            "{ law = \"linear\", stiffness = 8.5e11 }",
+        ),
+        _ => t,
+    }
+}
+
+/// The static step: the gravity load equals the interface pressure times the area.
+#[test]
+fn static_equilibrium_under_gravity() {
+    let s = load(&tribobrake()).unwrap();
+    let g = 9.81;
+    let area = 1.15e-4;
+    let m_sample = 2710.0 * 0.015 * area;
+    assert!((s.static_pressure[0] * area - 1.61 * g).abs() < 1e-9 * 1.61 * g);
+    assert!((s.static_pressure[1] * area - (1.61 + m_sample) * g).abs() < 1e-9 * 1.61 * g);
+    assert!(
+        (s.static_pressure[0] - 0.137e6).abs() < 0.001e6,
+        "p0 = {}",
+        s.static_pressure[0]
+    );
+}
+
+/// FRF of the default Tribobrake example (modified power law, 32 N): mass-spring mode
+/// between 780 and 900 Hz, its second harmonic at twice it, the guide mode near 11 kHz,
+/// interfaces closed throughout.
+#[test]
+fn tribobrake_modes() {
+    let r = simulate_bar_stack(&load(&tribobrake()).unwrap()).unwrap();
+    let g = |k: &str| r.summary.get(k).unwrap();
+    let f1 = g("first_mode_hz");
+    assert!((780.0..=900.0).contains(&f1), "f1 = {f1}");
+    // the ringing frequency drifts with amplitude: the harmonic peak is near, not at, 2 f1
+    assert!(
+        (g("second_harmonic_hz") / f1 - 2.0).abs() < 0.05,
+        "{}",
+        g("second_harmonic_hz")
+    );
+    assert!(
+        g("A2_over_A1") > 1e-2,
+        "a nonlinear law makes a second harmonic"
+    );
+    let fg = g("guide_mode_hz");
+    assert!((10.0e3..=12.5e3).contains(&fg), "guide mode {fg}");
+    let pmin = g("min_contact_pressure");
+    assert!(pmin > 0.0 && pmin < 0.05e6, "min pressure {pmin}");
+}
+
+/// A constant 8.5e11 Pa/m interface gives about 840 Hz and no second harmonic while the
+/// interfaces stay closed.
+#[test]
+fn linear_interface_has_no_second_harmonic() {
+    let r = simulate_bar_stack(&load(&with("linear", 9.0)).unwrap()).unwrap();
+    let g = |k: &str| r.summary.get(k).unwrap();
+    assert!(
+        (800.0..=880.0).contains(&g("first_mode_hz")),
+        "{}",
+        g("first_mode_hz")
+    );
+    assert!(g("min_contact_pressure") > 0.0);
+    assert!(g("A2_over_A1") < 1e-3, "A2/A1 = {}", g("A2_over_A1"));
+    // the H1 receptance peaks at the first mode (below the first zero of the force
+    // spectrum of the 1 ms half-sine, 1.5 kHz)
+    let k = (0..r.frf.frequency.len())
+        .filter(|&k| r.frf.frequency[k] > 300.0 && r.frf.frequency[k] < 1400.0)
+        .max_by(|&a, &b| r.frf.receptance[a].total_cmp(&r.frf.receptance[b]))
+        .unwrap();
+    let f1 = g("first_mode_hz");
+    assert!(
+        (r.frf.frequency[k] - f1).abs() < 0.01 * f1,
+        "FRF peak {} vs {f1}",
+        r.frf.frequency[k]
+    );
+}
+
+/// Thesis chapter 4: the first-mode frequency falls from 9 N to 32 N for both laws, more
+/// with the modified power law; A2/A1 grows with the force.
+#[test]
+fn amplitude_trends_of_chapter_4() {
+    let run = |law: &str, f: f64| {
+        let r = simulate_bar_stack(&load(&with(law, f)).unwrap()).unwrap();
+        (
+            r.summary.get("first_mode_hz").unwrap(),
+            r.summary.get("A2_over_A1").unwrap(),
+        )
+    };
+    let (m9, ma9) = run("modified_power", 9.0);
+    let (m32, ma32) = run("modified_power", 32.0);
+    let (p9, pa9) = run("power", 9.0);
+    let (p32, pa32) = run("power", 32.0);
+    let drop_m = 1.0 - m32 / m9;
+    let drop_p = 1.0 - p32 / p9;
+    assert!(drop_m > 0.0 && drop_p > 0.0, "drops {drop_m} {drop_p}");
+    assert!(drop_m > drop_p, "modified PL drop {drop_m} vs PL {drop_p}");
+    assert!(ma32 > ma9 && pa32 > pa9);
+}
+
+/// Bad input: one error naming the field.
+#[test]
+fn bad_bar_stack_input() {
+    let cases = [
+        (
+            tribobrake().replace("length = 0.015", "length = 0.0"),
+            "segment[1].length",
+        ),
+        (
+            tribobrake().replace(
+                "between = [\"guide\", \"sample\"]",
+                "between = [\"guide\", \"obstacle\"]",
+            ),
+            "interface[0].between",
+        ),
+        (
+            tribobrake().replace("area = 1.15e-4", "area = -1.0"),
+            "model.area",
+        ),
+        (
+            tribobrake().replace("mass = 1.61", "mass = nan"),
+            "segment[0].mass",
+        ),
+        (
+            tribobrake().replace("last_end = \"obstacle\"", "last_end = \"wall\""),
+            "model.last_end",
+        ),
+    ];
+    for (text, field) in cases {
+        let e = load(&text).unwrap_err().to_string();
+        assert!(e.contains(field), "{e}");
+    }
+}
