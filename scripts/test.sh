@@ -36,9 +36,41 @@ step "cargo test --doc -p contactwave --release"
 cargo test --doc -p contactwave --release
 
 # ---------------------------------------------------------------------------------------
-# Python (reserved: later issues add the Python bindings and their tests here, e.g.
-#   step "python3 -m pytest python/tests"
-# No Python step yet.)
+# Python: the `contactwave` package (crates/contactwave-py + python/), built with maturin
+# into a virtual environment at .venv (ignored by git), then its pytest suite
+# (python/tests: API against the CLI's files, Dask LocalCluster, shards and merge).
 # ---------------------------------------------------------------------------------------
+PYTHON=${PYTHON:-python3}
+PY_DEPS=(maturin numpy pandas "dask[distributed]" pytest)
+
+step "python virtual environment (.venv)"
+if [ ! -x .venv/bin/python ] || ! .venv/bin/python -m pip --version >/dev/null 2>&1; then
+    rm -rf .venv
+    if ! "$PYTHON" -m venv .venv; then
+        # python3-venv (ensurepip) missing: try virtualenv, installed for the user if needed
+        rm -rf .venv
+        if ! "$PYTHON" -m virtualenv --version >/dev/null 2>&1; then
+            "$PYTHON" -m pip install --user virtualenv ||
+                "$PYTHON" -m pip install --user --break-system-packages virtualenv
+        fi
+        "$PYTHON" -m virtualenv .venv
+    fi
+fi
+VPY=.venv/bin/python
+
+step "pip install ${PY_DEPS[*]}"
+"$VPY" -m pip install --upgrade pip
+"$VPY" -m pip install "${PY_DEPS[@]}"
+
+step "cargo build --release -p contactwave-cli (the CLI the Python tests compare with)"
+cargo build --release -p contactwave-cli
+
+step "pip install . (maturin: the contactwave wheel, abi3, Python >= 3.9)"
+rm -f python/contactwave/_core*.so  # a stale `maturin develop` build would shadow the wheel
+"$VPY" -m pip install --no-build-isolation --force-reinstall --no-deps .
+"$VPY" -c "import contactwave, sys; print('contactwave', contactwave.__version__, 'on Python', sys.version.split()[0])"
+
+step "python -m pytest python/tests"
+"$VPY" -m pytest -p no:cacheprovider -q python/tests
 
 step "all tests passed"
