@@ -365,7 +365,7 @@ fn sweep_cmd(
 ) -> contactwave::Result<u8> {
     let sweep = Sweep::load(path)?;
     // validate every point before creating anything
-    sweep.scenarios()?;
+    sweep.runnable()?;
     check_out_dir(out)?;
     std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
     let _ = ctrlc::set_handler(|| {

@@ -344,6 +344,8 @@ struct Runner<'a> {
     last_mode_switch: f64,
     /// Time of the last phase switch of an ODE phase.
     last_switch: f64,
+    /// Gap-event switches made at `last_switch` (guards a grazing ping-pong).
+    flips_here: usize,
 }
 
 impl<'a> Runner<'a> {
@@ -385,6 +387,7 @@ impl<'a> Runner<'a> {
             ramp: None,
             last_mode_switch: f64::NAN,
             last_switch: f64::NAN,
+            flips_here: 0,
         }
     }
 
@@ -553,6 +556,16 @@ impl<'a> Runner<'a> {
         }
     }
 
+    /// Record a phase switch at time t (s).
+    fn note_switch(&mut self, t: f64) {
+        if t == self.last_switch {
+            self.flips_here += 1;
+        } else {
+            self.last_switch = t;
+            self.flips_here = 1;
+        }
+    }
+
     /// Switch phase after an event at time t with state y (already projected).
     fn switch(&mut self, from: Phase, which: usize, t: f64, y: &mut [f64; 2]) {
         let comp_rigid = self.hs.law.compression.is_rigid();
@@ -599,7 +612,15 @@ impl<'a> Runner<'a> {
         // boundary layer of duration ~1/lambda: resolve it with growing sub-steps.
         self.ramp = None;
         if !to.is_stuck() {
-            let lambda = self.ode.jacobian(t, *y)[0][0].abs();
+            // the stiffness of the new phase at the switch state may vanish (a power law
+            // at contact loss) while it is large one step later: take the larger of both
+            let mut lambda = self.ode.jacobian(t, *y)[0][0].abs();
+            if let Ok(st) = self.step_ode(t, *y, self.h) {
+                let end = st.end();
+                if end[0].is_finite() && end[1].is_finite() {
+                    lambda = lambda.max(self.ode.jacobian(t + self.h, end)[0][0].abs());
+                }
+            }
             if lambda * self.h > 2.0 {
                 self.ramp = Some(0.05 / lambda);
             }
@@ -683,16 +704,22 @@ impl<'a> Runner<'a> {
                 continue;
             }
             // ODE phase (sub-steps growing from the boundary-layer scale after a switch)
+            // (a ramp longer than what is left of this step continues into the next one)
             let (h, t_end) = match self.ramp {
                 Some(r) if r < h => (r, t + r),
-                _ => {
-                    self.ramp = None;
-                    (h, t_end)
-                }
+                _ => (h, t_end),
             };
             let y0 = *y;
-            let st = self.step_ode(t, y0, h)?;
             let e_start = self.ode_events(phase, t, y0);
+            // the state is already across the gap event (a grazing touch stepped over, or
+            // round-off): switch now; twice at the same instant means a true grazing point
+            // where both phases agree, so step on
+            if e_start[0] > 0.0 && !(t == self.last_switch && self.flips_here >= 2) {
+                self.note_switch(t);
+                self.switch(phase, 0, t, y);
+                continue;
+            }
+            let st = self.step_ode(t, y0, h)?;
             let mut first: Option<(usize, f64)> = None; // (which, tau_hi)
             for which in 0..2 {
                 if e_start[which] > 0.0 || (which == 1 && t == self.last_mode_switch) {
@@ -756,6 +783,13 @@ impl<'a> Runner<'a> {
                         format!("gap = {:e} m, beta = {}", y0[0], y0[1]),
                     )
                 })?;
+                if t + tau <= t && which == 0 && !(t == self.last_switch && self.flips_here >= 2) {
+                    // the new phase leaves at once (grazing touch of the contact-loss
+                    // gap): go back without a step
+                    self.note_switch(t);
+                    self.switch(phase, 0, t, y);
+                    continue;
+                }
                 if !(t + tau <= t && t == self.last_switch) {
                     event = Some((which, tau));
                 }
@@ -774,10 +808,10 @@ impl<'a> Runner<'a> {
                     }
                     self.acc_ode(acc, t, h, y0, &st);
                     *y = st.end();
-                    y[1] = self.ode.beta(*y).min(y0[1]);
+                    y[1] = self.ode.beta(*y).min(y0[1]).max(0.0);
                     t = t_end;
-                    if let Some(r) = self.ramp.as_mut() {
-                        *r *= 2.0;
+                    if let Some(r) = self.ramp {
+                        self.ramp = (2.0 * r < self.h).then_some(2.0 * r);
                     }
                 }
                 Some((which, tau)) => {
@@ -787,12 +821,12 @@ impl<'a> Runner<'a> {
                     }
                     self.acc_ode(acc, t, tau, y0, &se);
                     *y = se.end();
-                    y[1] = self.ode.beta(*y).min(y0[1]);
+                    y[1] = self.ode.beta(*y).min(y0[1]).max(0.0);
                     t += tau;
                     if which == 1 {
                         self.last_mode_switch = t;
                     }
-                    self.last_switch = t;
+                    self.note_switch(t);
                     self.switch(phase, which, t, y);
                 }
             }

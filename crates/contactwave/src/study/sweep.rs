@@ -45,7 +45,7 @@
 use super::shard::Shard;
 use crate::analysis::Summary;
 use crate::error::{Error, Result};
-use crate::scenario::{parse_toml, set_dotted, Scenario};
+use crate::scenario::{parse_toml, set_dotted, AnyScenario, Scenario};
 use sha2::{Digest, Sha256};
 use std::fs::{File, OpenOptions};
 use std::io::Write;
@@ -429,10 +429,26 @@ impl Sweep {
     /// point fails with the scenario error (naming the base file and the field), followed by
     /// the sweep file, the point index and its values.
     pub fn scenarios(&self) -> Result<Vec<Scenario>> {
+        self.runnable()?
+            .into_iter()
+            .map(|s| match s {
+                AnyScenario::HalfSpace(s) => Ok(*s),
+                AnyScenario::BarStack(_) => Err(Error::invalid(
+                    self.base.display().to_string(),
+                    "model.kind",
+                    "bar_stack",
+                    "this call needs half-space scenarios",
+                )),
+            })
+            .collect()
+    }
+
+    /// Validate every grid point (half-space or bar-stack scenarios), in grid order.
+    pub fn runnable(&self) -> Result<Vec<AnyScenario>> {
         (0..self.points.len())
             .map(|i| {
                 let table = self.point_table(i)?;
-                Scenario::from_table(table, &self.base).map_err(|e| {
+                AnyScenario::from_table(table, &self.base).map_err(|e| {
                     let values = self
                         .axes
                         .iter()
@@ -950,7 +966,7 @@ pub fn run_sweep_shard(
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: &AtomicBool,
 ) -> Result<SweepReport> {
-    let scenarios = sweep.scenarios()?;
+    let scenarios = sweep.runnable()?;
     let grid_total = scenarios.len();
     let total = (0..grid_total).filter(|&i| shard.contains(i)).count();
     let hash_file = hash_path(out_csv);
@@ -1053,7 +1069,7 @@ pub fn run_sweep_shard(
                     return Ok(());
                 }
                 let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    crate::simulate_summary(&scenarios[i])
+                    scenarios[i].summary()
                 }));
                 {
                     let mut w = writer.lock().unwrap_or_else(|p| p.into_inner());
