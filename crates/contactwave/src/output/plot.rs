@@ -419,8 +419,10 @@ pub fn law_curve(law: &ContactLaw, gap: &[f64], stress: &[f64]) -> Result<String
     })
 }
 
-/// `sweep.svg`: `A1_over_Ainc` and `A2_over_Ainc` against the first axis, one curve per
-/// combination of the other axes (at most 12 curves are labelled).
+/// `sweep.svg`: the results against the first axis, one curve per combination of the other
+/// axes (at most 12 curves are labelled): `A1_over_Ainc` and `A2_over_Ainc` for half-space
+/// sweeps; `first_mode_hz`, `A1`, `A2_over_A1`, the mean contact stiffness and the minimum
+/// contact pressure for bar-stack sweeps.
 pub fn sweep(sw: &Sweep, table: &SweepTable) -> Result<String> {
     let name = "sweep.svg";
     let Some(first) = sw.axes.first() else {
@@ -493,28 +495,54 @@ pub fn sweep(sw: &Sweep, table: &SweepTable) -> Result<String> {
             })
             .collect()
     };
-    let a1 = curves_of(table.column("A1_over_Ainc"));
-    let a2 = curves_of(table.column("A2_over_Ainc"));
-    render(name, (900, 800), |root| {
-        let areas = root.split_evenly((2, 1));
-        panel(
-            &areas[0],
-            "Fundamental of the reflected wave",
-            &xlabel,
-            "A1 / A_inc",
-            &a1,
-            &[],
-            None,
-        )?;
-        panel(
-            &areas[1],
-            "Second harmonic of the reflected wave",
-            &xlabel,
-            "A2 / A_inc",
-            &a2,
-            &[],
-            None,
-        )?;
+    // half-space sweeps: the reflected harmonics; bar-stack sweeps: the resonance study
+    // of thesis chapter 4 (first mode, A1, A2/A1, mean contact stiffness, min pressure)
+    let panels: Vec<(&str, &str, &str)> = if table.column("A1_over_Ainc").is_some() {
+        vec![
+            (
+                "A1_over_Ainc",
+                "Fundamental of the reflected wave",
+                "A1 / A_inc",
+            ),
+            (
+                "A2_over_Ainc",
+                "Second harmonic of the reflected wave",
+                "A2 / A_inc",
+            ),
+        ]
+    } else {
+        vec![
+            ("first_mode_hz", "First mode (FRF peak)", "f1, Hz"),
+            ("A1", "Response at the first mode", "A1, m/s^2"),
+            ("A2_over_A1", "Second harmonic", "A2 / A1"),
+            (
+                "mean_contact_stiffness_0",
+                "Mean contact stiffness, interface 1 (eq. 4.2)",
+                "K, Pa/m",
+            ),
+            (
+                "min_contact_pressure",
+                "Minimum contact pressure",
+                "p_min, Pa",
+            ),
+        ]
+        .into_iter()
+        .filter(|(c, _, _)| table.column(c).is_some())
+        .collect()
+    };
+    if panels.is_empty() {
+        return Err(plot_error(name, "no known result column to plot".into()));
+    }
+    let data: Vec<Vec<Curve>> = panels
+        .iter()
+        .map(|(c, _, _)| curves_of(table.column(c)))
+        .collect();
+    let height = 400 * panels.len() as u32;
+    render(name, (900, height), |root| {
+        let areas = root.split_evenly((panels.len(), 1));
+        for ((area, (_, title, ylabel)), curves) in areas.iter().zip(&panels).zip(&data) {
+            panel(area, title, &xlabel, ylabel, curves, &[], None)?;
+        }
         Ok(())
     })
 }

@@ -60,10 +60,35 @@ pub fn set_dotted(table: &mut toml::Table, key: &str, value: toml::Value) -> Res
         ));
     }
     let mut cur = table;
-    for p in &parts[..parts.len() - 1] {
-        let entry = cur
+    let mut k = 0;
+    while k + 1 < parts.len() {
+        let p = parts[k];
+        k += 1;
+        let mut entry = cur
             .entry(p.to_string())
             .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        // `interface.1.compression`: an index into an array of tables
+        if let toml::Value::Array(items) = entry {
+            let index = parts.get(k).and_then(|i| i.parse::<usize>().ok());
+            let len = items.len();
+            match index.and_then(|i| items.get_mut(i)) {
+                Some(item) if k + 1 < parts.len() => {
+                    k += 1;
+                    entry = item;
+                }
+                _ => {
+                    return Err(Error::invalid(
+                        "<sweep>",
+                        "parameter",
+                        key,
+                        format!(
+                            "`{p}` is an array of {len} tables: follow it with an index \
+                             0..{len} and a key"
+                        ),
+                    ))
+                }
+            }
+        }
         cur = match entry {
             toml::Value::Table(t) => t,
             _ => {

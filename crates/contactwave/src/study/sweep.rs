@@ -258,13 +258,13 @@ impl Sweep {
     pub fn from_table(table: toml::Table, path: &Path) -> Result<Sweep> {
         let file = path.display().to_string();
         for key in table.keys() {
-            if key != "base" && key != "axis" {
+            if key != "base" && key != "axis" && key != "set" {
                 return Err(Error::invalid(
                     &file,
                     key,
                     show(&table[key]),
-                    "unknown key; a sweep file has `base` (the base scenario file) and \
-                     `[[axis]]` tables",
+                    "unknown key; a sweep file has `base` (the base scenario file), an \
+                     optional `[set]` table of fixed overrides and `[[axis]]` tables",
                 ));
             }
         }
@@ -326,7 +326,33 @@ impl Sweep {
             .unwrap_or_default()
             .join(&base_rel);
         let base_text = std::fs::read_to_string(&base).map_err(|e| Error::io(&base, e))?;
-        let base_table = parse_toml(&base_text, &base.display().to_string())?;
+        let mut base_table = parse_toml(&base_text, &base.display().to_string())?;
+        // `[set]`: fixed overrides of the base (any TOML value, e.g. another contact law),
+        // written before the axes; `interface.0.compression` indexes an array of tables
+        match table.get("set") {
+            None => {}
+            Some(toml::Value::Table(set)) => {
+                for (key, value) in set {
+                    set_dotted(&mut base_table, key, value.clone()).map_err(|e| match e {
+                        Error::Invalid { value, allowed, .. } => Error::Invalid {
+                            file: file.clone(),
+                            field: format!("set.\"{key}\""),
+                            value,
+                            allowed,
+                        },
+                        other => other,
+                    })?;
+                }
+            }
+            Some(v) => {
+                return Err(Error::invalid(
+                    &file,
+                    "set",
+                    show(v),
+                    "must be a table of dotted scenario keys and values",
+                ))
+            }
+        }
         Ok(Sweep::assemble(path, base, base_table, axes))
     }
 
@@ -1121,6 +1147,43 @@ mod tests {
         ));
         std::fs::create_dir_all(&d).unwrap();
         d
+    }
+
+    #[test]
+    fn set_overrides_index_arrays_of_tables_and_bad_indices_are_errors() {
+        let dir = tmpdir("set");
+        let tribo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/tribobrake.toml");
+        std::fs::copy(&tribo, dir.join("base.toml")).unwrap();
+        let good = "base = \"base.toml\"\n[set]\n\"interface.1.compression\" = \
+                    { law = \"power\", c = 1.81e10, m = 0.35 }\n\
+                    [[axis]]\nparameter = \"excitation.peak\"\nvalues = [9.0, 32.0]\n";
+        std::fs::write(dir.join("good.toml"), good).unwrap();
+        let sw = Sweep::load(&dir.join("good.toml")).unwrap();
+        let t = sw.point_table(1).unwrap();
+        let law = |i: usize| {
+            t["interface"].as_array().unwrap()[i]["compression"]["law"]
+                .as_str()
+                .unwrap()
+                .to_string()
+        };
+        assert_eq!(law(0), "modified_power");
+        assert_eq!(law(1), "power");
+        assert_eq!(t["excitation"]["peak"].as_float(), Some(32.0));
+        match &sw.runnable().unwrap()[0] {
+            AnyScenario::BarStack(_) => {}
+            AnyScenario::HalfSpace(_) => panic!("a bar stack was expected"),
+        }
+        // an index past the end names the [set] key
+        let bad = good.replace("interface.1.", "interface.2.");
+        std::fs::write(dir.join("bad.toml"), bad).unwrap();
+        match Sweep::load(&dir.join("bad.toml")) {
+            Err(Error::Invalid { field, allowed, .. }) => {
+                assert!(field.contains("interface.2.compression"), "{field}");
+                assert!(allowed.contains("0..2"), "{allowed}");
+            }
+            other => panic!("expected an invalid-field error, got {other:?}"),
+        }
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     const BASE: &str = r#"
