@@ -50,6 +50,15 @@ enum FitKind {
     PowerLaw,
 }
 
+/// Solver refined by `convergence`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum ConvMethod {
+    /// The finite-difference scheme (Courant 1: dx = c dt).
+    Fd,
+    /// The exact solver (its output sampling).
+    Exact,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Fit a stiffness-pressure law to measured data: `fit power-law data.csv` (pressure in
@@ -122,6 +131,29 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         sweep: Option<PathBuf>,
     },
+    /// Convergence study of a half-space scenario (thesis eqs. 2.42-2.43, Figure 22):
+    /// A2/A_inc over a grid of xi for a series of resolutions; prints the error of each
+    /// against the finest one and against the exact solver, and the observed order.
+    Convergence {
+        /// Half-space scenario file (TOML); its xi and resolution are overridden.
+        scenario: PathBuf,
+        /// Resolutions in samples per period of the highest input frequency (with the FD
+        /// solver dx = c dt). Default 125,250,500,1000,2000,4000.
+        #[arg(long, value_name = "N,N,...", value_delimiter = ',')]
+        spp: Option<Vec<usize>>,
+        /// Load ratios. Default 0.1,0.2,...,1.0 (the thesis' xi in ]0, 1]).
+        #[arg(long, value_name = "XI,XI,...", value_delimiter = ',')]
+        xi: Option<Vec<f64>>,
+        /// Solver to refine.
+        #[arg(long, value_enum, default_value = "fd")]
+        method: ConvMethod,
+        /// Harmonic whose efficiency A_n/A_inc is studied (1 to 5).
+        #[arg(long, default_value_t = 2)]
+        harmonic: usize,
+        /// Also write convergence.csv, efficiency.csv and convergence.svg into DIR.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// Run the validation cases and print `case | reference | computed | rel. error`
     /// (exit code 1 if a case exceeds its tolerance).
     Validate,
@@ -185,6 +217,14 @@ fn dispatch(cmd: Command) -> contactwave::Result<u8> {
         } => sweep_cmd(&sweep, &out, resume, threads, shard),
         Command::Merge { out, shards, sweep } => merge_cmd(&out, &shards, sweep.as_deref()),
         Command::Validate => validate(),
+        Command::Convergence {
+            scenario,
+            spp,
+            xi,
+            method,
+            harmonic,
+            out,
+        } => convergence(&scenario, spp, xi, method, harmonic, out.as_deref()),
         Command::Fit {
             what,
             data,
@@ -460,6 +500,110 @@ fn merge_cmd(out: &Path, shards: &[PathBuf], sweep: Option<&Path>) -> contactwav
     println!("wrote {}", report.csv.display());
     println!("wrote {}", report.hash_file.display());
     Ok(0)
+}
+
+fn convergence(
+    path: &Path,
+    spp: Option<Vec<usize>>,
+    xi: Option<Vec<f64>>,
+    method: ConvMethod,
+    harmonic: usize,
+    out: Option<&Path>,
+) -> contactwave::Result<u8> {
+    use contactwave::study::convergence::{run_convergence, ConvergenceMethod, ConvergenceSpec};
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let table = parse_toml(&text, &path.display().to_string())?;
+    if BarStackScenario::is_bar_stack(&table) {
+        return Err(Error::invalid(
+            path.display().to_string(),
+            "model.kind",
+            "\"bar_stack\"",
+            "a half-space scenario (the study compares with the exact solver)",
+        ));
+    }
+    let mut spec = ConvergenceSpec {
+        method: match method {
+            ConvMethod::Fd => ConvergenceMethod::Fd,
+            ConvMethod::Exact => ConvergenceMethod::Exact,
+        },
+        harmonic,
+        ..ConvergenceSpec::default()
+    };
+    if let Some(v) = spp {
+        spec.samples_per_period = v;
+    }
+    if let Some(v) = xi {
+        spec.xi = v;
+    }
+    if let Some(o) = out {
+        check_out_dir(o)?;
+    }
+    let bar = progress_bar();
+    let t0 = Instant::now();
+    let r = run_convergence(&table, path, &spec, &|d, n| {
+        bar.set_length(n as u64);
+        bar.set_position(d as u64);
+    })?;
+    bar.finish_and_clear();
+    println!(
+        "convergence of A{h}/A_inc over {} load ratios (xi {} to {}), {} solver; thesis eqs. 2.42-2.43",
+        r.xi.len(),
+        r.xi.iter().cloned().fold(f64::INFINITY, f64::min),
+        r.xi.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+        match spec.method {
+            ConvergenceMethod::Fd => "FD (Courant 1)",
+            ConvergenceMethod::Exact => "exact",
+        },
+        h = r.harmonic
+    );
+    println!(
+        "{:>8} | {:>11} | {:>11} | {:>16} | {:>15}",
+        "spp", "dt (s)", "dx (m)", "error vs finest %", "error vs exact %"
+    );
+    for l in &r.levels {
+        println!(
+            "{:>8} | {:>11.4e} | {:>11.4e} | {:>16.4e} | {:>15.4e}",
+            l.samples_per_period,
+            l.dt,
+            l.dx,
+            100.0 * l.error_finest,
+            100.0 * l.error_exact
+        );
+    }
+    println!(
+        "observed order: {:.3} against the exact solver, {:.3} against the finest resolution",
+        r.order_exact, r.order_finest
+    );
+    if let Some(o) = out {
+        let svg = output::plot::convergence(&r)?;
+        let files = [
+            ("convergence.csv", r.levels_csv()),
+            ("efficiency.csv", r.curves_csv()),
+            ("convergence.svg", svg),
+        ]
+        .map(|(n, c)| output::OutputFile {
+            name: n.into(),
+            contents: c,
+        });
+        output::write_files(o, &files)?;
+        println!("wrote 3 files to {}", o.display());
+    }
+    println!("wall time {:.2} s", t0.elapsed().as_secs_f64());
+    Ok(0)
+}
+
+/// A progress bar on stderr when it is a terminal (hidden otherwise).
+fn progress_bar() -> ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let b = ProgressBar::new(0);
+    if let Ok(style) = ProgressStyle::with_template(
+        "{bar:40} {pos}/{len} runs  {elapsed_precise} elapsed, eta {eta}",
+    ) {
+        b.set_style(style);
+    }
+    b
 }
 
 fn validate() -> contactwave::Result<u8> {

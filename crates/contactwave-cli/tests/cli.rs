@@ -133,10 +133,18 @@ fn every_example_loads_and_runs() {
             continue;
         }
         let scenarios = if table.contains_key("axis") {
-            contactwave::study::Sweep::load(&p)
+            // every point must validate; bar-stack sweeps are run by tests/barstack.rs
+            let points = contactwave::study::Sweep::load(&p)
                 .unwrap()
-                .scenarios()
-                .unwrap()
+                .runnable()
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            points
+                .into_iter()
+                .filter_map(|s| match s {
+                    contactwave::scenario::AnyScenario::HalfSpace(s) => Some(*s),
+                    contactwave::scenario::AnyScenario::BarStack(_) => None,
+                })
+                .collect()
         } else {
             vec![contactwave::scenario::Scenario::load(&p).unwrap()]
         };
@@ -413,4 +421,58 @@ fn bad_sweeps_fail_fast_without_output() {
         assert!(!out.exists(), "{axis}: output folder created");
         let _ = std::fs::remove_dir_all(d);
     }
+}
+
+#[test]
+fn convergence_reports_first_order_fd_and_rejects_bad_resolutions() {
+    let d = tmpdir("convergence");
+    let out = d.join("out");
+    let o = bin()
+        .arg("convergence")
+        .arg(examples().join("rccm_1.6MPa.toml"))
+        .args(["--spp", "125,250,500,1000", "--xi", "0.2,0.5,0.8", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("observed order:"))
+        .unwrap_or_else(|| panic!("no order line in\n{text}"));
+    let order: f64 = line
+        .split_whitespace()
+        .nth(2)
+        .and_then(|v| v.parse().ok())
+        .unwrap();
+    // the FD scheme is first order in time where the contact opens and closes in a step
+    assert!(
+        (0.7..1.3).contains(&order),
+        "observed order {order}\n{text}"
+    );
+    let csv = std::fs::read_to_string(out.join("convergence.csv")).unwrap();
+    let err: Vec<f64> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(4).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(err.len(), 4);
+    assert!(err.windows(2).all(|w| w[1] < w[0]), "{err:?}");
+    // FD within 1% (eq. 2.43) of the exact solver at the default FD resolution
+    assert!(err[3] < 0.01, "{err:?}");
+    assert!(out.join("convergence.svg").exists() && out.join("efficiency.csv").exists());
+
+    let bad = d.join("bad");
+    let o = bin()
+        .arg("convergence")
+        .arg(examples().join("rccm_1.6MPa.toml"))
+        .args(["--spp", "4,250,500", "--out"])
+        .arg(&bad)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(e.contains("--spp") && e.contains(">= 8"), "{e}");
+    assert!(!bad.exists());
 }

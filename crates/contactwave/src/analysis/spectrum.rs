@@ -67,8 +67,8 @@ impl Analyzer {
     /// Forward transform of cell-averaged samples `x` (step `dt`), zero-padded to a power
     /// of two at least `2 len`, with the cell-average response divided out. Leaves the
     /// spectrum in `self.spec`; returns (n_fft, df).
-    fn transform(&mut self, x: &[f64], dt: f64) -> (usize, f64) {
-        let n_fft = fast_len(x.len() + x.len() / 8 + 16);
+    fn transform(&mut self, x: &[f64], dt: f64, min_len: usize) -> (usize, f64) {
+        let n_fft = fast_len((x.len() + x.len() / 8 + 16).max(min_len));
         let plan = self.real.plan_fft_forward(n_fft);
         self.input.clear();
         self.input.extend_from_slice(x);
@@ -109,7 +109,16 @@ impl Analyzer {
     /// Band amplitudes of the cell-averaged signal `x` (step `dt`) for fundamental `f0`
     /// and optional second frequency `f2` (two-tone).
     pub fn bands(&mut self, x: &[f64], dt: f64, f0: f64, f2: Option<f64>) -> BandAmplitudes {
-        let (n_fft, df) = self.transform(x, dt);
+        // zero-pad by BAND_PAD_PERIODS periods of f0 at least: the band filter's kernel
+        // rings over tens of periods, and without the padding its circular wrap-around
+        // makes the amplitudes depend on how long the record is (0.2% seen)
+        let pad = (BAND_PAD_PERIODS / (f0 * dt)).ceil();
+        let min_len = if pad.is_finite() && pad < 1e8 {
+            x.len() + pad as usize
+        } else {
+            0
+        };
+        let (n_fft, df) = self.transform(x, dt, min_len);
         let mut out = BandAmplitudes::default();
         for n in 1..=5 {
             let c = n as f64 * f0;
@@ -129,7 +138,7 @@ impl Analyzer {
     /// One-sided amplitude spectrum `|X(f)| dt` of the cell-averaged signal `x`, up to
     /// `f_max` (Hz).
     pub fn spectrum(&mut self, x: &[f64], dt: f64, f_max: f64) -> Spectrum {
-        let (_n, df) = self.transform(x, dt);
+        let (_n, df) = self.transform(x, dt, 0);
         let kmax = ((f_max / df).ceil() as usize).min(self.spec.len());
         let sinc = |k: usize| {
             let a = std::f64::consts::PI * k as f64 * df * dt;
@@ -149,6 +158,9 @@ impl Analyzer {
         }
     }
 }
+
+/// Zero padding of the band analysis, in periods of the fundamental.
+const BAND_PAD_PERIODS: f64 = 64.0;
 
 /// Smallest length >= n of the form 2^a 3^b 5^c (fast for RustFFT).
 fn fast_len(n: usize) -> usize {

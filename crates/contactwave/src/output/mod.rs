@@ -26,7 +26,7 @@
 //! Numbers are written so that they parse back to the same `f64`.
 
 mod bar;
-mod plot;
+pub mod plot;
 
 pub use bar::{bar_stack_files, FRF_HEADER};
 

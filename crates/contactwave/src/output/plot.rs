@@ -546,3 +546,160 @@ pub fn sweep(sw: &Sweep, table: &SweepTable) -> Result<String> {
         Ok(())
     })
 }
+
+/// `convergence.svg` (thesis Figure 22): `A_n/A_inc` against xi for each resolution and
+/// the exact solver; the eq. 2.43 error against the time step (log-log).
+pub fn convergence(r: &crate::study::convergence::ConvergenceResult) -> Result<String> {
+    let name = "convergence.svg";
+    let mut curves: Vec<Curve> = r
+        .levels
+        .iter()
+        .enumerate()
+        .map(|(i, l)| Curve {
+            label: format!("{} samples/period", l.samples_per_period),
+            points: r
+                .xi
+                .iter()
+                .zip(&l.efficiency)
+                .map(|(x, y)| (*x, 100.0 * y))
+                .filter(|p| p.1.is_finite())
+                .collect(),
+            color: color(i + 1),
+        })
+        .collect();
+    curves.push(Curve {
+        label: "exact solver".into(),
+        points: r
+            .xi
+            .iter()
+            .zip(&r.exact)
+            .map(|(x, y)| (*x, 100.0 * y))
+            .filter(|p| p.1.is_finite())
+            .collect(),
+        color: RGBColor(0, 0, 0),
+    });
+    let err = |f: &dyn Fn(&crate::study::convergence::ConvergenceLevel) -> f64| -> Vec<(f64, f64)> {
+        r.levels
+            .iter()
+            .map(|l| (l.dt.log10(), (100.0 * f(l)).log10()))
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .collect()
+    };
+    let errors = vec![
+        Curve {
+            label: format!("vs exact solver (order {:.2})", r.order_exact),
+            points: err(&|l| l.error_exact),
+            color: color(0),
+        },
+        Curve {
+            label: format!("vs finest (eq. 2.43, order {:.2})", r.order_finest),
+            points: err(&|l| l.error_finest),
+            color: color(1),
+        },
+    ];
+    let n = r.harmonic;
+    render(name, (900, 800), |root| {
+        let areas = root.split_evenly((2, 1));
+        panel(
+            &areas[0],
+            &format!("Harmonic efficiency A{n}/A_inc per resolution"),
+            "xi",
+            &format!("A{n}/A_inc, %"),
+            &curves,
+            &[],
+            None,
+        )?;
+        panel(
+            &areas[1],
+            "Error (eq. 2.43) against the time step",
+            "log10(dt / s)",
+            "log10(error, %)",
+            &errors,
+            &[],
+            None,
+        )?;
+        Ok(())
+    })
+}
+
+/// A curve of a [`Panel`]: its legend label (empty: no legend entry) and (x, y) points.
+#[derive(Debug, Clone, Default)]
+pub struct Series {
+    /// Legend label.
+    pub label: String,
+    /// Points, in the units of the panel's axis labels.
+    pub points: Vec<(f64, f64)>,
+}
+
+impl Series {
+    /// A series from parallel x and y slices (non-finite points dropped).
+    pub fn new(label: impl Into<String>, x: &[f64], y: &[f64]) -> Series {
+        Series {
+            label: label.into(),
+            points: x
+                .iter()
+                .zip(y)
+                .map(|(a, b)| (*a, *b))
+                .filter(|p| p.0.is_finite() && p.1.is_finite())
+                .collect(),
+        }
+    }
+}
+
+/// One panel of a [`figure`].
+#[derive(Debug, Clone, Default)]
+pub struct Panel {
+    /// Title above the panel.
+    pub title: String,
+    /// x-axis label (with its unit).
+    pub xlabel: String,
+    /// y-axis label (with its unit).
+    pub ylabel: String,
+    /// Curves, drawn in order with the standard palette.
+    pub series: Vec<Series>,
+    /// Vertical marker lines at these x values.
+    pub markers: Vec<f64>,
+}
+
+/// A figure of panels stacked vertically (400 px each), `width` px wide, as an SVG string.
+/// Long curves are decimated keeping each bucket's extrema.
+pub fn figure(name: &str, width: u32, panels: &[Panel]) -> Result<String> {
+    if panels.is_empty() {
+        return Err(plot_error(name, "a figure needs at least one panel".into()));
+    }
+    let curves: Vec<Vec<Curve>> = panels
+        .iter()
+        .map(|p| {
+            p.series
+                .iter()
+                .enumerate()
+                .map(|(i, s)| {
+                    let (x, y): (Vec<f64>, Vec<f64>) = s.points.iter().copied().unzip();
+                    // time-like curves keep their extrema; loops keep every k-th point
+                    let monotone = x.windows(2).all(|w| w[1] >= w[0]);
+                    Curve {
+                        label: s.label.clone(),
+                        points: if monotone {
+                            decimate(&x, &y)
+                        } else {
+                            stride(&x, &y)
+                        },
+                        color: color(i),
+                    }
+                })
+                .filter(|c| !c.points.is_empty())
+                .collect()
+        })
+        .collect();
+    let height = 400 * panels.len() as u32;
+    render(name, (width, height), |root| {
+        let areas = root.split_evenly((panels.len(), 1));
+        for ((area, p), c) in areas.iter().zip(panels).zip(&curves) {
+            if c.is_empty() {
+                continue;
+            }
+            panel(area, &p.title, &p.xlabel, &p.ylabel, c, &p.markers, None)?;
+        }
+        Ok(())
+    })
+}

@@ -7,6 +7,7 @@
 //! from the base scenario with [`crate::scenario::set_dotted`] and run through
 //! [`crate::simulate_summary`].
 
+pub mod convergence;
 mod shard;
 mod sweep;
 pub mod validation;
