@@ -29,6 +29,11 @@ pub trait CompressionBranch: Debug + Send + Sync {
     fn stress(&self, gap: f64) -> f64;
     /// Tangent stiffness `d sigma / d[u]`, Pa/m (>= 0).
     fn tangent(&self, gap: f64) -> f64;
+    /// Stress and tangent stiffness together (Pa, Pa/m): what a Newton iteration needs;
+    /// branches whose stress is found numerically override it to solve once.
+    fn stress_tangent(&self, gap: f64) -> (f64, f64) {
+        (self.stress(gap), self.tangent(gap))
+    }
     /// Energy stored from rest, `integral_0^[u] (sigma + p0) d[u]`, J/m^2.
     fn energy(&self, gap: f64) -> f64;
     /// Tangent stiffness at rest K(p0), Pa/m (`f64::INFINITY` for rigid); enters xi.

@@ -101,12 +101,12 @@ pub fn build_compression(
                 &key("zero_pressure_fraction"),
                 *zero_pressure_fraction,
             )?;
-            let k = compression::modified_power::ModifiedPowerStiffness {
-                c: *c,
-                m: *m,
-                transition_pressure: *transition_pressure,
-                zero_pressure_fraction: *zero_pressure_fraction,
-            };
+            let k = compression::modified_power::ModifiedPowerStiffness::new(
+                *c,
+                *m,
+                *transition_pressure,
+                *zero_pressure_fraction,
+            );
             let b: ModifiedPower = StiffnessCurve::new(k, p0, "modified_power");
             Box::new(b)
         }

@@ -66,24 +66,6 @@ pub fn update(
             });
         }
         let f = |g: f64| law.compression.stress(g) + p0 + (g - gt) / chi;
-        // bracket below uc
-        let mut step = (uc.abs() + (gt - uc).abs()).max(1e-15);
-        let mut lo = uc - step;
-        let mut flo = f(lo);
-        let mut k = 0;
-        while flo > 0.0 {
-            step *= 2.0;
-            lo = uc - step;
-            flo = f(lo);
-            k += 1;
-            if k > 200 || !flo.is_finite() {
-                return Err(Error::numerical(
-                    t,
-                    "cannot bracket the compression interface update",
-                    format!("predicted gap = {gt:e} m"),
-                ));
-            }
-        }
         if f_uc == 0.0 {
             return Ok(InterfaceUpdate {
                 gap: uc,
@@ -91,14 +73,19 @@ pub fn update(
                 adhesion: beta_old,
             });
         }
-        // safeguarded Newton (thesis eq. 2.31): F' = K(g) + 1/chi > 0; falls back to the
-        // bracketing root-finder if an iterate leaves the bracket or stalls
-        let (mut a, mut b) = (lo, uc);
-        let mut g = (gt - chi * p0).clamp(a, b);
+        // safeguarded Newton (thesis eq. 2.31) on F(g) = sigma(g) + p0 + (g - g~)/chi,
+        // F' = K(g) + 1/chi > 0, from the guess S = p0 (the preload dominates the dynamic
+        // stress); the root lies below uc. One law evaluation per iteration; the bracket
+        // [a, b] tightens with each sign of F. Falls back to a bracketing root-finder if an
+        // iterate leaves the bracket or the iteration stalls.
+        let (mut a, mut b) = (f64::NEG_INFINITY, uc);
+        let mut g = (gt - chi * p0).min(uc);
         let mut done = false;
-        for _ in 0..30 {
-            let fg = f(g);
-            if fg == 0.0 {
+        for _ in 0..40 {
+            let (sigma, k) = law.compression.stress_tangent(g);
+            let fg = sigma + p0 + (g - gt) / chi;
+            // zero within the round-off of its terms: converged
+            if fg.abs() <= 8.0 * f64::EPSILON * (p0 + sigma.abs() + ((g - gt) / chi).abs()) {
                 done = true;
                 break;
             }
@@ -107,8 +94,7 @@ pub fn update(
             } else {
                 b = g;
             }
-            let d = law.compression.tangent(g) + 1.0 / chi;
-            let ng = g - fg / d;
+            let ng = g - fg / (k + 1.0 / chi);
             if !(ng > a && ng < b) {
                 break;
             }
@@ -119,10 +105,27 @@ pub fn update(
             }
             g = ng;
         }
-        let _ = flo;
         let g = if done {
             g
         } else {
+            // a finite bracket below uc (step doubling), then the root-finder
+            if !a.is_finite() {
+                let mut step = (uc.abs() + (gt - uc).abs()).max(1e-15);
+                a = uc - step;
+                let mut k = 0;
+                while f(a) > 0.0 {
+                    step *= 2.0;
+                    a = uc - step;
+                    k += 1;
+                    if k > 200 || !f(a).is_finite() {
+                        return Err(Error::numerical(
+                            t,
+                            "cannot bracket the compression interface update",
+                            format!("predicted gap = {gt:e} m"),
+                        ));
+                    }
+                }
+            }
             let (fa, fb) = (f(a), f(b));
             if fb == 0.0 {
                 b

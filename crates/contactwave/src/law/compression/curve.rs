@@ -30,6 +30,8 @@ pub struct StiffnessCurve<K: StiffnessPressure> {
     g: Vec<f64>,
     /// H(p_i) = integral_0^p_i p dp/K.
     h: Vec<f64>,
+    /// Stiffness at the nodes, Pa/m.
+    k: Vec<f64>,
     g0: f64,
     h0: f64,
     name: &'static str,
@@ -59,12 +61,14 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
             g[i] = g[i - 1] + gauss4(p[i - 1], p[i], |x| 1.0 / law.stiffness(x));
             h[i] = h[i - 1] + gauss4(p[i - 1], p[i], |x| x / law.stiffness(x));
         }
+        let k = p.iter().map(|&x| law.stiffness(x)).collect();
         let mut c = StiffnessCurve {
             law,
             static_pressure: p0,
             p,
             g,
             h,
+            k,
             g0: 0.0,
             h0: 0.0,
             name,
@@ -118,8 +122,17 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
         let i = self.g.partition_point(|&v| v <= target).saturating_sub(1);
         let (a, b) = (self.p[i], self.p[(i + 1).min(n - 1)]);
         let (ga, gb) = (self.g[i], self.g[(i + 1).min(n - 1)]);
+        // cubic Hermite guess in g with the exact slopes dp/dg = K at the nodes (fourth
+        // order: one Newton step then reaches round-off)
         let mut x = if gb > ga {
-            a + (b - a) * (target - ga) / (gb - ga)
+            let hg = gb - ga;
+            let s = (target - ga) / hg;
+            let (ka, kb) = (self.k[i], self.k[(i + 1).min(n - 1)]);
+            let h00 = (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s);
+            let h10 = s * (1.0 - s) * (1.0 - s);
+            let h01 = s * s * (3.0 - 2.0 * s);
+            let h11 = s * s * (s - 1.0);
+            (h00 * a + h10 * hg * ka + h01 * b + h11 * hg * kb).clamp(a, b)
         } else {
             a
         };
@@ -127,7 +140,9 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
             let r = self.g_only(x) - target;
             let k = self.law.stiffness(x).max(1e-300);
             let nx = (x - r * k).clamp(a, b);
-            if (nx - x).abs() <= 1e-15 * b.max(1.0) {
+            // quadratic convergence: a correction below 1e-8 (relative) leaves an error
+            // near 1e-16, so no confirming evaluation is needed
+            if (nx - x).abs() <= 1e-8 * b.max(1.0) {
                 x = nx;
                 break;
             }
@@ -149,6 +164,10 @@ impl<K: StiffnessPressure> CompressionBranch for StiffnessCurve<K> {
     }
     fn tangent(&self, gap: f64) -> f64 {
         self.law.stiffness(self.pressure(gap))
+    }
+    fn stress_tangent(&self, gap: f64) -> (f64, f64) {
+        let p = self.pressure(gap);
+        (-p, self.law.stiffness(p))
     }
     fn energy(&self, gap: f64) -> f64 {
         let pr = self.pressure(gap);

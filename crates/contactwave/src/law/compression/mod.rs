@@ -1,6 +1,6 @@
 //! Compression branches, one per file (model.md section 3, first table).
 
-mod curve;
+pub mod curve;
 pub mod linear;
 pub mod modified_power;
 pub mod power;

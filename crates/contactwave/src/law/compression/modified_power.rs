@@ -3,7 +3,7 @@
 //! inflection point, as reported for low contact pressures.
 //!
 //! The thesis gives the shape only graphically; contactwave uses the cubic Hermite branch
-//! on `[0, p_t]` with `K(0) = phi K(p_t)` (`zero_pressure_fraction`, default 0.3),
+//! on `[0, p_t]` with `K(0) = phi K(p_t)` (`zero_pressure_fraction`, default 0.05),
 //! `K'(0) = 0`, and value and slope matching the power law at `p_t` (C1 joint). The cubic
 //! is convex near 0 and concave near `p_t`: one inflection point in between.
 
@@ -20,6 +20,21 @@ pub struct ModifiedPowerStiffness {
     pub transition_pressure: f64,
     /// K(0) / K(p_t), in (0, 1).
     pub zero_pressure_fraction: f64,
+    /// K(p_t) = C p_t^m, Pa/m (cached by [`ModifiedPowerStiffness::new`]).
+    kt: f64,
+}
+
+impl ModifiedPowerStiffness {
+    /// The relation with parameters C (Pa^(1-m)/m), m, p_t (Pa) and K(0)/K(p_t).
+    pub fn new(c: f64, m: f64, transition_pressure: f64, zero_pressure_fraction: f64) -> Self {
+        ModifiedPowerStiffness {
+            c,
+            m,
+            transition_pressure,
+            zero_pressure_fraction,
+            kt: c * transition_pressure.powf(m),
+        }
+    }
 }
 
 impl StiffnessPressure for ModifiedPowerStiffness {
@@ -28,7 +43,7 @@ impl StiffnessPressure for ModifiedPowerStiffness {
         if p >= pt {
             return self.c * p.powf(self.m);
         }
-        let kt = self.c * pt.powf(self.m);
+        let kt = self.kt;
         let dkt = self.m * kt / pt; // slope at p_t
         let k0 = self.zero_pressure_fraction * kt;
         let s = (p / pt).max(0.0);
@@ -51,12 +66,7 @@ mod tests {
     use super::*;
     #[test]
     fn continuous_with_power_law_and_has_inflection() {
-        let k = ModifiedPowerStiffness {
-            c: 1.81e10,
-            m: 0.35,
-            transition_pressure: 0.2e6,
-            zero_pressure_fraction: 0.3,
-        };
+        let k = ModifiedPowerStiffness::new(1.81e10, 0.35, 0.2e6, 0.3);
         let pt = 0.2e6;
         let below = k.stiffness(pt * (1.0 - 1e-9));
         let above = k.stiffness(pt);
