@@ -61,6 +61,18 @@ enum ConvMethod {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Reproduce the studies of thesis chapters 3, 4 and 5 from embedded scenarios (no
+    /// input file): DIR/report.html (self-contained, inline SVG), DIR/findings.json and
+    /// DIR/figures/<id>.svg + <id>.csv.
+    Reproduce {
+        /// Which studies.
+        #[arg(default_value = "all",
+              value_parser = ["chapter3", "chapter4", "chapter5", "all"])]
+        which: String,
+        /// Output folder (created if needed; files in it are replaced).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
     /// Fit a stiffness-pressure law to measured data: `fit power-law data.csv` (pressure in
     /// Pa, stiffness in Pa/m; least squares in log-log) prints C, m and R^2.
     Fit {
@@ -217,6 +229,7 @@ fn dispatch(cmd: Command) -> contactwave::Result<u8> {
         } => sweep_cmd(&sweep, &out, resume, threads, shard),
         Command::Merge { out, shards, sweep } => merge_cmd(&out, &shards, sweep.as_deref()),
         Command::Validate => validate(),
+        Command::Reproduce { which, out } => reproduce(&which, &out),
         Command::Convergence {
             scenario,
             spp,
@@ -589,6 +602,73 @@ fn convergence(
         println!("wrote 3 files to {}", o.display());
     }
     println!("wall time {:.2} s", t0.elapsed().as_secs_f64());
+    Ok(0)
+}
+
+fn reproduce(which: &str, out: &Path) -> contactwave::Result<u8> {
+    use contactwave::reproduce::{run_chapter, write_report, Chapter};
+    let chapters = Chapter::parse_list(which)?;
+    check_out_dir(out)?;
+    let t0 = Instant::now();
+    let bar = if std::io::stderr().is_terminal() {
+        let b = ProgressBar::new(0);
+        if let Ok(style) =
+            ProgressStyle::with_template("{msg:<28} {bar:30} {pos}/{len} runs  {elapsed_precise}")
+        {
+            b.set_style(style);
+        }
+        b
+    } else {
+        ProgressBar::hidden()
+    };
+    let current = std::sync::Mutex::new(String::new());
+    let progress = |study: &str, done: usize, total: usize| {
+        let mut c = current.lock().unwrap_or_else(|p| p.into_inner());
+        if *c != study {
+            if !c.is_empty() && !bar.is_hidden() {
+                bar.println(format!("  done: {c}"));
+            }
+            *c = study.to_string();
+            bar.set_message(study.to_string());
+            bar.set_length(total as u64);
+            bar.reset_elapsed();
+        }
+        bar.set_position(done as u64);
+    };
+    let mut results = Vec::new();
+    for ch in chapters {
+        let r = run_chapter(ch, &progress)?;
+        bar.println(format!(
+            "{}: {} figures, {} simulations, {:.1} s",
+            ch.name(),
+            r.figures.len(),
+            r.runs,
+            r.seconds
+        ));
+        results.push(r);
+    }
+    bar.finish_and_clear();
+    let total = t0.elapsed().as_secs_f64();
+    let written = write_report(out, &results, total)?;
+    for r in &results {
+        println!(
+            "{}: {} figures, {} simulations, {:.1} s",
+            r.chapter.name(),
+            r.figures.len(),
+            r.runs,
+            r.seconds
+        );
+        for f in &r.findings {
+            println!("  {}: {}", f.key, f.line());
+        }
+    }
+    println!(
+        "wrote {} files to {} (open {}) in {:.1} s",
+        written.len(),
+        out.display(),
+        out.join("report.html").display(),
+        total
+    );
     Ok(0)
 }
 

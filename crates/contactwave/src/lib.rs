@@ -44,6 +44,7 @@ pub mod law;
 pub mod material;
 pub mod numeric;
 pub mod output;
+pub mod reproduce;
 mod run;
 mod run_bar;
 pub mod scenario;

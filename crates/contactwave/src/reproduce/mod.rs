@@ -1,0 +1,402 @@
+//! `contactwave reproduce`: the studies of thesis chapters 3, 4 and 5 from embedded
+//! scenarios, as figures (SVG + CSV), measured findings set beside the thesis' values, and
+//! a self-contained HTML report.
+//!
+//! Each chapter is one file (`chapter3.rs`, ...) that turns the embedded base scenarios
+//! (`examples/thesis/*.toml`, compiled into the binary) into a [`ChapterResult`]: figures
+//! whose data are [`Panel`]s of curves, and [`Finding`]s with stable keys (written to
+//! `findings.json`). Runs go through the same engine as `contactwave run` and `sweep`
+//! ([`crate::simulate`], [`crate::simulate_summary`], [`crate::simulate_bar_stack`]), in
+//! parallel (rayon). [`write_report`] renders the files.
+//!
+//! ```no_run
+//! use contactwave::reproduce::{run_chapter, write_report, Chapter};
+//! let r = run_chapter(Chapter::Four, &|_study: &str, _done: usize, _total: usize| {}).unwrap();
+//! write_report(std::path::Path::new("results"), &[r], 1.0).unwrap();
+//! ```
+
+#![allow(dead_code)] // until every chapter uses the helpers
+
+mod chapter3;
+mod chapter4;
+mod chapter5;
+mod report;
+
+pub use report::{findings_json, report_html, write_report};
+
+use crate::analysis::Summary;
+use crate::error::{Error, Result};
+use crate::output::plot::{figure, Panel};
+use crate::scenario::{parse_toml, set_dotted, AnyScenario, Scenario};
+use rayon::prelude::*;
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// The base scenarios of the studies, embedded in the binary (also shipped under
+/// `examples/thesis/` so that users can start from them).
+pub const SCENARIOS: &[(&str, &str)] = &[
+    (
+        "ch3_rccm.toml",
+        include_str!("../../../../examples/thesis/ch3_rccm.toml"),
+    ),
+    (
+        "ch3_unilateral.toml",
+        include_str!("../../../../examples/thesis/ch3_unilateral.toml"),
+    ),
+    (
+        "ch4_tribobrake.toml",
+        include_str!("../../../../examples/tribobrake.toml"),
+    ),
+    (
+        "ch5_bilinear.toml",
+        include_str!("../../../../examples/thesis/ch5_bilinear.toml"),
+    ),
+    (
+        "ch5_modified_pl.toml",
+        include_str!("../../../../examples/thesis/ch5_modified_pl.toml"),
+    ),
+];
+
+/// Thesis Table 2 (Al-Al contact stiffness against pressure), embedded.
+pub const TABLE2_CSV: &str =
+    include_str!("../../../../examples/thesis/table2_contact_stiffness.csv");
+
+/// A thesis chapter whose studies `reproduce` runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Chapter {
+    /// RCCM adhesion at 1 MHz in PMMA (half-space, exact solver).
+    Three,
+    /// The Tribobrake bench (bar stack, FRFs).
+    Four,
+    /// Nonlinear compression with adhesion at 5 kHz in PMMA (both solvers, analytic).
+    Five,
+}
+
+impl Chapter {
+    /// All chapters, in order.
+    pub const ALL: [Chapter; 3] = [Chapter::Three, Chapter::Four, Chapter::Five];
+
+    /// `chapter3`, `chapter4`, `chapter5`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Chapter::Three => "chapter3",
+            Chapter::Four => "chapter4",
+            Chapter::Five => "chapter5",
+        }
+    }
+
+    /// Parse `chapter3` | `chapter4` | `chapter5` | `all`.
+    pub fn parse_list(s: &str) -> Result<Vec<Chapter>> {
+        match s {
+            "all" => Ok(Chapter::ALL.to_vec()),
+            "chapter3" => Ok(vec![Chapter::Three]),
+            "chapter4" => Ok(vec![Chapter::Four]),
+            "chapter5" => Ok(vec![Chapter::Five]),
+            other => Err(Error::invalid(
+                "<command line>",
+                "chapter",
+                other,
+                "chapter3, chapter4, chapter5 or all",
+            )),
+        }
+    }
+}
+
+/// A figure of the report: panels of curves, a caption stating its parameters, and lines
+/// comparing with the thesis.
+#[derive(Debug, Clone)]
+pub struct Figure {
+    /// File stem, unique in the report (`ch3_fig32_a2_vs_xi`): `<id>.svg`, `<id>.csv`.
+    pub id: String,
+    /// Title (with the thesis figure numbers it reproduces).
+    pub title: String,
+    /// Caption: what is plotted and the parameters.
+    pub caption: String,
+    /// The data.
+    pub panels: Vec<Panel>,
+    /// "thesis: ... / here: ..." lines.
+    pub comparisons: Vec<String>,
+}
+
+impl Figure {
+    /// A figure with no comparison lines.
+    pub fn new(id: &str, title: &str, caption: String, panels: Vec<Panel>) -> Figure {
+        Figure {
+            id: id.into(),
+            title: title.into(),
+            caption,
+            panels,
+            comparisons: Vec::new(),
+        }
+    }
+
+    /// Add a "thesis: ... / here: ..." line.
+    pub fn compare(mut self, line: String) -> Figure {
+        self.comparisons.push(line);
+        self
+    }
+
+    /// The SVG of the figure.
+    pub fn svg(&self) -> Result<String> {
+        figure(&format!("{}.svg", self.id), 900, &self.panels)
+    }
+
+    /// Its data in long form: `panel,series,x_label,x,y_label,y` (one row per point).
+    pub fn csv(&self) -> String {
+        let q = |s: &str| format!("\"{}\"", s.replace('"', "'"));
+        let mut out = String::from("panel,series,x_label,x,y_label,y\n");
+        for p in &self.panels {
+            for s in &p.series {
+                for (x, y) in &s.points {
+                    out.push_str(&format!(
+                        "{},{},{},{:e},{},{:e}\n",
+                        q(&p.title),
+                        q(&s.label),
+                        q(&p.xlabel),
+                        x,
+                        q(&p.ylabel),
+                        y
+                    ));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// A measured value set beside the thesis' statement.
+#[derive(Debug, Clone)]
+pub struct Finding {
+    /// Stable key of `findings.json`.
+    pub key: String,
+    /// Measured value (SI units, or as named in `unit`).
+    pub value: f64,
+    /// Unit of the value (`Hz`, `%`, `Pa^(1-m)/m`, `` for dimensionless).
+    pub unit: String,
+    /// What the thesis states.
+    pub thesis: String,
+    /// Whether the value lies within the tolerance the report states (`None`: the thesis
+    /// gives no number to compare with).
+    pub agrees: Option<bool>,
+    /// Where it differs: by how much and why.
+    pub note: String,
+}
+
+impl Finding {
+    /// The "thesis: ... / here: ..." line of the report.
+    pub fn line(&self) -> String {
+        let mut s = format!(
+            "thesis: {} / here: {} {}",
+            self.thesis,
+            fmt_value(self.value),
+            self.unit
+        );
+        match self.agrees {
+            Some(true) => s.push_str(" (agrees)"),
+            Some(false) => s.push_str(" (differs)"),
+            None => {}
+        }
+        if !self.note.is_empty() {
+            s.push_str(" — ");
+            s.push_str(&self.note);
+        }
+        s
+    }
+}
+
+/// A number with 4 significant digits.
+pub fn fmt_value(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let a = v.abs();
+    if (1e-3..1e5).contains(&a) {
+        let digits = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+/// The result of a chapter.
+#[derive(Debug, Clone)]
+pub struct ChapterResult {
+    /// Which chapter.
+    pub chapter: Chapter,
+    /// Section title.
+    pub title: String,
+    /// A paragraph on the setting (material, frequency, laws).
+    pub intro: String,
+    /// Figures, in order.
+    pub figures: Vec<Figure>,
+    /// Findings, in order.
+    pub findings: Vec<Finding>,
+    /// Wall time, s.
+    pub seconds: f64,
+    /// Simulations run.
+    pub runs: usize,
+}
+
+/// Progress callback: `(study, done, total)`.
+pub type Progress<'a> = &'a (dyn Fn(&str, usize, usize) + Sync);
+
+/// Run one chapter's studies.
+pub fn run_chapter(chapter: Chapter, progress: Progress) -> Result<ChapterResult> {
+    let t0 = std::time::Instant::now();
+    let ctx = Ctx {
+        progress,
+        runs: AtomicUsize::new(0),
+    };
+    let mut r = match chapter {
+        Chapter::Three => chapter3::run(&ctx)?,
+        Chapter::Four => chapter4::run(&ctx)?,
+        Chapter::Five => chapter5::run(&ctx)?,
+    };
+    r.seconds = t0.elapsed().as_secs_f64();
+    r.runs = ctx.runs.load(Ordering::SeqCst);
+    Ok(r)
+}
+
+/// Shared state of a chapter's run.
+pub(crate) struct Ctx<'a> {
+    progress: Progress<'a>,
+    runs: AtomicUsize,
+}
+
+/// A variant of a base scenario: dotted keys and their values.
+pub(crate) type Edits = Vec<(&'static str, toml::Value)>;
+
+/// A float TOML value.
+pub(crate) fn f(v: f64) -> toml::Value {
+    toml::Value::Float(v)
+}
+
+/// A TOML inline table from `key = value` text (e.g. a contact law).
+pub(crate) fn tv(text: &str) -> toml::Value {
+    // callers pass literal, valid TOML; an invalid literal is a programming error caught
+    // by the tests, reported as an empty table rather than a panic
+    toml::from_str::<toml::Table>(&format!("v = {text}"))
+        .ok()
+        .and_then(|mut t| t.remove("v"))
+        .unwrap_or_else(|| toml::Value::Table(toml::Table::new()))
+}
+
+impl Ctx<'_> {
+    /// The embedded base scenario `name`.
+    pub(crate) fn base(&self, name: &str) -> Result<toml::Table> {
+        let text = SCENARIOS
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, t)| *t)
+            .ok_or_else(|| {
+                Error::invalid("<embedded>", "scenario", name, "an embedded scenario")
+            })?;
+        parse_toml(text, &format!("examples/thesis/{name}"))
+    }
+
+    /// Apply the edits to a copy of the base table.
+    pub(crate) fn table(&self, base: &toml::Table, edits: &Edits) -> Result<toml::Table> {
+        let mut t = base.clone();
+        for (k, v) in edits {
+            set_dotted(&mut t, k, v.clone())?;
+        }
+        Ok(t)
+    }
+
+    /// A half-space scenario from a base and edits.
+    pub(crate) fn scenario(&self, base: &toml::Table, edits: &Edits) -> Result<Scenario> {
+        Scenario::from_table(self.table(base, edits)?, Path::new("<reproduce>"))
+    }
+
+    /// Run `f` over `items` in parallel with progress under `study`; the first error wins.
+    pub(crate) fn map<T: Sync, R: Send>(
+        &self,
+        study: &str,
+        items: &[T],
+        f: impl Fn(&T) -> Result<R> + Sync,
+    ) -> Result<Vec<R>> {
+        let total = items.len();
+        let done = AtomicUsize::new(0);
+        (self.progress)(study, 0, total);
+        let out: Vec<Result<R>> = items
+            .par_iter()
+            .map(|it| {
+                let r = f(it);
+                self.runs.fetch_add(1, Ordering::SeqCst);
+                let d = done.fetch_add(1, Ordering::SeqCst) + 1;
+                (self.progress)(study, d, total);
+                r
+            })
+            .collect();
+        out.into_iter().collect()
+    }
+
+    /// Summaries of the variants of `base` (half-space or bar stack), in parallel.
+    pub(crate) fn summaries(
+        &self,
+        study: &str,
+        base: &toml::Table,
+        variants: &[Edits],
+    ) -> Result<Vec<Summary>> {
+        self.map(study, variants, |e| {
+            AnyScenario::from_table(self.table(base, e)?, Path::new("<reproduce>"))?.summary()
+        })
+    }
+}
+
+/// The value of `key` in each summary (NaN where missing).
+pub(crate) fn column(s: &[Summary], key: &str) -> Vec<f64> {
+    s.iter().map(|x| x.get(key).unwrap_or(f64::NAN)).collect()
+}
+
+/// `n` evenly spaced values from `a` to `b`.
+pub(crate) fn lin(a: f64, b: f64, n: usize) -> Vec<f64> {
+    crate::study::linspace(a, b, n)
+}
+
+/// x of the maximum of a sampled curve, refined by a parabola through the largest sample
+/// and its neighbours.
+pub(crate) fn argmax_refined(x: &[f64], y: &[f64]) -> f64 {
+    let Some(i) = (0..y.len())
+        .filter(|&i| y[i].is_finite())
+        .max_by(|&a, &b| y[a].total_cmp(&y[b]))
+    else {
+        return f64::NAN;
+    };
+    if i == 0 || i + 1 >= y.len() {
+        return x[i];
+    }
+    let (x0, x1, x2) = (x[i - 1], x[i], x[i + 1]);
+    let (y0, y1, y2) = (y[i - 1], y[i], y[i + 1]);
+    let d = (x0 - x1) * (x0 - x2) * (x1 - x2);
+    if d == 0.0 {
+        return x1;
+    }
+    let a = (x2 * (y1 - y0) + x1 * (y0 - y2) + x0 * (y2 - y1)) / d;
+    let b = (x2 * x2 * (y0 - y1) + x1 * x1 * (y2 - y0) + x0 * x0 * (y1 - y2)) / d;
+    if a >= 0.0 {
+        return x1;
+    }
+    (-b / (2.0 * a)).clamp(x0, x2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn embedded_scenarios_parse_and_argmax_refines() {
+        let ctx = Ctx {
+            progress: &|_, _, _| {},
+            runs: AtomicUsize::new(0),
+        };
+        for (name, _) in SCENARIOS {
+            let t = ctx.base(name).unwrap();
+            AnyScenario::from_table(t, Path::new(name)).unwrap();
+        }
+        let x: Vec<f64> = (0..11).map(|i| i as f64 * 0.1).collect();
+        let y: Vec<f64> = x.iter().map(|v| -(v - 0.37f64).powi(2)).collect();
+        assert!((argmax_refined(&x, &y) - 0.37).abs() < 1e-12);
+        assert!(matches!(tv("{ law = \"free\" }"), toml::Value::Table(_)));
+    }
+}
