@@ -15,8 +15,6 @@
 //! write_report(std::path::Path::new("results"), &[r], 1.0).unwrap();
 //! ```
 
-#![allow(dead_code)] // until every chapter uses the helpers
-
 mod chapter3;
 mod chapter4;
 mod chapter5;
@@ -377,7 +375,7 @@ pub(crate) fn argmax_refined(x: &[f64], y: &[f64]) -> f64 {
     if a >= 0.0 {
         return x1;
     }
-    (-b / (2.0 * a)).clamp(x0, x2)
+    (-b / (2.0 * a)).clamp(x0.min(x2), x0.max(x2))
 }
 
 #[cfg(test)]
