@@ -1009,7 +1009,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
     let stiff = |s: &[Summary]| -> Vec<f64> {
         column(s, "beta_end")
             .iter()
-            .map(|b| b * b * KT)
+            .map(|b| b * b * KT * 1e-9)
             .collect::<Vec<f64>>()
     };
     let onset = |s: &[Summary]| -> f64 {
@@ -1079,7 +1079,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             panel(
                 "(b) traction stiffness",
                 "xi",
-                "beta_end^2 C_N2 (Pa/m)",
+                "beta_end^2 C_N2 (GPa/m)",
                 dmg_laws
                     .iter()
                     .zip(s_dmg)
@@ -1174,7 +1174,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
                 panel(
                     "(b) traction stiffness",
                     "xi",
-                    "beta_end^2 C_N2 (Pa/m)",
+                    "beta_end^2 C_N2 (GPa/m)",
                     w_laws
                         .iter()
                         .zip(&s_w)
