@@ -38,10 +38,27 @@ cargo test --doc -p contactwave --release
 # ---------------------------------------------------------------------------------------
 # Python: the `contactwave` package (crates/contactwave-py + python/), built with maturin
 # into a virtual environment at .venv (ignored by git), then its pytest suite
-# (python/tests: API against the CLI's files, Dask LocalCluster, shards and merge).
+# (python/tests: API against the CLI's files, Dask LocalCluster, shards and merge, and
+# report.html of `contactwave reproduce all` in headless Chromium: screenshot of the first
+# screen kept at target/report-screenshot.png).
 # ---------------------------------------------------------------------------------------
 PYTHON=${PYTHON:-python3}
-PY_DEPS=(maturin numpy pandas "dask[distributed]" pytest)
+# playwright: drives the system Chromium for the report test (no browser download)
+PY_DEPS=(maturin numpy pandas "dask[distributed]" pytest playwright)
+
+# Headless Chromium for python/tests/test_report_browser.py (report.html renders, no
+# console error, no request leaves the file); Debian's package, installed if missing.
+step "chromium (Debian package) for the report browser test"
+if ! command -v chromium >/dev/null 2>&1; then
+    SUDO=""
+    if [ "$(id -u)" -ne 0 ]; then
+        SUDO=sudo
+    fi
+    $SUDO apt-get update
+    $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y chromium
+fi
+echo "chromium: $(command -v chromium)"
+export CONTACTWAVE_REQUIRE_BROWSER=1
 
 step "python virtual environment (.venv)"
 if [ ! -x .venv/bin/python ] || ! .venv/bin/python -m pip --version >/dev/null 2>&1; then
