@@ -983,18 +983,11 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         Law::new("linear 3e11 + RCCM", &linear(KC), &rccm(KT, w_dmg)),
         Law::new("rigid + RCCM", RIGID, &rccm(KT, w_dmg)),
     ];
-    // w = 0 is run as w = 1e-9 J/m^2 (sigma_lim = sqrt(C_N2 w) = 3 Pa: damage at the
-    // first opening), since the exact solver does not damage a non-rigid compression
-    // branch with w = 0 exactly (beta_end stays 1)
-    let ws = [1e-9, 0.1, 1000.0];
+    let ws = [0.0, 0.1, 1000.0];
     let w_laws: Vec<Law> = ws
         .iter()
         .map(|&w| {
-            let label = if w < 1e-6 {
-                "w = 0 (1e-9) J/m^2".to_string()
-            } else {
-                format!("w = {w} J/m^2")
-            };
+            let label = format!("w = {w} J/m^2");
             dmg_laws[0].with_traction(&label, &rccm(KT, w))
         })
         .collect();
@@ -1161,8 +1154,8 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             "Figures 100-101: modified PL + RCCM, decohesion energy w in {0, 0.1, 1000} J/m^2",
             "beta_end, beta_end^2 C_N2, A1/A_inc and A2/A_inc against xi; modified PL compression \
              (C = 1.81e10, m = 0.35), RCCM traction C_N2 = 1e10 Pa/m, b = 1e-8 J s/m^2; \
-             p0 = 0.14 MPa, 5 kHz, 15-cycle Hann-ramped burst. w = 0 is run as \
-             w = 1e-9 J/m^2 (damage at the first opening)."
+             p0 = 0.14 MPa, 5 kHz, 15-cycle Hann-ramped burst (w = 0: damage at the \
+             first opening)."
                 .into(),
             vec![
                 panel(

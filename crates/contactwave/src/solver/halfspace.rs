@@ -719,6 +719,17 @@ impl<'a> Runner<'a> {
                 self.switch(phase, 0, t, y);
                 continue;
             }
+            // clearly past the damage on/off threshold (e.g. w = 0: any opening damages, and
+            // the event is already positive one step into the opening): switch now
+            if e_start[1] > EVENT_HYSTERESIS
+                && t != self.last_mode_switch
+                && !(t == self.last_switch && self.flips_here >= 2)
+            {
+                self.note_switch(t);
+                self.last_mode_switch = t;
+                self.switch(phase, 1, t, y);
+                continue;
+            }
             let st = self.step_ode(t, y0, h)?;
             let mut first: Option<(usize, f64)> = None; // (which, tau_hi)
             for which in 0..2 {
