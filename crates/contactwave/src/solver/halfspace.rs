@@ -614,11 +614,25 @@ impl<'a> Runner<'a> {
         if !to.is_stuck() {
             // the stiffness of the new phase at the switch state may vanish (a power law
             // at contact loss) while it is large one step later: take the larger of both
-            let mut lambda = self.ode.jacobian(t, *y)[0][0].abs();
+            // (with viscous damage the adhesion equation b dbeta/dt = phi is stiff too:
+            // its rate is |dphi/dbeta| / b)
+            let stiffness = |t: f64, y: [f64; 2]| {
+                let j = self.ode.jacobian(t, y);
+                let mut l = j[0][0].abs();
+                if self.ode.dim() == 2 {
+                    // |dphi/dbeta| whether or not damage is active at y (at beta = 0 with
+                    // w = 0 the Jacobian row vanishes although the rate is not small)
+                    let d = (y[0] - self.ode.uc).max(0.0);
+                    let (_, pb) = self.hs.law.traction.damage_driving_force_gradient(d, y[1]);
+                    l = l.max(pb.abs() / self.ode.mass()[1]);
+                }
+                l
+            };
+            let mut lambda = stiffness(t, *y);
             if let Ok(st) = self.step_ode(t, *y, self.h) {
                 let end = st.end();
                 if end[0].is_finite() && end[1].is_finite() {
-                    lambda = lambda.max(self.ode.jacobian(t + self.h, end)[0][0].abs());
+                    lambda = lambda.max(stiffness(t + self.h, end));
                 }
             }
             if lambda * self.h > 2.0 {
@@ -794,11 +808,18 @@ impl<'a> Runner<'a> {
                         format!("gap = {:e} m, beta = {}", y0[0], y0[1]),
                     )
                 })?;
-                if t + tau <= t && which == 0 && !(t == self.last_switch && self.flips_here >= 2) {
+                if t + tau <= t
+                    && (which == 0 || t != self.last_mode_switch)
+                    && !(t == self.last_switch && self.flips_here >= 2)
+                {
                     // the new phase leaves at once (grazing touch of the contact-loss
-                    // gap): go back without a step
+                    // gap, or damage from the first opening when w = 0): switch without
+                    // a step
+                    if which == 1 {
+                        self.last_mode_switch = t;
+                    }
                     self.note_switch(t);
-                    self.switch(phase, 0, t, y);
+                    self.switch(phase, which, t, y);
                     continue;
                 }
                 if !(t + tau <= t && t == self.last_switch) {
