@@ -151,4 +151,33 @@ fn bad_bar_stack_input() {
         let e = load(&text).unwrap_err().to_string();
         assert!(e.contains(field), "{e}");
     }
+    // a time step above the stability limit: the sample (0.015 m of aluminium, c = 5119
+    // m/s) cannot hold one cell at Courant <= 1 for dt > 2.93e-6 s
+    let text = tribobrake().replace("duration = 0.2", "duration = 0.2\ntime_step = 5e-6");
+    let e = load(&text).unwrap_err().to_string();
+    assert!(e.contains("model.time_step") && e.contains("sample"), "{e}");
+    let ok = tribobrake().replace("duration = 0.2", "duration = 0.2\ntime_step = 2e-6");
+    assert!(load(&ok).is_ok());
+    // a force file with non-monotone time, or NaN
+    let dir = std::env::temp_dir().join(format!("contactwave-force-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, body) in [
+        (
+            "backwards.csv",
+            "time,force\n0,0\n1e-4,10\n5e-5,20\n2e-4,0\n",
+        ),
+        ("nan.csv", "time,force\n0,0\n1e-4,nan\n2e-4,0\n"),
+    ] {
+        std::fs::write(dir.join(name), body).unwrap();
+        let text = tribobrake().replace(
+            "kind = \"force_pulse\"",
+            &format!(
+                "kind = \"force_file\"\npath = \"{}\"",
+                dir.join(name).display()
+            ),
+        );
+        let e = load(&text).unwrap_err().to_string();
+        assert!(e.contains(name), "{e}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -57,6 +57,10 @@ pub struct ModelSpec {
     pub duration: f64,
     /// Target cell size, m (default: the shortest segment / 4).
     pub cell_size: Option<f64>,
+    /// Time step, s (default: `cell_size` over the largest wave speed). Every segment is
+    /// meshed at Courant number <= 1 for it; the stability limit is the smallest
+    /// `length / wave speed` of the segments (one cell at Courant 1).
+    pub time_step: Option<f64>,
 }
 
 fn free() -> String {
@@ -443,7 +447,26 @@ impl BarStackScenario {
             .iter()
             .map(|s| s.material.wave_speed())
             .fold(0.0, f64::max);
-        let dt = dx / cmax;
+        let mut dt = dx / cmax;
+        if let Some(ts) = m.time_step {
+            // explicit scheme: a segment needs one cell of size >= c dt (Courant <= 1)
+            let (limit, name) = segments
+                .iter()
+                .map(|s| (s.length / s.material.wave_speed(), s.name.as_str()))
+                .fold((f64::INFINITY, ""), |a, b| if b.0 < a.0 { b } else { a });
+            if !(ts.is_finite() && ts > 0.0 && ts <= limit) {
+                return Err(inv(
+                    file,
+                    "model.time_step",
+                    ts,
+                    &format!(
+                        "in (0, {limit:.4e}] s: above it segment `{name}` cannot hold one cell \
+                         at Courant number <= 1 (stability limit of the explicit scheme)"
+                    ),
+                ));
+            }
+            dt = ts;
+        }
         let steps = m.duration / dt;
         if steps > 5e8 {
             return Err(inv(
