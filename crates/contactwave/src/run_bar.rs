@@ -160,7 +160,10 @@ pub fn simulate_bar_stack(s: &BarStackScenario) -> Result<BarStackResult> {
     let mut summary = Summary::new();
     summary.set("first_mode_hz", f1);
     summary.set("second_harmonic_hz", f2);
-    summary.set("A1", a1 * dff * 2.0);
+    // amplitude of the equivalent steady sinusoid over the Hann-windowed free response:
+    // 2 |X(f1)| / sum(w), with sum(w) = (M - 1) / 2 for M samples (m/s^2)
+    let m_free = (n - 1).saturating_sub(k0) as f64;
+    summary.set("A1", 2.0 * a1 / (0.5 * (m_free - 1.0)).max(1.0));
     summary.set("A2_over_A1", if a1 > 0.0 { a2 / a1 } else { 0.0 });
     summary.set("guide_mode_hz", fg);
     summary.set("peak_force", s.force_peak());

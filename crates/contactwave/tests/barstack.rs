@@ -146,6 +146,11 @@ fn bad_bar_stack_input() {
             tribobrake().replace("last_end = \"obstacle\"", "last_end = \"wall\""),
             "model.last_end",
         ),
+        // an obstacle interface that a free far end would leave unused
+        (
+            tribobrake().replace("last_end = \"obstacle\"", "last_end = \"free\""),
+            "model.last_end",
+        ),
     ];
     for (text, field) in cases {
         let e = load(&text).unwrap_err().to_string();

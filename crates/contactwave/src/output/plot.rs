@@ -512,7 +512,7 @@ pub fn sweep(sw: &Sweep, table: &SweepTable) -> Result<String> {
         ]
     } else {
         vec![
-            ("first_mode_hz", "First mode (FRF peak)", "f1, Hz"),
+            ("first_mode_hz", "First mode", "f1, Hz"),
             ("A1", "Response at the first mode", "A1, m/s^2"),
             ("A2_over_A1", "Second harmonic", "A2 / A1"),
             (

@@ -424,8 +424,10 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             "ch4_fig69_71_73_trends",
             "First mode, A1, A2/A1 and mean contact stiffness against force (thesis Figures 69, 71-73)",
             "Tribobrake model, hammer peak 9 N to 32 N, plain power law (C = 1.81e10, \
-             m = 0.35) and modified power law on both interfaces. f1: FRF peak; A1, A2: \
-             accelerance-spectrum amplitudes at f1 and near 2 f1; mean contact stiffness of \
+             m = 0.35) and modified power law on both interfaces. f1: peak of the spectrum of \
+             the free acceleration response (after the pulse); A1: its amplitude at f1 (the \
+             equivalent steady sinusoid over the Hann-windowed free response); A2: the same \
+             near 2 f1; mean contact stiffness of \
              interface 1 over the closed instants of the response (eq. 4.2); minimum contact \
              pressure reached at either interface (0: the contact opened)."
                 .into(),

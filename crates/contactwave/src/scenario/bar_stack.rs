@@ -397,6 +397,15 @@ impl BarStackScenario {
         };
         let left = end(&m.first_end, "model.first_end", false)?;
         let right = end(&m.last_end, "model.last_end", true)?;
+        // an obstacle interface with another far end would be silently unused
+        if laws[n - 1].is_some() && !matches!(right, End::Obstacle(_)) {
+            return Err(inv(
+                file,
+                "model.last_end",
+                &m.last_end,
+                "\"obstacle\": an [[interface]] joins the last segment to the obstacle",
+            ));
+        }
         let force: Arc<dyn Signal> = match spec.excitation.kind.as_str() {
             "force_pulse" => {
                 let peak = spec
