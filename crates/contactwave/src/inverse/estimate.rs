@@ -167,6 +167,8 @@ pub fn estimate(model: &Model, progress: &(dyn Fn(&str) + Sync)) -> Result<Estim
     }
     .evaluate(&z_init)?;
     let (mut global_z, mut global_cost) = (z_init.clone(), init_cost);
+    // starting points of the local stage: the best particles of the swarm
+    let mut starts: Vec<(Vec<f64>, f64)> = vec![(z_init.clone(), init_cost)];
     if fit.particles >= 2 && fit.iterations > 0 {
         let (lo, hi): (Vec<f64>, Vec<f64>) =
             spec.parameters.iter().map(|p| p.scaled_bounds()).unzip();
@@ -187,24 +189,54 @@ pub fn estimate(model: &Model, progress: &(dyn Fn(&str) + Sync)) -> Result<Estim
                 global_cost = st.get_best_cost();
             }
         }
+        if let Some(pop) = st.get_population() {
+            starts.extend(pop.iter().map(|p| (p.position.clone(), p.cost)));
+        }
+        starts.push((global_z.clone(), global_cost));
         progress(&format!(
             "global stage (particle swarm, {} particles x {} iterations): cost {:.6e}",
             fit.particles, fit.iterations, global_cost
         ));
     }
-    let (z1, c1, i1) = refine(
-        model,
-        rows.clone(),
-        &global_z,
-        0.05,
-        fit.local_iterations,
-        1e-6,
-    )?;
-    let (z, cost, i2) = refine(model, rows, &z1, 0.01, fit.local_iterations / 2, 1e-6)?;
+    starts.sort_by(|a, b| a.1.total_cmp(&b.1));
+    // distinct starts: at least 5% of the scaled range apart in some coordinate
+    let mut chosen: Vec<Vec<f64>> = Vec::new();
+    for (z, _) in starts {
+        let distinct = chosen.iter().all(|c| {
+            c.iter().zip(&z).zip(&spec.parameters).any(|((a, b), p)| {
+                let (lo, hi) = p.scaled_bounds();
+                (a - b).abs() > 0.05 * (hi - lo)
+            })
+        });
+        if distinct {
+            chosen.push(z);
+        }
+        if chosen.len() >= fit.local_starts.max(1) {
+            break;
+        }
+    }
+    let mut best: Option<(Vec<f64>, f64, u64)> = None;
+    let mut iters = 0;
+    for z0 in &chosen {
+        let (z1, _, i1) = refine(model, rows.clone(), z0, 0.05, fit.local_iterations, 1e-6)?;
+        let (z2, c2, i2) = refine(
+            model,
+            rows.clone(),
+            &z1,
+            0.01,
+            fit.local_iterations / 2,
+            1e-6,
+        )?;
+        iters += i1 + i2;
+        if best.as_ref().map_or(true, |b| c2 < b.1) {
+            best = Some((z2, c2, i1 + i2));
+        }
+    }
+    let (z, cost, _) = best.unwrap_or((global_z.clone(), global_cost, 0));
     progress(&format!(
-        "local stage (Nelder-Mead, {} iterations): cost {:.6e} -> {:.6e}",
-        i1 + i2,
-        c1,
+        "local stage (Nelder-Mead from {} starts, {} iterations): cost {:.6e}",
+        chosen.len(),
+        iters,
         cost
     ));
     Ok(Estimate {
@@ -213,6 +245,6 @@ pub fn estimate(model: &Model, progress: &(dyn Fn(&str) + Sync)) -> Result<Estim
         cost,
         global_z,
         global_cost,
-        local_iterations: i1 + i2,
+        local_iterations: iters,
     })
 }

@@ -23,6 +23,7 @@
 //! particles = 16              # particle swarm (global stage)
 //! iterations = 20
 //! local_iterations = 80       # Nelder-Mead (local refinement)
+//! local_starts = 3            # refinements from the best distinct swarm points
 //! bootstrap = 20              # bootstrap resamples (0: none)
 //! bootstrap_iterations = 20   # Nelder-Mead iterations per bootstrap refit
 //! seed = 1
@@ -164,6 +165,8 @@ pub struct FitOptions {
     pub iterations: u64,
     /// Nelder-Mead iterations.
     pub local_iterations: u64,
+    /// Local refinements started from the best distinct points of the swarm (>= 1).
+    pub local_starts: usize,
     /// Bootstrap resamples (0: none).
     pub bootstrap: usize,
     /// Nelder-Mead iterations per bootstrap refit.
@@ -180,6 +183,7 @@ impl Default for FitOptions {
             particles: 16,
             iterations: 20,
             local_iterations: 80,
+            local_starts: 3,
             bootstrap: 20,
             bootstrap_iterations: 20,
             seed: 1,
@@ -468,6 +472,7 @@ fn parse_fit(v: Option<&toml::Value>, file: &str) -> Result<FitOptions> {
             "particles" => o.particles = count(10_000.0)? as usize,
             "iterations" => o.iterations = count(1e6)?,
             "local_iterations" => o.local_iterations = count(1e6)?,
+            "local_starts" => o.local_starts = count(1000.0)?.max(1) as usize,
             "bootstrap" => o.bootstrap = count(10_000.0)? as usize,
             "bootstrap_iterations" => o.bootstrap_iterations = count(1e6)?,
             "seed" => o.seed = count(9e15)?,
@@ -477,7 +482,7 @@ fn parse_fit(v: Option<&toml::Value>, file: &str) -> Result<FitOptions> {
                     &field,
                     show(v),
                     "unknown key; [fit] has relative_noise, absolute_noise, particles, \
-                     iterations, local_iterations, bootstrap, bootstrap_iterations, seed",
+                     iterations, local_iterations, local_starts, bootstrap, bootstrap_iterations, seed",
                 ))
             }
         }
