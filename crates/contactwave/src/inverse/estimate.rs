@@ -120,6 +120,56 @@ pub fn refine(
         };
         simplex.push(v);
     }
+    refine_simplex(model, rows, z0, simplex, iters, tolerance)
+}
+
+/// Local refinement with a simplex aligned on the right singular vectors of the Jacobian
+/// at `z0`, each edge as long as the 1-sigma change along it (clamped to [1e-3, 0.2] of
+/// the smallest scaled range): Nelder-Mead then walks along valleys of correlated
+/// parameters (e.g. C and m of a power law) instead of zig-zagging across them.
+pub fn refine_aligned(
+    model: &Model,
+    rows: Vec<usize>,
+    z0: &[f64],
+    iters: u64,
+    tolerance: f64,
+) -> Result<(Vec<f64>, f64, u64)> {
+    let params = &model.spec.parameters;
+    let mut unique = rows.clone();
+    unique.sort_unstable();
+    unique.dedup();
+    let jac = match super::identifiability::jacobian(model, z0, &unique) {
+        Ok(j) => j,
+        Err(Error::Numerical { .. }) => return refine(model, rows, z0, 0.01, iters, tolerance),
+        Err(e) => return Err(e),
+    };
+    let (sv, vecs) = super::identifiability::svd_right(&jac);
+    let range = params
+        .iter()
+        .map(|p| {
+            let (lo, hi) = p.scaled_bounds();
+            hi - lo
+        })
+        .fold(f64::INFINITY, f64::min);
+    let mut simplex = vec![z0.to_vec()];
+    for (s, v) in sv.iter().zip(&vecs) {
+        let h = if *s > 0.0 { 1.0 / s } else { f64::INFINITY };
+        let h = h.clamp(1e-3 * range, 0.2 * range);
+        simplex.push(z0.iter().zip(v).map(|(z, v)| z + h * v).collect());
+    }
+    refine_simplex(model, rows, z0, simplex, iters, tolerance)
+}
+
+/// Nelder-Mead from the given simplex (its first vertex `z0`).
+fn refine_simplex(
+    model: &Model,
+    rows: Vec<usize>,
+    z0: &[f64],
+    simplex: Vec<Vec<f64>>,
+    iters: u64,
+    tolerance: f64,
+) -> Result<(Vec<f64>, f64, u64)> {
+    let params = &model.spec.parameters;
     let problem = LeastSquares { model, rows };
     let c0 = problem.evaluate(z0)?;
     if iters == 0 {
@@ -219,14 +269,8 @@ pub fn estimate(model: &Model, progress: &(dyn Fn(&str) + Sync)) -> Result<Estim
     let mut iters = 0;
     for z0 in &chosen {
         let (z1, _, i1) = refine(model, rows.clone(), z0, 0.05, fit.local_iterations, 1e-6)?;
-        let (z2, c2, i2) = refine(
-            model,
-            rows.clone(),
-            &z1,
-            0.01,
-            fit.local_iterations / 2,
-            1e-6,
-        )?;
+        let (z2, c2, i2) =
+            refine_aligned(model, rows.clone(), &z1, fit.local_iterations / 2, 1e-6)?;
         iters += i1 + i2;
         if best.as_ref().map_or(true, |b| c2 < b.1) {
             best = Some((z2, c2, i1 + i2));

@@ -16,6 +16,7 @@
 //! bounds = [1e9, 1e17]        # in the key's SI unit
 //! scale = "log"               # "log" (fit log10 of the value) or "linear"
 //! # initial = 1e12            # optional start (default: the base value, else the middle)
+//! # also = ["..."]            # optional further keys set to the same value (tied)
 //!
 //! [fit]                       # optional
 //! relative_noise = 0.01       # sigma = relative_noise |y| + absolute_noise where the CSV
@@ -88,6 +89,9 @@ pub struct Parameter {
     pub scale: Scale,
     /// Starting value (key's unit).
     pub initial: f64,
+    /// Further keys set to the same value (a parameter shared by several interfaces,
+    /// e.g. `interface.1.compression.c` tied to `interface.0.compression.c`).
+    pub also: Vec<String>,
 }
 
 impl Parameter {
@@ -410,7 +414,9 @@ impl IdentifySpec {
         let model = Model::new(&spec);
         for (k, p) in spec.parameters.iter().enumerate() {
             let mut table = spec.base_table.clone();
-            set_dotted(&mut table, &p.key, toml_number(&p.key, p.initial))
+            std::iter::once(&p.key)
+                .chain(&p.also)
+                .try_for_each(|key| set_dotted(&mut table, key, toml_number(key, p.initial)))
                 .and_then(|_| AnyScenario::from_table(table, &spec.base))
                 .map_err(|e| {
                     let why = match e {
@@ -534,12 +540,12 @@ fn parse_parameters(
             ));
         };
         for key in t.keys() {
-            if !["key", "bounds", "scale", "initial"].contains(&key.as_str()) {
+            if !["key", "bounds", "scale", "initial", "also"].contains(&key.as_str()) {
                 return Err(Error::invalid(
                     file,
                     f(key),
                     show(&t[key]),
-                    "unknown key; a [[parameter]] has key, bounds, scale, initial",
+                    "unknown key; a [[parameter]] has key, bounds, scale, initial, also",
                 ));
             }
         }
@@ -633,12 +639,36 @@ fn parse_parameters(
                 },
             },
         };
+        let also = match t.get("also") {
+            None => vec![],
+            Some(toml::Value::Array(a)) => a
+                .iter()
+                .map(|x| match x {
+                    toml::Value::String(s) if s.split('.').all(|p| !p.is_empty()) => Ok(s.clone()),
+                    _ => Err(Error::invalid(
+                        file,
+                        f("also"),
+                        show(x),
+                        "dotted scenario keys set to the same value",
+                    )),
+                })
+                .collect::<Result<_>>()?,
+            Some(v) => {
+                return Err(Error::invalid(
+                    file,
+                    f("also"),
+                    show(v),
+                    "a list of dotted scenario keys set to the same value",
+                ))
+            }
+        };
         out.push(Parameter {
             key,
             lower: bounds.0,
             upper: bounds.1,
             scale,
             initial,
+            also,
         });
     }
     Ok(out)
@@ -1038,7 +1068,9 @@ impl<'a> Model<'a> {
             }
         }
         for (p, &v) in spec.parameters.iter().zip(values) {
-            set_dotted(&mut t, &p.key, toml_number(&p.key, v))?;
+            for key in std::iter::once(&p.key).chain(&p.also) {
+                set_dotted(&mut t, key, toml_number(key, v))?;
+            }
         }
         Ok(t)
     }
