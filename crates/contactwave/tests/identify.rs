@@ -315,3 +315,17 @@ fn bad_input_is_an_invalid_error() {
     let (_, field, _) = invalid_field(e);
     assert_eq!(field, "parameter[0].bounds");
 }
+
+#[test]
+fn observed_column_must_be_a_summary_key_of_the_scenario() {
+    // a bar-stack key observed on a half-space scenario
+    let e = load(&format!(
+        "base = \"../rccm_0.82MPa.toml\"\n[data]\n\"incident.xi\" = [0.1, 0.2]\nfirst_mode_hz = [900.0, 910.0]\n{GOOD_PARAM}"
+    ))
+    .unwrap_err();
+    let (_, field, value) = invalid_field(e);
+    assert_eq!(
+        (field.as_str(), value.as_str()),
+        ("header", "first_mode_hz")
+    );
+}

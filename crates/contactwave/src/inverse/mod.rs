@@ -439,6 +439,22 @@ impl IdentifySpec {
         for i in 0..spec.measured.len() {
             model.scenario(i, &model.values(&z0))?;
         }
+        // every observed column must be a key of this scenario's summary (one forward run)
+        if let Ok(summary) = model.scenario(0, &model.values(&z0))?.summary() {
+            for o in &spec.measured.observed {
+                if summary.get(&o.key).is_none() {
+                    return Err(Error::invalid(
+                        model.data_name(),
+                        "header",
+                        &o.key,
+                        format!(
+                            "an observed column must be a summary key of the base scenario: {}",
+                            summary.keys().collect::<Vec<_>>().join(", ")
+                        ),
+                    ));
+                }
+            }
+        }
         Ok(spec)
     }
 }
