@@ -42,7 +42,12 @@ fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
 
 /// Undamaged RCCM in PMMA at 1 MHz (thesis chapter 3): A2/A1 versus xi, unknown C_N.
 fn undamaged_spec() -> IdentifySpec {
-    let xi = linspace(0.05, 0.9, 20);
+    undamaged_spec_with(20, 1e17)
+}
+
+/// The same with `n` load ratios and the upper bound `upper` of C_N (Pa/m).
+fn undamaged_spec_with(n: usize, upper: f64) -> IdentifySpec {
+    let xi = linspace(0.05, 0.9, n);
     let ones = vec![1.0; xi.len()];
     let text = format!(
         r#"
@@ -57,7 +62,7 @@ A2_over_A1 = {}
 "solver.samples_per_period" = 100
 [[parameter]]
 key = "interface.traction.stiffness"
-bounds = [1e8, 1e17]
+bounds = [1e8, {upper:e}]
 scale = "log"
 initial = 1e11
 [fit]
@@ -122,13 +127,23 @@ fn undamaged_rccm_stiffness_recovered_within_5_percent() {
 #[test]
 fn stiffness_outside_1e11_1e15_is_not_identifiable() {
     // thesis Figures 32-33: A2 versus log10 C_N is flat below ~1e11 (the interface opens
-    // freely) and above ~1e15 (it stays bonded)
-    let spec = undamaged_spec();
+    // freely) and above ~1e15 (it stays bonded). Very stiff runs are slow (stiff opening
+    // phase): 12 points and bounds up to 3e16 keep the test short.
+    let spec = undamaged_spec_with(12, 3e16);
     for cn in [1e10, 1e16] {
         let data = synthesize(&spec, &[(CN.into(), cn)], 0.01, 3).unwrap();
         let mut data = data;
+        // a verdict, not a precise estimate: a lighter search
         data.fit.bootstrap = 0;
+        data.fit.particles = 6;
+        data.fit.iterations = 4;
+        data.fit.local_iterations = 30;
+        data.fit.local_starts = 1;
         let r = identify(&data, &|_| {}).unwrap();
+        eprintln!(
+            "C_N = {cn:e}: {} runs in {:.1} s",
+            r.forward_runs, r.wall_seconds
+        );
         assert!(!r.identified(CN), "C_N = {cn:e}: {:?}", r.verdict_lines());
         assert!(r.interval_of(CN).is_none(), "spurious interval at {cn:e}");
         let v = &r.identifiability.verdicts[0].text;
