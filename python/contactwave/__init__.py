@@ -46,6 +46,7 @@ __all__ = [
     "run",
     "law_curve",
     "fit_power_law",
+    "identify",
     "sweep",
     "__version__",
 ]
@@ -289,6 +290,36 @@ def fit_power_law(pressure: Any, stiffness: Any) -> Dict[str, float]:
     p = np.ascontiguousarray(np.asarray(pressure, dtype=np.float64).ravel())
     k = np.ascontiguousarray(np.asarray(stiffness, dtype=np.float64).ravel())
     return _core.fit_power_law(p, k)
+
+
+def identify(
+    spec: Union[str, "os.PathLike[str]", Mapping[str, Any]],
+    out: Optional[Union[str, "os.PathLike[str]"]] = None,
+    design: bool = False,
+    file: str = "<dict>",
+) -> Dict[str, Any]:
+    """Identify interface parameters from a measured curve (``contactwave identify``; see
+    docs/identify.md).
+
+    ``spec`` is the path of an identification file (TOML) or a dict with its keys
+    (``base``, ``data``: a CSV path or a dict of equally long columns, ``observed``,
+    ``set``, ``parameter``: a list of dicts with ``key``, ``bounds``, ``scale``, ...,
+    ``fit``, ``design``); a dict's relative paths resolve against the folder of ``file``
+    (``<dict>``: the working directory). Returns the ``identification.json`` object:
+    ``estimates`` (key -> value, SI), ``intervals`` (key -> [low, high], ``None`` bounds
+    for a non-identifiable parameter), ``verdicts``, ``residual_norm``, ``forward_runs``,
+    ``wall_seconds``, ``jacobian_svd``, ... With ``design=True``, the ranking of the
+    ``[design]`` candidates (``design.json``) instead. With ``out``, the output files are
+    written into that folder. The GIL is released while it runs. Raises ``ValueError``
+    naming the file, field, value and allowed range for invalid input.
+    """
+    out_path = None if out is None else os.fspath(out)
+    if isinstance(spec, Mapping):
+        text = json.dumps(_plain(spec, "", file))
+        res = _core.identify(text, file, out_path, design)
+    else:
+        res = _core.identify(None, os.fspath(spec), out_path, design)
+    return json.loads(res)
 
 
 # ---------------------------------------------------------------------------------------

@@ -31,6 +31,12 @@ def law_curve(scenario: Scenario, gap: npt.NDArray[np.float64]) -> npt.NDArray[n
 def fit_power_law(
     pressure: npt.NDArray[np.float64], stiffness: npt.NDArray[np.float64]
 ) -> Dict[str, float]: ...
+def identify(
+    text: Optional[str],
+    path: Union[str, PathLike[str]],
+    out: Optional[Union[str, PathLike[str]]] = None,
+    design: bool = False,
+) -> str: ...
 def sweep_plan(
     base_json: str, base_path: str, axes: List[Tuple[str, List[float]]]
 ) -> Tuple[npt.NDArray[np.float64], str]: ...

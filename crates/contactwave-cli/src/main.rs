@@ -182,6 +182,31 @@ enum Command {
               value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..))]
         runs: usize,
     },
+    /// Identify interface parameters from a measured curve (identification file: base
+    /// scenario, measured CSV, unknown parameters with bounds and scale; docs/identify.md).
+    /// Writes DIR/identification.json, fit.csv, fit.svg, sensitivity.svg and
+    /// identification.html. With --design, ranks the [design] candidates instead and
+    /// prints a table (and writes DIR/design.json and design.csv if --out is given).
+    Identify {
+        /// Identification file (TOML).
+        spec: PathBuf,
+        /// Output folder (created if needed).
+        #[arg(long, value_name = "DIR", required_unless_present_any = ["design", "synthesize"])]
+        out: Option<PathBuf>,
+        /// Rank the candidate experiments of the file's [design] table.
+        #[arg(long)]
+        design: bool,
+        /// Print synthetic data instead (CSV on stdout): the file's data rows simulated
+        /// with KEY=VALUE for the unknowns (repeat the option), times 1 + noise * N(0, 1).
+        #[arg(long, value_name = "KEY=VALUE")]
+        synthesize: Vec<String>,
+        /// Relative noise of --synthesize.
+        #[arg(long, default_value_t = 0.01)]
+        noise: f64,
+        /// Seed of the --synthesize noise.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
 }
 
 /// The chapter-3 RCCM scenario of `bench`.
@@ -247,6 +272,20 @@ fn dispatch(cmd: Command) -> contactwave::Result<u8> {
             FitKind::PowerLaw => fit_cmd(&data, columns.as_deref(), json),
         },
         Command::Bench { points, runs } => bench(points, runs),
+        Command::Identify {
+            spec,
+            out,
+            design,
+            synthesize,
+            noise,
+            seed,
+        } => {
+            if synthesize.is_empty() {
+                identify_cmd(&spec, out.as_deref(), design)
+            } else {
+                synthesize_cmd(&spec, &synthesize, noise, seed)
+            }
+        }
     }
 }
 
@@ -767,5 +806,112 @@ fn bench(points: usize, runs: usize) -> contactwave::Result<u8> {
         sweep_s * 1e3,
         sweep_s * 1e3 / points as f64
     );
+    Ok(0)
+}
+
+/// `identify`: estimate the unknowns of an identification file, or rank its design
+/// candidates (`--design`). Everything is validated before the output folder is touched.
+fn identify_cmd(path: &Path, out: Option<&Path>, design: bool) -> contactwave::Result<u8> {
+    use contactwave::inverse::{self, IdentifySpec, Model};
+    let spec = IdentifySpec::load(path)?;
+    if let Some(out) = out {
+        check_out_dir(out)?;
+    }
+    let quiet = !std::io::stderr().is_terminal();
+    let progress = |m: &str| {
+        if !quiet {
+            eprintln!("{m}");
+        }
+    };
+    if design {
+        let model = Model::new(&spec);
+        let report = inverse::design(&model)?;
+        println!(
+            "candidate experiments ranked by log10 det(S^T S) ({} over {} = {} values; {} forward runs in {:.2} s):",
+            report.key,
+            report.control,
+            report.control_values.len(),
+            report.forward_runs,
+            report.wall_seconds
+        );
+        print!("{}", report.table());
+        if let Some(out) = out {
+            let json = serde_json::to_string_pretty(&report.to_json())
+                .map_err(|e| Error::io(out, std::io::Error::other(e)))?;
+            let files = [
+                output::OutputFile {
+                    name: "design.json".into(),
+                    contents: json + "\n",
+                },
+                output::OutputFile {
+                    name: "design.csv".into(),
+                    contents: report.to_csv(),
+                },
+            ];
+            for p in output::write_files(out, &files)? {
+                println!("wrote {}", p.display());
+            }
+        }
+        return Ok(0);
+    }
+    let result = inverse::identify(&spec, &progress)?;
+    let files = result.files()?;
+    for line in result.verdict_lines() {
+        println!("{line}");
+    }
+    let id = &result.identifiability;
+    for (p, v) in result.parameters.iter().zip(&result.estimate.values) {
+        println!("estimate {} = {v:.6e}", p.key);
+    }
+    println!(
+        "residual norm {:.4e} ({} residuals), singular values [{}], condition number {:.3e}",
+        result.residual_norm(),
+        result.measured.residual_count(),
+        id.singular_values
+            .iter()
+            .map(|s| format!("{s:.3e}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        id.condition_number
+    );
+    println!(
+        "{} forward runs in {:.2} s ({:.0} runs/s)",
+        result.forward_runs,
+        result.wall_seconds,
+        result.forward_runs as f64 / result.wall_seconds.max(1e-9)
+    );
+    if let Some(out) = out {
+        for p in output::write_files(out, &files)? {
+            println!("wrote {}", p.display());
+        }
+    }
+    Ok(0)
+}
+
+/// `identify --synthesize KEY=VALUE ...`: synthetic data of an identification file on stdout.
+fn synthesize_cmd(path: &Path, pairs: &[String], noise: f64, seed: u64) -> contactwave::Result<u8> {
+    use contactwave::inverse::{synthesize, IdentifySpec};
+    let spec = IdentifySpec::load(path)?;
+    let truth = pairs
+        .iter()
+        .map(|p| {
+            let (k, v) = p.split_once('=').unwrap_or((p, ""));
+            v.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .map(|x| (k.trim().to_string(), x))
+                .ok_or_else(|| {
+                    Error::invalid("--synthesize", k, v, "KEY=VALUE with a finite number")
+                })
+        })
+        .collect::<contactwave::Result<Vec<_>>>()?;
+    let data = synthesize(&spec, &truth, noise, seed)?;
+    let comment = format!(
+        "synthetic data: contactwave identify {} --synthesize {} --noise {noise} --seed {seed}",
+        path.display(),
+        pairs.join(" --synthesize ")
+    );
+    print!("{}", data.measured.to_csv(&comment));
     Ok(0)
 }

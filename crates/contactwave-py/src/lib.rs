@@ -589,8 +589,68 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(bench_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(law_curve, m)?)?;
     m.add_function(wrap_pyfunction!(fit_power_law, m)?)?;
+    m.add_function(wrap_pyfunction!(identify, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_plan, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_local, m)?)?;
     m.add_function(wrap_pyfunction!(run_points, m)?)?;
     Ok(())
+}
+
+/// Inverse identification (`contactwave identify`): `text` is the identification table as
+/// JSON (a dict's `json.dumps`; `None`: read the TOML file at `path`); `path` names it and
+/// its folder resolves `base` and `data`. Returns the `identification.json` object as JSON
+/// text (with `design = True`: the design ranking, `design.json`). With `out`, the output
+/// files are written there. The computation runs without the GIL.
+#[pyfunction]
+#[pyo3(signature = (text, path, out = None, design = false))]
+fn identify(
+    py: Python<'_>,
+    text: Option<String>,
+    path: PathBuf,
+    out: Option<PathBuf>,
+    design: bool,
+) -> PyResult<String> {
+    use contactwave::inverse::{self, IdentifySpec, Model};
+    py.detach(move || -> Result<String, Error> {
+        let spec = match text {
+            Some(t) => {
+                let table = table_from_json(&t, &path.display().to_string())?;
+                IdentifySpec::from_table(table, &path)?
+            }
+            None => IdentifySpec::load(&path)?,
+        };
+        if let Some(o) = &out {
+            if o.exists() && !o.is_dir() {
+                return Err(Error::io(
+                    o,
+                    std::io::Error::other("exists and is not a directory"),
+                ));
+            }
+        }
+        let (json, files) = if design {
+            let model = Model::new(&spec);
+            let r = inverse::design(&model)?;
+            let json = r.to_json();
+            let text = serde_json::to_string_pretty(&json).unwrap_or_default();
+            let files = vec![
+                contactwave::output::OutputFile {
+                    name: "design.json".into(),
+                    contents: text + "\n",
+                },
+                contactwave::output::OutputFile {
+                    name: "design.csv".into(),
+                    contents: r.to_csv(),
+                },
+            ];
+            (json, files)
+        } else {
+            let r = inverse::identify(&spec, &|_| {})?;
+            (r.to_json(), r.files()?)
+        };
+        if let Some(o) = &out {
+            contactwave::output::write_files(o, &files)?;
+        }
+        Ok(json.to_string())
+    })
+    .map_err(to_py)
 }

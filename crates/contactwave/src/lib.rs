@@ -40,6 +40,7 @@ pub mod analysis;
 pub mod analytic;
 pub mod error;
 pub mod excitation;
+pub mod inverse;
 pub mod law;
 pub mod material;
 pub mod numeric;
