@@ -229,7 +229,7 @@ seed = 2
 }
 
 #[test]
-#[ignore = "about 2400 bar-stack forward runs: 8.4 min on the shared 2-core machine; run with --ignored"]
+// about 2400 bar-stack forward runs: about 3 min on the 2-core machine
 fn tribobrake_power_law_from_frequency_versus_force() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples/identify/tribobrake_power_law.toml");
