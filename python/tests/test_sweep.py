@@ -160,4 +160,7 @@ def test_ctrl_c_interrupts_a_local_sweep():
         cw.sweep(heavy, axes)
     elapsed = time.perf_counter() - t0
     timer.cancel()
-    assert elapsed < 10, elapsed
+    # the whole sweep would take several minutes (200 000 points of about 2 ms); the
+    # interrupt arrives after 0.5 s, once the points are validated; a loaded 2-core
+    # machine needs up to about 12 s for that, so the bound only proves the interruption
+    assert elapsed < 60, elapsed
