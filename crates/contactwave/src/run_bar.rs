@@ -25,6 +25,23 @@ pub struct Frf {
     pub accelerance: Vec<f64>,
 }
 
+/// Histories at one `[[probe]]` of a bar-stack scenario.
+#[derive(Debug, Clone)]
+pub struct ProbeHistory {
+    /// Probe name.
+    pub name: String,
+    /// Position along the stack, m.
+    pub x: f64,
+    /// Displacement from the static equilibrium, m.
+    pub displacement: Vec<f64>,
+    /// Velocity (centred differences), m/s.
+    pub velocity: Vec<f64>,
+    /// Acceleration (second differences), m/s^2.
+    pub acceleration: Vec<f64>,
+    /// Dynamic axial stress E du/dx over the adjacent cell, Pa (tension positive).
+    pub stress: Vec<f64>,
+}
+
 /// Everything a bar-stack run produces.
 #[derive(Debug, Clone)]
 pub struct BarStackResult {
@@ -40,6 +57,13 @@ pub struct BarStackResult {
     pub gap: Vec<Vec<f64>>,
     /// Contact pressure (-sigma) of each interface, Pa.
     pub pressure: Vec<Vec<f64>>,
+    /// Adhesion beta of each interface.
+    pub beta: Vec<Vec<f64>>,
+    /// Tangent stiffness of each interface's law at its gap (and beta), Pa/m
+    /// (`inf` for a rigid branch while closed).
+    pub stiffness: Vec<Vec<f64>>,
+    /// Histories at the scenario's `[[probe]]` points.
+    pub probes: Vec<ProbeHistory>,
     /// FRF.
     pub frf: Frf,
     /// Summary scalars (per-interface values as `key_0`, `key_1`, ...).
@@ -90,13 +114,42 @@ pub fn simulate_bar_stack(s: &BarStackScenario) -> Result<BarStackResult> {
         t0: 0.0,
         steps,
         record_every: 1,
-        probes: vec![0],
+        probes: std::iter::once(0)
+            .chain(s.probes.iter().flat_map(|p| [p.node, p.other]))
+            .collect(),
         forces: vec![ForceSource {
             node: 0,
             signal: s.force.clone(),
         }],
     };
     let out = s.stack.run(&run)?;
+    let probes: Vec<ProbeHistory> = s
+        .probes
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let (u, w) = (&out.displacement[1 + 2 * k], &out.displacement[2 + 2 * k]);
+            let n = u.len();
+            let mut vel = vec![0.0; n];
+            let mut acc = vec![0.0; n];
+            for i in 1..n.saturating_sub(1) {
+                vel[i] = (u[i + 1] - u[i - 1]) / (2.0 * dt);
+                acc[i] = (u[i + 1] - 2.0 * u[i] + u[i - 1]) / (dt * dt);
+            }
+            ProbeHistory {
+                name: p.name.clone(),
+                x: p.x,
+                displacement: u.clone(),
+                velocity: vel,
+                acceleration: acc,
+                stress: u
+                    .iter()
+                    .zip(w)
+                    .map(|(a, b)| p.youngs_modulus * (b - a) / p.distance)
+                    .collect(),
+            }
+        })
+        .collect();
     let u = &out.displacement[0];
     let n = u.len();
     let mut acc = vec![0.0; n];
@@ -179,7 +232,26 @@ pub fn simulate_bar_stack(s: &BarStackScenario) -> Result<BarStackResult> {
         })
         .collect();
     let mut pressure = Vec::new();
+    let mut stiffness = Vec::new();
     for (i, law) in laws.iter().enumerate() {
+        let uc = law.critical_gap();
+        stiffness.push(
+            out.gap[i]
+                .iter()
+                .zip(&out.beta[i])
+                .map(|(&g, &b)| {
+                    if g <= uc {
+                        if law.compression.is_rigid() {
+                            f64::INFINITY
+                        } else {
+                            law.compression.tangent(g)
+                        }
+                    } else {
+                        law.traction.tangent(g - uc, b)
+                    }
+                })
+                .collect(),
+        );
         let p: Vec<f64> = out.stress[i].iter().map(|x| -x).collect();
         let pmin = p.iter().cloned().fold(f64::INFINITY, f64::min);
         min_p = min_p.min(pmin);
@@ -210,6 +282,9 @@ pub fn simulate_bar_stack(s: &BarStackScenario) -> Result<BarStackResult> {
         acceleration: acc,
         gap: out.gap.clone(),
         pressure,
+        beta: out.beta.clone(),
+        stiffness,
+        probes,
         frf,
         summary,
     })

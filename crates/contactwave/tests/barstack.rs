@@ -186,3 +186,45 @@ fn bad_bar_stack_input() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A probe in the guide sees the hammer's stress wave: before the first reflection comes
+/// back, stress = -F(t - x/c)/S and velocity = -stress/Z (Courant 1: exact transport).
+#[test]
+fn probes_see_the_travelling_hammer_wave() {
+    let text = tribobrake()
+        .replace("duration = 1.0e-3", "duration = 1.0e-5")
+        .replace("duration = 0.2 ", "duration = 0.001 ")
+        + "\n[[probe]]\nname = \"mid\"\nx = 0.1\n";
+    let s = load(&text).unwrap();
+    let r = contactwave::simulate_bar_stack(&s).unwrap();
+    let p = &r.probes[0];
+    assert_eq!(p.name, "mid");
+    let seg = &s.stack.segments[0];
+    let c = seg.material.wave_speed();
+    let z = seg.material.impedance();
+    let area = s.stack.area;
+    let peak = 32.0 / area;
+    // window: after the front has passed and before the reflection from the far end of
+    // the guide (and from the top) can come back
+    let t_end = (2.0 * 0.229 - 0.1) / c;
+    let (mut smin, mut vmax) = (0.0f64, 0.0f64);
+    for (k, &t) in r.t.iter().enumerate() {
+        if t < t_end {
+            smin = smin.min(p.stress[k]);
+            vmax = vmax.max(p.velocity[k].abs());
+        }
+    }
+    assert!((-smin / peak - 1.0).abs() < 0.03, "stress {smin} vs {peak}");
+    assert!(
+        (vmax * z / peak - 1.0).abs() < 0.03,
+        "velocity {vmax} vs {}",
+        peak / z
+    );
+    // interface histories: beta stays 1 (free traction), stiffness is the law's tangent
+    assert!(r.beta[0].iter().all(|b| *b == 1.0));
+    assert!(r.stiffness[0].iter().all(|k| k.is_finite() && *k >= 0.0));
+    // a probe outside the stack is an error naming the field
+    let bad = tribobrake() + "\n[[probe]]\nname = \"out\"\nx = 1.0\n";
+    let e = load(&bad).unwrap_err().to_string();
+    assert!(e.contains("probe[0].x"), "{e}");
+}

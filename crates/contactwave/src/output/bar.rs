@@ -46,11 +46,34 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
     let mut header = String::from("t,force,displacement,acceleration");
     let mut cols: Vec<&[f64]> = vec![&r.t, &r.force, &r.displacement, &r.acceleration];
     for i in 0..r.gap.len() {
-        header.push_str(&format!(",gap_{i},pressure_{i}"));
+        header.push_str(&format!(",gap_{i},pressure_{i},beta_{i},stiffness_{i}"));
         cols.push(&r.gap[i]);
         cols.push(&r.pressure[i]);
+        cols.push(&r.beta[i]);
+        cols.push(&r.stiffness[i]);
     }
     let ts = csv_columns(&header, &cols);
+    let mut probe_files = Vec::new();
+    if !r.probes.is_empty() {
+        let mut header = String::from("t");
+        let mut cols: Vec<&[f64]> = vec![&r.t];
+        for p in &r.probes {
+            let n = &p.name;
+            header.push_str(&format!(
+                ",{n}_displacement,{n}_velocity,{n}_acceleration,{n}_stress"
+            ));
+            cols.extend([
+                &p.displacement[..],
+                &p.velocity[..],
+                &p.acceleration[..],
+                &p.stress[..],
+            ]);
+        }
+        probe_files.push(OutputFile {
+            name: "probes.csv".into(),
+            contents: csv_columns(&header, &cols),
+        });
+    }
     Ok(vec![
         OutputFile {
             name: "summary.json".into(),
@@ -64,5 +87,8 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
             name: "timeseries.csv".into(),
             contents: ts,
         },
-    ])
+    ]
+    .into_iter()
+    .chain(probe_files)
+    .collect())
 }

@@ -29,6 +29,39 @@ pub struct BarStackSpec {
     /// Analysis settings.
     #[serde(default)]
     pub analysis: AnalysisSpec,
+    /// Probes: displacement, velocity, acceleration and stress histories at points of the
+    /// stack (written to `probes.csv`).
+    #[serde(rename = "probe", default)]
+    pub probes: Vec<ProbeSpec>,
+}
+
+/// `[[probe]]`: a point of the stack where histories are recorded.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProbeSpec {
+    /// Name (column prefix in `probes.csv`; letters, digits, `_`).
+    pub name: String,
+    /// Position along the stack from its first end, m (0 <= x <= total length; the nearest
+    /// node is used, on the first segment at a shared boundary).
+    pub x: f64,
+}
+
+/// A probe resolved to the mesh.
+#[derive(Debug, Clone)]
+pub struct BarProbe {
+    /// Name.
+    pub name: String,
+    /// Requested position, m.
+    pub x: f64,
+    /// Global node recorded.
+    pub node: usize,
+    /// The neighbouring node of the same segment used for the strain, and the signed
+    /// distance to it (m): stress = E (u[other] - u[node]) / distance.
+    pub other: usize,
+    /// Signed distance from `node` to `other`, m.
+    pub distance: f64,
+    /// Young's modulus of the probe's segment, Pa.
+    pub youngs_modulus: f64,
 }
 
 /// `[model]`.
@@ -195,6 +228,8 @@ pub struct BarStackScenario {
     pub spec: BarStackSpec,
     /// File it came from.
     pub file: String,
+    /// Probes resolved to mesh nodes.
+    pub probes: Vec<BarProbe>,
     /// The stack, interfaces built at the static pressures.
     pub stack: BarStack,
     /// Static interface pressures (between segments, then the obstacle), Pa.
@@ -494,7 +529,65 @@ impl BarStackScenario {
                 "must exceed analysis.first_mode_min > 0",
             ));
         }
+        let stack = BarStack {
+            area: m.area,
+            segments: segments.clone(),
+            interfaces: interfaces.clone(),
+            left: left.clone(),
+            right: right.clone(),
+            incident: None,
+        };
+        let mesh = stack.mesh(dt);
+        let total: f64 = segments.iter().map(|s| s.length).sum();
+        let mut probes = Vec::with_capacity(spec.probes.len());
+        for (k, p) in spec.probes.iter().enumerate() {
+            let ok_name = !p.name.is_empty()
+                && p.name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_');
+            if !ok_name || spec.probes[..k].iter().any(|q| q.name == p.name) {
+                return Err(inv(
+                    file,
+                    &format!("probe[{k}].name"),
+                    &p.name,
+                    "a unique name of letters, digits and _",
+                ));
+            }
+            if !(p.x.is_finite() && p.x >= 0.0 && p.x <= total) {
+                return Err(inv(
+                    file,
+                    &format!("probe[{k}].x"),
+                    p.x,
+                    &format!("in [0, {total}] m (the length of the stack)"),
+                ));
+            }
+            let mut start = 0.0;
+            let mut seg = segments.len() - 1;
+            for (i, sg) in segments.iter().enumerate() {
+                if p.x <= start + sg.length {
+                    seg = i;
+                    break;
+                }
+                start += sg.length;
+            }
+            let node = stack.node_at(&mesh, seg, p.x - start);
+            let last = mesh.offset[seg] + mesh.cells[seg];
+            let (other, distance) = if node < last {
+                (node + 1, mesh.dx[seg])
+            } else {
+                (node - 1, -mesh.dx[seg])
+            };
+            probes.push(BarProbe {
+                name: p.name.clone(),
+                x: p.x,
+                node,
+                other,
+                distance,
+                youngs_modulus: segments[seg].material.youngs_modulus,
+            });
+        }
         Ok(BarStackScenario {
+            probes,
             stack: BarStack {
                 area: m.area,
                 segments,
