@@ -548,7 +548,7 @@ impl BarStackScenario {
             if !ok_name || spec.probes[..k].iter().any(|q| q.name == p.name) {
                 return Err(inv(
                     file,
-                    &format!("probe[{k}].name"),
+                    format!("probe[{k}].name"),
                     &p.name,
                     "a unique name of letters, digits and _",
                 ));
@@ -556,7 +556,7 @@ impl BarStackScenario {
             if !(p.x.is_finite() && p.x >= 0.0 && p.x <= total) {
                 return Err(inv(
                     file,
-                    &format!("probe[{k}].x"),
+                    format!("probe[{k}].x"),
                     p.x,
                     &format!("in [0, {total}] m (the length of the stack)"),
                 ));
