@@ -51,6 +51,7 @@ fn half_space(c: &mut Criterion) {
         record_every: 1,
         probes: vec![1500],
         forces: vec![],
+        imposed: None,
     };
     let mut g = c.benchmark_group("fd_half_space_3000_nodes");
     g.throughput(Throughput::Elements(((cells + 1) * steps) as u64));
@@ -74,6 +75,7 @@ fn tribobrake(c: &mut Criterion) {
         record_every: 1,
         probes: vec![0],
         forces: vec![],
+        imposed: None,
     };
     let mut g = c.benchmark_group("fd_tribobrake_0.02s");
     g.throughput(Throughput::Elements((nodes * steps) as u64));

@@ -116,11 +116,17 @@ pub fn simulate_bar_stack(s: &BarStackScenario) -> Result<BarStackResult> {
         record_every: 1,
         probes: std::iter::once(0)
             .chain(s.probes.iter().flat_map(|p| [p.node, p.other]))
+            .chain(std::iter::once(1))
             .collect(),
-        forces: vec![ForceSource {
-            node: 0,
-            signal: s.force.clone(),
-        }],
+        forces: if s.imposed_displacement {
+            vec![]
+        } else {
+            vec![ForceSource {
+                node: 0,
+                signal: s.force.clone(),
+            }]
+        },
+        imposed: s.imposed_displacement.then(|| s.force.clone()),
     };
     let out = s.stack.run(&run)?;
     let probes: Vec<ProbeHistory> = s
@@ -156,7 +162,20 @@ pub fn simulate_bar_stack(s: &BarStackScenario) -> Result<BarStackResult> {
     for k in 1..n.saturating_sub(1) {
         acc[k] = (u[k + 1] - 2.0 * u[k] + u[k - 1]) / (dt * dt);
     }
-    let force: Vec<f64> = out.t.iter().map(|&t| s.force.value(t)).collect();
+    let force: Vec<f64> = if s.imposed_displacement {
+        // reaction of the imposed end (thesis eq. 2.39): the force that moves the half
+        // cell of node 0, m0 a0 = F + S E (u1 - u0) / dx (damping neglected), N
+        let mesh = s.stack.mesh(dt);
+        let mat = s.stack.segments[0].material;
+        let dx = mesh.dx[0];
+        let m0 = 0.5 * mat.density * s.stack.area * dx;
+        let u1 = &out.displacement[out.displacement.len() - 1];
+        (0..n)
+            .map(|k| m0 * acc[k] - s.stack.area * mat.youngs_modulus * (u1[k] - u[k]) / dx)
+            .collect()
+    } else {
+        out.t.iter().map(|&t| s.force.value(t)).collect()
+    };
     // FRF (H1 = X F* / |F|^2) over the whole record; regularised where the force spectrum
     // vanishes (zeros of the half-sine at (2k+1)/(2 tau), k >= 1), where no FRF estimate holds
     let fx = spectrum(u, false);
@@ -179,7 +198,10 @@ pub fn simulate_bar_stack(s: &BarStackScenario) -> Result<BarStackResult> {
     // free response after the pulse: first mode and its second harmonic
     let pulse_end = s.spec.excitation.duration.unwrap_or(1.0e-3);
     let k0 = ((2.0 * pulse_end / dt) as usize).min(n.saturating_sub(16));
-    let free = spectrum(&acc[k0..n.saturating_sub(1)], true);
+    // with an imposed displacement the driven end is held after the pulse: the free
+    // response is in its reaction force
+    let response = if s.imposed_displacement { &force } else { &acc };
+    let free = spectrum(&response[k0..n.saturating_sub(1)], true);
     let nf = ((n - 1 - k0).next_power_of_two() * 2) as f64;
     let dff = 1.0 / (nf * dt);
     let mag: Vec<f64> = free.iter().map(|c| c.norm()).collect();
@@ -196,6 +218,7 @@ pub fn simulate_bar_stack(s: &BarStackScenario) -> Result<BarStackResult> {
             }),
         }],
         steps: ((0.05 / dt) as usize).min(steps),
+        imposed: None,
         ..run.clone()
     };
     let lin = s.stack.run(&probe_run)?;
@@ -219,7 +242,14 @@ pub fn simulate_bar_stack(s: &BarStackScenario) -> Result<BarStackResult> {
     summary.set("A1", 2.0 * a1 / (0.5 * (m_free - 1.0)).max(1.0));
     summary.set("A2_over_A1", if a1 > 0.0 { a2 / a1 } else { 0.0 });
     summary.set("guide_mode_hz", fg);
-    summary.set("peak_force", s.force_peak());
+    summary.set(
+        "peak_force",
+        if s.imposed_displacement {
+            force.iter().fold(0.0f64, |m, f| m.max(f.abs()))
+        } else {
+            s.force_peak()
+        },
+    );
     let mut min_p = f64::INFINITY;
     let laws: Vec<_> = s
         .stack

@@ -228,3 +228,59 @@ fn probes_see_the_travelling_hammer_wave() {
     let e = load(&bad).unwrap_err().to_string();
     assert!(e.contains("probe[0].x"), "{e}");
 }
+
+/// Imposed displacement of the first end (thesis eq. 2.39): the guide carries the wave
+/// u = f(t - x/c) unchanged (Courant 1), with stress -Z f' and the end's reaction S Z f'.
+#[test]
+fn imposed_displacement_drives_a_travelling_wave() {
+    let (d, tau) = (1e-7, 1e-5);
+    let text = tribobrake()
+        .replace("kind = \"force_pulse\"", "kind = \"displacement_pulse\"")
+        .replace("peak = 32.0", &format!("peak = {d:e}"))
+        .replace("duration = 1.0e-3", &format!("duration = {tau:e}"))
+        .replace("duration = 0.2 ", "duration = 0.001 ")
+        + "\n[[probe]]\nname = \"mid\"\nx = 0.1\n";
+    let s = load(&text).unwrap();
+    let r = contactwave::simulate_bar_stack(&s).unwrap();
+    let seg = &s.stack.segments[0];
+    let (c, z) = (seg.material.wave_speed(), seg.material.impedance());
+    let v_peak = d * std::f64::consts::PI / tau;
+    let t_end = (2.0 * 0.229 - 0.1) / c;
+    let p = &r.probes[0];
+    let (mut umax, mut smax) = (0.0f64, 0.0f64);
+    for (k, &t) in r.t.iter().enumerate() {
+        if t < t_end {
+            umax = umax.max(p.displacement[k]);
+            smax = smax.max(p.stress[k].abs());
+        }
+    }
+    assert!((umax / d - 1.0).abs() < 0.01, "displacement {umax} vs {d}");
+    assert!(
+        (smax / (z * v_peak) - 1.0).abs() < 0.03,
+        "stress {smax} vs {}",
+        z * v_peak
+    );
+    // the driven node follows the imposed history exactly
+    let k = r.t.iter().position(|&t| t >= 0.5 * tau).unwrap();
+    let f = d * (std::f64::consts::PI * r.t[k] / tau).sin();
+    assert!(
+        (r.displacement[k] - f).abs() < 1e-12 * d.max(1.0),
+        "{} vs {f}",
+        r.displacement[k]
+    );
+    // the end's reaction before the first echo returns (a held end doubles the echo)
+    let fmax =
+        r.t.iter()
+            .zip(&r.force)
+            .filter(|(t, _)| **t < 2.0 * 0.229 / c)
+            .fold(0.0f64, |m, (_, f)| m.max(f.abs()));
+    let expect = s.stack.area * z * v_peak;
+    assert!(
+        (fmax / expect - 1.0).abs() < 0.05,
+        "reaction {fmax} vs {expect}"
+    );
+    // an imposed displacement needs a free first end
+    let bad = text.replace("first_end = \"free\"", "first_end = \"fixed\"");
+    let e = load(&bad).unwrap_err().to_string();
+    assert!(e.contains("model.first_end"), "{e}");
+}

@@ -146,7 +146,9 @@ pub struct InterfaceSpec {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ForceSpec {
-    /// `force_pulse` (default) or `force_file`.
+    /// `force_pulse` (default), `force_file`, or an imposed displacement of the first end
+    /// (thesis eq. 2.39): `displacement_pulse` (half-sine, `peak` in m) or
+    /// `displacement_file` (CSV: time s, displacement m).
     #[serde(default = "pulse")]
     pub kind: String,
     /// Peak force, N (positive: along +x, into the stack).
@@ -236,6 +238,8 @@ pub struct BarStackScenario {
     pub static_pressure: Vec<f64>,
     /// The force signal at node 0, N.
     pub force: Arc<dyn Signal>,
+    /// `true` when `force` is an imposed displacement of the first node (m), not a force.
+    pub imposed_displacement: bool,
     /// Time step, s.
     pub dt: f64,
 }
@@ -454,7 +458,23 @@ impl BarStackScenario {
                 pos(file, "excitation.duration", d)?;
                 Arc::new(HalfSine { peak, duration: d })
             }
-            "force_file" => {
+            "displacement_pulse" => {
+                let peak = spec.excitation.peak.ok_or_else(|| {
+                    inv(
+                        file,
+                        "excitation.peak",
+                        "(missing)",
+                        "peak displacement in m",
+                    )
+                })?;
+                if !peak.is_finite() {
+                    return Err(inv(file, "excitation.peak", peak, "must be finite (m)"));
+                }
+                let d = spec.excitation.duration.unwrap_or(1.0e-3);
+                pos(file, "excitation.duration", d)?;
+                Arc::new(HalfSine { peak, duration: d })
+            }
+            "force_file" | "displacement_file" => {
                 let rel = spec.excitation.path.as_ref().ok_or_else(|| {
                     inv(
                         file,
@@ -477,7 +497,7 @@ impl BarStackScenario {
                     file,
                     "excitation.kind",
                     other,
-                    "force_pulse or force_file",
+                    "force_pulse, force_file, displacement_pulse or displacement_file",
                 ))
             }
         };
@@ -586,7 +606,17 @@ impl BarStackScenario {
                 youngs_modulus: segments[seg].material.youngs_modulus,
             });
         }
+        let imposed_displacement = spec.excitation.kind.starts_with("displacement");
+        if imposed_displacement && m.first_end != "free" {
+            return Err(inv(
+                file,
+                "model.first_end",
+                &m.first_end,
+                "\"free\": an imposed displacement (excitation.kind) drives the first end",
+            ));
+        }
         Ok(BarStackScenario {
+            imposed_displacement,
             probes,
             stack: BarStack {
                 area: m.area,

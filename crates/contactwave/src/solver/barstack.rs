@@ -171,6 +171,9 @@ pub struct FdRun {
     pub probes: Vec<usize>,
     /// Force sources.
     pub forces: Vec<ForceSource>,
+    /// Imposed displacement of node 0 (from the static equilibrium), m: thesis eq. 2.39,
+    /// `u_1^{m+1} = f((m + 1) dt)`; the left end must then be `Free`.
+    pub imposed: Option<Arc<dyn Signal>>,
 }
 
 /// Largest time step that keeps every interface update well-conditioned and every segment
@@ -356,6 +359,9 @@ impl BarStack {
                     stresses[i] = upd.dynamic_stress - law.static_pressure;
                     beta[i] = upd.adhesion;
                 }
+            }
+            if let Some(d) = &run.imposed {
+                u_next[0] = d.value(t1);
             }
             match &self.right {
                 End::Free => {}

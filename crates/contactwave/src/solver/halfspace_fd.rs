@@ -69,6 +69,7 @@ pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
         record_every: 1,
         probes: vec![probe],
         forces: vec![],
+        imposed: None,
     };
     let fd = stack.run(&run)?;
     // back to interface time: the left end sees the reflection len1/c1 later
