@@ -333,7 +333,18 @@ fn run_bar_stack(table: toml::Table, path: &Path, out: &Path) -> contactwave::Re
     let scenario = BarStackScenario::from_table(table, path)?;
     check_out_dir(out)?;
     let t0 = Instant::now();
-    let result = contactwave::simulate_bar_stack(&scenario)?;
+    // long runs report progress on a terminal
+    let bar = progress_bar();
+    let b = bar.clone();
+    let progress = contactwave::solver::barstack::StepProgress(std::sync::Arc::new(
+        move |done: usize, total: usize| {
+            b.set_length(total as u64);
+            b.set_position(done as u64);
+        },
+    ));
+    let result = contactwave::simulate_bar_stack_with_progress(&scenario, Some(progress));
+    bar.finish_and_clear();
+    let result = result?;
     let wall = t0.elapsed();
     let files = output::bar_stack_files(&result, &path.display().to_string())?;
     output::write_files(out, &files)?;
@@ -717,9 +728,9 @@ fn progress_bar() -> ProgressBar {
         return ProgressBar::hidden();
     }
     let b = ProgressBar::new(0);
-    if let Ok(style) = ProgressStyle::with_template(
-        "{bar:40} {pos}/{len} runs  {elapsed_precise} elapsed, eta {eta}",
-    ) {
+    if let Ok(style) =
+        ProgressStyle::with_template("{bar:40} {pos}/{len}  {elapsed_precise} elapsed, eta {eta}")
+    {
         b.set_style(style);
     }
     b

@@ -52,6 +52,7 @@ fn half_space(c: &mut Criterion) {
         probes: vec![1500],
         forces: vec![],
         imposed: None,
+        progress: None,
     };
     let mut g = c.benchmark_group("fd_half_space_3000_nodes");
     g.throughput(Throughput::Elements(((cells + 1) * steps) as u64));
@@ -76,6 +77,7 @@ fn tribobrake(c: &mut Criterion) {
         probes: vec![0],
         forces: vec![],
         imposed: None,
+        progress: None,
     };
     let mut g = c.benchmark_group("fd_tribobrake_0.02s");
     g.throughput(Throughput::Elements((nodes * steps) as u64));

@@ -54,4 +54,6 @@ pub mod study;
 
 pub use error::{Error, Result};
 pub use run::{half_space, settings, simulate, simulate_summary, ProbeSeries, RunResult};
-pub use run_bar::{simulate_bar_stack, BarStackResult, Frf};
+pub use run_bar::{
+    simulate_bar_stack, simulate_bar_stack_with_progress, BarStackResult, Frf, ProbeHistory,
+};

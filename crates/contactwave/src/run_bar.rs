@@ -7,7 +7,7 @@
 use crate::analysis::Summary;
 use crate::error::Result;
 use crate::scenario::bar_stack::{BarStackScenario, HalfSine};
-use crate::solver::barstack::{FdRun, ForceSource};
+use crate::solver::barstack::{FdRun, ForceSource, StepProgress};
 use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 use std::sync::Arc;
@@ -107,6 +107,14 @@ fn peak(spec: &[f64], df: f64, f_lo: f64, f_hi: f64) -> (f64, f64) {
 
 /// Run the hammer test of a bar-stack scenario.
 pub fn simulate_bar_stack(s: &BarStackScenario) -> Result<BarStackResult> {
+    simulate_bar_stack_with_progress(s, None)
+}
+
+/// [`simulate_bar_stack`] reporting `(steps done, steps)` of the main run every 4096 steps.
+pub fn simulate_bar_stack_with_progress(
+    s: &BarStackScenario,
+    progress: Option<StepProgress>,
+) -> Result<BarStackResult> {
     let dt = s.dt;
     let steps = (s.spec.model.duration / dt).ceil() as usize;
     let run = FdRun {
@@ -127,6 +135,7 @@ pub fn simulate_bar_stack(s: &BarStackScenario) -> Result<BarStackResult> {
             }]
         },
         imposed: s.imposed_displacement.then(|| s.force.clone()),
+        progress,
     };
     let out = s.stack.run(&run)?;
     let probes: Vec<ProbeHistory> = s
@@ -219,6 +228,7 @@ pub fn simulate_bar_stack(s: &BarStackScenario) -> Result<BarStackResult> {
         }],
         steps: ((0.05 / dt) as usize).min(steps),
         imposed: None,
+        progress: None,
         ..run.clone()
     };
     let lin = s.stack.run(&probe_run)?;

@@ -284,3 +284,21 @@ fn imposed_displacement_drives_a_travelling_wave() {
     let e = load(&bad).unwrap_err().to_string();
     assert!(e.contains("model.first_end"), "{e}");
 }
+
+/// Long runs report progress: the callback sees the steps advance to the end.
+#[test]
+fn bar_stack_runs_report_progress() {
+    let text = tribobrake().replace("duration = 0.2 ", "duration = 0.02 ");
+    let s = load(&text).unwrap();
+    let seen = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let sink = seen.clone();
+    let p = contactwave::solver::barstack::StepProgress(std::sync::Arc::new(
+        move |done: usize, total: usize| sink.lock().unwrap().push((done, total)),
+    ));
+    let r = contactwave::simulate_bar_stack_with_progress(&s, Some(p)).unwrap();
+    let seen = seen.lock().unwrap();
+    let total = seen[0].1;
+    assert!(total >= r.t.len() - 1, "{total} {}", r.t.len());
+    assert!(seen.len() >= total / 4096 && seen.windows(2).all(|w| w[1].0 > w[0].0));
+    assert!(seen.last().unwrap().0 + 4096 > total);
+}

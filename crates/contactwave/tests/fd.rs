@@ -43,6 +43,7 @@ fn courant_one_pulse_crosses_unchanged() {
         probes: vec![p1, p2],
         forces: vec![],
         imposed: None,
+        progress: None,
     };
     let out = stack.run(&run).unwrap();
     let lag = p2 - p1; // steps for 200 cells at Courant 1

@@ -174,6 +174,18 @@ pub struct FdRun {
     /// Imposed displacement of node 0 (from the static equilibrium), m: thesis eq. 2.39,
     /// `u_1^{m+1} = f((m + 1) dt)`; the left end must then be `Free`.
     pub imposed: Option<Arc<dyn Signal>>,
+    /// Called with (steps done, steps) every 4096 steps (long runs report progress).
+    pub progress: Option<StepProgress>,
+}
+
+/// A progress callback of a run: `(steps done, total steps)`.
+#[derive(Clone)]
+pub struct StepProgress(pub Arc<dyn Fn(usize, usize) + Send + Sync>);
+
+impl std::fmt::Debug for StepProgress {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("StepProgress")
+    }
 }
 
 /// Largest time step that keeps every interface update well-conditioned and every segment
@@ -292,6 +304,11 @@ impl BarStack {
         };
         record(&mut out, run.t0, &u, &gaps, &stresses, &beta);
         for step in 0..run.steps {
+            if step % 4096 == 0 {
+                if let Some(p) = &run.progress {
+                    (p.0)(step, run.steps);
+                }
+            }
             let t = run.t0 + step as f64 * dt;
             let t1 = t + dt;
             for (f, src) in force.iter_mut().zip(&run.forces) {

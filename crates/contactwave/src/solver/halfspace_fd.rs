@@ -70,6 +70,7 @@ pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
         probes: vec![probe],
         forces: vec![],
         imposed: None,
+        progress: None,
     };
     let fd = stack.run(&run)?;
     // back to interface time: the left end sees the reflection len1/c1 later
