@@ -233,15 +233,10 @@ pub fn simulate_bar_stack_with_progress(
     };
     let lin = s.stack.run(&probe_run)?;
     let ul = &lin.displacement[0];
-    let mut al = vec![0.0; ul.len()];
-    for k in 1..ul.len().saturating_sub(1) {
-        al[k] = (ul[k + 1] - 2.0 * ul[k] + ul[k - 1]) / (dt * dt);
-    }
     // displacement spectrum (the acceleration one over-weights the high modes)
     let sl = spectrum(ul, true);
     let magl: Vec<f64> = sl.iter().map(|c| c.norm()).collect();
     let dfl = 1.0 / (((ul.len()).next_power_of_two() * 2) as f64 * dt);
-    let _ = &al;
     let (fg, _) = peak(&magl, dfl, (3.0 * f1).max(2000.0), 0.45 / dt);
     let mut summary = Summary::new();
     summary.set("first_mode_hz", f1);

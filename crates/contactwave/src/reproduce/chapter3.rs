@@ -74,7 +74,6 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
     let mut findings = Vec::new();
     let probe = ctx.scenario(&base, &vec![])?;
     let z = probe.medium.impedance();
-    let p0 = probe.law.static_pressure;
 
     // --- Figures 23-30: the three cases against unilateral contact
     let jobs: Vec<(usize, bool)> = (0..3).flat_map(|i| [(i, true), (i, false)]).collect();
@@ -748,7 +747,6 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             xi_panel("A2/A1", "A2/A1", curves(&lb, &xs_b, &a21d[v1..v2], nd)),
         ],
     ));
-    let _ = p0;
     Ok(ChapterResult {
         chapter: Chapter::Three,
         title: "Chapter 3: RCCM adhesion at 1 MHz".into(),
