@@ -57,7 +57,7 @@ pub mod report;
 
 use crate::analysis::Summary;
 use crate::error::{Error, Result};
-use crate::scenario::{parse_toml, set_dotted, AnyScenario};
+use crate::scenario::{apply_set, parse_toml, set_dotted, AnyScenario};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -348,17 +348,7 @@ impl IdentifySpec {
                     "a table of dotted scenario keys and values",
                 ));
             };
-            for (k, v) in set {
-                set_dotted(&mut base_table, k, v.clone()).map_err(|e| match e {
-                    Error::Invalid { value, allowed, .. } => Error::Invalid {
-                        file: file.clone(),
-                        field: format!("set.{k}"),
-                        value,
-                        allowed,
-                    },
-                    other => other,
-                })?;
-            }
+            apply_set(&mut base_table, set, &file)?;
         }
         // the base (with overrides) must be a valid scenario
         AnyScenario::from_table(base_table.clone(), &base)?;

@@ -5,6 +5,7 @@ use super::estimate::Estimate;
 use super::identifiability::Identifiability;
 use super::{Measured, Parameter};
 use crate::error::{Error, Result};
+use crate::output::plot::{color, plot_error};
 use crate::output::OutputFile;
 use plotters::prelude::*;
 use serde_json::json;
@@ -197,22 +198,6 @@ pub fn identification_files(r: &Identification) -> Result<Vec<OutputFile>> {
 
 type PlotResult<T> = std::result::Result<T, Box<dyn std::error::Error>>;
 
-fn plot_err(name: &str, e: Box<dyn std::error::Error>) -> Error {
-    Error::io(name, std::io::Error::other(format!("plot: {e}")))
-}
-
-fn color(i: usize) -> RGBColor {
-    const C: [RGBColor; 6] = [
-        RGBColor(31, 119, 180),
-        RGBColor(214, 39, 40),
-        RGBColor(44, 160, 44),
-        RGBColor(255, 127, 14),
-        RGBColor(148, 103, 189),
-        RGBColor(140, 86, 75),
-    ];
-    C[i % C.len()]
-}
-
 /// Groups of rows with equal non-control conditions, in order of appearance; each group
 /// sorted by the control value.
 fn groups(m: &Measured) -> Vec<(String, Vec<usize>)> {
@@ -344,7 +329,7 @@ fn fit_svg(r: &Identification) -> Result<String> {
         root.present()?;
         Ok(())
     };
-    draw().map_err(|e| plot_err("fit.svg", e))?;
+    draw().map_err(|e| plot_error("fit.svg", e))?;
     Ok(s)
 }
 
@@ -426,7 +411,7 @@ fn sensitivity_svg(r: &Identification) -> Result<String> {
         root.present()?;
         Ok(())
     };
-    draw().map_err(|e| plot_err("sensitivity.svg", e))?;
+    draw().map_err(|e| plot_error("sensitivity.svg", e))?;
     Ok(s)
 }
 

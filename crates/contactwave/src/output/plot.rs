@@ -17,7 +17,8 @@ const MAX_POINTS: usize = 4000;
 type PlotResult<T> = std::result::Result<T, Box<dyn std::error::Error>>;
 type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 
-fn plot_error(name: &str, e: Box<dyn std::error::Error>) -> Error {
+/// A plotting failure as an I/O error on the named file.
+pub(crate) fn plot_error(name: &str, e: Box<dyn std::error::Error>) -> Error {
     Error::io(name, std::io::Error::other(format!("plot: {e}")))
 }
 
@@ -155,7 +156,8 @@ struct Curve {
     color: RGBColor,
 }
 
-fn color(i: usize) -> RGBColor {
+/// The i-th colour of the palette shared by every plot.
+pub(crate) fn color(i: usize) -> RGBColor {
     const C: [RGBColor; 8] = [
         RGBColor(31, 119, 180),
         RGBColor(214, 39, 40),

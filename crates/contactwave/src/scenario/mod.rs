@@ -6,7 +6,7 @@ pub mod bar_stack;
 pub mod spec;
 mod value;
 
-pub use value::{parse_toml, set_dotted, table_to_spec};
+pub use value::{apply_set, parse_toml, set_dotted, table_to_spec};
 
 use crate::error::{Error, Result};
 use crate::excitation::{Excitation, FileWaveform, ToneBurst, TwoTone, Window};

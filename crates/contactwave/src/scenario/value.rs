@@ -111,3 +111,20 @@ pub fn set_dotted(table: &mut toml::Table, key: &str, value: toml::Value) -> Res
     cur.insert(last.to_string(), value);
     Ok(())
 }
+
+/// Write the `[set]` table of a sweep or identification file (dotted keys, any TOML value)
+/// into a base scenario table. Errors name `file` and the field `set."<key>"`.
+pub fn apply_set(table: &mut toml::Table, set: &toml::Table, file: &str) -> Result<()> {
+    for (key, value) in set {
+        set_dotted(table, key, value.clone()).map_err(|e| match e {
+            Error::Invalid { value, allowed, .. } => Error::Invalid {
+                file: file.to_string(),
+                field: format!("set.\"{key}\""),
+                value,
+                allowed,
+            },
+            other => other,
+        })?;
+    }
+    Ok(())
+}

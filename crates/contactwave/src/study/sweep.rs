@@ -45,7 +45,7 @@
 use super::shard::Shard;
 use crate::analysis::Summary;
 use crate::error::{Error, Result};
-use crate::scenario::{parse_toml, set_dotted, AnyScenario, Scenario};
+use crate::scenario::{apply_set, parse_toml, set_dotted, AnyScenario, Scenario};
 use sha2::{Digest, Sha256};
 use std::fs::{File, OpenOptions};
 use std::io::Write;
@@ -331,19 +331,7 @@ impl Sweep {
         // written before the axes; `interface.0.compression` indexes an array of tables
         match table.get("set") {
             None => {}
-            Some(toml::Value::Table(set)) => {
-                for (key, value) in set {
-                    set_dotted(&mut base_table, key, value.clone()).map_err(|e| match e {
-                        Error::Invalid { value, allowed, .. } => Error::Invalid {
-                            file: file.clone(),
-                            field: format!("set.\"{key}\""),
-                            value,
-                            allowed,
-                        },
-                        other => other,
-                    })?;
-                }
-            }
+            Some(toml::Value::Table(set)) => apply_set(&mut base_table, set, &file)?,
             Some(v) => {
                 return Err(Error::invalid(
                     &file,
