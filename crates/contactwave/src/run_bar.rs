@@ -6,7 +6,7 @@
 
 use crate::analysis::Summary;
 use crate::error::Result;
-use crate::scenario::bar_stack::{BarStackScenario, HalfSine};
+use crate::scenario::bar_stack::{BarStackScenario, HalfSine, DEFAULT_PULSE_DURATION};
 use crate::solver::barstack::{FdRun, ForceSource, StepProgress};
 use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
@@ -205,7 +205,7 @@ pub fn simulate_bar_stack_with_progress(
             .push(h.norm() * (2.0 * std::f64::consts::PI * f).powi(2));
     }
     // free response after the pulse: first mode and its second harmonic
-    let pulse_end = s.spec.excitation.duration.unwrap_or(1.0e-3);
+    let pulse_end = s.spec.excitation.duration.unwrap_or(DEFAULT_PULSE_DURATION);
     let k0 = ((2.0 * pulse_end / dt) as usize).min(n.saturating_sub(16));
     // with an imposed displacement the driven end is held after the pulse: the free
     // response is in its reaction force
@@ -328,7 +328,11 @@ pub fn simulate_bar_stack_with_progress(
 impl BarStackScenario {
     /// Peak of the force signal, N (sampled on the time grid).
     pub fn force_peak(&self) -> f64 {
-        let d = self.spec.excitation.duration.unwrap_or(1.0e-3);
+        let d = self
+            .spec
+            .excitation
+            .duration
+            .unwrap_or(DEFAULT_PULSE_DURATION);
         (0..=1000)
             .map(|i| self.force.value(d * i as f64 / 1000.0).abs())
             .fold(0.0, f64::max)

@@ -44,7 +44,12 @@ fn chapters_3_and_4_reproduce_the_thesis_findings_and_render_a_self_contained_re
     );
     assert!(d_mpl > d_pl && d_pl > 0.0, "{d_mpl} {d_pl}");
     assert!(value(&c4, "tribobrake_a2_over_a1_growth_mpl") > 1.0);
-    assert!(value(&c4, "tribobrake_min_pressure_32N_pa") > 0.0);
+    // thesis Figure 70: about 0.025 MPa at 32 N (the pulse duration is set for it) and
+    // about 0.078 MPa at 9 N (a check: not calibrated)
+    let p32 = value(&c4, "tribobrake_min_pressure_32N_pa");
+    assert!((0.02e6..=0.03e6).contains(&p32), "{p32}");
+    let p9 = value(&c4, "tribobrake_min_pressure_9N_pa");
+    assert!((0.06e6..=0.095e6).contains(&p9), "{p9}");
     // every figure has data and a caption
     for c in [&c3, &c4] {
         for f in &c.figures {

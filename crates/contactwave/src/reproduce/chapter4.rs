@@ -553,11 +553,22 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         key: "tribobrake_min_pressure_32N_pa".into(),
         value: pmin32,
         unit: "Pa".into(),
-        thesis: "near 0.025 MPa, contacts closed (Figure 70)".into(),
-        agrees: Some(pmin32 > 0.0),
-        note: "closed as in the thesis; the value depends on the pulse duration (1 ms here, \
-               the thesis' measured hammer force is not given) and on the modified PL branch"
+        thesis: "near 0.025 MPa, contacts closed (Figure 70; accepted 0.02-0.03 MPa)".into(),
+        agrees: Some((0.02e6..=0.03e6).contains(&pmin32)),
+        note: "the value depends on the pulse duration and on the modified PL branch: the \
+               thesis' measured hammer force is not given, and the default half-sine duration \
+               (1.07 ms) is the one that gives this minimum at 32 N; the 9 N run, not \
+               calibrated, then gives the thesis' other value (about 0.078 MPa) as a check"
             .into(),
+    });
+    let pmin9 = get(m9, "min_contact_pressure");
+    findings.push(Finding {
+        key: "tribobrake_min_pressure_9N_pa".into(),
+        value: pmin9,
+        unit: "Pa".into(),
+        thesis: "about 0.078 MPa (Figure 70; accepted 0.06-0.095 MPa)".into(),
+        agrees: Some((0.06e6..=0.095e6).contains(&pmin9)),
+        note: "not calibrated: the same pulse duration as at 32 N".into(),
     });
     Ok(ChapterResult {
         chapter: Chapter::Four,
