@@ -353,10 +353,34 @@ fn run_bar_stack(table: toml::Table, path: &Path, out: &Path) -> contactwave::Re
     for (i, p) in scenario.static_pressure.iter().enumerate() {
         println!("static pressure [{i}]    {p:.6e} Pa");
     }
-    println!("first mode             {:.2} Hz", get("first_mode_hz"));
-    println!("second harmonic        {:.2} Hz", get("second_harmonic_hz"));
-    println!("A2/A1                  {:.4e}", get("A2_over_A1"));
-    println!("guide mode             {:.1} Hz", get("guide_mode_hz"));
+    if scenario.incident.is_some() {
+        println!("xi (first interface)   {:.6}", get("xi"));
+        println!("A1/Ainc (reflected)    {:.6e}", get("A1_over_Ainc"));
+        println!("A2/Ainc (reflected)    {:.6e}", get("A2_over_Ainc"));
+        if result.summary.get("transmitted_A1_over_Ainc").is_some() {
+            println!(
+                "A1/Ainc (transmitted)  {:.6e}",
+                get("transmitted_A1_over_Ainc")
+            );
+            println!(
+                "A2/Ainc (transmitted)  {:.6e}",
+                get("transmitted_A2_over_Ainc")
+            );
+        }
+        println!(
+            "energy R / T           {:.6} / {:.6}",
+            get("energy_reflected_fraction"),
+            result
+                .summary
+                .get("energy_transmitted_fraction")
+                .unwrap_or(0.0)
+        );
+    } else {
+        println!("first mode             {:.2} Hz", get("first_mode_hz"));
+        println!("second harmonic        {:.2} Hz", get("second_harmonic_hz"));
+        println!("A2/A1                  {:.4e}", get("A2_over_A1"));
+        println!("guide mode             {:.1} Hz", get("guide_mode_hz"));
+    }
     println!(
         "min contact pressure   {:.4e} Pa",
         get("min_contact_pressure")

@@ -129,7 +129,12 @@ fn every_example_loads_and_runs() {
             let s =
                 contactwave::scenario::bar_stack::BarStackScenario::from_table(table, &p).unwrap();
             let r = contactwave::simulate_bar_stack(&s).unwrap();
-            assert!(r.summary.get("first_mode_hz").unwrap().is_finite());
+            let key = if s.incident.is_some() {
+                "A1_over_Ainc"
+            } else {
+                "first_mode_hz"
+            };
+            assert!(r.summary.get(key).unwrap().is_finite(), "{}", p.display());
             continue;
         }
         let scenarios = if table.contains_key("axis") {
@@ -154,6 +159,58 @@ fn every_example_loads_and_runs() {
             assert!(summary.get("A1_over_Ainc").unwrap().is_finite());
         }
     }
+}
+
+/// A bar stack driven by an incident wave: the reflected and transmitted waves in
+/// `waves.csv`, no FRF (there is no force); an incident wave with a free first end is
+/// refused with one line naming the field, exit 2, nothing written.
+#[test]
+fn bar_stack_incident_run_writes_waves_and_rejects_a_closed_end() {
+    let d = tmpdir("incident");
+    let out = d.join("out");
+    let o = bin()
+        .arg("run")
+        .arg(examples().join("bar_stack_incident.toml"))
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("A2/Ainc (reflected)"), "{stdout}");
+    let waves = std::fs::read_to_string(out.join("waves.csv")).unwrap();
+    assert!(waves
+        .starts_with("t,incident_displacement,reflected_displacement,transmitted_displacement\n"));
+    assert!(!out.join("frf.csv").exists());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(summary["A2_over_Ainc"].as_f64().unwrap() > 0.1);
+    assert!(
+        summary["beta_end"][0].as_f64().unwrap() < 0.5,
+        "the bond is peeled off"
+    );
+    let text = std::fs::read_to_string(examples().join("bar_stack_incident.toml"))
+        .unwrap()
+        .replace("first_end = \"transparent\"", "first_end = \"free\"");
+    let file = d.join("closed.toml");
+    std::fs::write(&file, text).unwrap();
+    let bad = d.join("bad");
+    let o = bin()
+        .arg("run")
+        .arg(&file)
+        .arg("--out")
+        .arg(&bad)
+        .output()
+        .unwrap();
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("closed.toml") && err.contains("model.first_end"),
+        "{err}"
+    );
+    assert!(!bad.exists());
+    let _ = std::fs::remove_dir_all(d);
 }
 
 /// Replace `from` by `to` in the base scenario (asserting that `from` occurs).

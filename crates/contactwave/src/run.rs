@@ -98,6 +98,17 @@ pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
 fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
     let f0 = scenario.incident.fundamental();
     let f2 = scenario.incident.second_frequency();
+    velocity_bands(displacement, dt, f0, f2)
+}
+
+/// Band amplitudes (m/s) of the cell-averaged velocity of a displacement record (m, step
+/// `dt` s), for fundamental `f0` and optional second frequency `f2` (Hz).
+pub(crate) fn velocity_bands(
+    displacement: &[f64],
+    dt: f64,
+    f0: f64,
+    f2: Option<f64>,
+) -> BandAmplitudes {
     let v = cell_velocity(displacement, dt);
     ANALYZER.with(|a| a.borrow_mut().bands(&v, dt, f0, f2))
 }

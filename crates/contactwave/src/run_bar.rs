@@ -6,8 +6,10 @@
 
 use crate::analysis::Summary;
 use crate::error::Result;
-use crate::scenario::bar_stack::{BarStackScenario, HalfSine, DEFAULT_PULSE_DURATION};
-use crate::solver::barstack::{FdRun, ForceSource, StepProgress};
+use crate::excitation::Excitation;
+use crate::numeric::gauss4;
+use crate::scenario::bar_stack::{BarStackScenario, HalfSine};
+use crate::solver::barstack::{End, FdOutput, FdRun, ForceSource, StepProgress};
 use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 use std::sync::Arc;
@@ -42,6 +44,18 @@ pub struct ProbeHistory {
     pub stress: Vec<f64>,
 }
 
+/// The waves of an `[incident]` run, displacements in m at the ends of the stack.
+#[derive(Debug, Clone, Default)]
+pub struct WaveHistories {
+    /// Incident wave at x = 0: `F(t) = -(1/Z_0) int_0^t s_inc` (Z_0 the first segment's
+    /// impedance).
+    pub incident: Vec<f64>,
+    /// Reflected (outgoing) wave at x = 0: the displacement there minus the incident one.
+    pub reflected: Vec<f64>,
+    /// Transmitted wave at the far end when it is transparent (the displacement there).
+    pub transmitted: Option<Vec<f64>>,
+}
+
 /// Everything a bar-stack run produces.
 #[derive(Debug, Clone)]
 pub struct BarStackResult {
@@ -64,8 +78,10 @@ pub struct BarStackResult {
     pub stiffness: Vec<Vec<f64>>,
     /// Histories at the scenario's `[[probe]]` points.
     pub probes: Vec<ProbeHistory>,
-    /// FRF.
+    /// FRF (empty for an incident-wave run: there is no force).
     pub frf: Frf,
+    /// Incident, reflected and transmitted waves of an `[incident]` run.
+    pub waves: Option<WaveHistories>,
     /// Summary scalars (per-interface values as `key_0`, `key_1`, ...).
     pub summary: Summary,
 }
@@ -115,8 +131,11 @@ pub fn simulate_bar_stack_with_progress(
     s: &BarStackScenario,
     progress: Option<StepProgress>,
 ) -> Result<BarStackResult> {
+    if let Some(inc) = &s.incident {
+        return simulate_incident(s, inc, progress);
+    }
     let dt = s.dt;
-    let steps = (s.spec.model.duration / dt).ceil() as usize;
+    let steps = (s.duration / dt).ceil() as usize;
     let run = FdRun {
         dt,
         t0: 0.0,
@@ -138,33 +157,7 @@ pub fn simulate_bar_stack_with_progress(
         progress,
     };
     let out = s.stack.run(&run)?;
-    let probes: Vec<ProbeHistory> = s
-        .probes
-        .iter()
-        .enumerate()
-        .map(|(k, p)| {
-            let (u, w) = (&out.displacement[1 + 2 * k], &out.displacement[2 + 2 * k]);
-            let n = u.len();
-            let mut vel = vec![0.0; n];
-            let mut acc = vec![0.0; n];
-            for i in 1..n.saturating_sub(1) {
-                vel[i] = (u[i + 1] - u[i - 1]) / (2.0 * dt);
-                acc[i] = (u[i + 1] - 2.0 * u[i] + u[i - 1]) / (dt * dt);
-            }
-            ProbeHistory {
-                name: p.name.clone(),
-                x: p.x,
-                displacement: u.clone(),
-                velocity: vel,
-                acceleration: acc,
-                stress: u
-                    .iter()
-                    .zip(w)
-                    .map(|(a, b)| p.youngs_modulus * (b - a) / p.distance)
-                    .collect(),
-            }
-        })
-        .collect();
+    let probes = probe_histories(s, &out);
     let u = &out.displacement[0];
     let n = u.len();
     let mut acc = vec![0.0; n];
@@ -205,7 +198,7 @@ pub fn simulate_bar_stack_with_progress(
             .push(h.norm() * (2.0 * std::f64::consts::PI * f).powi(2));
     }
     // free response after the pulse: first mode and its second harmonic
-    let pulse_end = s.spec.excitation.duration.unwrap_or(DEFAULT_PULSE_DURATION);
+    let pulse_end = s.pulse_duration;
     let k0 = ((2.0 * pulse_end / dt) as usize).min(n.saturating_sub(16));
     // with an imposed displacement the driven end is held after the pulse: the free
     // response is in its reaction force
@@ -255,6 +248,64 @@ pub fn simulate_bar_stack_with_progress(
             s.force_peak()
         },
     );
+    let (pressure, stiffness) = interface_histories(s, &out, &mut summary);
+    Ok(BarStackResult {
+        t: out.t.clone(),
+        force,
+        displacement: u.clone(),
+        acceleration: acc,
+        gap: out.gap.clone(),
+        pressure,
+        beta: out.beta.clone(),
+        stiffness,
+        probes,
+        frf,
+        waves: None,
+        summary,
+    })
+}
+
+/// Displacement, velocity, acceleration and stress at the `[[probe]]` points: the run
+/// records each probe's node and its neighbour, after the first node (index 0).
+fn probe_histories(s: &BarStackScenario, out: &FdOutput) -> Vec<ProbeHistory> {
+    let dt = s.dt;
+    s.probes
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let (u, w) = (&out.displacement[1 + 2 * k], &out.displacement[2 + 2 * k]);
+            let n = u.len();
+            let mut vel = vec![0.0; n];
+            let mut acc = vec![0.0; n];
+            for i in 1..n.saturating_sub(1) {
+                vel[i] = (u[i + 1] - u[i - 1]) / (2.0 * dt);
+                acc[i] = (u[i + 1] - 2.0 * u[i] + u[i - 1]) / (dt * dt);
+            }
+            ProbeHistory {
+                name: p.name.clone(),
+                x: p.x,
+                displacement: u.clone(),
+                velocity: vel,
+                acceleration: acc,
+                stress: u
+                    .iter()
+                    .zip(w)
+                    .map(|(a, b)| p.youngs_modulus * (b - a) / p.distance)
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
+/// Pressure and tangent-stiffness histories of every interface (obstacle last), and their
+/// summary values: static pressure, mean contact stiffness (eq. 4.2), minimum pressure,
+/// final adhesion and largest gap, per interface (`key_i`) and the minimum pressure over
+/// all (`min_contact_pressure`).
+fn interface_histories(
+    s: &BarStackScenario,
+    out: &FdOutput,
+    summary: &mut Summary,
+) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
     let mut min_p = f64::INFINITY;
     let laws: Vec<_> = s
         .stack
@@ -262,7 +313,7 @@ pub fn simulate_bar_stack_with_progress(
         .iter()
         .cloned()
         .chain(match &s.stack.right {
-            crate::solver::barstack::End::Obstacle(l) => Some(l.clone()),
+            End::Obstacle(l) => Some(l.clone()),
             _ => None,
         })
         .collect();
@@ -293,7 +344,7 @@ pub fn simulate_bar_stack_with_progress(
         // eq. 4.2: mean of the tangent stiffness over the response (closed instants)
         let (mut sum, mut cnt) = (0.0, 0usize);
         for &g in &out.gap[i] {
-            if g <= law.critical_gap() && !law.compression.is_rigid() {
+            if g <= uc && !law.compression.is_rigid() {
                 sum += law.compression.tangent(g);
                 cnt += 1;
             }
@@ -307,32 +358,161 @@ pub fn simulate_bar_stack_with_progress(
             if cnt > 0 { sum / cnt as f64 } else { f64::NAN },
         );
         summary.set(&format!("min_contact_pressure_{i}"), pmin);
+        summary.set(
+            &format!("beta_end_{i}"),
+            out.beta[i].last().copied().unwrap_or(1.0),
+        );
+        summary.set(
+            &format!("max_gap_{i}"),
+            out.gap[i].iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+        );
         pressure.push(p);
     }
     summary.set("min_contact_pressure", min_p);
+    (pressure, stiffness)
+}
+
+/// An `[incident]` run: the wave enters through the transparent first end, meets the
+/// interfaces, and the reflected wave leaves where it came in (and the transmitted one
+/// through a transparent far end). Harmonics of both as in the half-space analysis
+/// (velocity band amplitudes over the incident velocity amplitude `A_inc = peak / Z_0`),
+/// energy fractions, and the interface histories.
+fn simulate_incident(
+    s: &BarStackScenario,
+    inc: &Arc<dyn Excitation>,
+    progress: Option<StepProgress>,
+) -> Result<BarStackResult> {
+    let dt = s.dt;
+    let steps = (s.duration / dt).ceil() as usize;
+    let mesh = s.stack.mesh(dt);
+    let last = mesh.nodes - 1;
+    let transparent_end = matches!(s.stack.right, End::Transparent);
+    let run = FdRun {
+        dt,
+        t0: 0.0,
+        steps,
+        record_every: 1,
+        probes: std::iter::once(0)
+            .chain(s.probes.iter().flat_map(|p| [p.node, p.other]))
+            .chain(std::iter::once(last))
+            .collect(),
+        forces: vec![],
+        imposed: None,
+        progress,
+    };
+    let out = s.stack.run(&run)?;
+    let probes = probe_histories(s, &out);
+    let u0 = &out.displacement[0];
+    let n = u0.len();
+    // incident displacement at x = 0, F(t) = -(1/Z0) int_0^t s_inc (Gauss-Legendre per step)
+    let z0 = s.stack.segments[0].material.impedance();
+    let mut incident = Vec::with_capacity(n);
+    let mut acc = 0.0;
+    for (k, &t) in out.t.iter().enumerate() {
+        if k > 0 {
+            acc += gauss4(out.t[k - 1], t, |x| inc.stress(x));
+        }
+        incident.push(-acc / z0);
+    }
+    let reflected: Vec<f64> = u0.iter().zip(&incident).map(|(u, f)| u - f).collect();
+    let transmitted = transparent_end.then(|| out.displacement[out.displacement.len() - 1].clone());
+    let f0 = inc.fundamental();
+    let f2 = inc.second_frequency();
+    let a_inc = inc.peak() / z0;
+    let mut summary = Summary::new();
+    summary.set("xi", s.xi);
+    summary.set("amplitude", inc.peak());
+    summary.set("frequency", f0);
+    summary.set("A_inc", a_inc);
+    let refl = crate::run::velocity_bands(&reflected, dt, f0, f2);
+    let a = &refl.harmonic;
+    for k in 1..=5 {
+        summary.set(&format!("A{k}_over_Ainc"), a[k] / a_inc);
+    }
+    summary.set("Asub_over_Ainc", refl.subharmonic / a_inc);
+    summary.set("A2_over_A1", if a[1] > 0.0 { a[2] / a[1] } else { 0.0 });
+    summary.set(
+        "beta_star",
+        if a[1] > 0.0 {
+            a[2] / (a[1] * a[1])
+        } else {
+            0.0
+        },
+    );
+    if f2.is_some() {
+        summary.set("Af2_over_Ainc", refl.f2 / a_inc);
+        summary.set("Asum_over_Ainc", refl.sum / a_inc);
+        summary.set("Adiff_over_Ainc", refl.difference / a_inc);
+    }
+    // energies over the cross-section, J: incident S/Z0 int s_inc^2, reflected S Z0 int v^2,
+    // transmitted S Z_n int v^2 (v by differences of the recorded displacements)
+    let area = s.stack.area;
+    let e_inc = area / z0 * gauss_energy(inc, out.t.last().copied().unwrap_or(0.0));
+    let e_ref = area * z0 * velocity_energy(&reflected, dt);
+    summary.set("energy_incident", e_inc);
+    summary.set("energy_reflected_fraction", e_ref / e_inc);
+    if let Some(tr) = &transmitted {
+        let z_n = s.stack.segments[s.stack.segments.len() - 1]
+            .material
+            .impedance();
+        let bt = crate::run::velocity_bands(tr, dt, f0, f2);
+        for k in 1..=5 {
+            summary.set(
+                &format!("transmitted_A{k}_over_Ainc"),
+                bt.harmonic[k] / a_inc,
+            );
+        }
+        summary.set(
+            "energy_transmitted_fraction",
+            area * z_n * velocity_energy(tr, dt) / e_inc,
+        );
+    }
+    let (pressure, stiffness) = interface_histories(s, &out, &mut summary);
+    let mut accel = vec![0.0; n];
+    for k in 1..n.saturating_sub(1) {
+        accel[k] = (u0[k + 1] - 2.0 * u0[k] + u0[k - 1]) / (dt * dt);
+    }
     Ok(BarStackResult {
         t: out.t.clone(),
-        force,
-        displacement: u.clone(),
-        acceleration: acc,
+        force: vec![0.0; n],
+        displacement: u0.clone(),
+        acceleration: accel,
         gap: out.gap.clone(),
         pressure,
         beta: out.beta.clone(),
         stiffness,
         probes,
-        frf,
+        frf: Frf::default(),
+        waves: Some(WaveHistories {
+            incident,
+            reflected,
+            transmitted,
+        }),
         summary,
     })
+}
+
+/// `int_0^t_end s_inc^2 dt` (Pa^2 s), Gauss-Legendre between the waveform's breakpoints
+/// and over sub-intervals of a twentieth of a period.
+fn gauss_energy(inc: &Arc<dyn Excitation>, t_end: f64) -> f64 {
+    let end = inc.duration().min(t_end);
+    let h = 0.05 / inc.highest_frequency();
+    let m = (end / h).ceil().max(1.0) as usize;
+    let h = end / m as f64;
+    (0..m)
+        .map(|k| gauss4(k as f64 * h, (k + 1) as f64 * h, |x| inc.stress(x).powi(2)))
+        .sum()
+}
+
+/// `int v^2 dt` of the velocity by differences of a displacement record, m^2/s.
+fn velocity_energy(u: &[f64], dt: f64) -> f64 {
+    u.windows(2).map(|w| (w[1] - w[0]).powi(2) / dt).sum()
 }
 
 impl BarStackScenario {
     /// Peak of the force signal, N (sampled on the time grid).
     pub fn force_peak(&self) -> f64 {
-        let d = self
-            .spec
-            .excitation
-            .duration
-            .unwrap_or(DEFAULT_PULSE_DURATION);
+        let d = self.pulse_duration;
         (0..=1000)
             .map(|i| self.force.value(d * i as f64 / 1000.0).abs())
             .fold(0.0, f64::max)

@@ -2,10 +2,12 @@
 //! interface, t = 0 when its front arrives (model.md section 2). A tone burst starts with
 //! its compressive half-cycle: `s_inc = -A window(t) sin(2 pi f0 t)`.
 
+mod delayed;
 mod file;
 mod tone_burst;
 mod two_tone;
 
+pub use delayed::Delayed;
 pub use file::FileWaveform;
 pub use tone_burst::{ToneBurst, Window};
 pub use two_tone::TwoTone;

@@ -1,5 +1,7 @@
 //! Result files of a bar-stack run: `summary.json` (per-interface values as arrays),
-//! `frf.csv` and `timeseries.csv`.
+//! `timeseries.csv`, and `frf.csv` for a hammer or imposed-displacement run, `waves.csv`
+//! (incident, reflected, transmitted displacements) for an `[incident]` run, `probes.csv`
+//! with `[[probe]]` points.
 
 use super::{csv_columns, OutputFile};
 use crate::error::Result;
@@ -53,7 +55,19 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
         cols.push(&r.stiffness[i]);
     }
     let ts = csv_columns(&header, &cols);
-    let mut probe_files = Vec::new();
+    let mut extra = Vec::new();
+    if let Some(w) = &r.waves {
+        let mut header = String::from("t,incident_displacement,reflected_displacement");
+        let mut cols: Vec<&[f64]> = vec![&r.t, &w.incident, &w.reflected];
+        if let Some(tr) = &w.transmitted {
+            header.push_str(",transmitted_displacement");
+            cols.push(tr);
+        }
+        extra.push(OutputFile {
+            name: "waves.csv".into(),
+            contents: csv_columns(&header, &cols),
+        });
+    }
     if !r.probes.is_empty() {
         let mut header = String::from("t");
         let mut cols: Vec<&[f64]> = vec![&r.t];
@@ -69,26 +83,25 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
                 &p.stress[..],
             ]);
         }
-        probe_files.push(OutputFile {
+        extra.push(OutputFile {
             name: "probes.csv".into(),
             contents: csv_columns(&header, &cols),
         });
     }
-    Ok(vec![
-        OutputFile {
-            name: "summary.json".into(),
-            contents: summary,
-        },
-        OutputFile {
+    let mut files = vec![OutputFile {
+        name: "summary.json".into(),
+        contents: summary,
+    }];
+    if !f.frequency.is_empty() {
+        files.push(OutputFile {
             name: "frf.csv".into(),
             contents: frf,
-        },
-        OutputFile {
-            name: "timeseries.csv".into(),
-            contents: ts,
-        },
-    ]
-    .into_iter()
-    .chain(probe_files)
-    .collect())
+        });
+    }
+    files.push(OutputFile {
+        name: "timeseries.csv".into(),
+        contents: ts,
+    });
+    files.extend(extra);
+    Ok(files)
 }

@@ -3,8 +3,9 @@
 //! conditions, gravity, damping, a hammer force, and the static step that computes the
 //! pre-loaded interface pressures before the dynamics start.
 
-use super::spec::{CompressionSpec, MaterialSpec, TractionSpec};
+use super::spec::{CompressionSpec, IncidentSpec, MaterialSpec, TractionSpec};
 use crate::error::{Error, Result};
+use crate::excitation::{Delayed, Excitation};
 use crate::law::{registry, ContactLaw};
 use crate::numeric::pchip::Pchip;
 use crate::solver::barstack::{BarStack, End, Segment, Signal};
@@ -28,8 +29,14 @@ pub struct BarStackSpec {
     /// Interfaces between consecutive segments, and the obstacle interface.
     #[serde(rename = "interface", default)]
     pub interfaces: Vec<InterfaceSpec>,
-    /// The hammer (force at a node).
-    pub excitation: ForceSpec,
+    /// The hammer (force at the first node) or an imposed displacement of the first end.
+    /// Required unless `[incident]` is given.
+    pub excitation: Option<ForceSpec>,
+    /// An incident wave entering through a transparent first end (`model.first_end =
+    /// "transparent"`): the keys of the half-space `[incident]` (tone burst, two-tone or
+    /// file; `amplitude` in Pa or `xi` relative to the first interface). `s_inc(t)` is its
+    /// stress at x = 0, where its front arrives at t = 0.
+    pub incident: Option<IncidentSpec>,
     /// Analysis settings.
     #[serde(default)]
     pub analysis: AnalysisSpec,
@@ -89,9 +96,12 @@ pub struct ModelSpec {
     /// needs an interface `between = [last segment, "obstacle"]`).
     #[serde(default = "obstacle")]
     pub last_end: String,
-    /// Simulated time, s (default 0.2).
-    #[serde(default = "default_duration")]
-    pub duration: f64,
+    /// Simulated time, s. Default 0.2 with `[excitation]`; with `[incident]` the burst,
+    /// four travel times of the stack and 100 periods of the fundamental.
+    pub duration: Option<f64>,
+    /// Time steps per period of the incident wave's highest frequency (only with
+    /// `[incident]`), default 1000, in [16, 100000].
+    pub samples_per_period: Option<usize>,
     /// Target cell size, m (default: the shortest segment / 4).
     pub cell_size: Option<f64>,
     /// Time step, s (default: `cell_size` over the largest wave speed). Every segment is
@@ -106,9 +116,11 @@ fn free() -> String {
 fn obstacle() -> String {
     "obstacle".into()
 }
-fn default_duration() -> f64 {
-    0.2
-}
+/// Default simulated time of a hammer run, s (5 Hz FRF resolution).
+pub const DEFAULT_HAMMER_DURATION: f64 = 0.2;
+
+/// Default time steps per period of an incident wave (as `method = "fd"` half-space runs).
+pub const DEFAULT_INCIDENT_SPP: usize = super::spec::DEFAULT_SPP_FD;
 
 /// `[[segment]]`.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -240,12 +252,31 @@ pub struct BarStackScenario {
     pub stack: BarStack,
     /// Static interface pressures (between segments, then the obstacle), Pa.
     pub static_pressure: Vec<f64>,
-    /// The force signal at node 0, N.
+    /// The force signal at node 0, N (zero with an incident wave).
     pub force: Arc<dyn Signal>,
     /// `true` when `force` is an imposed displacement of the first node (m), not a force.
     pub imposed_displacement: bool,
+    /// Pulse duration of the hammer or imposed displacement, s (the free response is
+    /// analysed from twice it); 0 with an incident wave.
+    pub pulse_duration: f64,
+    /// The incident wave at x = 0 (front at t = 0), when the source is `[incident]`.
+    pub incident: Option<Arc<dyn Excitation>>,
+    /// Load ratio xi of the incident wave at the first interface (0 without one).
+    pub xi: f64,
+    /// Simulated time, s.
+    pub duration: f64,
     /// Time step, s.
     pub dt: f64,
+}
+
+/// No force.
+#[derive(Debug, Clone, Copy)]
+struct NoForce;
+
+impl Signal for NoForce {
+    fn value(&self, _t: f64) -> f64 {
+        0.0
+    }
 }
 
 fn inv(file: &str, field: impl Into<String>, v: impl std::fmt::Display, allowed: &str) -> Error {
@@ -307,7 +338,6 @@ impl BarStackScenario {
                 "must be finite (N)",
             ));
         }
-        pos(file, "model.duration", m.duration)?;
         if spec.segments.is_empty() {
             return Err(inv(file, "segment", "none", "at least one [[segment]]"));
         }
@@ -449,60 +479,67 @@ impl BarStackScenario {
                 "\"obstacle\": an [[interface]] joins the last segment to the obstacle",
             ));
         }
-        let force: Arc<dyn Signal> = match spec.excitation.kind.as_str() {
-            "force_pulse" => {
-                let peak = spec
-                    .excitation
-                    .peak
-                    .ok_or_else(|| inv(file, "excitation.peak", "(missing)", "peak force in N"))?;
-                if !peak.is_finite() {
-                    return Err(inv(file, "excitation.peak", peak, "must be finite (N)"));
-                }
-                let d = spec.excitation.duration.unwrap_or(DEFAULT_PULSE_DURATION);
-                pos(file, "excitation.duration", d)?;
-                Arc::new(HalfSine { peak, duration: d })
-            }
-            "displacement_pulse" => {
-                let peak = spec.excitation.peak.ok_or_else(|| {
-                    inv(
+        let (force, pulse_duration): (Arc<dyn Signal>, f64) =
+            match (&spec.excitation, &spec.incident) {
+                (Some(ex), None) => hammer(ex, file, dir)?,
+                (None, Some(_)) => (Arc::new(NoForce), 0.0),
+                (Some(_), Some(_)) => {
+                    return Err(inv(
                         file,
-                        "excitation.peak",
-                        "(missing)",
-                        "peak displacement in m",
-                    )
-                })?;
-                if !peak.is_finite() {
-                    return Err(inv(file, "excitation.peak", peak, "must be finite (m)"));
+                        "incident",
+                        "[incident] and [excitation]",
+                        "give one source: [excitation] (force or displacement) or [incident]",
+                    ))
                 }
-                let d = spec.excitation.duration.unwrap_or(DEFAULT_PULSE_DURATION);
-                pos(file, "excitation.duration", d)?;
-                Arc::new(HalfSine { peak, duration: d })
-            }
-            "force_file" | "displacement_file" => {
-                let rel = spec.excitation.path.as_ref().ok_or_else(|| {
-                    inv(
+                (None, None) => {
+                    return Err(inv(
                         file,
-                        "excitation.path",
+                        "excitation",
                         "(missing)",
-                        "a CSV file (time s, force N)",
-                    )
-                })?;
-                let (t, f) =
-                    crate::excitation::FileWaveform::read(&dir.join(rel), "excitation.path")?;
-                let t0 = t[0];
-                let ts: Vec<f64> = t.iter().map(|v| v - t0).collect();
-                let p = Pchip::new(&ts, &f)
-                    .ok_or_else(|| inv(file, "excitation.path", rel, "invalid force samples"))?;
-                let d = *ts.last().unwrap_or(&0.0);
-                Arc::new(ForceFile(p, d))
+                        "a source: [excitation] (force or displacement at the first end), or \
+                     [incident] with model.first_end = \"transparent\"",
+                    ))
+                }
+            };
+        // an incident wave through the transparent first end; xi refers to the first
+        // interface (or the obstacle of a one-segment stack)
+        let incident = match &spec.incident {
+            None => {
+                if let Some(spp) = m.samples_per_period {
+                    return Err(inv(
+                        file,
+                        "model.samples_per_period",
+                        spp,
+                        "only with [incident] (time steps per period of the incident wave)",
+                    ));
+                }
+                None
             }
-            other => {
-                return Err(inv(
-                    file,
-                    "excitation.kind",
-                    other,
-                    "force_pulse, force_file, displacement_pulse or displacement_file",
-                ))
+            Some(inc) => {
+                if m.first_end != "transparent" {
+                    return Err(inv(
+                        file,
+                        "model.first_end",
+                        &m.first_end,
+                        "\"transparent\": an [incident] wave enters through the first end",
+                    ));
+                }
+                let first_law: Option<(&ContactLaw, f64)> = if n >= 2 {
+                    Some((&interfaces[0], segments[1].material.impedance()))
+                } else {
+                    match &right {
+                        End::Obstacle(l) => Some((l, f64::INFINITY)),
+                        _ => None,
+                    }
+                };
+                let xi_ref = first_law.map(|(law, z2)| super::XiReference {
+                    law,
+                    static_pressure: static_pressure[0],
+                    z1: segments[0].material.impedance(),
+                    z2,
+                    pressure_key: "model.static_force / model.gravity",
+                });
+                Some(super::build_incident(inc, file, dir, xi_ref.as_ref())?)
             }
         };
         let shortest = segments
@@ -516,6 +553,25 @@ impl BarStackScenario {
             .map(|s| s.material.wave_speed())
             .fold(0.0, f64::max);
         let mut dt = dx / cmax;
+        if let Some((exc, _)) = &incident {
+            let spp = m.samples_per_period.unwrap_or(DEFAULT_INCIDENT_SPP);
+            if !(16..=100_000).contains(&spp) {
+                return Err(inv(
+                    file,
+                    "model.samples_per_period",
+                    spp,
+                    "must lie in [16, 100000]",
+                ));
+            }
+            let d = dt.min(1.0 / (exc.highest_frequency() * spp as f64));
+            // the first segment at Courant number 1: its transparent end then absorbs the
+            // outgoing wave exactly
+            let c0 = segments[0].material.wave_speed();
+            let cells0 = (segments[0].length / (c0 * d) * (1.0 - 1e-12))
+                .ceil()
+                .max(1.0);
+            dt = segments[0].length / (c0 * cells0);
+        }
         if let Some(ts) = m.time_step {
             // explicit scheme: a segment needs one cell of size >= c dt (Courant <= 1)
             let (limit, name) = segments
@@ -535,12 +591,24 @@ impl BarStackScenario {
             }
             dt = ts;
         }
-        let steps = m.duration / dt;
+        let travel: f64 = segments
+            .iter()
+            .map(|s| s.length / s.material.wave_speed())
+            .sum();
+        let duration = match (m.duration, &incident) {
+            (Some(d), _) => {
+                pos(file, "model.duration", d)?;
+                d
+            }
+            (None, Some((exc, _))) => exc.duration() + 4.0 * travel + 100.0 / exc.fundamental(),
+            (None, None) => DEFAULT_HAMMER_DURATION,
+        };
+        let steps = duration / dt;
         if steps > 5e8 {
             return Err(inv(
                 file,
                 "model.duration",
-                m.duration,
+                duration,
                 &format!("too many time steps ({steps:.2e}); raise model.cell_size"),
             ));
         }
@@ -610,7 +678,10 @@ impl BarStackScenario {
                 youngs_modulus: segments[seg].material.youngs_modulus,
             });
         }
-        let imposed_displacement = spec.excitation.kind.starts_with("displacement");
+        let imposed_displacement = spec
+            .excitation
+            .as_ref()
+            .is_some_and(|e| e.kind.starts_with("displacement"));
         if imposed_displacement && m.first_end != "free" {
             return Err(inv(
                 file,
@@ -619,6 +690,12 @@ impl BarStackScenario {
                 "\"free\": an imposed displacement (excitation.kind) drives the first end",
             ));
         }
+        // the solver takes the incident stress where the wave meets the first interface, one
+        // travel time of the first segment after it enters at x = 0
+        let at_first_interface = incident.as_ref().map(|(exc, _)| -> Arc<dyn Excitation> {
+            let c0 = segments[0].material.wave_speed();
+            Arc::new(Delayed::new(exc.clone(), segments[0].length / c0))
+        });
         Ok(BarStackScenario {
             imposed_displacement,
             probes,
@@ -628,13 +705,68 @@ impl BarStackScenario {
                 interfaces,
                 left,
                 right,
-                incident: None,
+                incident: at_first_interface,
             },
             static_pressure,
             force,
+            pulse_duration,
+            xi: incident.as_ref().map_or(0.0, |(_, xi)| *xi),
+            incident: incident.map(|(exc, _)| exc),
+            duration,
             dt,
             file: file.to_string(),
             spec,
         })
+    }
+}
+
+/// The `[excitation]` signal at the first node (force, N, or imposed displacement, m) and
+/// its pulse duration, s.
+fn hammer(ex: &ForceSpec, file: &str, dir: &Path) -> Result<(Arc<dyn Signal>, f64)> {
+    let half_sine = |unit: &str, what: &str| -> Result<(Arc<dyn Signal>, f64)> {
+        let peak = ex
+            .peak
+            .ok_or_else(|| inv(file, "excitation.peak", "(missing)", what))?;
+        if !peak.is_finite() {
+            return Err(inv(
+                file,
+                "excitation.peak",
+                peak,
+                &format!("must be finite ({unit})"),
+            ));
+        }
+        let d = ex.duration.unwrap_or(DEFAULT_PULSE_DURATION);
+        pos(file, "excitation.duration", d)?;
+        Ok((Arc::new(HalfSine { peak, duration: d }), d))
+    };
+    match ex.kind.as_str() {
+        "force_pulse" => half_sine("N", "peak force in N"),
+        "displacement_pulse" => half_sine("m", "peak displacement in m"),
+        "force_file" | "displacement_file" => {
+            let rel = ex.path.as_ref().ok_or_else(|| {
+                inv(
+                    file,
+                    "excitation.path",
+                    "(missing)",
+                    "a CSV file (time s, force N)",
+                )
+            })?;
+            let (t, f) = crate::excitation::FileWaveform::read(&dir.join(rel), "excitation.path")?;
+            let t0 = t[0];
+            let ts: Vec<f64> = t.iter().map(|v| v - t0).collect();
+            let p = Pchip::new(&ts, &f)
+                .ok_or_else(|| inv(file, "excitation.path", rel, "invalid force samples"))?;
+            let d = *ts.last().unwrap_or(&0.0);
+            Ok((
+                Arc::new(ForceFile(p, d)),
+                ex.duration.unwrap_or(DEFAULT_PULSE_DURATION),
+            ))
+        }
+        other => Err(inv(
+            file,
+            "excitation.kind",
+            other,
+            "force_pulse, force_file, displacement_pulse or displacement_file",
+        )),
     }
 }

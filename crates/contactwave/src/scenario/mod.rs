@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use crate::excitation::{Excitation, FileWaveform, ToneBurst, TwoTone, Window};
 use crate::law::{registry, ContactLaw};
 use crate::material::Material;
-use spec::{CounterpartKind, IncidentKind, MaterialSpec, ScenarioSpec, WindowKind};
+use spec::{CounterpartKind, IncidentKind, IncidentSpec, MaterialSpec, ScenarioSpec, WindowKind};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -159,7 +159,14 @@ impl Scenario {
         }
         let z1 = medium.impedance();
         let z2 = counterpart.map(|m| m.impedance()).unwrap_or(f64::INFINITY);
-        let (incident, xi) = incident(&spec, file, base_dir, &law, z1, z2)?;
+        let xi_ref = XiReference {
+            law: &law,
+            static_pressure: spec.interface.static_pressure,
+            z1,
+            z2,
+            pressure_key: "interface.static_pressure",
+        };
+        let (incident, xi) = build_incident(&spec.incident, file, base_dir, Some(&xi_ref))?;
         Ok(Scenario {
             file: file.to_string(),
             medium,
@@ -262,15 +269,29 @@ fn positive_opt(file: &str, key: &str, v: Option<f64>, default: Option<f64>) -> 
     }
 }
 
-fn incident(
-    spec: &ScenarioSpec,
+/// What the load ratio xi of an incident wave refers to (model.md section 2): the interface
+/// it first meets, its static pressure and the impedances on both sides.
+pub(crate) struct XiReference<'a> {
+    /// The interface law.
+    pub law: &'a ContactLaw,
+    /// Static pressure p0 of the interface, Pa.
+    pub static_pressure: f64,
+    /// Impedance before the interface, Pa s/m.
+    pub z1: f64,
+    /// Impedance after it (`inf` for a rigid obstacle), Pa s/m.
+    pub z2: f64,
+    /// The scenario key that sets p0 (named in the error when p0 = 0 and xi is given).
+    pub pressure_key: &'static str,
+}
+
+/// Build the incident waveform of an `[incident]` table and its load ratio xi (0 when
+/// there is no loaded interface to refer to).
+pub(crate) fn build_incident(
+    inc: &IncidentSpec,
     file: &str,
     base_dir: &Path,
-    law: &ContactLaw,
-    z1: f64,
-    z2: f64,
+    xi_ref: Option<&XiReference<'_>>,
 ) -> Result<(Arc<dyn Excitation>, f64)> {
-    let inc = &spec.incident;
     let f0 = positive_opt(file, "incident.frequency", inc.frequency, None)?;
     let cycles = positive_opt(file, "incident.cycles", inc.cycles, Some(15.0))?;
     let window = match inc.window {
@@ -289,9 +310,11 @@ fn incident(
             Window::HannRamps { ramp_fraction: r }
         }
     };
-    let p0 = spec.interface.static_pressure;
-    let bf = blocked_factor(z1, z2);
-    let xf = xi_factor(law, z1, z2, f0);
+    let p0 = xi_ref.map_or(0.0, |r| r.static_pressure);
+    let (bf, xf) = match xi_ref {
+        Some(r) => (blocked_factor(r.z1, r.z2), xi_factor(r.law, r.z1, r.z2, f0)),
+        None => (2.0, 1.0),
+    };
     // amplitude <-> xi:  xi = p0 * xf / (bf * amplitude)
     let amplitude = match (inc.amplitude, inc.xi) {
         (Some(_), Some(_)) => {
@@ -323,11 +346,12 @@ fn incident(
                 ));
             }
             if p0 <= 0.0 {
+                let key = xi_ref.map_or("an interface", |r| r.pressure_key);
                 return Err(Error::invalid(
                     file,
                     "incident.xi",
                     x,
-                    "xi needs interface.static_pressure > 0; give `amplitude` instead",
+                    format!("xi needs a static pressure > 0 ({key}); give `amplitude` instead"),
                 ));
             }
             Some(p0 * xf / (bf * x))
