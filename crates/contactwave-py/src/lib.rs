@@ -11,6 +11,7 @@
 //! `contactwave.SimulationError` (a `RuntimeError`); an interrupted sweep raises
 //! `KeyboardInterrupt`.
 
+use contactwave::scenario::bar_stack::BarStackScenario;
 use contactwave::scenario::{parse_toml, Scenario};
 use contactwave::study::{point_table, Sweep};
 use contactwave::Error;
@@ -281,6 +282,110 @@ fn simulate<'py>(py: Python<'py>, scenario: &PyScenario) -> PyResult<Bound<'py, 
         bands_dict(py, &r.reflected_bands, two_tone)?,
     )?;
     d.set_item("A_inc", sc.incident.peak() / sc.medium.impedance())?;
+    Ok(d)
+}
+
+/// The table of a scenario file (TOML) or of a dict's JSON text, and the path naming it.
+fn any_table(
+    path: Option<PathBuf>,
+    text: Option<&str>,
+    file: &str,
+) -> PyResult<(toml::Table, PathBuf)> {
+    match (path, text) {
+        (Some(p), None) => {
+            let t = std::fs::read_to_string(&p).map_err(|e| to_py(Error::io(&p, e)))?;
+            Ok((parse_toml(&t, &p.display().to_string()).map_err(to_py)?, p))
+        }
+        (None, Some(t)) => Ok((
+            table_from_json(t, file).map_err(to_py)?,
+            PathBuf::from(file),
+        )),
+        _ => Err(PyTypeError::new_err(
+            "give exactly one of `path` and `text`",
+        )),
+    }
+}
+
+/// Is this scenario file (TOML) or dict (JSON text) a bar stack (`[model] kind =
+/// "bar_stack"`)?
+#[pyfunction]
+#[pyo3(signature = (path = None, text = None, file = "<dict>"))]
+fn is_bar_stack(path: Option<PathBuf>, text: Option<&str>, file: &str) -> PyResult<bool> {
+    let (table, _) = any_table(path, text, file)?;
+    Ok(BarStackScenario::is_bar_stack(&table))
+}
+
+/// One row per history of equal length: a 2-D array (rows x samples).
+fn rows<'py>(py: Python<'py>, v: &[Vec<f64>]) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+    let n = v.first().map_or(0, Vec::len);
+    let flat: Vec<f64> = v.iter().flat_map(|r| r.iter().copied()).collect();
+    let a = Array2::from_shape_vec((v.len(), n), flat)
+        .map_err(|e| PyValueError::new_err(format!("ragged histories: {e}")))?;
+    Ok(a.into_pyarray(py))
+}
+
+/// Run a bar-stack scenario given as a TOML file (`path`) or a dict's JSON text (`text`,
+/// named `file`), with the GIL released. Returns a dict: `t`, `force`, `displacement`,
+/// `acceleration` (arrays), `gap`, `pressure`, `beta`, `stiffness` (interfaces x samples),
+/// `frf` (dict of arrays, empty for an incident-wave run), `waves` (dict of arrays or
+/// `None`), `probes` (name -> dict of arrays), `static_pressure` (list, Pa), `dt` (s),
+/// `summary` (dict).
+#[pyfunction]
+#[pyo3(signature = (path = None, text = None, file = "<dict>"))]
+fn simulate_bar_stack<'py>(
+    py: Python<'py>,
+    path: Option<PathBuf>,
+    text: Option<&str>,
+    file: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (table, path) = any_table(path, text, file)?;
+    let s = BarStackScenario::from_table(table, &path).map_err(to_py)?;
+    let s = Arc::new(s);
+    let sc = s.clone();
+    let r = py
+        .detach(move || contactwave::simulate_bar_stack(&sc))
+        .map_err(to_py)?;
+    let d = PyDict::new(py);
+    d.set_item("dt", s.dt)?;
+    d.set_item("static_pressure", s.static_pressure.clone())?;
+    d.set_item("gap", rows(py, &r.gap)?)?;
+    d.set_item("pressure", rows(py, &r.pressure)?)?;
+    d.set_item("beta", rows(py, &r.beta)?)?;
+    d.set_item("stiffness", rows(py, &r.stiffness)?)?;
+    let frf = PyDict::new(py);
+    frf.set_item("frequency", r.frf.frequency.into_pyarray(py))?;
+    frf.set_item("receptance", r.frf.receptance.into_pyarray(py))?;
+    frf.set_item("receptance_phase", r.frf.phase.into_pyarray(py))?;
+    frf.set_item("accelerance", r.frf.accelerance.into_pyarray(py))?;
+    d.set_item("frf", frf)?;
+    match r.waves {
+        Some(w) => {
+            let wd = PyDict::new(py);
+            wd.set_item("incident", w.incident.into_pyarray(py))?;
+            wd.set_item("reflected", w.reflected.into_pyarray(py))?;
+            if let Some(tr) = w.transmitted {
+                wd.set_item("transmitted", tr.into_pyarray(py))?;
+            }
+            d.set_item("waves", wd)?;
+        }
+        None => d.set_item("waves", py.None())?,
+    }
+    let probes = PyDict::new(py);
+    for p in r.probes {
+        let pd = PyDict::new(py);
+        pd.set_item("x", p.x)?;
+        pd.set_item("displacement", p.displacement.into_pyarray(py))?;
+        pd.set_item("velocity", p.velocity.into_pyarray(py))?;
+        pd.set_item("acceleration", p.acceleration.into_pyarray(py))?;
+        pd.set_item("stress", p.stress.into_pyarray(py))?;
+        probes.set_item(p.name, pd)?;
+    }
+    d.set_item("probes", probes)?;
+    d.set_item("summary", summary_dict(py, Some(&s.file), &r.summary)?)?;
+    d.set_item("t", r.t.into_pyarray(py))?;
+    d.set_item("force", r.force.into_pyarray(py))?;
+    d.set_item("displacement", r.displacement.into_pyarray(py))?;
+    d.set_item("acceleration", r.acceleration.into_pyarray(py))?;
     Ok(d)
 }
 
@@ -586,6 +691,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load_scenario, m)?)?;
     m.add_function(wrap_pyfunction!(scenario_from_json, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate_bar_stack, m)?)?;
+    m.add_function(wrap_pyfunction!(is_bar_stack, m)?)?;
     m.add_function(wrap_pyfunction!(bench_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(law_curve, m)?)?;
     m.add_function(wrap_pyfunction!(fit_power_law, m)?)?;

@@ -1,0 +1,106 @@
+"""Bar stacks from Python (`cw.run_bar_stack`, and `cw.run` on a bar-stack file): the
+Tribobrake hammer test and an incident-wave run, numpy results, errors naming the field."""
+
+import os
+
+import numpy as np
+import pytest
+
+import contactwave as cw
+
+EXAMPLES = os.path.join(os.path.dirname(__file__), "..", "..", "examples")
+
+
+def test_tribobrake_hammer_test_from_a_file():
+    r = cw.run(os.path.join(EXAMPLES, "tribobrake.toml"))
+    assert isinstance(r, cw.BarStackResult)
+    # thesis chapter 4: the mass-spring mode between 780 and 900 Hz, closed contacts
+    assert 780.0 <= r.summary["first_mode_hz"] <= 900.0
+    assert r.summary["min_contact_pressure"] > 0.0
+    n = len(r.t)
+    assert r.gap.shape == (2, n) and r.pressure.shape == (2, n)
+    assert r.displacement.dtype == np.float64 and r.displacement.shape == (n,)
+    # the static step: p0 = m g / S at the guide/sample interface
+    assert r.static_pressure[0] == pytest.approx(1.61 * 9.81 / 1.15e-4, rel=1e-9)
+    # the pressure history starts at p0
+    assert r.pressure[0, 0] == pytest.approx(r.static_pressure[0], rel=1e-9)
+    assert r.waves is None
+    assert r.frf["receptance"].shape == r.frf["frequency"].shape
+
+
+def tribobrake_dict(compression, peak):
+    law = {"between": ["guide", "sample"], "compression": compression, "traction": {"law": "free"}}
+    return {
+        "model": {"kind": "bar_stack", "area": 1.15e-4, "gravity": 9.81, "duration": 0.2},
+        "segment": [
+            {"name": "guide", "length": 0.229, "material": "aluminium", "mass": 1.61},
+            {"name": "sample", "length": 0.015, "material": "aluminium"},
+        ],
+        "interface": [law, dict(law, between=["sample", "obstacle"])],
+        "excitation": {"kind": "force_pulse", "peak": peak},
+    }
+
+
+def test_linear_tribobrake_frf_peaks_at_the_first_mode():
+    # a constant 8.5e11 Pa/m: about 840 Hz (lumped estimate), no second harmonic
+    r = cw.run_bar_stack(tribobrake_dict({"law": "linear", "stiffness": 8.5e11}, 9.0))
+    f1 = r.summary["first_mode_hz"]
+    assert 800.0 <= f1 <= 880.0
+    assert r.summary["A2_over_A1"] < 1e-3
+    f = r.frf["frequency"]
+    band = (f > 300.0) & (f < 1350.0)
+    f_peak = f[band][np.argmax(r.frf["receptance"][band])]
+    assert f_peak == pytest.approx(f1, rel=0.01)
+
+
+def test_incident_wave_run_from_a_dict():
+    d = {
+        "model": {
+            "kind": "bar_stack",
+            "area": 1.0,
+            "static_force": 0.1e6,
+            "first_end": "transparent",
+            "last_end": "obstacle",
+        },
+        "segment": [{"name": "bar", "length": 0.005, "material": "pmma"}],
+        "interface": [
+            {
+                "between": ["bar", "obstacle"],
+                "compression": {"law": "rigid"},
+                "traction": {"law": "free"},
+            }
+        ],
+        "incident": {"frequency": 1e6, "cycles": 15, "xi": 0.35},
+        "probe": [{"name": "mid", "x": 0.0025}],
+    }
+    r = cw.run(d)
+    assert isinstance(r, cw.BarStackResult)
+    # the same problem by the exact half-space solver (unilateral contact, rigid wall)
+    h = cw.run(
+        {
+            "medium": {"material": "pmma"},
+            "interface": {"static_pressure": 0.1e6},
+            "incident": {"frequency": 1e6, "cycles": 15, "xi": 0.35},
+        }
+    )
+    for key in ("A1_over_Ainc", "A2_over_Ainc"):
+        assert r.summary[key] == pytest.approx(h.summary[key], rel=0.01)
+    assert set(r.waves) == {"incident", "reflected"}
+    assert r.waves["reflected"].shape == r.t.shape
+    assert len(r.frf["frequency"]) == 0
+    assert r.probes["mid"]["x"] == 0.0025
+    assert r.probes["mid"]["stress"].shape == r.t.shape
+
+
+def test_bad_bar_stack_names_the_field():
+    d = {
+        "model": {"kind": "bar_stack", "area": 1.0, "first_end": "free", "last_end": "free"},
+        "segment": [{"name": "bar", "length": 0.005, "material": "pmma"}],
+        "incident": {"frequency": 1e6, "amplitude": 1e5},
+    }
+    with pytest.raises(ValueError, match="model.first_end"):
+        cw.run_bar_stack(d, file="mine.toml")
+    with pytest.raises(ValueError, match="mine.toml"):
+        cw.run_bar_stack(d, file="mine.toml")
+    with pytest.raises(FileNotFoundError):
+        cw.run_bar_stack(os.path.join(EXAMPLES, "nope.toml"))
