@@ -50,9 +50,7 @@ fn half_space(c: &mut Criterion) {
         steps,
         record_every: 1,
         probes: vec![1500],
-        forces: vec![],
-        imposed: None,
-        progress: None,
+        ..FdRun::default()
     };
     let mut g = c.benchmark_group("fd_half_space_3000_nodes");
     g.throughput(Throughput::Elements(((cells + 1) * steps) as u64));
@@ -75,9 +73,7 @@ fn tribobrake(c: &mut Criterion) {
         steps,
         record_every: 1,
         probes: vec![0],
-        forces: vec![],
-        imposed: None,
-        progress: None,
+        ..FdRun::default()
     };
     let mut g = c.benchmark_group("fd_tribobrake_0.02s");
     g.throughput(Throughput::Elements((nodes * steps) as u64));

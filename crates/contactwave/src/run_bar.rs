@@ -155,6 +155,7 @@ pub fn simulate_bar_stack_with_progress(
         },
         imposed: s.imposed_displacement.then(|| s.force.clone()),
         progress,
+        interface_scheme: s.interface_scheme,
     };
     let out = s.stack.run(&run)?;
     let probes = probe_histories(s, &out);
@@ -399,6 +400,7 @@ fn simulate_incident(
         forces: vec![],
         imposed: None,
         progress,
+        interface_scheme: s.interface_scheme,
     };
     let out = s.stack.run(&run)?;
     let probes = probe_histories(s, &out);

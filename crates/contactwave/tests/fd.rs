@@ -41,9 +41,7 @@ fn courant_one_pulse_crosses_unchanged() {
         steps: 1000,
         record_every: 1,
         probes: vec![p1, p2],
-        forces: vec![],
-        imposed: None,
-        progress: None,
+        ..FdRun::default()
     };
     let out = stack.run(&run).unwrap();
     let lag = p2 - p1; // steps for 200 cells at Courant 1

@@ -114,7 +114,7 @@ pub enum CompressionSpec {
         /// Transition pressure p_t, Pa (default 0.2e6).
         #[serde(default = "default_transition_pressure")]
         transition_pressure: f64,
-        /// Stiffness at zero pressure K(0) as a fraction of K(p_t) (default 0.05), in (0, 1);
+        /// Stiffness at zero pressure K(0) as a fraction of K(p_t) (default 0.2), in (0, 1);
         /// the branch has one inflection point for fractions below `1 - 2m/3`.
         #[serde(default = "default_zero_pressure_fraction")]
         zero_pressure_fraction: f64,
@@ -133,10 +133,11 @@ pub fn default_transition_pressure() -> f64 {
     0.2e6
 }
 /// Default K(0)/K(p_t) of the modified power law: with it the Tribobrake model gives the
-/// thesis' chapter-4 trends (first mode 780-900 Hz, a frequency drop from 9 N to 32 N
-/// larger than with the plain power law).
+/// thesis' chapter-4 trends (first mode 780-900 Hz at 32 N, close to a constant 8.5e11
+/// Pa/m; a frequency drop from 9 N to 32 N of about 5%, larger than with the plain power
+/// law; minimum contact pressures near the thesis' Figure 70).
 pub fn default_zero_pressure_fraction() -> f64 {
-    0.05
+    0.2
 }
 
 /// Traction branch of the contact law (model.md section 3).
@@ -265,6 +266,9 @@ pub struct SolverSpec {
     /// Time simulated after the burst has passed, in periods of f0 (default: automatic,
     /// until the interface is back at rest, at least 3 and at most 400 periods; 100 for fd).
     pub tail_periods: Option<f64>,
+    /// Interface time discretisation of the `fd` method (default `average`).
+    #[serde(default)]
+    pub interface_update: InterfaceUpdate,
 }
 
 impl Default for SolverSpec {
@@ -273,6 +277,29 @@ impl Default for SolverSpec {
             method: Method::Exact,
             samples_per_period: None,
             tail_periods: None,
+            interface_update: InterfaceUpdate::default(),
+        }
+    }
+}
+
+/// How the finite-difference schemes advance an interface (model.md section 9.2).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InterfaceUpdate {
+    /// Mean of the interface stresses at the new and the previous-but-one time level:
+    /// second order and free of numerical dissipation for compliant laws.
+    #[default]
+    Average,
+    /// The stress of the new time level over the whole step (the thesis' eqs. 2.27-2.31):
+    /// first order, numerically dissipative.
+    Backward,
+}
+
+impl From<InterfaceUpdate> for crate::solver::barstack::InterfaceScheme {
+    fn from(u: InterfaceUpdate) -> Self {
+        match u {
+            InterfaceUpdate::Average => crate::solver::barstack::InterfaceScheme::Average,
+            InterfaceUpdate::Backward => crate::solver::barstack::InterfaceScheme::Backward,
         }
     }
 }

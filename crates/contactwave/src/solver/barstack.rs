@@ -156,8 +156,25 @@ pub struct FdOutput {
     pub node_updates: u64,
 }
 
+/// How the interface force enters the step (the law itself holds exactly at the new time
+/// level in both).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum InterfaceScheme {
+    /// The interface stress of the new time level acts over the whole step (backward,
+    /// as thesis eqs. 2.27-2.31): first order, and it dissipates energy (a linear spring
+    /// interface loses a fraction of order `K chi` of its vibration energy per step).
+    Backward,
+    /// The mean of the interface stresses at the new and the previous-but-one level
+    /// replaces the stress at the current level in the centred scheme (trapezoidal /
+    /// average acceleration): second order, no numerical dissipation for a linear spring,
+    /// unconditionally stable. Rigid (Signorini, bonded) branches keep the backward
+    /// projection, which enforces the constraint at the new level.
+    #[default]
+    Average,
+}
+
 /// Settings of a run.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct FdRun {
     /// Time step, s.
     pub dt: f64,
@@ -176,6 +193,46 @@ pub struct FdRun {
     pub imposed: Option<Arc<dyn Signal>>,
     /// Called with (steps done, steps) every 4096 steps (long runs report progress).
     pub progress: Option<StepProgress>,
+    /// Interface time discretisation.
+    pub interface_scheme: InterfaceScheme,
+}
+
+/// What every interface update of one time step shares.
+#[derive(Debug, Clone, Copy)]
+struct StepContext {
+    scheme: InterfaceScheme,
+    /// Time step, s.
+    dt: f64,
+    /// The new time level, s (for error messages).
+    t: f64,
+}
+
+/// One interface update: `s_old` is the dynamic stress two levels back (Pa); returns the
+/// update (its `dynamic_stress` the stress of the new level) and the stress to apply over
+/// the step.
+#[inline]
+fn interface_step(
+    ctx: StepContext,
+    law: &ContactLaw,
+    gt: f64,
+    chi: f64,
+    beta_old: f64,
+    s_old: f64,
+) -> Result<(interface::InterfaceUpdate, f64)> {
+    let StepContext { scheme, dt, t } = ctx;
+    if scheme == InterfaceScheme::Average {
+        // g = g~ - chi (S_new + S_old) / 2: the update with compliance chi/2 from the
+        // shifted prediction g~ - chi S_old / 2
+        let upd = interface::update(law, gt - 0.5 * chi * s_old, 0.5 * chi, beta_old, dt, t)?;
+        let uc = law.critical_gap();
+        let on_constraint = (upd.gap <= uc && law.compression.is_rigid())
+            || (upd.gap >= uc && law.traction.is_rigid());
+        if !on_constraint {
+            return Ok((upd, 0.5 * (upd.dynamic_stress + s_old)));
+        }
+    }
+    let upd = interface::update(law, gt, chi, beta_old, dt, t)?;
+    Ok((upd, upd.dynamic_stress))
 }
 
 /// A progress callback of a run: `(steps done, total steps)`.
@@ -274,6 +331,10 @@ impl BarStack {
             node_updates: 0,
         };
         let mut gaps = vec![0.0; n_if];
+        // dynamic interface stress at the previous two levels (0 at the static equilibrium)
+        let mut s_prev = vec![0.0; n_if];
+        let mut s_cur = vec![0.0; n_if];
+        let scheme = run.interface_scheme;
         let mut stresses: Vec<f64> = self.interfaces.iter().map(|l| -l.static_pressure).collect();
         if let End::Obstacle(l) = &self.right {
             stresses.push(-l.static_pressure);
@@ -311,6 +372,7 @@ impl BarStack {
             }
             let t = run.t0 + step as f64 * dt;
             let t1 = t + dt;
+            let ctx = StepContext { scheme, dt, t: t1 };
             for (f, src) in force.iter_mut().zip(&run.forces) {
                 *f = src.signal.value(t);
             }
@@ -370,8 +432,11 @@ impl BarStack {
                 End::Obstacle(law) => {
                     let i = n_if - 1;
                     let chi = inv_mass[0] / damp_p[0] * self.area;
-                    let upd = interface::update(law, u_next[0], chi, beta[i], dt, t1)?;
-                    u_next[0] -= chi * upd.dynamic_stress;
+                    let (upd, s_app) =
+                        interface_step(ctx, law, u_next[0], chi, beta[i], s_prev[i])?;
+                    u_next[0] -= chi * s_app;
+                    s_prev[i] = s_cur[i];
+                    s_cur[i] = upd.dynamic_stress;
                     gaps[i] = upd.gap;
                     stresses[i] = upd.dynamic_stress - law.static_pressure;
                     beta[i] = upd.adhesion;
@@ -391,8 +456,11 @@ impl BarStack {
                 End::Obstacle(law) => {
                     let i = self.interfaces.len();
                     let chi = inv_mass[last] / damp_p[last] * self.area;
-                    let upd = interface::update(law, -u_next[last], chi, beta[i], dt, t1)?;
-                    u_next[last] += chi * upd.dynamic_stress;
+                    let (upd, s_app) =
+                        interface_step(ctx, law, -u_next[last], chi, beta[i], s_prev[i])?;
+                    u_next[last] += chi * s_app;
+                    s_prev[i] = s_cur[i];
+                    s_cur[i] = upd.dynamic_stress;
                     gaps[i] = upd.gap;
                     stresses[i] = upd.dynamic_stress - law.static_pressure;
                     beta[i] = upd.adhesion;
@@ -404,10 +472,18 @@ impl BarStack {
                 let b = mesh.offset[i + 1];
                 let chi_a = inv_mass[a] / damp_p[a] * self.area;
                 let chi_b = inv_mass[b] / damp_p[b] * self.area;
-                let upd =
-                    interface::update(law, u_next[b] - u_next[a], chi_a + chi_b, beta[i], dt, t1)?;
-                u_next[a] += chi_a * upd.dynamic_stress;
-                u_next[b] -= chi_b * upd.dynamic_stress;
+                let (upd, s_app) = interface_step(
+                    ctx,
+                    law,
+                    u_next[b] - u_next[a],
+                    chi_a + chi_b,
+                    beta[i],
+                    s_prev[i],
+                )?;
+                u_next[a] += chi_a * s_app;
+                u_next[b] -= chi_b * s_app;
+                s_prev[i] = s_cur[i];
+                s_cur[i] = upd.dynamic_stress;
                 gaps[i] = upd.gap;
                 stresses[i] = upd.dynamic_stress - law.static_pressure;
                 beta[i] = upd.adhesion;

@@ -71,6 +71,7 @@ pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
         forces: vec![],
         imposed: None,
         progress: None,
+        interface_scheme: scenario.spec.solver.interface_update.into(),
     };
     let fd = stack.run(&run)?;
     // back to interface time: the left end sees the reflection len1/c1 later

@@ -3,7 +3,7 @@
 //! inflection point, as reported for low contact pressures.
 //!
 //! The thesis gives the shape only graphically; contactwave uses the cubic Hermite branch
-//! on `[0, p_t]` with `K(0) = phi K(p_t)` (`zero_pressure_fraction`, default 0.05),
+//! on `[0, p_t]` with `K(0) = phi K(p_t)` (`zero_pressure_fraction`, default 0.2),
 //! `K'(0) = 0`, and value and slope matching the power law at `p_t` (C1 joint). The cubic
 //! is convex near 0 and concave near `p_t`: one inflection point in between.
 
