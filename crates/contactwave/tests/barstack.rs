@@ -303,3 +303,48 @@ fn bar_stack_runs_report_progress() {
     assert!(seen.len() >= total / 4096 && seen.windows(2).all(|w| w[1].0 > w[0].0));
     assert!(seen.last().unwrap().0 + 4096 > total);
 }
+
+/// Without damping the Tribobrake's mass-spring vibration keeps its amplitude with the
+/// default `average` interface update (no numerical dissipation), so the first mode of the
+/// nonlinear law is converged at the default mesh; the thesis' `backward` update damps it
+/// numerically (model.md section 9.2).
+#[test]
+fn undamped_vibration_keeps_its_amplitude() {
+    let run = |law: &str, settings: &str| {
+        let text = with(law, 9.0).replace(
+            "duration = 0.2 ",
+            &format!("duration = 0.1\n{settings}\n# "),
+        );
+        simulate_bar_stack(&load(&text).unwrap()).unwrap()
+    };
+    let amplitude_ratio = |r: &contactwave::BarStackResult| {
+        let p = &r.pressure[0];
+        let swing = |a: f64| {
+            let w: Vec<f64> =
+                r.t.iter()
+                    .zip(p)
+                    .filter(|(t, _)| **t >= a && **t < a + 0.01)
+                    .map(|(_, v)| *v)
+                    .collect();
+            let max = w.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+            let min = w.iter().cloned().fold(f64::INFINITY, f64::min);
+            max - min
+        };
+        swing(0.089) / swing(0.01)
+    };
+    let avg = amplitude_ratio(&run("linear", ""));
+    assert!((avg - 1.0).abs() < 0.01, "average: amplitude ratio {avg}");
+    let bwd = amplitude_ratio(&run("linear", "interface_update = \"backward\""));
+    assert!(bwd < 0.8, "backward: amplitude ratio {bwd}");
+    let f1 = |settings: &str| {
+        run("modified_power", settings)
+            .summary
+            .get("first_mode_hz")
+            .unwrap()
+    };
+    let (coarse, fine) = (f1(""), f1("cell_size = 1.875e-3"));
+    assert!(
+        (coarse / fine - 1.0).abs() < 2e-3,
+        "first mode {coarse} Hz at the default mesh, {fine} Hz at half the cell size"
+    );
+}
