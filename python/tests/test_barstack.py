@@ -48,7 +48,9 @@ def test_linear_tribobrake_frf_peaks_at_the_first_mode():
     assert 800.0 <= f1 <= 880.0
     assert r.summary["A2_over_A1"] < 1e-3
     f = r.frf["frequency"]
-    band = (f > 300.0) & (f < 1350.0)
+    # below the first zero of the 1.135 ms half-sine's spectrum (1.32 kHz), where the H1
+    # estimate does not hold
+    band = (f > 300.0) & (f < 1250.0)
     f_peak = f[band][np.argmax(r.frf["receptance"][band])]
     assert f_peak == pytest.approx(f1, rel=0.01)
 
