@@ -6,7 +6,7 @@ use contactwave::excitation::{ToneBurst, Window};
 use contactwave::law::{compression::Rigid, traction::Free, ContactLaw};
 use contactwave::material::Material;
 use contactwave::scenario::bar_stack::BarStackScenario;
-use contactwave::solver::barstack::{BarStack, End, FdRun, Segment};
+use contactwave::solver::barstack::{BarStack, End, FdRun, InterfaceScheme, Segment};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::path::Path;
 use std::sync::Arc;
@@ -56,6 +56,13 @@ fn half_space(c: &mut Criterion) {
     g.throughput(Throughput::Elements(((cells + 1) * steps) as u64));
     g.sample_size(20);
     g.bench_function("unilateral", |b| b.iter(|| stack.run(&run).unwrap()));
+    let backward = FdRun {
+        interface_scheme: InterfaceScheme::Backward,
+        ..run.clone()
+    };
+    g.bench_function("unilateral_backward", |b| {
+        b.iter(|| stack.run(&backward).unwrap())
+    });
     g.finish();
 }
 
@@ -79,6 +86,13 @@ fn tribobrake(c: &mut Criterion) {
     g.throughput(Throughput::Elements((nodes * steps) as u64));
     g.sample_size(10);
     g.bench_function("modified_power", |b| b.iter(|| s.stack.run(&run).unwrap()));
+    let backward = FdRun {
+        interface_scheme: InterfaceScheme::Backward,
+        ..run.clone()
+    };
+    g.bench_function("modified_power_backward", |b| {
+        b.iter(|| s.stack.run(&backward).unwrap())
+    });
     g.finish();
 }
 
