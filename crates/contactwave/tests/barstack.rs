@@ -66,6 +66,17 @@ fn tribobrake_modes() {
     );
     let fg = g("guide_mode_hz");
     assert!((10.0e3..=12.5e3).contains(&fg), "guide mode {fg}");
+    // the H1 receptance peaks at the first mode (below the first zero of the pulse's
+    // spectrum, 1.32 kHz): a sharp peak, the vibration keeps its frequency
+    let k = (0..r.frf.frequency.len())
+        .filter(|&k| r.frf.frequency[k] > 300.0 && r.frf.frequency[k] < 1250.0)
+        .max_by(|&a, &b| r.frf.receptance[a].total_cmp(&r.frf.receptance[b]))
+        .unwrap();
+    assert!(
+        (r.frf.frequency[k] / f1 - 1.0).abs() < 0.01,
+        "FRF peak {} Hz vs first mode {f1} Hz",
+        r.frf.frequency[k]
+    );
     // thesis Figure 70: closed at 32 N, minimum contact pressure about 0.025 MPa
     let pmin = g("min_contact_pressure");
     assert!((0.02e6..=0.03e6).contains(&pmin), "min pressure {pmin}");
