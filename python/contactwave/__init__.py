@@ -436,6 +436,8 @@ def _base(base: ScenarioLike) -> Tuple[str, str]:
     """(table as JSON, path standing for it) of a sweep's base scenario."""
     if isinstance(base, Mapping):
         return _to_json(base, "<dict>"), "<dict>"
+    if isinstance(base, (str, os.PathLike)) and _is_bar_stack(base):
+        return _core.table_json(os.fspath(base)), os.fspath(base)
     s = _as_scenario(base)
     return s.to_json(), os.fspath(s.path)
 
@@ -504,7 +506,10 @@ def sweep(
 ) -> Any:
     """Run a parameter sweep: the grid of ``axes`` over the ``base`` scenario.
 
-    ``base``: a Scenario, a dict or a scenario file path. ``axes``: maps dotted scenario
+    ``base``: a Scenario, a dict or a scenario file path, half-space or bar stack (the
+    rows of a bar-stack sweep carry its summary keys: ``first_mode_hz``, ``A2_over_A1``,
+    ``min_contact_pressure``, ...; or the reflected-wave keys of an ``[incident]`` run).
+    ``axes``: maps dotted scenario
     keys to value arrays, e.g. ``{"incident.xi": np.linspace(0.05, 1.2, 47),
     "interface.traction.stiffness": [1e12, 1e13]}``; several axes form a grid, first axis
     slowest, exactly like a sweep file's ``[[axis]]`` tables. Every point is validated

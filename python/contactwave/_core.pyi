@@ -31,6 +31,7 @@ def simulate_bar_stack(
     text: Optional[str] = None,
     file: str = "<dict>",
 ) -> Dict[str, Any]: ...
+def table_json(path: Union[str, PathLike[str]]) -> str: ...
 def is_bar_stack(
     path: Optional[Union[str, PathLike[str]]] = None,
     text: Optional[str] = None,

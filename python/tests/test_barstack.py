@@ -106,3 +106,18 @@ def test_bad_bar_stack_names_the_field():
         cw.run_bar_stack(d, file="mine.toml")
     with pytest.raises(FileNotFoundError):
         cw.run_bar_stack(os.path.join(EXAMPLES, "nope.toml"))
+
+
+def test_bar_stack_sweep_locally_and_on_an_executor():
+    from concurrent.futures import ThreadPoolExecutor
+
+    path = os.path.join(EXAMPLES, "tribobrake.toml")
+    axes = {"excitation.peak": [9.0, 32.0]}
+    local = cw.sweep(path, axes, threads=2, as_frame=False)
+    f = local["first_mode_hz"]
+    # thesis chapter 4: the first mode falls with the force (modified power law)
+    assert f[1] < f[0] and 780.0 <= f[1] <= 900.0
+    with ThreadPoolExecutor(2) as ex:
+        remote = cw.sweep(path, axes, ex, chunk_size=1, as_frame=False)
+    assert np.array_equal(remote["first_mode_hz"], f)
+    assert np.array_equal(remote["min_contact_pressure"], local["min_contact_pressure"])

@@ -12,7 +12,7 @@
 //! `KeyboardInterrupt`.
 
 use contactwave::scenario::bar_stack::BarStackScenario;
-use contactwave::scenario::{parse_toml, Scenario};
+use contactwave::scenario::{parse_toml, AnyScenario, Scenario};
 use contactwave::study::{point_table, Sweep};
 use contactwave::Error;
 use numpy::ndarray::Array2;
@@ -306,6 +306,13 @@ fn any_table(
     }
 }
 
+/// The table of a scenario file (TOML), as JSON text (what sweeps take as their base).
+#[pyfunction]
+fn table_json(path: PathBuf) -> PyResult<String> {
+    let (table, _) = any_table(Some(path), None, "")?;
+    serde_json::to_string(&table).map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
 /// Is this scenario file (TOML) or dict (JSON text) a bar stack (`[model] kind =
 /// "bar_stack"`)?
 #[pyfunction]
@@ -464,10 +471,8 @@ fn fit_power_law<'py>(
 /// What one sweep point gave: its summary or its error message.
 type Outcome = Result<contactwave::analysis::Summary, String>;
 
-fn run_one(scenario: &Scenario) -> Outcome {
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        contactwave::simulate_summary(scenario)
-    })) {
+fn run_one(scenario: &AnyScenario) -> Outcome {
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| scenario.summary())) {
         Ok(Ok(s)) => Ok(s),
         Ok(Err(e)) => Err(e.to_string()),
         Err(panic) => Err(format!(
@@ -533,7 +538,7 @@ fn sweep_plan<'py>(
     let sweep = py
         .detach(move || -> Result<Sweep, Error> {
             let sweep = Sweep::from_parts(Path::new("<sweep>"), base_path, table, axes)?;
-            sweep.scenarios()?;
+            sweep.runnable()?;
             Ok(sweep)
         })
         .map_err(to_py)?;
@@ -558,7 +563,7 @@ fn sweep_local<'py>(
     let (sweep, scenarios) = py
         .detach(move || -> Result<_, Error> {
             let sweep = Sweep::from_parts(Path::new("<sweep>"), base_path, table, axes)?;
-            let scenarios = sweep.scenarios()?;
+            let scenarios = sweep.runnable()?;
             Ok((sweep, scenarios))
         })
         .map_err(to_py)?;
@@ -592,7 +597,7 @@ fn points_array<'py>(py: Python<'py>, sweep: &Sweep) -> PyResult<Bound<'py, nump
 /// wait for the running points and return the signal's exception.
 fn run_interruptibly(
     py: Python<'_>,
-    scenarios: &[Scenario],
+    scenarios: &[AnyScenario],
     pool: Option<&rayon::ThreadPool>,
 ) -> PyResult<Vec<Outcome>> {
     use rayon::prelude::*;
@@ -673,7 +678,7 @@ fn run_points<'py>(
         rows.iter()
             .map(|values| {
                 point_table(&table, &params, values, "<sweep>")
-                    .and_then(|t| Scenario::from_table(t, &base_path))
+                    .and_then(|t| AnyScenario::from_table(t, &base_path))
                     .map_err(|e| e.to_string())
                     .and_then(|sc| run_one(&sc))
             })
@@ -693,6 +698,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_bar_stack, m)?)?;
     m.add_function(wrap_pyfunction!(is_bar_stack, m)?)?;
+    m.add_function(wrap_pyfunction!(table_json, m)?)?;
     m.add_function(wrap_pyfunction!(bench_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(law_curve, m)?)?;
     m.add_function(wrap_pyfunction!(fit_power_law, m)?)?;
