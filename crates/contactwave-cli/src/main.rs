@@ -351,7 +351,8 @@ fn run_bar_stack(table: toml::Table, path: &Path, out: &Path) -> contactwave::Re
     let get = |k: &str| result.summary.get(k).unwrap_or(f64::NAN);
     println!("scenario               {}", path.display());
     for (i, p) in scenario.static_pressure.iter().enumerate() {
-        println!("static pressure [{i}]    {p:.6e} Pa");
+        let closure = get(&format!("static_interface_closure_{i}"));
+        println!("static pressure [{i}]    {p:.6e} Pa (closure {closure:.4e} m)");
     }
     if scenario.incident.is_some() {
         println!("xi (first interface)   {:.6}", get("xi"));

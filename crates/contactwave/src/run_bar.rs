@@ -299,7 +299,7 @@ fn probe_histories(s: &BarStackScenario, out: &FdOutput) -> Vec<ProbeHistory> {
 }
 
 /// Pressure and tangent-stiffness histories of every interface (obstacle last), and their
-/// summary values: static pressure, mean contact stiffness (eq. 4.2), minimum pressure,
+/// summary values: static pressure and closure, mean contact stiffness (eq. 4.2), minimum pressure,
 /// final adhesion and largest gap, per interface (`key_i`) and the minimum pressure over
 /// all (`min_contact_pressure`).
 fn interface_histories(
@@ -354,6 +354,9 @@ fn interface_histories(
             &format!("static_interface_pressure_{i}"),
             s.static_pressure.get(i).copied().unwrap_or(f64::NAN),
         );
+        // the static step's gap: the closure of the interface under p0, i.e. the opening
+        // from the pre-loaded state at which contact is lost (0 for a rigid branch)
+        summary.set(&format!("static_interface_closure_{i}"), uc);
         summary.set(
             &format!("mean_contact_stiffness_{i}"),
             if cnt > 0 { sum / cnt as f64 } else { f64::NAN },

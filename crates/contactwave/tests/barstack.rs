@@ -95,6 +95,13 @@ fn linear_interface_has_no_second_harmonic() {
     );
     assert!(g("min_contact_pressure") > 0.0);
     assert!(g("A2_over_A1") < 1e-3, "A2/A1 = {}", g("A2_over_A1"));
+    // the static step's gap: a linear spring closes by p0 / K under its pre-load
+    let closure = g("static_interface_closure_0");
+    let p0 = g("static_interface_pressure_0");
+    assert!(
+        (closure / (p0 / 8.5e11) - 1.0).abs() < 1e-12,
+        "closure {closure}"
+    );
     // the H1 receptance peaks at the first mode (below the first zero of the force
     // spectrum of the 1.135 ms half-sine, 1.3 kHz)
     let k = (0..r.frf.frequency.len())
