@@ -98,15 +98,6 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
         )
     }
 
-    fn g_only(&self, pr: f64) -> f64 {
-        let n = self.p.len();
-        if pr >= self.p[n - 1] {
-            return self.g[n - 1] + (pr - self.p[n - 1]) / self.law.stiffness(self.p[n - 1]);
-        }
-        let i = self.p.partition_point(|&v| v <= pr).saturating_sub(1);
-        self.g[i] + gauss4(self.p[i], pr, |x| 1.0 / self.law.stiffness(x))
-    }
-
     /// Pressure at gap `[u]`, Pa (0 beyond `[u]_c`).
     pub fn pressure(&self, gap: f64) -> f64 {
         // G(p) = G(p0) - [u]
@@ -136,8 +127,10 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
         } else {
             a
         };
+        // x stays in [a, b] = [p_i, p_i+1]: G(x) from node i without a search
+        let g_in = |x: f64| self.g[i] + gauss4(a, x, |q| 1.0 / self.law.stiffness(q));
         for _ in 0..30 {
-            let r = self.g_only(x) - target;
+            let r = g_in(x) - target;
             let k = self.law.stiffness(x).max(1e-300);
             let nx = (x - r * k).clamp(a, b);
             // quadratic convergence: a correction below 1e-8 (relative) leaves an error
