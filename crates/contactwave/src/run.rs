@@ -202,21 +202,18 @@ fn probe(scenario: &Scenario, out: &HalfSpaceOutput) -> ProbeSeries {
     p
 }
 
-fn summarise(
-    scenario: &Scenario,
-    out: &HalfSpaceOutput,
-    inc: Option<&BandAmplitudes>,
+/// The reflected wave's summary keys: `A1_over_Ainc` ... `A5_over_Ainc`, `Asub_over_Ainc`,
+/// `A2_over_A1`, `beta_star`, the incident burst's own `incident_A*_over_Ainc` (when its
+/// bands are given) and, for a two-tone burst, `Af2_over_Ainc`, `Asum_over_Ainc`,
+/// `Adiff_over_Ainc`. `a_inc` is the incident velocity amplitude, m/s.
+pub(crate) fn set_reflected_harmonics(
+    s: &mut Summary,
     refl: &BandAmplitudes,
-) -> Summary {
-    let z1 = scenario.medium.impedance();
-    let a_inc = scenario.incident.peak() / z1;
+    a_inc: f64,
+    two_tone: bool,
+    inc: Option<&BandAmplitudes>,
+) {
     let a = &refl.harmonic;
-    let mut s = Summary::new();
-    s.set("xi", scenario.xi);
-    s.set("amplitude", scenario.incident.peak());
-    s.set("static_pressure", scenario.law.static_pressure);
-    s.set("frequency", scenario.incident.fundamental());
-    s.set("A_inc", a_inc);
     for n in 1..=5 {
         s.set(&format!("A{n}_over_Ainc"), a[n] / a_inc);
     }
@@ -235,11 +232,29 @@ fn summarise(
             s.set(&format!("incident_A{n}_over_Ainc"), inc.harmonic[n] / a_inc);
         }
     }
-    if scenario.incident.second_frequency().is_some() {
+    if two_tone {
         s.set("Af2_over_Ainc", refl.f2 / a_inc);
         s.set("Asum_over_Ainc", refl.sum / a_inc);
         s.set("Adiff_over_Ainc", refl.difference / a_inc);
     }
+}
+
+fn summarise(
+    scenario: &Scenario,
+    out: &HalfSpaceOutput,
+    inc: Option<&BandAmplitudes>,
+    refl: &BandAmplitudes,
+) -> Summary {
+    let z1 = scenario.medium.impedance();
+    let a_inc = scenario.incident.peak() / z1;
+    let mut s = Summary::new();
+    s.set("xi", scenario.xi);
+    s.set("amplitude", scenario.incident.peak());
+    s.set("static_pressure", scenario.law.static_pressure);
+    s.set("frequency", scenario.incident.fundamental());
+    s.set("A_inc", a_inc);
+    let two_tone = scenario.incident.second_frequency().is_some();
+    set_reflected_harmonics(&mut s, refl, a_inc, two_tone, inc);
     s.set("beta_end", out.beta.last().copied().unwrap_or(1.0));
     s.set("max_gap", out.max_gap);
     s.set(

@@ -141,10 +141,7 @@ pub fn simulate_bar_stack_with_progress(
         t0: 0.0,
         steps,
         record_every: 1,
-        probes: std::iter::once(0)
-            .chain(s.probes.iter().flat_map(|p| [p.node, p.other]))
-            .chain(std::iter::once(1))
-            .collect(),
+        probes: recorded_nodes(s, 1),
         forces: if s.imposed_displacement {
             vec![]
         } else {
@@ -264,6 +261,15 @@ pub fn simulate_bar_stack_with_progress(
         waves: None,
         summary,
     })
+}
+
+/// The nodes a run records: node 0, each `[[probe]]`'s node and its neighbour (read by
+/// [`probe_histories`]), then `extra` (last).
+fn recorded_nodes(s: &BarStackScenario, extra: usize) -> Vec<usize> {
+    std::iter::once(0)
+        .chain(s.probes.iter().flat_map(|p| [p.node, p.other]))
+        .chain(std::iter::once(extra))
+        .collect()
 }
 
 /// Displacement, velocity, acceleration and stress at the `[[probe]]` points: the run
@@ -396,10 +402,7 @@ fn simulate_incident(
         t0: 0.0,
         steps,
         record_every: 1,
-        probes: std::iter::once(0)
-            .chain(s.probes.iter().flat_map(|p| [p.node, p.other]))
-            .chain(std::iter::once(last))
-            .collect(),
+        probes: recorded_nodes(s, last),
         forces: vec![],
         imposed: None,
         progress,
@@ -430,25 +433,7 @@ fn simulate_incident(
     summary.set("frequency", f0);
     summary.set("A_inc", a_inc);
     let refl = crate::run::velocity_bands(&reflected, dt, f0, f2);
-    let a = &refl.harmonic;
-    for k in 1..=5 {
-        summary.set(&format!("A{k}_over_Ainc"), a[k] / a_inc);
-    }
-    summary.set("Asub_over_Ainc", refl.subharmonic / a_inc);
-    summary.set("A2_over_A1", if a[1] > 0.0 { a[2] / a[1] } else { 0.0 });
-    summary.set(
-        "beta_star",
-        if a[1] > 0.0 {
-            a[2] / (a[1] * a[1])
-        } else {
-            0.0
-        },
-    );
-    if f2.is_some() {
-        summary.set("Af2_over_Ainc", refl.f2 / a_inc);
-        summary.set("Asum_over_Ainc", refl.sum / a_inc);
-        summary.set("Adiff_over_Ainc", refl.difference / a_inc);
-    }
+    crate::run::set_reflected_harmonics(&mut summary, &refl, a_inc, f2.is_some(), None);
     // energies over the cross-section, J: incident S/Z0 int s_inc^2, reflected S Z0 int v^2,
     // transmitted S Z_n int v^2 (v by differences of the recorded displacements)
     let area = s.stack.area;
