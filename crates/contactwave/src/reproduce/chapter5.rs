@@ -132,6 +132,43 @@ fn traces(
     })
 }
 
+/// Panels of Figures 89-90 and 97-98: (a) stress against gap at `xi_loop`, then gap and
+/// stress against time at `xi_signal`, one curve per law.
+fn loops_and_signals(
+    ctx: &Ctx,
+    study: &str,
+    base: &toml::Table,
+    laws: &[Law],
+    (xi_loop, xi_signal): (f64, f64),
+    t_end: f64,
+) -> Result<Vec<Panel>> {
+    let labels: Vec<String> = laws.iter().map(|l| l.label.clone()).collect();
+    let mut v = Vec::new();
+    for x in [xi_loop, xi_signal] {
+        for l in laws {
+            let mut e = l.edits();
+            e.push(("incident.xi", f(x)));
+            v.push(e);
+        }
+    }
+    let tr = traces(ctx, study, base, &v, t_end)?;
+    let n = laws.len();
+    let mut p = vec![loop_panel(
+        &format!("(a) sigma against [u], xi = {xi_loop}"),
+        &labels,
+        &tr[..n],
+    )];
+    p.extend(
+        trace_panels(&labels, &tr[n..], false)
+            .into_iter()
+            .map(|mut q| {
+                q.title = format!("{}, xi = {xi_signal}", q.title);
+                q
+            }),
+    );
+    Ok(p)
+}
+
 /// Summaries of each law over the xi grid (one `Vec` per law), with `extra` edits.
 fn sweep(
     ctx: &Ctx,
@@ -828,16 +865,14 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
     ];
     // Figures 89-90: loops at xi = 0.1, time signals at xi = 0.8.
     let und3 = [mpl_lin.clone(), laws[1].clone(), rccm_law.clone()];
-    let und_labels: Vec<String> = und3.iter().map(|l| l.label.clone()).collect();
-    let mut v = Vec::new();
-    for x in [0.1, 0.8] {
-        for l in &und3 {
-            let mut e = l.edits();
-            e.push(("incident.xi", f(x)));
-            v.push(e);
-        }
-    }
-    let tr_und = traces(ctx, "modified PL (undamaged): signals", &base, &v, t_show)?;
+    let und_panels = loops_and_signals(
+        ctx,
+        "modified PL (undamaged): signals",
+        &base,
+        &und3,
+        (0.1, 0.8),
+        t_show,
+    )?;
     figures.push(Figure::new(
         "ch5_fig89_90_mpl_undamaged_signals",
         "Figures 89-90: modified PL (linear traction) against linear compression and RCCM",
@@ -847,19 +882,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
          rigid, C_N = 1e10 Pa/m, w = 1000 J/m^2, b = 1e-8. p0 = 0.14 MPa, 5 kHz, 15-cycle \
          Hann-ramped burst."
             .into(),
-        {
-            let mut p = vec![loop_panel(
-                "(a) sigma against [u], xi = 0.1",
-                &und_labels,
-                &tr_und[..3],
-            )];
-            let tp = trace_panels(&und_labels, &tr_und[3..], false);
-            p.extend(tp.into_iter().map(|mut q| {
-                q.title = format!("{}, xi = 0.8", q.title);
-                q
-            }));
-            p
-        },
+        und_panels,
     ));
     // Figure 91: contact loss / contact duration ratio.
     let ratio = |s: &[Summary]| -> Vec<f64> {
@@ -1054,7 +1077,6 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             None,
         ),
     ];
-    let dmg_labels: Vec<String> = dmg_laws.iter().map(|l| l.label.clone()).collect();
     let mut fig96 = Figure::new(
         "ch5_fig96_damage_vs_xi",
         "Figure 96: final adhesion and traction stiffness against xi (damaged interface)",
@@ -1086,15 +1108,14 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
     }
     figures.push(fig96);
     // Figures 97-98: loops at xi = 0.1 and signals at xi = 0.36.
-    let mut v = Vec::new();
-    for x in [0.1, 0.36] {
-        for l in &dmg_laws {
-            let mut e = l.edits();
-            e.push(("incident.xi", f(x)));
-            v.push(e);
-        }
-    }
-    let tr_dmg = traces(ctx, "RCCM traction (damage): signals", &base, &v, t_show)?;
+    let dmg_panels = loops_and_signals(
+        ctx,
+        "RCCM traction (damage): signals",
+        &base,
+        &dmg_laws,
+        (0.1, 0.36),
+        t_show,
+    )?;
     figures.push(Figure::new(
         "ch5_fig97_98_damaged_signals",
         "Figures 97-98: damaged interface, loops and time signals",
@@ -1102,19 +1123,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
          xi = 0.36. RCCM traction C_N2 = 1e10 Pa/m, w = 0.1 J/m^2, b = 1e-8 with modified PL, \
          linear (3e11 Pa/m) or rigid compression; p0 = 0.14 MPa, 5 kHz."
             .into(),
-        {
-            let mut p = vec![loop_panel(
-                "(a) sigma against [u], xi = 0.1",
-                &dmg_labels,
-                &tr_dmg[..3],
-            )];
-            let tp = trace_panels(&dmg_labels, &tr_dmg[3..], false);
-            p.extend(tp.into_iter().map(|mut q| {
-                q.title = format!("{}, xi = 0.36", q.title);
-                q
-            }));
-            p
-        },
+        dmg_panels,
     ));
     let mut fig99 = Figure::new(
         "ch5_fig99_damaged_a1_a2_vs_xi",
