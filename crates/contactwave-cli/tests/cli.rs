@@ -26,6 +26,17 @@ fn examples() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
 }
 
+/// `contactwave CMD FILE --out OUT`.
+fn cli(cmd: impl AsRef<std::ffi::OsStr>, file: impl AsRef<Path>, out: impl AsRef<Path>) -> Output {
+    bin()
+        .arg(cmd)
+        .arg(file.as_ref())
+        .arg("--out")
+        .arg(out.as_ref())
+        .output()
+        .unwrap()
+}
+
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
@@ -52,13 +63,7 @@ fn run_writes_summary_and_timeseries() {
     let scenario = d.join("rccm.toml");
     std::fs::write(&scenario, text).unwrap();
     let out = d.join("out");
-    let o = bin()
-        .arg("run")
-        .arg(&scenario)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = cli("run", &scenario, &out);
     assert!(o.status.success(), "{}", stderr(&o));
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
@@ -103,13 +108,7 @@ fn run_writes_summary_and_timeseries() {
     assert!(stdout.contains("beta_end"), "{stdout}");
     // law curve
     let law = d.join("law");
-    let o = bin()
-        .arg("law")
-        .arg(&scenario)
-        .arg("--out")
-        .arg(&law)
-        .output()
-        .unwrap();
+    let o = cli("law", &scenario, &law);
     assert!(o.status.success(), "{}", stderr(&o));
     let csv = std::fs::read_to_string(law.join("law_curve.csv")).unwrap();
     assert!(csv.starts_with("gap,stress\n"));
@@ -168,13 +167,7 @@ fn every_example_loads_and_runs() {
 fn bar_stack_incident_run_writes_waves_and_rejects_a_closed_end() {
     let d = tmpdir("incident");
     let out = d.join("out");
-    let o = bin()
-        .arg("run")
-        .arg(examples().join("bar_stack_incident.toml"))
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = cli("run", examples().join("bar_stack_incident.toml"), &out);
     assert!(o.status.success(), "{}", stderr(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("A2/Ainc (reflected)"), "{stdout}");
@@ -195,13 +188,7 @@ fn bar_stack_incident_run_writes_waves_and_rejects_a_closed_end() {
     let file = d.join("closed.toml");
     std::fs::write(&file, text).unwrap();
     let bad = d.join("bad");
-    let o = bin()
-        .arg("run")
-        .arg(&file)
-        .arg("--out")
-        .arg(&bad)
-        .output()
-        .unwrap();
+    let o = cli("run", &file, &bad);
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
@@ -312,13 +299,7 @@ fn bad_inputs_fail_with_one_line_and_no_output() {
         std::fs::write(&file, text).unwrap();
         for cmd in ["run", "law"] {
             let out = d.join(format!("out_{cmd}_{name}"));
-            let o = bin()
-                .arg(cmd)
-                .arg(&file)
-                .arg("--out")
-                .arg(&out)
-                .output()
-                .unwrap();
+            let o = cli(cmd, &file, &out);
             let err = stderr(&o);
             assert_eq!(o.status.code(), Some(2), "{cmd} {name}: {err}");
             assert_eq!(err.lines().count(), 1, "{cmd} {name}: {err}");
@@ -331,13 +312,7 @@ fn bad_inputs_fail_with_one_line_and_no_output() {
     }
     // missing scenario file
     let out = d.join("out_missing");
-    let o = bin()
-        .arg("run")
-        .arg(d.join("nope.toml"))
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = cli("run", d.join("nope.toml"), &out);
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(stderr(&o).lines().count(), 1);
     assert!(stderr(&o).contains("nope.toml"));
@@ -563,13 +538,7 @@ fn identify_writes_report_and_design() {
     let data = std::fs::read_to_string(examples().join("identify/rccm_undamaged.csv")).unwrap();
     let spec = write_identify(&d, &data, CN_PARAM);
     let out = d.join("out");
-    let o = bin()
-        .arg("identify")
-        .arg(&spec)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = cli("identify", &spec, &out);
     assert!(o.status.success(), "{}", stderr(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(
@@ -650,13 +619,7 @@ fn bad_identification_inputs_fail_with_one_line_and_no_output() {
         let d = tmpdir("identify-bad");
         let spec = write_identify(&d, &data, &params);
         let out = d.join("out");
-        let o = bin()
-            .arg("identify")
-            .arg(&spec)
-            .arg("--out")
-            .arg(&out)
-            .output()
-            .unwrap();
+        let o = cli("identify", &spec, &out);
         assert_eq!(o.status.code(), Some(2), "{name}: {}", stderr(&o));
         let err = stderr(&o);
         assert_eq!(err.trim_end().lines().count(), 1, "{name}: {err}");
