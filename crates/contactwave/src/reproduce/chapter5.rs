@@ -194,6 +194,25 @@ fn sweep(
 }
 
 /// Series `key` (times `scale`) against xi, one per law.
+/// The fundamental and second-harmonic panels against xi (`A1/A_inc`, `A2/A_inc`), titled
+/// with the two letters given.
+fn a1_a2_panels(letters: [&str; 2], laws: &[Law], xis: &[f64], s: &[Vec<Summary>]) -> [Panel; 2] {
+    [
+        panel(
+            &format!("{} fundamental", letters[0]),
+            "xi",
+            "A1/A_inc",
+            xi_series(laws, xis, s, "A1_over_Ainc"),
+        ),
+        panel(
+            &format!("{} second harmonic", letters[1]),
+            "xi",
+            "A2/A_inc",
+            xi_series(laws, xis, s, "A2_over_Ainc"),
+        ),
+    ]
+}
+
 fn xi_series(laws: &[Law], xis: &[f64], s: &[Vec<Summary>], key: &str) -> Vec<Series> {
     laws.iter()
         .zip(s)
@@ -916,20 +935,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
          5 kHz, 15-cycle Hann-ramped burst; xi from eq. 5.9 with each law's tangent stiffness \
          at p0."
             .into(),
-        vec![
-            panel(
-                "(a) fundamental",
-                "xi",
-                "A1/A_inc",
-                xi_series(&und_laws, &xis, &s_und, "A1_over_Ainc"),
-            ),
-            panel(
-                "(b) second harmonic",
-                "xi",
-                "A2/A_inc",
-                xi_series(&und_laws, &xis, &s_und, "A2_over_Ainc"),
-            ),
-        ],
+        a1_a2_panels(["(a)", "(b)"], &und_laws, &xis, &s_und).into(),
     );
     for fd in &mpl_findings {
         fig92 = fig92.compare(fd.line());
@@ -1131,20 +1137,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         "RCCM traction C_N2 = 1e10 Pa/m, w = 0.1 J/m^2, b = 1e-8 with modified PL, linear \
          (3e11 Pa/m) or rigid compression; p0 = 0.14 MPa, 5 kHz, 15-cycle Hann-ramped burst."
             .into(),
-        vec![
-            panel(
-                "(a) fundamental",
-                "xi",
-                "A1/A_inc",
-                xi_series(&dmg_laws, &xis, s_dmg, "A1_over_Ainc"),
-            ),
-            panel(
-                "(b) second harmonic",
-                "xi",
-                "A2/A_inc",
-                xi_series(&dmg_laws, &xis, s_dmg, "A2_over_Ainc"),
-            ),
-        ],
+        a1_a2_panels(["(a)", "(b)"], &dmg_laws, &xis, s_dmg).into(),
     );
     for fd in &dmg_findings[..2] {
         fig99 = fig99.compare(fd.line());
@@ -1166,7 +1159,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
              p0 = 0.14 MPa, 5 kHz, 15-cycle Hann-ramped burst (w = 0: damage at the \
              first opening)."
                 .into(),
-            vec![
+            [
                 panel(
                     "(a) adhesion intensity",
                     "xi",
@@ -1183,19 +1176,10 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
                         .map(|(l, s)| Series::new(l.label.clone(), &xis, &stiff(s)))
                         .collect(),
                 ),
-                panel(
-                    "(c) fundamental",
-                    "xi",
-                    "A1/A_inc",
-                    xi_series(&w_laws, &xis, &s_w, "A1_over_Ainc"),
-                ),
-                panel(
-                    "(d) second harmonic",
-                    "xi",
-                    "A2/A_inc",
-                    xi_series(&w_laws, &xis, &s_w, "A2_over_Ainc"),
-                ),
-            ],
+            ]
+            .into_iter()
+            .chain(a1_a2_panels(["(c)", "(d)"], &w_laws, &xis, &s_w))
+            .collect(),
         )
         .compare(f_w.line()),
     );
