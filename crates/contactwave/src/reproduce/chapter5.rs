@@ -284,15 +284,10 @@ fn trace_panels(labels: &[String], tr: &[Trace], loop_panel: bool) -> Vec<Panel>
         panel("(b) contact stress", "t (ms)", "sigma (MPa)", stress),
     ];
     if loop_panel {
-        p.push(panel(
+        p.push(self::loop_panel(
             "(c) contact stress against gap",
-            "[u] (um)",
-            "sigma (MPa)",
-            labels
-                .iter()
-                .zip(tr)
-                .map(|(l, t)| Series::new(l.clone(), &um(&t.gap), &mpa(&t.stress)))
-                .collect(),
+            labels,
+            tr,
         ));
     }
     p
