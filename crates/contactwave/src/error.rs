@@ -51,6 +51,12 @@ pub enum Error {
     /// The run was interrupted (Ctrl-C) before it finished.
     #[error("interrupted")]
     Interrupted,
+    /// A bug: a computation panicked (caught by [`crate::run::Executor`]).
+    #[error("internal error (panic): {message}")]
+    Internal {
+        /// The panic's message.
+        message: String,
+    },
 }
 
 impl Error {

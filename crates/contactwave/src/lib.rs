@@ -44,16 +44,19 @@ pub mod inverse;
 pub mod law;
 pub mod material;
 pub mod numeric;
+pub mod model;
 pub mod output;
+pub mod render;
 pub mod reproduce;
-mod run;
-mod run_bar;
+pub mod run;
 pub mod scenario;
 pub mod solver;
 pub mod study;
 
 pub use error::{Error, Result};
-pub use run::{half_space, settings, simulate, simulate_summary, ProbeSeries, RunResult};
-pub use run_bar::{
+pub use model::bar_stack::{
     simulate_bar_stack, simulate_bar_stack_with_progress, BarStackResult, Frf, ProbeHistory,
+};
+pub use model::half_space::{
+    half_space, settings, simulate, simulate_summary, ProbeSeries, RunResult,
 };

@@ -14,5 +14,8 @@ pub mod fit;
 mod spectrum;
 mod summary;
 
-pub use spectrum::{Analyzer, BandAmplitudes, Spectrum};
-pub use summary::Summary;
+pub use spectrum::{
+    cell_velocity, spectral_peak, velocity_bands, with_analyzer, Analyzer, BandAmplitudes,
+    Spectrum,
+};
+pub use summary::{set_reflected_harmonics, Summary};

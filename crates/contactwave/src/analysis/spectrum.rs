@@ -1,9 +1,50 @@
 //! Spectra and band amplitudes with plans made once and reused (RustFFT's planner design):
 //! an [`Analyzer`] owns its planners and scratch buffers; a sweep keeps one per thread.
 
+use crate::error::{Error, Result};
 use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 use rustfft::FftPlanner;
+use std::cell::RefCell;
+
+thread_local! {
+    /// One analyser per thread: its plans serve every run of a sweep on that thread.
+    static ANALYZER: RefCell<Analyzer> = RefCell::new(Analyzer::new());
+}
+
+/// Run `f` with this thread's analyser.
+pub fn with_analyzer<T>(f: impl FnOnce(&mut Analyzer) -> T) -> T {
+    ANALYZER.with(|a| f(&mut a.borrow_mut()))
+}
+
+/// Cell-averaged velocities (m/s) from displacements at the grid points (m, step `dt` s).
+pub fn cell_velocity(disp: &[f64], dt: f64) -> Vec<f64> {
+    disp.windows(2).map(|w| (w[1] - w[0]) / dt).collect()
+}
+
+/// Band amplitudes (m/s) of the cell-averaged velocity of a displacement record (m, step
+/// `dt` s), for fundamental `f0` and optional second frequency `f2` (Hz).
+pub fn velocity_bands(displacement: &[f64], dt: f64, f0: f64, f2: Option<f64>) -> BandAmplitudes {
+    let v = cell_velocity(displacement, dt);
+    with_analyzer(|a| a.bands(&v, dt, f0, f2))
+}
+
+/// Peak of the magnitudes `spec` (bin width `df` Hz) between `f_lo` and `f_hi` with
+/// parabolic interpolation: (frequency Hz, magnitude); `(NaN, 0)` for an empty range.
+pub fn spectral_peak(spec: &[f64], df: f64, f_lo: f64, f_hi: f64) -> (f64, f64) {
+    let lo = ((f_lo / df).ceil() as usize).max(1);
+    let hi = ((f_hi / df).floor() as usize).min(spec.len().saturating_sub(2));
+    if hi <= lo {
+        return (f64::NAN, 0.0);
+    }
+    let k = (lo..=hi)
+        .max_by(|&a, &b| spec[a].total_cmp(&spec[b]))
+        .unwrap_or(lo);
+    let (a, b, c) = (spec[k - 1], spec[k], spec[k + 1]);
+    let den = a - 2.0 * b + c;
+    let delta = if den != 0.0 { 0.5 * (a - c) / den } else { 0.0 };
+    ((k as f64 + delta.clamp(-0.5, 0.5)) * df, b)
+}
 
 /// Band amplitudes of one signal, in the signal's units (m/s for velocities).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -133,6 +174,30 @@ impl Analyzer {
             out.difference = self.band_peak(n_fft, df, dt, diff - hw, diff + hw);
         }
         out
+    }
+
+    /// Discrete Fourier transform (bins 0..=n/2) of the samples `x`, optionally under a
+    /// Hann window over their length, zero-padded to `n = 2 next_power_of_two(len)`.
+    pub fn dft_padded(&mut self, x: &[f64], hann: bool) -> Result<Vec<Complex<f64>>> {
+        let n = x.len().next_power_of_two() * 2;
+        let plan = self.real.plan_fft_forward(n);
+        let m = x.len();
+        self.input.clear();
+        self.input.extend(x.iter().enumerate().map(|(i, v)| {
+            let w = if hann {
+                0.5 * (1.0 - (2.0 * std::f64::consts::PI * i as f64 / (m as f64 - 1.0)).cos())
+            } else {
+                1.0
+            };
+            v * w
+        }));
+        self.input.resize(n, 0.0);
+        let mut out = plan.make_output_vec();
+        self.scratch
+            .resize(plan.get_scratch_len(), Complex::new(0.0, 0.0));
+        plan.process_with_scratch(&mut self.input, &mut out, &mut self.scratch)
+            .map_err(|e| Error::numerical(0.0, format!("FFT of {m} samples: {e}"), ""))?;
+        Ok(out)
     }
 
     /// One-sided amplitude spectrum `|X(f)| dt` of the cell-averaged signal `x`, up to

@@ -49,3 +49,41 @@ impl Serialize for Summary {
         m.end()
     }
 }
+
+/// The reflected wave's summary keys: `A1_over_Ainc` ... `A5_over_Ainc`, `Asub_over_Ainc`,
+/// `A2_over_A1`, `beta_star`, the incident burst's own `incident_A*_over_Ainc` (when its
+/// bands are given) and, for a two-tone burst, `Af2_over_Ainc`, `Asum_over_Ainc`,
+/// `Adiff_over_Ainc`. `a_inc` is the incident velocity amplitude, m/s.
+pub fn set_reflected_harmonics(
+    s: &mut Summary,
+    refl: &super::BandAmplitudes,
+    a_inc: f64,
+    two_tone: bool,
+    inc: Option<&super::BandAmplitudes>,
+) {
+    let a = &refl.harmonic;
+    for n in 1..=5 {
+        s.set(&format!("A{n}_over_Ainc"), a[n] / a_inc);
+    }
+    s.set("Asub_over_Ainc", refl.subharmonic / a_inc);
+    s.set("A2_over_A1", if a[1] > 0.0 { a[2] / a[1] } else { 0.0 });
+    s.set(
+        "beta_star",
+        if a[1] > 0.0 {
+            a[2] / (a[1] * a[1])
+        } else {
+            0.0
+        },
+    );
+    if let Some(inc) = inc {
+        for n in 1..=5 {
+            s.set(&format!("incident_A{n}_over_Ainc"), inc.harmonic[n] / a_inc);
+        }
+    }
+    if two_tone {
+        s.set("Af2_over_Ainc", refl.f2 / a_inc);
+        s.set("Asum_over_Ainc", refl.sum / a_inc);
+        s.set("Adiff_over_Ainc", refl.difference / a_inc);
+    }
+}
+

@@ -10,6 +10,7 @@
 
 pub mod compression;
 pub mod registry;
+pub mod spec;
 pub mod traction;
 
 use std::fmt::Debug;

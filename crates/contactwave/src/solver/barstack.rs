@@ -15,6 +15,8 @@
 //! The time loop allocates nothing; state lives in flat `Vec<f64>`s.
 
 use super::interface;
+pub use super::output::FdOutput;
+use super::Solver;
 use crate::error::{Error, Result};
 use crate::law::ContactLaw;
 use crate::material::Material;
@@ -137,23 +139,6 @@ impl BarStack {
             .clamp(0.0, mesh.cells[segment] as f64) as usize;
         mesh.offset[segment] + k
     }
-}
-
-/// What the solver records every `record_every` steps.
-#[derive(Debug, Clone, Default)]
-pub struct FdOutput {
-    /// Times, s.
-    pub t: Vec<f64>,
-    /// Displacement at each probe node (one Vec per probe), m.
-    pub displacement: Vec<Vec<f64>>,
-    /// Gap of each interface (obstacles last), m.
-    pub gap: Vec<Vec<f64>>,
-    /// Contact stress sigma of each interface, Pa.
-    pub stress: Vec<Vec<f64>>,
-    /// Adhesion beta of each interface.
-    pub beta: Vec<Vec<f64>>,
-    /// Node updates performed.
-    pub node_updates: u64,
 }
 
 /// How the interface force enters the step (the law itself holds exactly at the new time
@@ -568,5 +553,13 @@ impl IncidentTable {
         }
         let f = x - i as f64;
         self.v[i] * (1.0 - f) + self.v[i + 1] * f
+    }
+}
+
+impl Solver for FdRun {
+    type Problem = BarStack;
+    type Output = FdOutput;
+    fn solve(&self, problem: &BarStack) -> Result<FdOutput> {
+        problem.run(self)
     }
 }

@@ -18,9 +18,12 @@
 //! audit closes to the integration error.
 
 use super::radau::{self, System};
+use super::Solver;
+pub use super::output::{EnergyAudit, HalfSpaceOutput};
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::law::ContactLaw;
+use crate::material::Material;
 use crate::numeric::root::brent_past;
 use crate::numeric::{GL4_NODES, GL4_WEIGHTS};
 use std::sync::Arc;
@@ -47,6 +50,10 @@ impl Default for HalfSpaceSettings {
 /// The half-space problem: media, law and incident wave.
 #[derive(Debug, Clone)]
 pub struct HalfSpace {
+    /// Medium 1 (x < 0), where the incident wave travels.
+    pub medium: Material,
+    /// Medium 2 (x > 0), or `None` for a rigid wall.
+    pub counterpart: Option<Material>,
     /// Impedance of medium 1, Pa s/m.
     pub z1: f64,
     /// Impedance of medium 2, Pa s/m (`inf`: rigid wall).
@@ -55,69 +62,6 @@ pub struct HalfSpace {
     pub law: Arc<ContactLaw>,
     /// Incident wave.
     pub incident: Arc<dyn Excitation>,
-}
-
-/// Energy audit of one run, J/m^2 (model.md; thesis has none).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct EnergyAudit {
-    /// Energy brought by the incident wave, `int s_inc^2 / Z1 dt`.
-    pub incident: f64,
-    /// Energy carried away by the reflected wave, `int s_ref^2 / Z1 dt`.
-    pub reflected: f64,
-    /// Energy carried away by the transmitted wave, `int s_tr^2 / Z2 dt`.
-    pub transmitted: f64,
-    /// Energy stored in the interface at the end.
-    pub stored: f64,
-    /// Energy released by damage, `int (dpsi/dbeta) (-dbeta/dt) dt`.
-    pub damage: f64,
-    /// Decrease of the adhesion energy term (`w (beta_0 - beta_end)` for RCCM).
-    pub adhesion_decrease: f64,
-}
-
-impl EnergyAudit {
-    /// `|incident - reflected - transmitted - stored - damage| / incident`.
-    pub fn closure_error(&self) -> f64 {
-        (self.incident - self.reflected - self.transmitted - self.stored - self.damage).abs()
-            / self.incident.max(f64::MIN_POSITIVE)
-    }
-}
-
-/// Time histories at the interface (x = 0) on a uniform grid, SI units.
-#[derive(Debug, Clone, Default)]
-pub struct HalfSpaceOutput {
-    /// Time step, s.
-    pub dt: f64,
-    /// Times t_k = k dt, s (t = 0: the incident front reaches the interface).
-    pub t: Vec<f64>,
-    /// Gap [u], m.
-    pub gap: Vec<f64>,
-    /// Interface stress sigma, Pa (tension positive; -p0 at rest).
-    pub contact_stress: Vec<f64>,
-    /// Adhesion beta.
-    pub beta: Vec<f64>,
-    /// Incident stress at x = 0, Pa.
-    pub incident_stress: Vec<f64>,
-    /// Reflected stress at x = 0, Pa.
-    pub reflected_stress: Vec<f64>,
-    /// Transmitted stress at x = 0+, Pa.
-    pub transmitted_stress: Vec<f64>,
-    /// Reflected particle displacement at x = 0, `int s_ref/Z1 dt`, m (exact at the grid
-    /// points: differences give cell-averaged velocities free of aliasing from jumps).
-    pub reflected_displacement: Vec<f64>,
-    /// Incident particle displacement at x = 0, `-int s_inc/Z1 dt`, m.
-    pub incident_displacement: Vec<f64>,
-    /// Transmitted particle displacement at x = 0+, `-int s_tr/Z2 dt`, m (0 for a wall).
-    pub transmitted_displacement: Vec<f64>,
-    /// Energy audit.
-    pub energy: EnergyAudit,
-    /// Time the interface spent open (contact lost) while the burst was at it, s.
-    pub open_time_in_burst: f64,
-    /// Largest gap reached, m.
-    pub max_gap: f64,
-    /// Number of opening/closing/damage events located.
-    pub events: usize,
-    /// Duration of the incident burst, s.
-    pub burst_duration: f64,
 }
 
 /// Normalised threshold of the damage on/off event functions (phi / w and the scaled
@@ -318,9 +262,41 @@ impl HalfSpace {
         }
     }
 
-    /// Run the solver.
+    /// The problem between `medium` and `counterpart` (`None`: a rigid wall).
+    pub fn new(
+        medium: Material,
+        counterpart: Option<Material>,
+        law: Arc<ContactLaw>,
+        incident: Arc<dyn Excitation>,
+    ) -> Self {
+        HalfSpace {
+            z1: medium.impedance(),
+            z2: counterpart.map_or(f64::INFINITY, |m| m.impedance()),
+            medium,
+            counterpart,
+            law,
+            incident,
+        }
+    }
+
+    /// Run the exact solver.
     pub fn solve(&self, settings: &HalfSpaceSettings) -> Result<HalfSpaceOutput> {
         Runner::new(self, settings).run()
+    }
+}
+
+/// The exact solver as a [`Solver`] of the half-space problem.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ExactSolver {
+    /// Sampling and tail settings.
+    pub settings: HalfSpaceSettings,
+}
+
+impl Solver for ExactSolver {
+    type Problem = HalfSpace;
+    type Output = HalfSpaceOutput;
+    fn solve(&self, problem: &HalfSpace) -> Result<HalfSpaceOutput> {
+        problem.solve(&self.settings)
     }
 }
 

@@ -8,34 +8,52 @@
 //! crosses the bar unchanged, so this equals the reflection at any probe, delayed. Results
 //! come back in the same form as the exact solver's, so the two solvers check each other.
 
-use super::barstack::{BarStack, End, FdRun, Segment};
-use super::halfspace::HalfSpaceOutput;
+use super::barstack::{BarStack, End, FdRun, InterfaceScheme, Segment};
+use super::halfspace::{HalfSpace, HalfSpaceOutput};
+use super::Solver;
 use crate::error::Result;
 use crate::numeric::gauss4;
-use crate::scenario::Scenario;
 
-/// Solve a half-space scenario with the FD scheme. The time grid has
-/// `samples_per_period` steps per period of the highest frequency; cell sizes follow
-/// (`dx = c dt`). Output times are interface times (t = 0 when the incident front reaches
-/// the interface), as for the exact solver.
-pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
-    let inc = scenario.incident.clone();
-    let spp = scenario.spec.solver.samples_per_period() as f64;
+/// The FD scheme as a solver of the half-space problem.
+#[derive(Debug, Clone, Copy)]
+pub struct FdSolver {
+    /// Time steps per period of the highest input frequency; cell sizes follow
+    /// (`dx = c dt`).
+    pub samples_per_period: usize,
+    /// Time simulated after the burst, periods of f0 (`None`: 100).
+    pub tail_periods: Option<f64>,
+    /// Interface time discretisation.
+    pub interface_scheme: InterfaceScheme,
+}
+
+impl Solver for FdSolver {
+    type Problem = HalfSpace;
+    type Output = HalfSpaceOutput;
+    fn solve(&self, problem: &HalfSpace) -> Result<HalfSpaceOutput> {
+        solve(problem, self)
+    }
+}
+
+/// Solve the half-space problem with the FD scheme. Output times are interface times
+/// (t = 0 when the incident front reaches the interface), as for the exact solver.
+fn solve(problem: &HalfSpace, settings: &FdSolver) -> Result<HalfSpaceOutput> {
+    let inc = problem.incident.clone();
+    let spp = settings.samples_per_period as f64;
     let dt = 1.0 / (inc.highest_frequency() * spp);
-    let m1 = scenario.medium;
+    let m1 = problem.medium;
     let c1 = m1.wave_speed();
     let z1 = m1.impedance();
     let dx1 = c1 * dt;
     let cells = 16usize;
     let len1 = cells as f64 * dx1;
-    let law = scenario.law.clone();
+    let law = problem.law.clone();
     let mut segments = vec![Segment {
         name: "medium 1".into(),
         length: len1,
         material: m1,
         damping: 0.0,
     }];
-    let (interfaces, right) = match scenario.counterpart {
+    let (interfaces, right) = match problem.counterpart {
         None => (vec![], End::Obstacle(law)),
         Some(m2) => {
             segments.push(Segment {
@@ -56,7 +74,7 @@ pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
         incident: Some(inc.clone()),
     };
     let period = 1.0 / inc.fundamental();
-    let tail = scenario.spec.solver.tail_periods.unwrap_or(100.0) * period;
+    let tail = settings.tail_periods.unwrap_or(100.0) * period;
     let t_end = inc.duration() + tail + len1 / c1;
     let t0 = -len1 / c1;
     let steps = ((t_end - t0) / dt).ceil() as usize;
@@ -71,7 +89,7 @@ pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
         forces: vec![],
         imposed: None,
         progress: None,
-        interface_scheme: scenario.spec.solver.interface_update.into(),
+        interface_scheme: settings.interface_scheme,
     };
     let fd = stack.run(&run)?;
     // back to interface time: the left end sees the reflection len1/c1 later
@@ -103,7 +121,7 @@ pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
         let sigma = fd.stress[0][k0 + k];
         let beta = fd.beta[0][k0 + k];
         let s_inc = inc.stress(t);
-        let s = sigma + law_p0(scenario);
+        let s = sigma + problem.law.static_pressure;
         // reflected (outgoing) displacement at the left end at time t + delay
         let tp = fd.t[k0 + kd + k];
         let u_inc = f_at(tp + delay, &mut f_acc, &mut prev);
@@ -121,7 +139,7 @@ pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
         out.reflected_displacement.push(u_ref);
         out.incident_displacement.push(inc_disp);
         out.transmitted_displacement.push(0.0);
-        if gap > scenario.law.critical_gap() && t <= inc.duration() {
+        if gap > problem.law.critical_gap() && t <= inc.duration() {
             open_time += dt;
         }
         max_gap = max_gap.max(gap);
@@ -135,8 +153,4 @@ pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
     out.energy.damage = f64::NAN;
     out.energy.adhesion_decrease = f64::NAN;
     Ok(out)
-}
-
-fn law_p0(s: &Scenario) -> f64 {
-    s.law.static_pressure
 }

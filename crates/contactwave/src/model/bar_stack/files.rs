@@ -3,9 +3,9 @@
 //! (incident, reflected, transmitted displacements) for an `[incident]` run, `probes.csv`
 //! with `[[probe]]` points.
 
-use super::{csv_columns, OutputFile};
+use super::BarStackResult;
 use crate::error::Result;
-use crate::BarStackResult;
+use crate::render::{csv_columns, OutputFile};
 
 /// Header of `frf.csv`.
 pub const FRF_HEADER: &str = "frequency,receptance,receptance_phase,accelerance";

@@ -1,11 +1,15 @@
-//! One simulation of a scenario: solve, record the probe, analyse, summarise.
+//! One simulation of a half-space scenario: solve, record the probe, analyse, summarise.
 
-use crate::analysis::{Analyzer, BandAmplitudes, Spectrum, Summary};
+use crate::analysis::{
+    cell_velocity, set_reflected_harmonics, velocity_bands, with_analyzer, BandAmplitudes,
+    Spectrum, Summary,
+};
 use crate::error::Result;
 use crate::scenario::spec::Method;
 use crate::scenario::Scenario;
-use crate::solver::halfspace::{HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
-use std::cell::RefCell;
+use crate::solver::halfspace::{ExactSolver, HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
+use crate::solver::halfspace_fd::FdSolver;
+use crate::solver::Solver;
 
 /// Signals at the probe x < 0 (pure delays of the interface signals; model.md section 4).
 #[derive(Debug, Clone, Default)]
@@ -34,6 +38,14 @@ pub struct ProbeSeries {
 /// Everything one run produces.
 #[derive(Debug, Clone)]
 pub struct RunResult {
+    /// File of the scenario.
+    pub file: String,
+    /// Fundamental frequency f0 of the incident wave, Hz.
+    pub fundamental: f64,
+    /// Whether the incident wave is a two-tone burst.
+    pub two_tone: bool,
+    /// Incident particle-velocity amplitude `A_inc`, m/s.
+    pub a_inc: f64,
     /// Interface histories (x = 0).
     pub interface: HalfSpaceOutput,
     /// Probe histories.
@@ -50,30 +62,30 @@ pub struct RunResult {
     pub summary: Summary,
 }
 
-thread_local! {
-    static ANALYZER: RefCell<Analyzer> = RefCell::new(Analyzer::new());
-}
-
-/// Cell-averaged velocities from displacements at the grid points.
-fn cell_velocity(disp: &[f64], dt: f64) -> Vec<f64> {
-    disp.windows(2).map(|w| (w[1] - w[0]) / dt).collect()
-}
-
 /// The half-space problem of a scenario.
 pub fn half_space(scenario: &Scenario) -> HalfSpace {
-    HalfSpace {
-        z1: scenario.medium.impedance(),
-        z2: scenario.z2(),
-        law: scenario.law.clone(),
-        incident: scenario.incident.clone(),
-    }
+    HalfSpace::new(
+        scenario.medium,
+        scenario.counterpart,
+        scenario.law.clone(),
+        scenario.incident.clone(),
+    )
 }
 
 /// Interface histories by the scenario's method (`exact` or `fd`).
 pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
+    let problem = half_space(scenario);
     match scenario.spec.solver.method {
-        Method::Exact => half_space(scenario).solve(&settings(scenario)),
-        Method::Fd => crate::solver::halfspace_fd::solve(scenario),
+        Method::Exact => ExactSolver {
+            settings: settings(scenario),
+        }
+        .solve(&problem),
+        Method::Fd => FdSolver {
+            samples_per_period: scenario.spec.solver.samples_per_period(),
+            tail_periods: scenario.spec.solver.tail_periods,
+            interface_scheme: scenario.spec.solver.interface_update.into(),
+        }
+        .solve(&problem),
     }
 }
 
@@ -99,18 +111,6 @@ fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
     let f0 = scenario.incident.fundamental();
     let f2 = scenario.incident.second_frequency();
     velocity_bands(displacement, dt, f0, f2)
-}
-
-/// Band amplitudes (m/s) of the cell-averaged velocity of a displacement record (m, step
-/// `dt` s), for fundamental `f0` and optional second frequency `f2` (Hz).
-pub(crate) fn velocity_bands(
-    displacement: &[f64],
-    dt: f64,
-    f0: f64,
-    f2: Option<f64>,
-) -> BandAmplitudes {
-    let v = cell_velocity(displacement, dt);
-    ANALYZER.with(|a| a.borrow_mut().bands(&v, dt, f0, f2))
 }
 
 /// Run a scenario: solve, probe, spectra, summary.
@@ -139,8 +139,7 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
     let f_max = 6.0 * scenario.incident.highest_frequency();
     let vr = cell_velocity(&out.reflected_displacement, out.dt);
     let vi = cell_velocity(&out.incident_displacement, out.dt);
-    let (incident_spectrum, reflected_spectrum) = ANALYZER.with(|a| {
-        let mut a = a.borrow_mut();
+    let (incident_spectrum, reflected_spectrum) = with_analyzer(|a| {
         (
             a.spectrum(&vi, out.dt, f_max),
             a.spectrum(&vr, out.dt, f_max),
@@ -148,6 +147,10 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
     });
     let probe = probe(scenario, &out);
     Ok(RunResult {
+        file: scenario.file.clone(),
+        fundamental: scenario.incident.fundamental(),
+        two_tone: scenario.incident.second_frequency().is_some(),
+        a_inc: scenario.incident.peak() / scenario.medium.impedance(),
         interface: out,
         probe,
         incident_spectrum,
@@ -200,43 +203,6 @@ fn probe(scenario: &Scenario, out: &HalfSpaceOutput) -> ProbeSeries {
         p.displacement.push(disp_inc + d_ref);
     }
     p
-}
-
-/// The reflected wave's summary keys: `A1_over_Ainc` ... `A5_over_Ainc`, `Asub_over_Ainc`,
-/// `A2_over_A1`, `beta_star`, the incident burst's own `incident_A*_over_Ainc` (when its
-/// bands are given) and, for a two-tone burst, `Af2_over_Ainc`, `Asum_over_Ainc`,
-/// `Adiff_over_Ainc`. `a_inc` is the incident velocity amplitude, m/s.
-pub(crate) fn set_reflected_harmonics(
-    s: &mut Summary,
-    refl: &BandAmplitudes,
-    a_inc: f64,
-    two_tone: bool,
-    inc: Option<&BandAmplitudes>,
-) {
-    let a = &refl.harmonic;
-    for n in 1..=5 {
-        s.set(&format!("A{n}_over_Ainc"), a[n] / a_inc);
-    }
-    s.set("Asub_over_Ainc", refl.subharmonic / a_inc);
-    s.set("A2_over_A1", if a[1] > 0.0 { a[2] / a[1] } else { 0.0 });
-    s.set(
-        "beta_star",
-        if a[1] > 0.0 {
-            a[2] / (a[1] * a[1])
-        } else {
-            0.0
-        },
-    );
-    if let Some(inc) = inc {
-        for n in 1..=5 {
-            s.set(&format!("incident_A{n}_over_Ainc"), inc.harmonic[n] / a_inc);
-        }
-    }
-    if two_tone {
-        s.set("Af2_over_Ainc", refl.f2 / a_inc);
-        s.set("Asum_over_Ainc", refl.sum / a_inc);
-        s.set("Adiff_over_Ainc", refl.difference / a_inc);
-    }
 }
 
 fn summarise(

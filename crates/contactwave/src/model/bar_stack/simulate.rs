@@ -4,14 +4,12 @@
 //! pulse, the next (guide) mode from a small linear impulse, the mean contact stiffness
 //! over the response (eq. 4.2) and the contact pressures.
 
-use crate::analysis::Summary;
+use crate::analysis::{spectral_peak, with_analyzer, Summary};
 use crate::error::Result;
 use crate::excitation::Excitation;
 use crate::numeric::gauss4;
 use crate::scenario::bar_stack::{BarStackScenario, HalfSine};
 use crate::solver::barstack::{End, FdOutput, FdRun, ForceSource, StepProgress};
-use realfft::num_complex::Complex;
-use realfft::RealFftPlanner;
 use std::sync::Arc;
 
 /// Frequency response of the first node (where the force acts).
@@ -59,6 +57,12 @@ pub struct WaveHistories {
 /// Everything a bar-stack run produces.
 #[derive(Debug, Clone)]
 pub struct BarStackResult {
+    /// File of the scenario.
+    pub file: String,
+    /// Time step, s.
+    pub dt: f64,
+    /// Static contact pressure of each interface from the static step, Pa.
+    pub static_pressure: Vec<f64>,
     /// Times, s.
     pub t: Vec<f64>,
     /// Force at the first node, N.
@@ -84,41 +88,6 @@ pub struct BarStackResult {
     pub waves: Option<WaveHistories>,
     /// Summary scalars (per-interface values as `key_0`, `key_1`, ...).
     pub summary: Summary,
-}
-
-fn spectrum(x: &[f64], window: bool) -> Vec<Complex<f64>> {
-    let n = x.len().next_power_of_two() * 2;
-    let mut planner = RealFftPlanner::<f64>::new();
-    let plan = planner.plan_fft_forward(n);
-    let mut input = vec![0.0; n];
-    let m = x.len();
-    for (i, v) in x.iter().enumerate() {
-        let w = if window {
-            0.5 * (1.0 - (2.0 * std::f64::consts::PI * i as f64 / (m as f64 - 1.0)).cos())
-        } else {
-            1.0
-        };
-        input[i] = v * w;
-    }
-    let mut out = plan.make_output_vec();
-    let _ = plan.process(&mut input, &mut out);
-    out
-}
-
-/// Peak of |spec| between f_lo and f_hi with parabolic interpolation: (frequency, magnitude).
-fn peak(spec: &[f64], df: f64, f_lo: f64, f_hi: f64) -> (f64, f64) {
-    let lo = ((f_lo / df).ceil() as usize).max(1);
-    let hi = ((f_hi / df).floor() as usize).min(spec.len().saturating_sub(2));
-    if hi <= lo {
-        return (f64::NAN, 0.0);
-    }
-    let k = (lo..=hi)
-        .max_by(|&a, &b| spec[a].total_cmp(&spec[b]))
-        .unwrap_or(lo);
-    let (a, b, c) = (spec[k - 1], spec[k], spec[k + 1]);
-    let den = a - 2.0 * b + c;
-    let delta = if den != 0.0 { 0.5 * (a - c) / den } else { 0.0 };
-    ((k as f64 + delta.clamp(-0.5, 0.5)) * df, b)
 }
 
 /// Run the hammer test of a bar-stack scenario.
@@ -178,8 +147,9 @@ pub fn simulate_bar_stack_with_progress(
     };
     // FRF (H1 = X F* / |F|^2) over the whole record; regularised where the force spectrum
     // vanishes (zeros of the half-sine at (2k+1)/(2 tau), k >= 1), where no FRF estimate holds
-    let fx = spectrum(u, false);
-    let ff = spectrum(&force, false);
+    let (fx, ff) = with_analyzer(|a| -> Result<_> {
+        Ok((a.dft_padded(u, false)?, a.dft_padded(&force, false)?))
+    })?;
     let nfft = (u.len().next_power_of_two() * 2) as f64;
     let df = 1.0 / (nfft * dt);
     let fmax_out = 20_000.0f64.min(0.5 / dt);
@@ -201,13 +171,13 @@ pub fn simulate_bar_stack_with_progress(
     // with an imposed displacement the driven end is held after the pulse: the free
     // response is in its reaction force
     let response = if s.imposed_displacement { &force } else { &acc };
-    let free = spectrum(&response[k0..n.saturating_sub(1)], true);
+    let free = with_analyzer(|a| a.dft_padded(&response[k0..n.saturating_sub(1)], true))?;
     let nf = ((n - 1 - k0).next_power_of_two() * 2) as f64;
     let dff = 1.0 / (nf * dt);
     let mag: Vec<f64> = free.iter().map(|c| c.norm()).collect();
     let an = &s.spec.analysis;
-    let (f1, a1) = peak(&mag, dff, an.first_mode_min, an.first_mode_max);
-    let (f2, a2) = peak(&mag, dff, 1.8 * f1, 2.2 * f1);
+    let (f1, a1) = spectral_peak(&mag, dff, an.first_mode_min, an.first_mode_max);
+    let (f2, a2) = spectral_peak(&mag, dff, 1.8 * f1, 2.2 * f1);
     // next mode from a small, short linear impulse
     let probe_run = FdRun {
         forces: vec![ForceSource {
@@ -225,10 +195,10 @@ pub fn simulate_bar_stack_with_progress(
     let lin = s.stack.run(&probe_run)?;
     let ul = &lin.displacement[0];
     // displacement spectrum (the acceleration one over-weights the high modes)
-    let sl = spectrum(ul, true);
+    let sl = with_analyzer(|a| a.dft_padded(ul, true))?;
     let magl: Vec<f64> = sl.iter().map(|c| c.norm()).collect();
     let dfl = 1.0 / (((ul.len()).next_power_of_two() * 2) as f64 * dt);
-    let (fg, _) = peak(&magl, dfl, (3.0 * f1).max(2000.0), 0.45 / dt);
+    let (fg, _) = spectral_peak(&magl, dfl, (3.0 * f1).max(2000.0), 0.45 / dt);
     let mut summary = Summary::new();
     summary.set("first_mode_hz", f1);
     summary.set("second_harmonic_hz", f2);
@@ -248,6 +218,9 @@ pub fn simulate_bar_stack_with_progress(
     );
     let (pressure, stiffness) = interface_histories(s, &out, &mut summary);
     Ok(BarStackResult {
+        file: s.file.clone(),
+        dt: s.dt,
+        static_pressure: s.static_pressure.clone(),
         t: out.t.clone(),
         force,
         displacement: u.clone(),
@@ -432,8 +405,8 @@ fn simulate_incident(
     summary.set("amplitude", inc.peak());
     summary.set("frequency", f0);
     summary.set("A_inc", a_inc);
-    let refl = crate::run::velocity_bands(&reflected, dt, f0, f2);
-    crate::run::set_reflected_harmonics(&mut summary, &refl, a_inc, f2.is_some(), None);
+    let refl = crate::analysis::velocity_bands(&reflected, dt, f0, f2);
+    crate::analysis::set_reflected_harmonics(&mut summary, &refl, a_inc, f2.is_some(), None);
     // energies over the cross-section, J: incident S/Z0 int s_inc^2, reflected S Z0 int v^2,
     // transmitted S Z_n int v^2 (v by differences of the recorded displacements)
     let area = s.stack.area;
@@ -445,7 +418,7 @@ fn simulate_incident(
         let z_n = s.stack.segments[s.stack.segments.len() - 1]
             .material
             .impedance();
-        let bt = crate::run::velocity_bands(tr, dt, f0, f2);
+        let bt = crate::analysis::velocity_bands(tr, dt, f0, f2);
         for k in 1..=5 {
             summary.set(
                 &format!("transmitted_A{k}_over_Ainc"),
@@ -463,6 +436,9 @@ fn simulate_incident(
         accel[k] = (u0[k + 1] - 2.0 * u0[k] + u0[k - 1]) / (dt * dt);
     }
     Ok(BarStackResult {
+        file: s.file.clone(),
+        dt: s.dt,
+        static_pressure: s.static_pressure.clone(),
         t: out.t.clone(),
         force: vec![0.0; n],
         displacement: u0.clone(),

@@ -1,0 +1,225 @@
+//! The bar-stack model (model.md section 5, thesis chapter 4): segments joined by contact
+//! interfaces, hit by a hammer, driven by an imposed displacement or crossed by an
+//! incident wave; the explicit FD scheme gives the histories, the analysis the FRF, the
+//! first mode and its harmonic, or the reflected and transmitted harmonics.
+
+mod fields;
+pub mod files;
+mod simulate;
+
+pub use files::{bar_stack_files, FRF_HEADER};
+pub use simulate::{
+    simulate_bar_stack, simulate_bar_stack_with_progress, BarStackResult, Frf, ProbeHistory,
+    WaveHistories,
+};
+
+use super::record::summary_record;
+use super::{Kind, Model, Outcome, Param, ParamTable, Record, RunControl, Template, Value};
+use crate::analysis::Summary;
+use crate::error::Result;
+use crate::render::OutputFile;
+use crate::scenario::bar_stack::{BarStackScenario, BarStackSpec};
+use crate::scenario::BuildCache;
+use std::any::Any;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// The bar-stack kind: tables with `[model] kind = "bar_stack"`.
+#[derive(Debug)]
+pub struct BarStackKind;
+
+/// The registered instance.
+pub static KIND: BarStackKind = BarStackKind;
+
+impl Kind for BarStackKind {
+    fn name(&self) -> &'static str {
+        "bar_stack"
+    }
+
+    fn matches(&self, table: &toml::Table) -> bool {
+        BarStackScenario::is_bar_stack(table)
+    }
+
+    fn plan(&self, table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> {
+        Ok(Arc::new(BarStackTemplate::new(table, path)?))
+    }
+}
+
+/// A validated bar-stack scenario with typed parameters.
+#[derive(Debug)]
+pub struct BarStackTemplate {
+    params: ParamTable<BarStackSpec>,
+    dir: PathBuf,
+    cache: BuildCache,
+    base: Arc<BarStackScenario>,
+}
+
+impl BarStackTemplate {
+    /// Validate a table that came from `path`.
+    pub fn new(table: toml::Table, path: &Path) -> Result<Self> {
+        let file = path.display().to_string();
+        let spec = BarStackSpec::from_table(table.clone(), &file)?;
+        let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+        let cache = BuildCache::new();
+        let base = Arc::new(BarStackScenario::from_spec_cached(
+            spec.clone(),
+            &file,
+            &dir,
+            &cache,
+        )?);
+        Ok(BarStackTemplate {
+            params: ParamTable::new(&file, table, spec, BarStackSpec::from_table),
+            dir,
+            cache,
+            base,
+        })
+    }
+
+    /// The scenario as given.
+    pub fn scenario(&self) -> &Arc<BarStackScenario> {
+        &self.base
+    }
+
+    /// The scenario with `values` set.
+    pub fn scenario_with(&self, values: &[(&Param, f64)]) -> Result<Arc<BarStackScenario>> {
+        if values.is_empty() {
+            return Ok(self.base.clone());
+        }
+        let spec = self.params.spec_with(values)?;
+        Ok(Arc::new(BarStackScenario::from_spec_cached(
+            spec,
+            &self.base.file,
+            &self.dir,
+            &self.cache,
+        )?))
+    }
+}
+
+impl Template for BarStackTemplate {
+    fn kind(&self) -> &'static str {
+        KIND.name()
+    }
+
+    fn file(&self) -> &str {
+        &self.base.file
+    }
+
+    fn table(&self) -> &toml::Table {
+        self.params.table()
+    }
+
+    fn base(&self) -> Arc<dyn Model> {
+        self.base.clone()
+    }
+
+    fn param(&self, key: &str) -> Result<Param> {
+        self.params.param(key)
+    }
+
+    fn build(&self, values: &[(&Param, f64)]) -> Result<Arc<dyn Model>> {
+        Ok(self.scenario_with(values)?)
+    }
+}
+
+impl Model for BarStackScenario {
+    fn kind(&self) -> &'static str {
+        KIND.name()
+    }
+
+    fn file(&self) -> &str {
+        &self.file
+    }
+
+    fn summary(&self) -> Result<Summary> {
+        Ok(simulate_bar_stack(self)?.summary)
+    }
+
+    fn run(&self, control: &RunControl) -> Result<Box<dyn Outcome>> {
+        Ok(Box::new(simulate_bar_stack_with_progress(
+            self,
+            control.progress.clone(),
+        )?))
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
+impl Outcome for BarStackResult {
+    fn kind(&self) -> &'static str {
+        KIND.name()
+    }
+
+    fn summary(&self) -> &Summary {
+        &self.summary
+    }
+
+    fn files(&self) -> Result<Vec<OutputFile>> {
+        bar_stack_files(self, &self.file)
+    }
+
+    /// `t`, `force`, `displacement`, `acceleration` (arrays), `gap`, `pressure`, `beta`,
+    /// `stiffness` (interfaces x samples), `frf` (arrays; empty for an incident-wave run),
+    /// `waves` (arrays or none), `probes` (name -> arrays), `static_pressure` (list, Pa),
+    /// `dt` (s), `summary`.
+    fn record(&self) -> Record {
+        let frf = Record::new()
+            .with("frequency", self.frf.frequency.clone().into())
+            .with("receptance", self.frf.receptance.clone().into())
+            .with("receptance_phase", self.frf.phase.clone().into())
+            .with("accelerance", self.frf.accelerance.clone().into());
+        let waves = match &self.waves {
+            Some(w) => {
+                let mut r = Record::new()
+                    .with("incident", w.incident.clone().into())
+                    .with("reflected", w.reflected.clone().into());
+                if let Some(tr) = &w.transmitted {
+                    r.push("transmitted", tr.clone().into());
+                }
+                r.into()
+            }
+            None => Value::None,
+        };
+        let mut probes = Record::new();
+        for p in &self.probes {
+            probes.push(
+                &p.name,
+                Record::new()
+                    .with("x", p.x.into())
+                    .with("displacement", p.displacement.clone().into())
+                    .with("velocity", p.velocity.clone().into())
+                    .with("acceleration", p.acceleration.clone().into())
+                    .with("stress", p.stress.clone().into())
+                    .into(),
+            );
+        }
+        Record::new()
+            .with("kind", Value::Text(KIND.name().into()))
+            .with("dt", self.dt.into())
+            .with("static_pressure", Value::List(self.static_pressure.clone()))
+            .with("gap", Value::Rows(self.gap.clone()))
+            .with("pressure", Value::Rows(self.pressure.clone()))
+            .with("beta", Value::Rows(self.beta.clone()))
+            .with("stiffness", Value::Rows(self.stiffness.clone()))
+            .with("frf", frf.into())
+            .with("waves", waves)
+            .with("probes", probes.into())
+            .with(
+                "summary",
+                summary_record(Some(&self.file), &self.summary).into(),
+            )
+            .with("t", self.t.clone().into())
+            .with("force", self.force.clone().into())
+            .with("displacement", self.displacement.clone().into())
+            .with("acceleration", self.acceleration.clone().into())
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+
+    fn into_any(self: Box<Self>) -> Box<dyn Any> {
+        self
+    }
+}

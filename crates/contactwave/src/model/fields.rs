@@ -1,0 +1,199 @@
+//! Typed access to the numbers of a scenario spec by dotted key: the setters that sweeps
+//! and identification use on a planned template (no TOML round trip per point).
+
+use crate::error::{Error, Result};
+use crate::law::spec::{CompressionSpec, TractionSpec};
+use crate::scenario::spec::{
+    CounterpartSpec, IncidentSpec, InterfaceSpec, MaterialSpec, ProbeSpec, ScenarioSpec,
+    SolverSpec,
+};
+
+/// A number of a spec, by reference.
+#[derive(Debug)]
+pub enum Slot<'a> {
+    /// A required number.
+    F64(&'a mut f64),
+    /// An optional number.
+    OptF64(&'a mut Option<f64>),
+    /// A required count.
+    Usize(&'a mut usize),
+    /// An optional count.
+    OptUsize(&'a mut Option<usize>),
+}
+
+impl Slot<'_> {
+    /// Write `v` (SI units); a count takes only whole numbers >= 0.
+    pub fn set(self, v: f64, file: &str, key: &str) -> Result<()> {
+        let count = || -> Result<usize> {
+            if v.is_finite() && v >= 0.0 && v.fract() == 0.0 && v <= usize::MAX as f64 {
+                Ok(v as usize)
+            } else {
+                Err(Error::invalid(file, key, v, "must be a whole number >= 0"))
+            }
+        };
+        match self {
+            Slot::F64(x) => *x = v,
+            Slot::OptF64(x) => *x = Some(v),
+            Slot::Usize(x) => *x = count()?,
+            Slot::OptUsize(x) => *x = Some(count()?),
+        }
+        Ok(())
+    }
+}
+
+/// Specs whose numbers can be reached by a dotted path.
+pub trait Fields {
+    /// The number at `path` (e.g. `["incident", "xi"]`), or `None` if the path names no
+    /// number of this spec as it stands (an unknown key, a table, a key of another law
+    /// variant).
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>>;
+}
+
+/// `match` arms from field names to slots: `fields!(self, path; f64: a, b; opt: c)`.
+macro_rules! leaf {
+    ($path:expr; $($kind:ident $name:literal => $field:expr),* $(,)?) => {
+        match $path {
+            $([$name] => Some(Slot::$kind($field)),)*
+            _ => None,
+        }
+    };
+}
+
+impl Fields for ScenarioSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        let (head, rest) = path.split_first()?;
+        match *head {
+            "medium" => self.medium.slot(rest),
+            "counterpart" => self.counterpart.slot(rest),
+            "interface" => self.interface.slot(rest),
+            "incident" => self.incident.slot(rest),
+            "probe" => self.probe.slot(rest),
+            "solver" => self.solver.slot(rest),
+            _ => None,
+        }
+    }
+}
+
+impl Fields for MaterialSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        leaf!(path; OptF64 "youngs_modulus" => &mut self.youngs_modulus,
+                    OptF64 "density" => &mut self.density)
+    }
+}
+
+impl Fields for CounterpartSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        leaf!(path; OptF64 "youngs_modulus" => &mut self.youngs_modulus,
+                    OptF64 "density" => &mut self.density)
+    }
+}
+
+impl Fields for InterfaceSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        match path {
+            ["static_pressure"] => Some(Slot::F64(&mut self.static_pressure)),
+            ["compression", rest @ ..] => self.compression.slot(rest),
+            ["traction", rest @ ..] => self.traction.slot(rest),
+            _ => None,
+        }
+    }
+}
+
+impl Fields for CompressionSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        match self {
+            CompressionSpec::Rigid | CompressionSpec::Table { .. } => None,
+            CompressionSpec::Linear { stiffness } => leaf!(path; F64 "stiffness" => stiffness),
+            CompressionSpec::Quadratic { k0, k1 } => leaf!(path; F64 "k0" => k0, F64 "k1" => k1),
+            CompressionSpec::Power { c, m } => leaf!(path; F64 "c" => c, F64 "m" => m),
+            CompressionSpec::ModifiedPower {
+                c,
+                m,
+                transition_pressure,
+                zero_pressure_fraction,
+            } => leaf!(path; F64 "c" => c, F64 "m" => m,
+                       F64 "transition_pressure" => transition_pressure,
+                       F64 "zero_pressure_fraction" => zero_pressure_fraction),
+        }
+    }
+}
+
+impl Fields for TractionSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        match self {
+            TractionSpec::Free | TractionSpec::Bonded => None,
+            TractionSpec::Linear { stiffness } => leaf!(path; F64 "stiffness" => stiffness),
+            TractionSpec::Rccm {
+                stiffness,
+                energy,
+                viscosity,
+            } => leaf!(path; F64 "stiffness" => stiffness, F64 "energy" => energy,
+                       F64 "viscosity" => viscosity),
+        }
+    }
+}
+
+impl Fields for IncidentSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        // `amplitude` and `xi` are two ways to give the same quantity: setting one
+        // removes the other
+        match path {
+            ["xi"] => {
+                self.amplitude = None;
+                Some(Slot::OptF64(&mut self.xi))
+            }
+            ["amplitude"] => {
+                self.xi = None;
+                Some(Slot::OptF64(&mut self.amplitude))
+            }
+            _ => leaf!(path; OptF64 "frequency" => &mut self.frequency,
+                             OptF64 "frequency2" => &mut self.frequency2,
+                             OptF64 "amplitude_ratio" => &mut self.amplitude_ratio,
+                             OptF64 "cycles" => &mut self.cycles,
+                             OptF64 "ramp_fraction" => &mut self.ramp_fraction),
+        }
+    }
+}
+
+impl Fields for ProbeSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        leaf!(path; F64 "x" => &mut self.x)
+    }
+}
+
+impl Fields for SolverSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        leaf!(path; OptUsize "samples_per_period" => &mut self.samples_per_period,
+                    OptF64 "tail_periods" => &mut self.tail_periods)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slots_reach_law_parameters_of_the_variant_only() {
+        let mut i = InterfaceSpec {
+            static_pressure: 1.0,
+            compression: CompressionSpec::Power { c: 1.0, m: 0.5 },
+            traction: TractionSpec::Free,
+        };
+        i.slot(&["compression", "m"])
+            .unwrap()
+            .set(0.3, "f", "k")
+            .unwrap();
+        assert_eq!(i.compression, CompressionSpec::Power { c: 1.0, m: 0.3 });
+        assert!(i.slot(&["compression", "k0"]).is_none());
+        assert!(i.slot(&["traction", "stiffness"]).is_none());
+        let mut inc = IncidentSpec {
+            amplitude: Some(1.0),
+            ..Default::default()
+        };
+        inc.slot(&["xi"]).unwrap().set(0.5, "f", "k").unwrap();
+        assert_eq!((inc.amplitude, inc.xi), (None, Some(0.5)));
+        let mut s = SolverSpec::default();
+        let e = s.slot(&["samples_per_period"]).unwrap().set(2.5, "f", "k");
+        assert!(e.is_err());
+    }
+}

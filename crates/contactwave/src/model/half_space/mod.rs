@@ -1,0 +1,227 @@
+//! The half-space model (model.md section 4): an incident wave in medium 1 meets one
+//! interface backed by a rigid wall or a second half-space; the exact solver (or the FD
+//! scheme, `solver.method = "fd"`) gives the interface histories, the probe the reflected
+//! wave, the analysis its harmonics.
+
+pub mod files;
+mod simulate;
+
+pub use simulate::{half_space, settings, simulate, simulate_summary, ProbeSeries, RunResult};
+
+use super::record::summary_record;
+use super::{Kind, Model, Outcome, Param, ParamTable, Record, RunControl, Template, Value};
+use crate::analysis::{BandAmplitudes, Summary};
+use crate::error::Result;
+use crate::render::OutputFile;
+use crate::scenario::spec::ScenarioSpec;
+use crate::scenario::{table_to_spec, BuildCache, Scenario};
+use std::any::Any;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// The half-space kind: every scenario table that no other kind claims.
+#[derive(Debug)]
+pub struct HalfSpaceKind;
+
+/// The registered instance.
+pub static KIND: HalfSpaceKind = HalfSpaceKind;
+
+impl Kind for HalfSpaceKind {
+    fn name(&self) -> &'static str {
+        "half_space"
+    }
+
+    fn matches(&self, _table: &toml::Table) -> bool {
+        true
+    }
+
+    fn plan(&self, table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> {
+        Ok(Arc::new(HalfSpaceTemplate::new(table, path)?))
+    }
+}
+
+/// A validated half-space scenario with typed parameters.
+#[derive(Debug)]
+pub struct HalfSpaceTemplate {
+    params: ParamTable<ScenarioSpec>,
+    dir: PathBuf,
+    cache: BuildCache,
+    base: Arc<Scenario>,
+}
+
+impl HalfSpaceTemplate {
+    /// Validate a table that came from `path`.
+    pub fn new(table: toml::Table, path: &Path) -> Result<Self> {
+        let file = path.display().to_string();
+        let spec = table_to_spec(table.clone(), &file)?;
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        let cache = BuildCache::new();
+        let base = Arc::new(Scenario::from_spec_cached(
+            spec.clone(),
+            &file,
+            &dir,
+            &cache,
+        )?);
+        Ok(HalfSpaceTemplate {
+            params: ParamTable::new(&file, table, spec, table_to_spec),
+            dir,
+            cache,
+            base,
+        })
+    }
+
+    /// The scenario as given.
+    pub fn scenario(&self) -> &Arc<Scenario> {
+        &self.base
+    }
+
+    /// The scenario with `values` set.
+    pub fn scenario_with(&self, values: &[(&Param, f64)]) -> Result<Arc<Scenario>> {
+        if values.is_empty() {
+            return Ok(self.base.clone());
+        }
+        let spec = self.params.spec_with(values)?;
+        Ok(Arc::new(Scenario::from_spec_cached(
+            spec,
+            &self.base.file,
+            &self.dir,
+            &self.cache,
+        )?))
+    }
+}
+
+impl Template for HalfSpaceTemplate {
+    fn kind(&self) -> &'static str {
+        KIND.name()
+    }
+
+    fn file(&self) -> &str {
+        &self.base.file
+    }
+
+    fn table(&self) -> &toml::Table {
+        self.params.table()
+    }
+
+    fn base(&self) -> Arc<dyn Model> {
+        self.base.clone()
+    }
+
+    fn param(&self, key: &str) -> Result<Param> {
+        self.params.param(key)
+    }
+
+    fn build(&self, values: &[(&Param, f64)]) -> Result<Arc<dyn Model>> {
+        Ok(self.scenario_with(values)?)
+    }
+}
+
+impl Model for Scenario {
+    fn kind(&self) -> &'static str {
+        KIND.name()
+    }
+
+    fn file(&self) -> &str {
+        &self.file
+    }
+
+    fn summary(&self) -> Result<Summary> {
+        simulate_summary(self)
+    }
+
+    fn run(&self, _control: &RunControl) -> Result<Box<dyn Outcome>> {
+        Ok(Box::new(simulate(self)?))
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
+fn bands_record(b: &BandAmplitudes, two_tone: bool) -> Record {
+    let mut r = Record::new();
+    for n in 1..=5 {
+        r.push(&format!("A{n}"), b.harmonic[n].into());
+    }
+    r.push("Asub", b.subharmonic.into());
+    if two_tone {
+        r.push("Af2", b.f2.into());
+        r.push("Asum", b.sum.into());
+        r.push("Adiff", b.difference.into());
+    }
+    r
+}
+
+impl Outcome for RunResult {
+    fn kind(&self) -> &'static str {
+        KIND.name()
+    }
+
+    fn summary(&self) -> &Summary {
+        &self.summary
+    }
+
+    fn files(&self) -> Result<Vec<OutputFile>> {
+        files::run_files(self)
+    }
+
+    /// Interface arrays (`t`, `gap`, ...), probe arrays (`probe_t`, ...), `summary`,
+    /// `spectrum` (frequency, incident, reflected), `incident_bands` / `reflected_bands`
+    /// (m/s), `A_inc` (m/s), `dt` (s), `probe_x` (m).
+    fn record(&self) -> Record {
+        let o = &self.interface;
+        let p = &self.probe;
+        let n = self
+            .incident_spectrum
+            .frequency
+            .len()
+            .min(self.reflected_spectrum.magnitude.len());
+        let cut = |v: &[f64]| Value::Array(v[..n.min(v.len())].to_vec());
+        Record::new()
+            .with("kind", Value::Text(KIND.name().into()))
+            .with("dt", o.dt.into())
+            .with("t", o.t.clone().into())
+            .with("gap", o.gap.clone().into())
+            .with("contact_stress", o.contact_stress.clone().into())
+            .with("beta", o.beta.clone().into())
+            .with("incident_stress", o.incident_stress.clone().into())
+            .with("reflected_stress", o.reflected_stress.clone().into())
+            .with("transmitted_stress", o.transmitted_stress.clone().into())
+            .with("probe_x", p.x.into())
+            .with("probe_t", p.t.clone().into())
+            .with("probe_incident_stress", p.incident_stress.clone().into())
+            .with("probe_reflected_stress", p.reflected_stress.clone().into())
+            .with("probe_incident_velocity", p.incident_velocity.clone().into())
+            .with("probe_reflected_velocity", p.reflected_velocity.clone().into())
+            .with("probe_displacement", p.displacement.clone().into())
+            .with(
+                "summary",
+                summary_record(Some(&self.file), &self.summary).into(),
+            )
+            .with(
+                "spectrum",
+                Value::Tuple(vec![
+                    cut(&self.incident_spectrum.frequency),
+                    cut(&self.incident_spectrum.magnitude),
+                    cut(&self.reflected_spectrum.magnitude),
+                ]),
+            )
+            .with(
+                "incident_bands",
+                bands_record(&self.incident_bands, self.two_tone).into(),
+            )
+            .with(
+                "reflected_bands",
+                bands_record(&self.reflected_bands, self.two_tone).into(),
+            )
+            .with("A_inc", self.a_inc.into())
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+
+    fn into_any(self: Box<Self>) -> Box<dyn Any> {
+        self
+    }
+}

@@ -1,0 +1,170 @@
+//! Models: the one contract every kind of scenario implements (the half-space problem,
+//! the bar stack, and whatever comes next), so that every edge of the program — the CLI's
+//! `run`, `sweep`, `identify` and `reproduce`, Python's `cw.run` and `cw.sweep`, Dask
+//! tasks — dispatches once, here.
+//!
+//! The pipeline of one run:
+//!
+//! ```text
+//! TOML table ──Kind::plan──▶ Template ──build(values)──▶ Model ──run──▶ Outcome
+//!   (parsed once)            (validated once;            (solver inputs   (signals, summary,
+//!                             tables and files            ready)           files, arrays)
+//!                             built/read once)
+//! ```
+//!
+//! * A [`Kind`] recognises its scenario tables and plans a [`Template`] from one.
+//! * A [`Template`] is a validated scenario with typed parameters ([`Param`]): a sweep or an
+//!   identification resolves its keys once ([`Template::param`]) and then only sets numbers
+//!   ([`Template::build`]); tabulated laws and excitation files are built or read once per
+//!   template.
+//! * A [`Model`] runs: [`Model::summary`] (the scalars a sweep row needs, fast path) or
+//!   [`Model::run`] (everything: an [`Outcome`]).
+//! * An [`Outcome`] holds the signals and the summary, renders its own files
+//!   ([`Outcome::files`]) and converts itself into plain arrays ([`Outcome::record`], what
+//!   the Python package turns into numpy arrays).
+//!
+//! Adding a kind of scenario: one module implementing these traits and one line in
+//! [`KINDS`].
+//!
+//! ```
+//! use contactwave::model;
+//! let template = model::from_toml_str(r#"
+//!     [medium]
+//!     material = "pmma"
+//!     [interface]
+//!     static_pressure = 0.1e6
+//!     [incident]
+//!     frequency = 1e6
+//!     cycles = 10
+//!     xi = 0.35
+//! "#, "example.toml").unwrap();
+//! assert_eq!(template.kind(), "half_space");
+//! // plan once, run many: set the load ratio on the validated template
+//! let xi = template.param("incident.xi").unwrap();
+//! for v in [0.2, 0.35, 0.8] {
+//!     let m = template.build(&[(&xi, v)]).unwrap();
+//!     let s = m.summary().unwrap();
+//!     assert!((s.get("xi").unwrap() - v).abs() < 1e-12);
+//! }
+//! // a full run gives the signals, the files and the arrays
+//! let outcome = template.base().run(&model::RunControl::default()).unwrap();
+//! assert!(outcome.summary().get("A2_over_Ainc").unwrap() > 0.05);
+//! assert!(outcome.files().unwrap().iter().any(|f| f.name == "timeseries.csv"));
+//! ```
+
+pub mod bar_stack;
+mod fields;
+pub mod half_space;
+mod param;
+mod record;
+
+pub use fields::{Fields, Slot};
+pub use param::{Param, ParamTable};
+pub use record::{Record, Value};
+
+use crate::analysis::Summary;
+use crate::error::Result;
+use crate::render::OutputFile;
+use crate::scenario::read_table;
+use crate::solver::barstack::StepProgress;
+use std::any::Any;
+use std::fmt::Debug;
+use std::path::Path;
+use std::sync::Arc;
+
+/// What a run may report while it goes (more to come: cancellation).
+#[derive(Debug, Clone, Default)]
+pub struct RunControl {
+    /// Called with (steps done, total steps) by long time-stepping runs.
+    pub progress: Option<StepProgress>,
+}
+
+/// A kind of scenario: recognises its tables and plans templates from them.
+pub trait Kind: Sync {
+    /// Name of the kind (`half_space`, `bar_stack`).
+    fn name(&self) -> &'static str;
+    /// Whether a parsed scenario table is of this kind.
+    fn matches(&self, table: &toml::Table) -> bool;
+    /// Validate a table that came from (or stands for) `path` into a template; relative
+    /// paths in it resolve against `path`'s folder.
+    fn plan(&self, table: toml::Table, path: &Path) -> Result<Arc<dyn Template>>;
+}
+
+/// The registered kinds, tried in order (the half-space problem, the default, last).
+pub static KINDS: [&dyn Kind; 2] = [&bar_stack::KIND, &half_space::KIND];
+
+/// The kind of a parsed scenario table.
+pub fn kind_of(table: &toml::Table) -> &'static dyn Kind {
+    KINDS
+        .iter()
+        .copied()
+        .find(|k| k.matches(table))
+        .unwrap_or(&half_space::KIND)
+}
+
+/// Plan a template from a parsed table that came from `path`, whichever its kind.
+pub fn plan(table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> {
+    kind_of(&table).plan(table, path)
+}
+
+/// Load a scenario file and plan its template.
+pub fn load(path: &Path) -> Result<Arc<dyn Template>> {
+    plan(read_table(path)?, path)
+}
+
+/// Parse TOML text named `file` (relative paths resolve against the current folder) and
+/// plan its template.
+pub fn from_toml_str(text: &str, file: &str) -> Result<Arc<dyn Template>> {
+    let table = crate::scenario::parse_toml(text, file)?;
+    plan(table, Path::new(file))
+}
+
+/// A validated scenario with typed parameters: plan once, build many.
+pub trait Template: Debug + Send + Sync {
+    /// Name of the kind.
+    fn kind(&self) -> &'static str;
+    /// File the scenario came from.
+    fn file(&self) -> &str;
+    /// The scenario table as given (before defaults).
+    fn table(&self) -> &toml::Table;
+    /// The model of the template as given.
+    fn base(&self) -> Arc<dyn Model>;
+    /// Resolve a dotted scenario key (e.g. `incident.xi`, `interface.1.compression.c`) to
+    /// a parameter. An unknown key, or one that does not take a number, is an error that
+    /// names the key.
+    fn param(&self, key: &str) -> Result<Param>;
+    /// The model with these parameter values set, validated (an invalid value is an error
+    /// naming the key, the value and the allowed range).
+    fn build(&self, values: &[(&Param, f64)]) -> Result<Arc<dyn Model>>;
+}
+
+/// A runnable model: solver inputs ready.
+pub trait Model: Debug + Send + Sync {
+    /// Name of the kind.
+    fn kind(&self) -> &'static str;
+    /// File the scenario came from.
+    fn file(&self) -> &str;
+    /// Run and return only the summary scalars (what a sweep row needs; no recorded
+    /// series or spectra beyond what the summary uses).
+    fn summary(&self) -> Result<Summary>;
+    /// Run fully: signals, spectra, summary.
+    fn run(&self, control: &RunControl) -> Result<Box<dyn Outcome>>;
+    /// The concrete model, for callers that need kind-specific inputs.
+    fn as_any(&self) -> &dyn Any;
+}
+
+/// Everything one run produced.
+pub trait Outcome: Debug + Send + Sync {
+    /// Name of the kind.
+    fn kind(&self) -> &'static str;
+    /// The summary scalars (`summary.json`, a sweep row).
+    fn summary(&self) -> &Summary;
+    /// The run's files, rendered in memory (`summary.json` first).
+    fn files(&self) -> Result<Vec<OutputFile>>;
+    /// The run as plain named values and arrays (what Python receives as numpy arrays).
+    fn record(&self) -> Record;
+    /// The concrete outcome, for callers that need kind-specific signals.
+    fn as_any(&self) -> &dyn Any;
+    /// The concrete outcome, by value.
+    fn into_any(self: Box<Self>) -> Box<dyn Any>;
+}

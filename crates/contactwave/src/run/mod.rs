@@ -1,0 +1,212 @@
+//! The one executor (in the spirit of argmin's `Executor`): a parallel map over points —
+//! sweep points, identification evaluations, reproduce's studies — with one observer
+//! interface for progress, checkpointing (a sweep writes each row as its point ends) and
+//! cancellation (Ctrl-C in the CLI, `KeyboardInterrupt` in Python). A panic in a point is
+//! caught here, once, and becomes that point's [`Error::Internal`].
+//!
+//! ```
+//! use contactwave::run::{Executor, Observer};
+//! use std::sync::atomic::{AtomicUsize, Ordering};
+//! struct Count(AtomicUsize);
+//! impl Observer<f64> for Count {
+//!     fn point(&self, _i: usize, _r: &contactwave::Result<f64>) -> contactwave::Result<()> {
+//!         self.0.fetch_add(1, Ordering::SeqCst);
+//!         Ok(())
+//!     }
+//! }
+//! let obs = Count(AtomicUsize::new(0));
+//! let squares = Executor::new().threads(Some(2))
+//!     .map(&[1.0, 2.0, 3.0], |x: &f64| Ok(x * x), &obs)
+//!     .unwrap();
+//! assert_eq!(squares.into_iter().map(|r| r.unwrap().unwrap()).collect::<Vec<_>>(), [1.0, 4.0, 9.0]);
+//! assert_eq!(obs.0.load(Ordering::SeqCst), 3);
+//! ```
+
+use crate::error::{Error, Result};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+/// Watches a map: progress, per-point results, cancellation. Every method has a default
+/// that does nothing, so an observer implements only what it needs. Called from worker
+/// threads: implementations synchronise what they share.
+pub trait Observer<T>: Sync {
+    /// Before the first point: the number of points that will run.
+    fn start(&self, _total: usize) {}
+    /// After each point (in completion order) with its index in the items and its result.
+    /// An error here (e.g. a checkpoint file that cannot be written) stops the map.
+    fn point(&self, _index: usize, _result: &Result<T>) -> Result<()> {
+        Ok(())
+    }
+    /// After each point: points ended so far and the total.
+    fn progress(&self, _done: usize, _total: usize) {}
+    /// Checked before each point: once `true`, no new point starts (running ones finish).
+    fn cancelled(&self) -> bool {
+        false
+    }
+}
+
+/// An observer that watches nothing.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Quiet;
+
+impl<T> Observer<T> for Quiet {}
+
+/// An observer that reports progress through a closure and cancels on a flag.
+pub struct Progress<'a> {
+    /// Called with (done, total).
+    pub report: &'a (dyn Fn(usize, usize) + Sync),
+    /// Set to stop starting new points.
+    pub cancel: Option<&'a AtomicBool>,
+}
+
+impl<T> Observer<T> for Progress<'_> {
+    fn progress(&self, done: usize, total: usize) {
+        (self.report)(done, total)
+    }
+    fn cancelled(&self) -> bool {
+        self.cancel.is_some_and(|c| c.load(Ordering::SeqCst))
+    }
+}
+
+/// Runs maps over points on a thread pool.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Executor {
+    threads: Option<usize>,
+}
+
+/// The message of a caught panic.
+fn panic_message(panic: Box<dyn std::any::Any + Send>) -> String {
+    panic
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| panic.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic".to_string())
+}
+
+impl Executor {
+    /// An executor on all cores.
+    pub fn new() -> Self {
+        Executor::default()
+    }
+
+    /// On `n` threads (`None` or `Some(0)`: all cores).
+    pub fn threads(mut self, n: Option<usize>) -> Self {
+        self.threads = n.filter(|&n| n > 0);
+        self
+    }
+
+    /// The number of threads a map will use.
+    pub fn thread_count(&self) -> usize {
+        self.threads.unwrap_or_else(rayon::current_num_threads)
+    }
+
+    /// Run `f` on every item in parallel (one point per task), reporting to `observer`.
+    /// Returns the results in the items' order; `None` for points not started because the
+    /// observer cancelled. A panic in `f` is that point's [`Error::Internal`]. The map
+    /// itself fails only when the thread pool cannot be built or the observer's
+    /// [`Observer::point`] fails.
+    pub fn map<I, T, F>(
+        &self,
+        items: &[I],
+        f: F,
+        observer: &dyn Observer<T>,
+    ) -> Result<Vec<Option<Result<T>>>>
+    where
+        I: Sync,
+        T: Send,
+        F: Fn(&I) -> Result<T> + Sync,
+    {
+        use rayon::prelude::*;
+        let total = items.len();
+        observer.start(total);
+        observer.progress(0, total);
+        let done = AtomicUsize::new(0);
+        let one = |(i, item): (usize, &I)| -> Result<Option<Result<T>>> {
+            if observer.cancelled() {
+                return Ok(None);
+            }
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(item)))
+                .unwrap_or_else(|p| {
+                    Err(Error::Internal {
+                        message: panic_message(p),
+                    })
+                });
+            observer.point(i, &r)?;
+            let d = done.fetch_add(1, Ordering::SeqCst) + 1;
+            observer.progress(d, total);
+            Ok(Some(r))
+        };
+        let run = || {
+            items
+                .par_iter()
+                .enumerate()
+                .with_max_len(1)
+                .map(one)
+                .collect::<Result<Vec<_>>>()
+        };
+        match self.threads {
+            None => run(),
+            Some(n) => rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| {
+                    Error::invalid("<executor>", "threads", n, format!("thread pool: {e}"))
+                })?
+                .install(run),
+        }
+    }
+
+    /// [`Executor::map`] with no observer, failing on the first point that failed (in
+    /// the items' order).
+    pub fn try_map<I, T, F>(&self, items: &[I], f: F) -> Result<Vec<T>>
+    where
+        I: Sync,
+        T: Send,
+        F: Fn(&I) -> Result<T> + Sync,
+    {
+        self.map(items, f, &Quiet)?
+            .into_iter()
+            .map(|r| r.unwrap_or(Err(Error::Interrupted)))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn panics_become_errors_of_their_point_and_order_is_kept() {
+        let r = Executor::new()
+            .threads(Some(2))
+            .map(
+                &[1, 2, 3, 4],
+                |&x: &i32| {
+                    if x == 3 {
+                        panic!("boom {x}");
+                    }
+                    Ok(x * 10)
+                },
+                &Quiet,
+            )
+            .unwrap();
+        let v: Vec<_> = r.into_iter().map(|x| x.unwrap()).collect();
+        assert_eq!(v[0].as_ref().unwrap(), &10);
+        assert_eq!(v[3].as_ref().unwrap(), &40);
+        let e = v[2].as_ref().unwrap_err().to_string();
+        assert_eq!(e, "internal error (panic): boom 3");
+    }
+
+    #[test]
+    fn cancellation_stops_new_points() {
+        let flag = AtomicBool::new(true);
+        let obs = Progress {
+            report: &|_, _| {},
+            cancel: Some(&flag),
+        };
+        let r = Executor::new()
+            .threads(Some(1))
+            .map(&[1, 2, 3], |&x: &i32| Ok(x), &obs)
+            .unwrap();
+        assert!(r.iter().all(Option::is_none));
+    }
+}

@@ -1,0 +1,84 @@
+//! What the solvers return: interface histories of the half-space problem (the same form
+//! from the exact and the finite-difference solver, so that they check each other) and
+//! the recorded histories of a bar-stack run.
+
+/// Energy audit of one run, J/m^2 (model.md; thesis has none).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EnergyAudit {
+    /// Energy brought by the incident wave, `int s_inc^2 / Z1 dt`.
+    pub incident: f64,
+    /// Energy carried away by the reflected wave, `int s_ref^2 / Z1 dt`.
+    pub reflected: f64,
+    /// Energy carried away by the transmitted wave, `int s_tr^2 / Z2 dt`.
+    pub transmitted: f64,
+    /// Energy stored in the interface at the end.
+    pub stored: f64,
+    /// Energy released by damage, `int (dpsi/dbeta) (-dbeta/dt) dt`.
+    pub damage: f64,
+    /// Decrease of the adhesion energy term (`w (beta_0 - beta_end)` for RCCM).
+    pub adhesion_decrease: f64,
+}
+
+impl EnergyAudit {
+    /// `|incident - reflected - transmitted - stored - damage| / incident`.
+    pub fn closure_error(&self) -> f64 {
+        (self.incident - self.reflected - self.transmitted - self.stored - self.damage).abs()
+            / self.incident.max(f64::MIN_POSITIVE)
+    }
+}
+
+/// Time histories at the interface (x = 0) on a uniform grid, SI units.
+#[derive(Debug, Clone, Default)]
+pub struct HalfSpaceOutput {
+    /// Time step, s.
+    pub dt: f64,
+    /// Times t_k = k dt, s (t = 0: the incident front reaches the interface).
+    pub t: Vec<f64>,
+    /// Gap [u], m.
+    pub gap: Vec<f64>,
+    /// Interface stress sigma, Pa (tension positive; -p0 at rest).
+    pub contact_stress: Vec<f64>,
+    /// Adhesion beta.
+    pub beta: Vec<f64>,
+    /// Incident stress at x = 0, Pa.
+    pub incident_stress: Vec<f64>,
+    /// Reflected stress at x = 0, Pa.
+    pub reflected_stress: Vec<f64>,
+    /// Transmitted stress at x = 0+, Pa.
+    pub transmitted_stress: Vec<f64>,
+    /// Reflected particle displacement at x = 0, `int s_ref/Z1 dt`, m (exact at the grid
+    /// points: differences give cell-averaged velocities free of aliasing from jumps).
+    pub reflected_displacement: Vec<f64>,
+    /// Incident particle displacement at x = 0, `-int s_inc/Z1 dt`, m.
+    pub incident_displacement: Vec<f64>,
+    /// Transmitted particle displacement at x = 0+, `-int s_tr/Z2 dt`, m (0 for a wall).
+    pub transmitted_displacement: Vec<f64>,
+    /// Energy audit.
+    pub energy: EnergyAudit,
+    /// Time the interface spent open (contact lost) while the burst was at it, s.
+    pub open_time_in_burst: f64,
+    /// Largest gap reached, m.
+    pub max_gap: f64,
+    /// Number of opening/closing/damage events located.
+    pub events: usize,
+    /// Duration of the incident burst, s.
+    pub burst_duration: f64,
+}
+
+/// What the solver records every `record_every` steps.
+#[derive(Debug, Clone, Default)]
+pub struct FdOutput {
+    /// Times, s.
+    pub t: Vec<f64>,
+    /// Displacement at each probe node (one Vec per probe), m.
+    pub displacement: Vec<Vec<f64>>,
+    /// Gap of each interface (obstacles last), m.
+    pub gap: Vec<Vec<f64>>,
+    /// Contact stress sigma of each interface, Pa.
+    pub stress: Vec<Vec<f64>>,
+    /// Adhesion beta of each interface.
+    pub beta: Vec<Vec<f64>>,
+    /// Node updates performed.
+    pub node_updates: u64,
+}
+
