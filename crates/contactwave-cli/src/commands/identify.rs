@@ -1,0 +1,152 @@
+//! `contactwave identify SPEC`: inverse problem on an identification file (base scenario,
+//! measured CSV, unknown parameters with bounds and scale; docs/identify.md).
+//!
+//! - default: estimate the unknowns, print the verdict, estimates, residual and
+//!   identifiability figures, and write DIR/identification.json, fit.csv, fit.svg,
+//!   sensitivity.svg and identification.html;
+//! - `--design`: rank the candidate experiments of the file's `[design]` table, print the
+//!   table and, with `--out`, write DIR/design.json and design.csv;
+//! - `--synthesize KEY=VALUE ...`: print synthetic data (CSV on stdout), no files.
+//!
+//! Everything is validated before the output folder is touched.
+
+use super::{check_out_dir, output_file, write_and_list, EXIT_OK};
+use contactwave::inverse::{self, synthesize, IdentifySpec, Model};
+use contactwave::Error;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+/// Identify interface parameters from a measured curve (identification file: base
+/// scenario, measured CSV, unknown parameters with bounds and scale; docs/identify.md).
+/// Writes DIR/identification.json, fit.csv, fit.svg, sensitivity.svg and
+/// identification.html. With --design, ranks the [design] candidates instead and
+/// prints a table (and writes DIR/design.json and design.csv if --out is given).
+#[derive(clap::Args)]
+pub struct Args {
+    /// Identification file (TOML).
+    spec: PathBuf,
+    /// Output folder (created if needed).
+    #[arg(long, value_name = "DIR", required_unless_present_any = ["design", "synthesize"])]
+    out: Option<PathBuf>,
+    /// Rank the candidate experiments of the file's [design] table.
+    #[arg(long)]
+    design: bool,
+    /// Print synthetic data instead (CSV on stdout): the file's data rows simulated
+    /// with KEY=VALUE for the unknowns (repeat the option), times 1 + noise * N(0, 1).
+    #[arg(long, value_name = "KEY=VALUE")]
+    synthesize: Vec<String>,
+    /// Relative noise of --synthesize.
+    #[arg(long, default_value_t = 0.01)]
+    noise: f64,
+    /// Seed of the --synthesize noise.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+}
+
+pub fn run(args: Args) -> contactwave::Result<u8> {
+    if args.synthesize.is_empty() {
+        identify(&args.spec, args.out.as_deref(), args.design)
+    } else {
+        synthesize_data(&args.spec, &args.synthesize, args.noise, args.seed)
+    }
+}
+
+/// Estimate the unknowns of an identification file, or rank its design candidates
+/// (`design`).
+fn identify(path: &Path, out: Option<&Path>, design: bool) -> contactwave::Result<u8> {
+    let spec = IdentifySpec::load(path)?;
+    if let Some(out) = out {
+        check_out_dir(out)?;
+    }
+    let quiet = !std::io::stderr().is_terminal();
+    let progress = |m: &str| {
+        if !quiet {
+            eprintln!("{m}");
+        }
+    };
+    if design {
+        let model = Model::new(&spec);
+        let report = inverse::design(&model)?;
+        println!(
+            "candidate experiments ranked by log10 det(S^T S) ({} over {} = {} values; {} forward runs in {:.2} s):",
+            report.key,
+            report.control,
+            report.control_values.len(),
+            report.forward_runs,
+            report.wall_seconds
+        );
+        print!("{}", report.table());
+        if let Some(out) = out {
+            let json = serde_json::to_string_pretty(&report.to_json())
+                .map_err(|e| Error::io(out, std::io::Error::other(e)))?;
+            let files = [
+                output_file("design.json", json + "\n"),
+                output_file("design.csv", report.to_csv()),
+            ];
+            write_and_list(out, &files)?;
+        }
+        return Ok(EXIT_OK);
+    }
+    let result = inverse::identify(&spec, &progress)?;
+    let files = result.files()?;
+    for line in result.verdict_lines() {
+        println!("{line}");
+    }
+    let id = &result.identifiability;
+    for (p, v) in result.parameters.iter().zip(&result.estimate.values) {
+        println!("estimate {} = {v:.6e}", p.key);
+    }
+    println!(
+        "residual norm {:.4e} ({} residuals), singular values [{}], condition number {:.3e}",
+        result.residual_norm(),
+        result.measured.residual_count(),
+        id.singular_values
+            .iter()
+            .map(|s| format!("{s:.3e}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        id.condition_number
+    );
+    println!(
+        "{} forward runs in {:.2} s ({:.0} runs/s)",
+        result.forward_runs,
+        result.wall_seconds,
+        result.forward_runs as f64 / result.wall_seconds.max(1e-9)
+    );
+    if let Some(out) = out {
+        write_and_list(out, &files)?;
+    }
+    Ok(EXIT_OK)
+}
+
+/// `--synthesize KEY=VALUE ...`: synthetic data of an identification file on stdout.
+fn synthesize_data(
+    path: &Path,
+    pairs: &[String],
+    noise: f64,
+    seed: u64,
+) -> contactwave::Result<u8> {
+    let spec = IdentifySpec::load(path)?;
+    let truth = pairs
+        .iter()
+        .map(|p| {
+            let (k, v) = p.split_once('=').unwrap_or((p, ""));
+            v.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .map(|x| (k.trim().to_string(), x))
+                .ok_or_else(|| {
+                    Error::invalid("--synthesize", k, v, "KEY=VALUE with a finite number")
+                })
+        })
+        .collect::<contactwave::Result<Vec<_>>>()?;
+    let data = synthesize(&spec, &truth, noise, seed)?;
+    let comment = format!(
+        "synthetic data: contactwave identify {} --synthesize {} --noise {noise} --seed {seed}",
+        path.display(),
+        pairs.join(" --synthesize ")
+    );
+    print!("{}", data.measured.to_csv(&comment));
+    Ok(EXIT_OK)
+}

@@ -1,0 +1,26 @@
+//! `contactwave law SCENARIO --out DIR`: the contact law of a scenario, written as
+//! DIR/law_curve.csv (gap m, stress Pa) and DIR/law_curve.svg; prints `wrote PATH` per file.
+
+use super::{check_out_dir, write_and_list, EXIT_OK};
+use contactwave::output;
+use contactwave::scenario::Scenario;
+use std::path::PathBuf;
+
+/// Write the contact law of a scenario as law_curve.csv (gap m, stress Pa) and
+/// law_curve.svg into DIR.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Scenario file (TOML).
+    scenario: PathBuf,
+    /// Output folder (created if needed).
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+}
+
+pub fn run(args: Args) -> contactwave::Result<u8> {
+    let scenario = Scenario::load(&args.scenario)?;
+    check_out_dir(&args.out)?;
+    let files = output::law_files(&scenario.law)?;
+    write_and_list(&args.out, &files)?;
+    Ok(EXIT_OK)
+}

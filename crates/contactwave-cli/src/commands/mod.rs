@@ -1,0 +1,98 @@
+//! The subcommands of `contactwave`, one module each (its clap `Args`, whose doc comment is
+//! the command's help text, and its `run`), and what they share: exit codes, the output
+//! folder check and file writing, progress bars and Ctrl-C handling.
+
+pub mod bench;
+pub mod convergence;
+pub mod fit;
+pub mod identify;
+pub mod law;
+pub mod merge;
+pub mod reproduce;
+pub mod run;
+pub mod sweep;
+pub mod validate;
+
+use contactwave::output::{self, OutputFile};
+use contactwave::scenario::parse_toml;
+use contactwave::Error;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::IsTerminal;
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Exit code: success.
+pub const EXIT_OK: u8 = 0;
+/// Exit code: `validate` found a case outside its tolerance.
+pub const EXIT_VALIDATION_FAILED: u8 = 1;
+/// Exit code: invalid input (scenario or sweep file, missing file, output path, I/O).
+pub const EXIT_INVALID_INPUT: u8 = 2;
+/// Exit code: numerical failure of a simulation.
+pub const EXIT_NUMERICAL: u8 = 3;
+/// Exit code: interrupted (Ctrl-C).
+pub const EXIT_INTERRUPTED: u8 = 130;
+
+/// Refuse an output path that exists and is not a folder (before any work is done).
+pub fn check_out_dir(out: &Path) -> contactwave::Result<()> {
+    if out.exists() && !out.is_dir() {
+        return Err(Error::io(
+            out,
+            std::io::Error::other("exists and is not a directory"),
+        ));
+    }
+    Ok(())
+}
+
+/// Read and parse a scenario file into its TOML table (not yet checked as a scenario).
+pub fn read_table(path: &Path) -> contactwave::Result<toml::Table> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    parse_toml(&text, &path.display().to_string())
+}
+
+/// An output file named `name` (no folder).
+pub fn output_file(name: &str, contents: String) -> OutputFile {
+    OutputFile {
+        name: name.into(),
+        contents,
+    }
+}
+
+/// Write `files` into the folder `out` (created if needed) and print `wrote PATH` for each.
+pub fn write_and_list(out: &Path, files: &[OutputFile]) -> contactwave::Result<()> {
+    for p in output::write_files(out, files)? {
+        println!("wrote {}", p.display());
+    }
+    Ok(())
+}
+
+/// Progress-bar template of the step-by-step computations (`run` of a bar stack,
+/// `convergence`).
+pub const STEPS_TEMPLATE: &str = "{bar:40} {pos}/{len}  {elapsed_precise} elapsed, eta {eta}";
+
+/// A progress bar of length `len` with the given template on stderr when it is a terminal
+/// (hidden otherwise).
+pub fn progress_bar(template: &str, len: u64) -> ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let b = ProgressBar::new(len);
+    if let Ok(style) = ProgressStyle::with_template(template) {
+        b.set_style(style);
+    }
+    b
+}
+
+/// Set by Ctrl-C once [`cancel_on_ctrl_c`] has installed its handler.
+static CANCEL: AtomicBool = AtomicBool::new(false);
+
+/// Install the Ctrl-C handler and return the flag it sets: the first Ctrl-C asks the work
+/// to stop (checked by the caller), a second one exits at once with code 130.
+pub fn cancel_on_ctrl_c() -> &'static AtomicBool {
+    let _ = ctrlc::set_handler(|| {
+        if CANCEL.swap(true, Ordering::SeqCst) {
+            // second Ctrl-C: give up at once (finished work is on disk already)
+            std::process::exit(EXIT_INTERRUPTED.into());
+        }
+    });
+    &CANCEL
+}

@@ -1,0 +1,107 @@
+//! `contactwave sweep SWEEP --out DIR`: run the points of a parameter sweep on a thread pool
+//! and write DIR/sweep.csv (one row per point, appended as points finish), its hash file
+//! DIR/sweep.csv.hash, DIR/sweep.svg and, if points fail, DIR/sweep_errors.csv.
+//!
+//! `--resume` computes only the points missing from an existing sweep.csv, `--shard K/N`
+//! one shard of the points (combined by `merge`). Ctrl-C stops after the running points
+//! (exit code 130, rerun with --resume); a second Ctrl-C exits at once.
+
+use super::{
+    cancel_on_ctrl_c, check_out_dir, output_file, progress_bar, EXIT_INTERRUPTED, EXIT_OK,
+};
+use contactwave::output;
+use contactwave::study::{self, Sweep, SweepOptions};
+use contactwave::Error;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Run a parameter sweep and write DIR/sweep.csv (one row per point: point index,
+/// swept parameters in their SI units, summary values), DIR/sweep.csv.hash and
+/// DIR/sweep.svg. Points whose simulation fails are listed in DIR/sweep_errors.csv.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Sweep file (TOML: `base = "scenario.toml"` and `[[axis]]` tables).
+    sweep: PathBuf,
+    /// Output folder (created if needed).
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Keep the rows of an existing sweep.csv of the same sweep and compute only the
+    /// missing points (refused if the sweep, its base scenario or the version changed).
+    #[arg(long)]
+    resume: bool,
+    /// Worker threads (default: one per core).
+    #[arg(long, value_name = "N",
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..))]
+    threads: Option<usize>,
+    /// Run only shard K of N: the points whose index i has i % N == K - 1 (1 <= K <= N).
+    /// Header and hash file are those of the whole sweep; combine shards with `merge`.
+    #[arg(long, value_name = "K/N", value_parser = study::Shard::parse)]
+    shard: Option<study::Shard>,
+}
+
+pub fn run(args: Args) -> contactwave::Result<u8> {
+    let out = args.out.as_path();
+    let sweep = Sweep::load(&args.sweep)?;
+    // validate every point before creating anything
+    sweep.runnable()?;
+    check_out_dir(out)?;
+    std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
+    let cancel = cancel_on_ctrl_c();
+    let shard = args.shard.unwrap_or(study::Shard::ALL);
+    let total = (0..sweep.points.len())
+        .filter(|&i| shard.contains(i))
+        .count();
+    let bar = progress_bar(
+        "{bar:40} {pos}/{len} points  {elapsed_precise} elapsed, eta {eta}",
+        total as u64,
+    );
+    let done = AtomicUsize::new(0);
+    let progress = |d: usize, _total: usize| {
+        done.store(d, Ordering::SeqCst);
+        bar.set_position(d as u64);
+    };
+    let csv = out.join("sweep.csv");
+    let opts = SweepOptions {
+        threads: args.threads,
+        resume: args.resume,
+    };
+    match study::run_sweep_shard(&sweep, shard, &csv, &opts, &progress, cancel) {
+        Ok(report) => {
+            bar.finish_and_clear();
+            let mut plotted = false;
+            if let Some(svg) = output::sweep_svg(&sweep, &csv)? {
+                output::write_files(out, &[output_file("sweep.svg", svg)])?;
+                plotted = true;
+            }
+            println!(
+                "{} points: {} computed, {} already done, {} failed",
+                report.total, report.computed, report.skipped, report.failed
+            );
+            println!("wrote {}", csv.display());
+            if plotted {
+                println!("wrote {}", out.join("sweep.svg").display());
+            }
+            if let Some(e) = report.errors_csv {
+                eprintln!(
+                    "warning: {} points failed; messages in {}",
+                    report.failed,
+                    e.display()
+                );
+            }
+            Ok(EXIT_OK)
+        }
+        Err(Error::Interrupted) => {
+            bar.abandon();
+            eprintln!(
+                "interrupted: {} of {} points done; rerun with --resume",
+                done.load(Ordering::SeqCst),
+                total
+            );
+            Ok(EXIT_INTERRUPTED)
+        }
+        Err(e) => {
+            bar.abandon();
+            Err(e)
+        }
+    }
+}
