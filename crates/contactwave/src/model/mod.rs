@@ -163,6 +163,9 @@ pub trait Outcome: Debug + Send + Sync {
     fn files(&self) -> Result<Vec<OutputFile>>;
     /// The run as plain named values and arrays (what Python receives as numpy arrays).
     fn record(&self) -> Record;
+    /// The lines a person reads after the run (`contactwave run` prints them): the
+    /// quantities that matter for this kind, one per line, label padded to 23 columns.
+    fn report(&self) -> Vec<String>;
     /// The concrete outcome, for callers that need kind-specific signals.
     fn as_any(&self) -> &dyn Any;
     /// The concrete outcome, by value.

@@ -215,6 +215,48 @@ impl Outcome for BarStackResult {
             .with("acceleration", self.acceleration.clone().into())
     }
 
+    fn report(&self) -> Vec<String> {
+        let s = &self.summary;
+        let get = |k: &str| s.get(k).unwrap_or(f64::NAN);
+        let mut lines = Vec::new();
+        for (i, p) in self.static_pressure.iter().enumerate() {
+            let closure = get(&format!("static_interface_closure_{i}"));
+            lines.push(format!(
+                "static pressure [{i}]    {p:.6e} Pa (closure {closure:.4e} m)"
+            ));
+        }
+        if self.waves.is_some() {
+            lines.push(format!("xi (first interface)   {:.6}", get("xi")));
+            lines.push(format!("A1/Ainc (reflected)    {:.6e}", get("A1_over_Ainc")));
+            lines.push(format!("A2/Ainc (reflected)    {:.6e}", get("A2_over_Ainc")));
+            if s.get("transmitted_A1_over_Ainc").is_some() {
+                lines.push(format!(
+                    "A1/Ainc (transmitted)  {:.6e}",
+                    get("transmitted_A1_over_Ainc")
+                ));
+                lines.push(format!(
+                    "A2/Ainc (transmitted)  {:.6e}",
+                    get("transmitted_A2_over_Ainc")
+                ));
+            }
+            lines.push(format!(
+                "energy R / T           {:.6} / {:.6}",
+                get("energy_reflected_fraction"),
+                s.get("energy_transmitted_fraction").unwrap_or(0.0)
+            ));
+        } else {
+            lines.push(format!("first mode             {:.2} Hz", get("first_mode_hz")));
+            lines.push(format!("second harmonic        {:.2} Hz", get("second_harmonic_hz")));
+            lines.push(format!("A2/A1                  {:.4e}", get("A2_over_A1")));
+            lines.push(format!("guide mode             {:.1} Hz", get("guide_mode_hz")));
+        }
+        lines.push(format!(
+            "min contact pressure   {:.4e} Pa",
+            get("min_contact_pressure")
+        ));
+        lines
+    }
+
     fn as_any(&self) -> &dyn Any {
         self
     }

@@ -217,6 +217,19 @@ impl Outcome for RunResult {
             .with("A_inc", self.a_inc.into())
     }
 
+    fn report(&self) -> Vec<String> {
+        let get = |k: &str| self.summary.get(k).unwrap_or(f64::NAN);
+        vec![
+            format!("xi                     {:.6}", get("xi")),
+            format!("A1/Ainc                {:.6e}", get("A1_over_Ainc")),
+            format!("A2/Ainc                {:.6e}", get("A2_over_Ainc")),
+            format!("A2/A1                  {:.6e}", get("A2_over_A1")),
+            format!("beta_end               {:.6}", get("beta_end")),
+            format!("contact loss fraction  {:.6}", get("contact_loss_fraction")),
+            format!("energy closure error   {:.3e}", get("energy_closure_error")),
+        ]
+    }
+
     fn as_any(&self) -> &dyn Any {
         self
     }
