@@ -299,17 +299,7 @@ pub(crate) struct XiReference<'a> {
 }
 
 /// Build the incident waveform of an `[incident]` table and its load ratio xi (0 when
-/// there is no loaded interface to refer to).
-pub(crate) fn build_incident(
-    inc: &IncidentSpec,
-    file: &str,
-    base_dir: &Path,
-    xi_ref: Option<&XiReference<'_>>,
-) -> Result<(Arc<dyn Excitation>, f64)> {
-    build_incident_cached(inc, file, base_dir, xi_ref, &BuildCache::new())
-}
-
-/// [`build_incident`] reading a waveform file through `cache`.
+/// there is no loaded interface to refer to), reading a waveform file through `cache`.
 pub(crate) fn build_incident_cached(
     inc: &IncidentSpec,
     file: &str,
