@@ -2,12 +2,12 @@
 //! scenarios, as figures (SVG + CSV), measured findings set beside the thesis' values, and
 //! a self-contained HTML report.
 //!
-//! Each chapter is one file (`chapter3.rs`, ...) that turns the embedded base scenarios
-//! (`examples/thesis/*.toml`, compiled into the binary) into a [`ChapterResult`]: figures
-//! whose data are [`Panel`]s of curves, and [`Finding`]s with stable keys (written to
-//! `findings.json`). Runs go through the same engine as `contactwave run` and `sweep`
-//! ([`crate::simulate`], [`crate::simulate_summary`], [`crate::simulate_bar_stack`]), in
-//! parallel (rayon). [`write_report`] renders the files.
+//! Each chapter is one module (`chapter3.rs`, `chapter4.rs`, `chapter5/`) that turns the
+//! embedded base scenarios (`examples/thesis/*.toml`, compiled into the binary) into a
+//! [`ChapterResult`]: figures whose data are [`Panel`]s of curves, and [`Finding`]s with
+//! stable keys (written to `findings.json`). Runs go through the same engine as
+//! `contactwave run` and `sweep` ([`crate::simulate`], [`crate::simulate_summary`],
+//! [`crate::simulate_bar_stack`]), in parallel (rayon). [`write_report`] renders the files.
 //!
 //! ```no_run
 //! use contactwave::reproduce::{run_chapter, write_report, Chapter};
