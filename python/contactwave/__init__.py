@@ -299,13 +299,12 @@ class BarStackResult:
         )
 
 
-def _is_bar_stack(scenario: Any) -> bool:
-    if isinstance(scenario, Mapping):
-        model = scenario.get("model")
-        return isinstance(model, Mapping) and model.get("kind") == "bar_stack"
-    if isinstance(scenario, (str, os.PathLike)):
-        return bool(_core.is_bar_stack(path=os.fspath(scenario)))
-    return False
+#: How each kind of scenario's record (``_core.run``) becomes a Python result: one entry
+#: per kind registered in the library (``contactwave::model::KINDS``).
+_RESULTS = {
+    "half_space": lambda raw, s: Result(raw, s),
+    "bar_stack": lambda raw, s: BarStackResult(raw),
+}
 
 
 def run_bar_stack(
@@ -321,30 +320,32 @@ def run_bar_stack(
     :class:`SimulationError` for a numerical failure.
     """
     if isinstance(scenario, Mapping):
-        raw = _core.simulate_bar_stack(text=_to_json(scenario, file), file=file)
-    elif isinstance(scenario, (str, os.PathLike)):
-        raw = _core.simulate_bar_stack(path=os.fspath(scenario))
+        s = scenario_from_dict(scenario, file)
+    elif isinstance(scenario, (str, os.PathLike, Scenario)):
+        s = _as_scenario(scenario)
     else:
         raise TypeError(
             f"expected a bar-stack dict or scenario file path, not {type(scenario).__name__}"
         )
-    return BarStackResult(raw)
+    if s.kind != "bar_stack":
+        raise ValueError(
+            f"{s.file}: not a bar-stack scenario ([model] kind = \"bar_stack\"); use run()"
+        )
+    return BarStackResult(_core.run(s))
 
 
 def run(scenario: ScenarioLike) -> Union[Result, BarStackResult]:
     """Simulate one scenario (a :class:`Scenario`, a dict, or a TOML file path) and return
     a :class:`Result`: the arrays of ``timeseries.csv`` and ``probe.csv``, the summary of
     ``summary.json``, ``spectrum()`` and ``harmonics()``. A bar-stack scenario (``[model]
-    kind = "bar_stack"``) is passed to :func:`run_bar_stack` and gives a
-    :class:`BarStackResult`.
+    kind = "bar_stack"``) gives a :class:`BarStackResult` (as :func:`run_bar_stack`).
 
     The GIL is released while the simulation runs. Raises ``ValueError`` for an invalid
     scenario and :class:`SimulationError` for a numerical failure.
     """
-    if _is_bar_stack(scenario):
-        return run_bar_stack(scenario)  # type: ignore[arg-type]
     s = _as_scenario(scenario)
-    return Result(_core.simulate(s), s)
+    raw = _core.run(s)
+    return _RESULTS[raw["kind"]](raw, s)
 
 
 def _bench_simulate(scenario: ScenarioLike, n: int) -> List[float]:

@@ -11,6 +11,7 @@
 //! `contactwave.SimulationError` (a `RuntimeError`); an interrupted sweep raises
 //! `KeyboardInterrupt`.
 
+use contactwave::model::{self, Record, RunControl, Template, Value};
 use contactwave::scenario::bar_stack::BarStackScenario;
 use contactwave::scenario::{parse_toml, AnyScenario, Scenario};
 use contactwave::study::{point_table, Sweep};
@@ -21,7 +22,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRuntimeError};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyTuple};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
@@ -47,15 +48,15 @@ fn to_py(e: Error) -> PyErr {
         Error::Io { .. } => PyOSError::new_err(msg),
         Error::Numerical { .. } => SimulationError::new_err(msg),
         Error::Interrupted => PyKeyboardInterrupt::new_err(msg),
+        Error::Internal { .. } => PyRuntimeError::new_err(msg),
     }
 }
 
-/// A validated scenario (built by `load_scenario` or from a dict).
+/// A validated scenario of any kind (built by `load_scenario` or from a dict): a planned
+/// template, run with `run`.
 #[pyclass(name = "Scenario", module = "contactwave._core", frozen)]
 struct PyScenario {
-    inner: Arc<Scenario>,
-    /// The scenario table as given (before validation resolved defaults).
-    table: toml::Table,
+    template: Arc<dyn Template>,
     /// The file it came from, or `<dict>` (relative paths resolve against its folder).
     path: PathBuf,
 }
@@ -65,13 +66,20 @@ impl PyScenario {
     /// File the scenario came from (`<dict>` for one built from a dict).
     #[getter]
     fn file(&self) -> String {
-        self.inner.file.clone()
+        self.template.file().to_string()
     }
 
-    /// Load ratio xi (resolved from the amplitude when the scenario gives `amplitude`).
+    /// Kind of scenario: `half_space` or `bar_stack`.
+    #[getter]
+    fn kind(&self) -> &'static str {
+        self.template.kind()
+    }
+
+    /// Load ratio xi (resolved from the amplitude when the scenario gives `amplitude`;
+    /// for a bar stack, at its first interface; 0 without an incident wave).
     #[getter]
     fn xi(&self) -> f64 {
-        self.inner.xi
+        self.template.base().load_ratio()
     }
 
     /// Path the scenario stands for: its file, or `<dict>` (its folder resolves the
@@ -83,13 +91,16 @@ impl PyScenario {
 
     /// The scenario's keys as given (no defaults filled in), as JSON text.
     fn to_json(&self) -> PyResult<String> {
-        serde_json::to_string(&self.table).map_err(|e| PyValueError::new_err(e.to_string()))
+        serde_json::to_string(self.template.table())
+            .map_err(|e| PyValueError::new_err(e.to_string()))
     }
 
     fn __repr__(&self) -> String {
         format!(
-            "Scenario(file={:?}, xi={:?})",
-            self.inner.file, self.inner.xi
+            "Scenario(file={:?}, kind={:?}, xi={:?})",
+            self.template.file(),
+            self.template.kind(),
+            self.xi()
         )
     }
 }
@@ -154,135 +165,68 @@ fn table_from_json(text: &str, file: &str) -> Result<toml::Table, Error> {
     }
 }
 
-/// Load and validate a scenario file (TOML).
+/// Load and validate a scenario file (TOML), whichever its kind.
 #[pyfunction]
-fn load_scenario(path: PathBuf) -> PyResult<PyScenario> {
-    let text = std::fs::read_to_string(&path).map_err(|e| to_py(Error::io(&path, e)))?;
-    let table = parse_toml(&text, &path.display().to_string()).map_err(to_py)?;
-    let inner = Scenario::from_table(table.clone(), &path).map_err(to_py)?;
-    Ok(PyScenario {
-        inner: Arc::new(inner),
-        table,
-        path,
-    })
+fn load_scenario(py: Python<'_>, path: PathBuf) -> PyResult<PyScenario> {
+    let p = path.clone();
+    let template = py.detach(move || model::load(&p)).map_err(to_py)?;
+    Ok(PyScenario { template, path })
 }
 
 /// Validate a scenario given as JSON text (a dict's `json.dumps`). `file` names it in
 /// errors and its folder resolves relative paths (`<dict>`: the working directory).
 #[pyfunction]
 #[pyo3(signature = (text, file = "<dict>"))]
-fn scenario_from_json(text: &str, file: &str) -> PyResult<PyScenario> {
+fn scenario_from_json(py: Python<'_>, text: &str, file: &str) -> PyResult<PyScenario> {
     let table = table_from_json(text, file).map_err(to_py)?;
     let path = PathBuf::from(file);
-    let inner = Scenario::from_table(table.clone(), &path).map_err(to_py)?;
-    Ok(PyScenario {
-        inner: Arc::new(inner),
-        table,
-        path,
+    let p = path.clone();
+    let template = py.detach(move || model::plan(table, &p)).map_err(to_py)?;
+    Ok(PyScenario { template, path })
+}
+
+/// A record (plain values of a run) as Python objects: numbers, strings, lists, numpy
+/// arrays (1-D, and 2-D for rows), tuples and dicts, in the record's order.
+fn record_to_py<'py>(py: Python<'py>, r: Record) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for (k, v) in r.entries {
+        d.set_item(k, value_to_py(py, v)?)?;
+    }
+    Ok(d)
+}
+
+fn value_to_py(py: Python<'_>, v: Value) -> PyResult<Bound<'_, PyAny>> {
+    Ok(match v {
+        Value::None => py.None().into_bound(py),
+        Value::Number(x) => x.into_pyobject(py)?.into_any(),
+        Value::Text(t) => t.into_pyobject(py)?.into_any(),
+        Value::List(l) => l.into_pyobject(py)?.into_any(),
+        Value::Array(a) => a.into_pyarray(py).into_any(),
+        Value::Rows(r) => rows(py, &r)?.into_any(),
+        Value::Tuple(items) => {
+            let items = items
+                .into_iter()
+                .map(|x| value_to_py(py, x))
+                .collect::<PyResult<Vec<_>>>()?;
+            PyTuple::new(py, items)?.into_any()
+        }
+        Value::Map(m) => record_to_py(py, m)?.into_any(),
     })
 }
 
-fn summary_dict<'py>(
-    py: Python<'py>,
-    file: Option<&str>,
-    s: &contactwave::analysis::Summary,
-) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    if let Some(f) = file {
-        d.set_item("scenario", f)?;
-    }
-    for (k, v) in s.iter() {
-        d.set_item(k, v)?;
-    }
-    Ok(d)
-}
-
-fn bands_dict<'py>(
-    py: Python<'py>,
-    b: &contactwave::analysis::BandAmplitudes,
-    two_tone: bool,
-) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    for n in 1..=5 {
-        d.set_item(format!("A{n}"), b.harmonic[n])?;
-    }
-    d.set_item("Asub", b.subharmonic)?;
-    if two_tone {
-        d.set_item("Af2", b.f2)?;
-        d.set_item("Asum", b.sum)?;
-        d.set_item("Adiff", b.difference)?;
-    }
-    Ok(d)
-}
-
-/// Run a scenario (GIL released while it runs). Returns a dict: the interface arrays
-/// (`t`, `gap`, ...), the probe arrays (`probe_t`, ...), `summary` (dict), `spectrum`
-/// (frequency, incident, reflected arrays), `incident_bands` / `reflected_bands` (dicts
-/// of band amplitudes in m/s), `A_inc` (m/s), `dt` (s), `probe_x` (m).
+/// Run a scenario of any kind (GIL released while it runs). Returns its record as a dict:
+/// `kind` and the kind's arrays and summary (see `Outcome::record` of each model: for a
+/// half-space run the interface arrays `t`, `gap`, ..., the probe arrays `probe_t`, ...,
+/// `summary`, `spectrum`, `incident_bands` / `reflected_bands`, `A_inc`, `dt`, `probe_x`;
+/// for a bar stack `t`, `force`, ..., `gap`, `pressure`, `beta`, `stiffness` (2-D),
+/// `frf`, `waves`, `probes`, `static_pressure`, `dt`, `summary`).
 #[pyfunction]
-fn simulate<'py>(py: Python<'py>, scenario: &PyScenario) -> PyResult<Bound<'py, PyDict>> {
-    let sc = scenario.inner.clone();
-    let r = py
-        .detach(move || contactwave::simulate(&sc))
+fn run<'py>(py: Python<'py>, scenario: &PyScenario) -> PyResult<Bound<'py, PyDict>> {
+    let m = scenario.template.base();
+    let record = py
+        .detach(move || m.run(&RunControl::default()).map(|o| o.record()))
         .map_err(to_py)?;
-    let sc = &scenario.inner;
-    let d = PyDict::new(py);
-    let o = r.interface;
-    d.set_item("dt", o.dt)?;
-    d.set_item("t", o.t.into_pyarray(py))?;
-    d.set_item("gap", o.gap.into_pyarray(py))?;
-    d.set_item("contact_stress", o.contact_stress.into_pyarray(py))?;
-    d.set_item("beta", o.beta.into_pyarray(py))?;
-    d.set_item("incident_stress", o.incident_stress.into_pyarray(py))?;
-    d.set_item("reflected_stress", o.reflected_stress.into_pyarray(py))?;
-    d.set_item("transmitted_stress", o.transmitted_stress.into_pyarray(py))?;
-    let p = r.probe;
-    d.set_item("probe_x", p.x)?;
-    d.set_item("probe_t", p.t.into_pyarray(py))?;
-    d.set_item("probe_incident_stress", p.incident_stress.into_pyarray(py))?;
-    d.set_item(
-        "probe_reflected_stress",
-        p.reflected_stress.into_pyarray(py),
-    )?;
-    d.set_item(
-        "probe_incident_velocity",
-        p.incident_velocity.into_pyarray(py),
-    )?;
-    d.set_item(
-        "probe_reflected_velocity",
-        p.reflected_velocity.into_pyarray(py),
-    )?;
-    d.set_item("probe_displacement", p.displacement.into_pyarray(py))?;
-    d.set_item("summary", summary_dict(py, Some(&sc.file), &r.summary)?)?;
-    let n = r
-        .incident_spectrum
-        .frequency
-        .len()
-        .min(r.reflected_spectrum.magnitude.len());
-    let mut fi = r.incident_spectrum;
-    let mut fr = r.reflected_spectrum;
-    fi.frequency.truncate(n);
-    fi.magnitude.truncate(n);
-    fr.magnitude.truncate(n);
-    d.set_item(
-        "spectrum",
-        (
-            fi.frequency.into_pyarray(py),
-            fi.magnitude.into_pyarray(py),
-            fr.magnitude.into_pyarray(py),
-        ),
-    )?;
-    let two_tone = sc.incident.second_frequency().is_some();
-    d.set_item(
-        "incident_bands",
-        bands_dict(py, &r.incident_bands, two_tone)?,
-    )?;
-    d.set_item(
-        "reflected_bands",
-        bands_dict(py, &r.reflected_bands, two_tone)?,
-    )?;
-    d.set_item("A_inc", sc.incident.peak() / sc.medium.impedance())?;
-    Ok(d)
+    record_to_py(py, record)
 }
 
 /// The table of a scenario file (TOML) or of a dict's JSON text, and the path naming it.
@@ -331,81 +275,16 @@ fn rows<'py>(py: Python<'py>, v: &[Vec<f64>]) -> PyResult<Bound<'py, numpy::PyAr
     Ok(a.into_pyarray(py))
 }
 
-/// Run a bar-stack scenario given as a TOML file (`path`) or a dict's JSON text (`text`,
-/// named `file`), with the GIL released. Returns a dict: `t`, `force`, `displacement`,
-/// `acceleration` (arrays), `gap`, `pressure`, `beta`, `stiffness` (interfaces x samples),
-/// `frf` (dict of arrays, empty for an incident-wave run), `waves` (dict of arrays or
-/// `None`), `probes` (name -> dict of arrays), `static_pressure` (list, Pa), `dt` (s),
-/// `summary` (dict).
-#[pyfunction]
-#[pyo3(signature = (path = None, text = None, file = "<dict>"))]
-fn simulate_bar_stack<'py>(
-    py: Python<'py>,
-    path: Option<PathBuf>,
-    text: Option<&str>,
-    file: &str,
-) -> PyResult<Bound<'py, PyDict>> {
-    let (table, path) = any_table(path, text, file)?;
-    let s = BarStackScenario::from_table(table, &path).map_err(to_py)?;
-    let s = Arc::new(s);
-    let sc = s.clone();
-    let r = py
-        .detach(move || contactwave::simulate_bar_stack(&sc))
-        .map_err(to_py)?;
-    let d = PyDict::new(py);
-    d.set_item("dt", s.dt)?;
-    d.set_item("static_pressure", s.static_pressure.clone())?;
-    d.set_item("gap", rows(py, &r.gap)?)?;
-    d.set_item("pressure", rows(py, &r.pressure)?)?;
-    d.set_item("beta", rows(py, &r.beta)?)?;
-    d.set_item("stiffness", rows(py, &r.stiffness)?)?;
-    let frf = PyDict::new(py);
-    frf.set_item("frequency", r.frf.frequency.into_pyarray(py))?;
-    frf.set_item("receptance", r.frf.receptance.into_pyarray(py))?;
-    frf.set_item("receptance_phase", r.frf.phase.into_pyarray(py))?;
-    frf.set_item("accelerance", r.frf.accelerance.into_pyarray(py))?;
-    d.set_item("frf", frf)?;
-    match r.waves {
-        Some(w) => {
-            let wd = PyDict::new(py);
-            wd.set_item("incident", w.incident.into_pyarray(py))?;
-            wd.set_item("reflected", w.reflected.into_pyarray(py))?;
-            if let Some(tr) = w.transmitted {
-                wd.set_item("transmitted", tr.into_pyarray(py))?;
-            }
-            d.set_item("waves", wd)?;
-        }
-        None => d.set_item("waves", py.None())?,
-    }
-    let probes = PyDict::new(py);
-    for p in r.probes {
-        let pd = PyDict::new(py);
-        pd.set_item("x", p.x)?;
-        pd.set_item("displacement", p.displacement.into_pyarray(py))?;
-        pd.set_item("velocity", p.velocity.into_pyarray(py))?;
-        pd.set_item("acceleration", p.acceleration.into_pyarray(py))?;
-        pd.set_item("stress", p.stress.into_pyarray(py))?;
-        probes.set_item(p.name, pd)?;
-    }
-    d.set_item("probes", probes)?;
-    d.set_item("summary", summary_dict(py, Some(&s.file), &r.summary)?)?;
-    d.set_item("t", r.t.into_pyarray(py))?;
-    d.set_item("force", r.force.into_pyarray(py))?;
-    d.set_item("displacement", r.displacement.into_pyarray(py))?;
-    d.set_item("acceleration", r.acceleration.into_pyarray(py))?;
-    Ok(d)
-}
-
 /// Time `n` runs of the Rust `simulate` of a scenario (GIL released): the wall time of
 /// each, in seconds. For measuring the Python overhead of `run`.
 #[pyfunction]
 fn bench_simulate(py: Python<'_>, scenario: &PyScenario, n: usize) -> PyResult<Vec<f64>> {
-    let sc = scenario.inner.clone();
+    let m = scenario.template.base();
     py.detach(move || {
         (0..n)
             .map(|_| {
                 let t0 = Instant::now();
-                let r = contactwave::simulate(&sc)?;
+                let r = m.run(&RunControl::default())?;
                 let dt = t0.elapsed().as_secs_f64();
                 std::hint::black_box(r);
                 Ok(dt)
@@ -432,7 +311,15 @@ fn law_curve<'py>(
             "gap: {g} is not a number; every gap must be a number (m)"
         )));
     }
-    let law = scenario.inner.law.clone();
+    let base = scenario.template.base();
+    let Some(hs) = base.as_any().downcast_ref::<Scenario>() else {
+        return Err(PyValueError::new_err(format!(
+            "{}: law_curve takes a half-space scenario (or a law dict), not a {} scenario",
+            scenario.template.file(),
+            scenario.template.kind()
+        )));
+    };
+    let law = hs.law.clone();
     let stress = py.detach(move || {
         let uc = law.critical_gap();
         let mut order: Vec<usize> = (0..gaps.len()).collect();
@@ -695,8 +582,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(load_scenario, m)?)?;
     m.add_function(wrap_pyfunction!(scenario_from_json, m)?)?;
-    m.add_function(wrap_pyfunction!(simulate, m)?)?;
-    m.add_function(wrap_pyfunction!(simulate_bar_stack, m)?)?;
+    m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(is_bar_stack, m)?)?;
     m.add_function(wrap_pyfunction!(table_json, m)?)?;
     m.add_function(wrap_pyfunction!(bench_simulate, m)?)?;

@@ -144,6 +144,9 @@ pub trait Model: Debug + Send + Sync {
     fn kind(&self) -> &'static str;
     /// File the scenario came from.
     fn file(&self) -> &str;
+    /// Load ratio xi of the incident wave at the (first) interface, 0 without one
+    /// (model.md section 2).
+    fn load_ratio(&self) -> f64;
     /// Run and return only the summary scalars (what a sweep row needs; no recorded
     /// series or spectra beyond what the summary uses).
     fn summary(&self) -> Result<Summary>;

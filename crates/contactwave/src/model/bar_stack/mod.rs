@@ -130,6 +130,10 @@ impl Model for BarStackScenario {
         &self.file
     }
 
+    fn load_ratio(&self) -> f64 {
+        self.xi
+    }
+
     fn summary(&self) -> Result<Summary> {
         Ok(simulate_bar_stack(self)?.summary)
     }

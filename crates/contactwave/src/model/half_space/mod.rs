@@ -125,6 +125,10 @@ impl Model for Scenario {
         &self.file
     }
 
+    fn load_ratio(&self) -> f64 {
+        self.xi
+    }
+
     fn summary(&self) -> Result<Summary> {
         simulate_summary(self)
     }
