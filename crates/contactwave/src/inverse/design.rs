@@ -8,9 +8,10 @@
 //! differences. Ranked by `log10 det(S^T S)` (D-optimality), ties broken by the smallest
 //! singular value of `S` (E-optimality).
 
-use super::{toml_number, Model, Scale};
+use super::model::{toml_number, Model};
+use super::sensitivity::svd_right;
+use super::spec::Scale;
 use crate::error::{Error, Result};
-use crate::inverse::identifiability::svd_right;
 use rayon::prelude::*;
 use serde_json::json;
 

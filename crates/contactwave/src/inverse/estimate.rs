@@ -3,7 +3,8 @@
 //! run by argmin's `Executor`. The swarm's particles are evaluated in parallel (argmin's
 //! `rayon` feature) and so are the rows of each curve.
 
-use super::Model;
+use super::model::Model;
+use super::sensitivity::{jacobian, svd_right};
 use crate::error::{Error, Result};
 use argmin::core::{CostFunction, Executor, State};
 use argmin::solver::neldermead::NelderMead;
@@ -138,12 +139,12 @@ pub fn refine_aligned(
     let mut unique = rows.clone();
     unique.sort_unstable();
     unique.dedup();
-    let jac = match super::identifiability::jacobian(model, z0, &unique) {
+    let jac = match jacobian(model, z0, &unique) {
         Ok(j) => j,
         Err(Error::Numerical { .. }) => return refine(model, rows, z0, 0.01, iters, tolerance),
         Err(e) => return Err(e),
     };
-    let (sv, vecs) = super::identifiability::svd_right(&jac);
+    let (sv, vecs) = svd_right(&jac);
     let range = params
         .iter()
         .map(|p| {

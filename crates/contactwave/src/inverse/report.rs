@@ -3,7 +3,7 @@
 
 use super::estimate::Estimate;
 use super::identifiability::Identifiability;
-use super::{Measured, Parameter};
+use super::spec::{Measured, Parameter, Scale};
 use crate::error::{Error, Result};
 use crate::output::plot::{color, plot_error};
 use crate::output::OutputFile;
@@ -102,7 +102,7 @@ impl Identification {
             "parameters": self.parameters.iter().map(|p| json!({
                 "key": p.key,
                 "bounds": [p.lower, p.upper],
-                "scale": match p.scale { super::Scale::Log => "log", super::Scale::Linear => "linear" },
+                "scale": match p.scale { Scale::Log => "log", Scale::Linear => "linear" },
                 "initial": p.initial,
             })).collect::<Vec<_>>(),
             "estimates": estimates,
@@ -362,8 +362,8 @@ fn sensitivity_svg(r: &Identification) -> Result<String> {
             let (x0, x1) = range((0..m.len()).map(xs));
             let (y0, y1) = range((0..m.len()).flat_map(|i| (0..nobs).map(move |k| val(i, k))));
             let unit = match p.scale {
-                super::Scale::Log => "per decade",
-                super::Scale::Linear => "per unit",
+                Scale::Log => "per decade",
+                Scale::Linear => "per unit",
             };
             let mut chart = ChartBuilder::on(area)
                 .caption(

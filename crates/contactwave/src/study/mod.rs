@@ -8,12 +8,11 @@
 //! [`crate::simulate_summary`].
 
 pub mod convergence;
-mod shard;
 mod sweep;
 pub mod validation;
 
-pub use shard::{merge_sweep_csvs, MergeReport, Shard};
 pub use sweep::{
-    errors_path, grid, hash_path, linspace, logspace, point_table, read_sweep_csv, run_sweep,
-    run_sweep_shard, Axis, AxisSpec, Sweep, SweepOptions, SweepReport, SweepTable,
+    errors_path, grid, hash_path, linspace, logspace, merge_sweep_csvs, point_table,
+    read_sweep_csv, run_sweep, run_sweep_shard, Axis, AxisSpec, MergeReport, Shard, Sweep,
+    SweepOptions, SweepReport, SweepTable,
 };

@@ -7,8 +7,12 @@
 //! belong together, that no point is missing and none appears twice, and write one CSV
 //! sorted by point with its hash file, exactly what an unsharded run would have written
 //! (rows in grid order instead of completion order).
+//!
+//! Below the driver: it reads what the CSV I/O wrote and checks it against a [`Sweep`];
+//! the driver runs a shard's points, this module never runs anything.
 
-use super::sweep::{hash_path, read_sweep_csv, Sweep};
+use super::csv_io::{errors_path, hash_path, read_sweep_csv};
+use super::format::Sweep;
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -203,7 +207,7 @@ pub fn merge_sweep_csvs(
             }
             rows.insert(p, (line.trim_end().to_string(), s));
         }
-        let ep = super::sweep::errors_path(path);
+        let ep = errors_path(path);
         if let Ok(t) = std::fs::read_to_string(&ep) {
             for line in t.lines().skip(1) {
                 if let Some((p, msg)) = line.split_once(',') {
@@ -281,56 +285,6 @@ pub fn merge_sweep_csvs(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::study::{run_sweep, run_sweep_shard, SweepOptions};
-    use std::sync::atomic::AtomicBool;
-
-    const BASE: &str = r#"
-[medium]
-material = "pmma"
-[interface]
-static_pressure = 0.1e6
-[incident]
-frequency = 1e6
-cycles = 3
-amplitude = 0.2e6
-[solver]
-samples_per_period = 32
-tail_periods = 5
-"#;
-
-    fn tmpdir(name: &str) -> PathBuf {
-        let d = std::env::temp_dir().join(format!(
-            "contactwave-shard-{name}-{}-{:?}",
-            std::process::id(),
-            std::time::SystemTime::now()
-                .duration_since(std::time::UNIX_EPOCH)
-                .map(|d| d.as_nanos())
-                .unwrap_or(0)
-        ));
-        std::fs::create_dir_all(&d).unwrap();
-        d
-    }
-
-    fn setup(name: &str) -> (PathBuf, Sweep) {
-        let d = tmpdir(name);
-        std::fs::write(d.join("base.toml"), BASE).unwrap();
-        let s = d.join("sweep.toml");
-        std::fs::write(
-            &s,
-            "base = \"base.toml\"\n[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.2, 1.0, 5]\n\
-             [[axis]]\nparameter = \"interface.static_pressure\"\nvalues = [1e5, 2e5]\n",
-        )
-        .unwrap();
-        let sweep = Sweep::load(&s).unwrap();
-        (d, sweep)
-    }
-
-    fn opts() -> SweepOptions {
-        SweepOptions {
-            threads: Some(2),
-            resume: false,
-        }
-    }
 
     #[test]
     fn parse_and_contains() {
@@ -344,97 +298,5 @@ tail_periods = 5
         assert_eq!(mine, vec![1, 4, 7]);
         assert!((0..100).all(|i| Shard::ALL.contains(i)));
         assert_eq!(s.to_string(), "2/3");
-    }
-
-    #[test]
-    fn shards_merge_to_the_whole_sweep() {
-        let (d, sweep) = setup("merge");
-        let cancel = AtomicBool::new(false);
-        let whole = d.join("whole.csv");
-        run_sweep(&sweep, &whole, &opts(), &|_, _| {}, &cancel).unwrap();
-        let mut parts = vec![];
-        for k in 1..=3 {
-            let p = d.join(format!("shard{k}.csv"));
-            let r = run_sweep_shard(
-                &sweep,
-                Shard::new(k, 3).unwrap(),
-                &p,
-                &opts(),
-                &|_, _| {},
-                &cancel,
-            )
-            .unwrap();
-            assert_eq!(r.total, [4, 3, 3][k - 1]);
-            let t = read_sweep_csv(&p).unwrap();
-            assert!(t.rows.iter().all(|r| r[0] as usize % 3 == k - 1));
-            assert_eq!(
-                std::fs::read_to_string(hash_path(&p)).unwrap().trim(),
-                sweep.hash
-            );
-            parts.push(p);
-        }
-        // shards in any order; with and without the sweep for the completeness check
-        parts.reverse();
-        let out = d.join("merged/sweep.csv");
-        let r = merge_sweep_csvs(&out, &parts, Some(&sweep)).unwrap();
-        assert_eq!((r.points, r.shards), (10, 3));
-        merge_sweep_csvs(&out, &parts, None).unwrap();
-        let merged = read_sweep_csv(&out).unwrap();
-        let mut reference = read_sweep_csv(&whole).unwrap();
-        reference.rows.sort_by(|a, b| a[0].total_cmp(&b[0]));
-        assert_eq!(merged.header, reference.header);
-        let bits = |rows: &[Vec<f64>]| -> Vec<Vec<u64>> {
-            rows.iter()
-                .map(|r| r.iter().map(|v| v.to_bits()).collect())
-                .collect()
-        };
-        assert_eq!(bits(&merged.rows), bits(&reference.rows));
-        assert_eq!(
-            std::fs::read_to_string(hash_path(&out)).unwrap().trim(),
-            sweep.hash
-        );
-
-        // a missing shard
-        let e = merge_sweep_csvs(&d.join("m2.csv"), &parts[..2], Some(&sweep))
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("missing"), "{e}");
-        assert!(!d.join("m2.csv").exists());
-        // a duplicated shard
-        let dup = vec![parts[0].clone(), parts[1].clone(), parts[0].clone()];
-        let e = merge_sweep_csvs(&d.join("m3.csv"), &dup, None)
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("twice"), "{e}");
-        // a shard of another sweep
-        std::fs::write(hash_path(&parts[1]), "0123\n").unwrap();
-        let e = merge_sweep_csvs(&d.join("m4.csv"), &parts, None)
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("hash") && e.contains("different sweeps"), "{e}");
-        let e = merge_sweep_csvs(&d.join("m5.csv"), &parts[1..], Some(&sweep))
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("different sweep"), "{e}");
-        let _ = std::fs::remove_dir_all(d);
-    }
-
-    #[test]
-    fn resume_a_shard() {
-        let (d, sweep) = setup("resume");
-        let cancel = AtomicBool::new(false);
-        let p = d.join("s.csv");
-        let shard = Shard::new(2, 2).unwrap();
-        run_sweep_shard(&sweep, shard, &p, &opts(), &|_, _| {}, &cancel).unwrap();
-        let text = std::fs::read_to_string(&p).unwrap();
-        let keep: Vec<&str> = text.lines().take(3).collect();
-        std::fs::write(&p, keep.join("\n") + "\n").unwrap();
-        let o = SweepOptions {
-            threads: Some(1),
-            resume: true,
-        };
-        let r = run_sweep_shard(&sweep, shard, &p, &o, &|_, _| {}, &cancel).unwrap();
-        assert_eq!((r.total, r.skipped, r.computed), (5, 2, 3));
-        let _ = std::fs::remove_dir_all(d);
     }
 }

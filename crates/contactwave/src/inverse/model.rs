@@ -1,0 +1,170 @@
+//! The forward model of an identification: [`Model`] maps parameter values (or scaled
+//! coordinates) to the scenario of each measured row, runs it, and returns the model curve
+//! and the weighted residuals `(model - y) / sigma`. [`toml_number`] writes a value into a
+//! scenario table as the scenario format expects it.
+
+use super::spec::IdentifySpec;
+use crate::analysis::Summary;
+use crate::error::{Error, Result};
+use crate::scenario::{set_dotted, AnyScenario};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Keys whose TOML value must be an integer.
+fn wants_integer(key: &str) -> bool {
+    key == "solver.samples_per_period"
+}
+
+/// A value for `key` in a scenario table: an integer where the format wants one (and the
+/// value is integral), a float otherwise.
+pub(crate) fn toml_number(key: &str, v: f64) -> toml::Value {
+    if wants_integer(key) && v.fract() == 0.0 && v.abs() < 9e15 {
+        toml::Value::Integer(v as i64)
+    } else {
+        toml::Value::Float(v)
+    }
+}
+
+/// The forward model of an identification: scenario of row `i` at parameter values `p`,
+/// and the weighted residuals. Counts its forward runs.
+pub struct Model<'a> {
+    /// The spec.
+    pub spec: &'a IdentifySpec,
+    runs: AtomicUsize,
+}
+
+impl<'a> Model<'a> {
+    /// A model over a spec.
+    pub fn new(spec: &'a IdentifySpec) -> Self {
+        Model {
+            spec,
+            runs: AtomicUsize::new(0),
+        }
+    }
+
+    /// Forward runs so far.
+    pub fn forward_runs(&self) -> usize {
+        self.runs.load(Ordering::Relaxed)
+    }
+
+    /// Scaled coordinates -> parameter values (clamped into the bounds).
+    pub fn values(&self, z: &[f64]) -> Vec<f64> {
+        self.spec
+            .parameters
+            .iter()
+            .zip(z)
+            .map(|(p, &z)| p.from_scaled(z).clamp(p.lower, p.upper))
+            .collect()
+    }
+
+    /// The table of row `i` with `conditions` overridden by `extra` (key, value) pairs.
+    fn table(&self, i: usize, values: &[f64], extra: &[(String, f64)]) -> Result<toml::Table> {
+        let spec = self.spec;
+        let mut t = spec.base_table.clone();
+        let m = &spec.measured;
+        for (k, c) in m.conditions.iter().enumerate() {
+            let v = extra
+                .iter()
+                .find(|(e, _)| e == c)
+                .map(|e| e.1)
+                .unwrap_or(m.rows[i][k]);
+            set_dotted(&mut t, c, toml_number(c, v)).map_err(|e| e.in_file(&self.data_name()))?;
+        }
+        for (e, v) in extra {
+            if !m.conditions.contains(e) {
+                set_dotted(&mut t, e, toml_number(e, *v))?;
+            }
+        }
+        for (p, &v) in spec.parameters.iter().zip(values) {
+            for key in std::iter::once(&p.key).chain(&p.also) {
+                set_dotted(&mut t, key, toml_number(key, v))?;
+            }
+        }
+        Ok(t)
+    }
+
+    /// The data file (or the identification file, for inline data), for error messages.
+    pub(super) fn data_name(&self) -> String {
+        self.spec
+            .data_file
+            .as_ref()
+            .unwrap_or(&self.spec.file)
+            .display()
+            .to_string()
+    }
+
+    /// The validated scenario of row `i` at parameter values `values`.
+    pub fn scenario(&self, i: usize, values: &[f64]) -> Result<AnyScenario> {
+        let t = self.table(i, values, &[])?;
+        AnyScenario::from_table(t, &self.spec.base).map_err(|e| match e {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+                ..
+            } => Error::invalid(
+                self.data_name(),
+                format!("row {} -> {field}", i + 1),
+                value,
+                allowed,
+            ),
+            other => other,
+        })
+    }
+
+    /// Run row `i` with overrides `extra` and parameter `values`.
+    pub fn run_with(&self, i: usize, values: &[f64], extra: &[(String, f64)]) -> Result<Summary> {
+        let t = self.table(i, values, extra)?;
+        let s = AnyScenario::from_table(t, &self.spec.base)?;
+        self.runs.fetch_add(1, Ordering::Relaxed);
+        s.summary()
+    }
+
+    /// Model values `[row][observed]` at scaled coordinates `z`, for the given rows
+    /// (forward runs in parallel).
+    pub fn curves_at(&self, z: &[f64], rows: &[usize]) -> Result<Vec<Vec<f64>>> {
+        let values = self.values(z);
+        rows.par_iter()
+            .map(|&i| {
+                let s = self.run_with(i, &values, &[])?;
+                Ok(self
+                    .spec
+                    .measured
+                    .observed
+                    .iter()
+                    .map(|o| s.get(&o.key).unwrap_or(f64::NAN))
+                    .collect())
+            })
+            .collect()
+    }
+
+    /// Model values for every row.
+    pub fn curves(&self, z: &[f64]) -> Result<Vec<Vec<f64>>> {
+        let rows: Vec<usize> = (0..self.spec.measured.len()).collect();
+        self.curves_at(z, &rows)
+    }
+
+    /// Weighted residuals `(model - y) / sigma`, row-major over `rows` x observed.
+    pub fn residuals_at(&self, z: &[f64], rows: &[usize]) -> Result<Vec<f64>> {
+        let c = self.curves_at(z, rows)?;
+        Ok(self.weigh(&c, rows))
+    }
+
+    /// Weighted residuals of model values `c` (`[row][observed]`, rows as listed).
+    pub fn weigh(&self, c: &[Vec<f64>], rows: &[usize]) -> Vec<f64> {
+        let obs = &self.spec.measured.observed;
+        let mut r = Vec::with_capacity(rows.len() * obs.len());
+        for (ci, &i) in c.iter().zip(rows) {
+            for (k, o) in obs.iter().enumerate() {
+                r.push((ci[k] - o.values[i]) / o.sigma[i]);
+            }
+        }
+        r
+    }
+
+    /// Weighted residuals over every row.
+    pub fn residuals(&self, z: &[f64]) -> Result<Vec<f64>> {
+        let rows: Vec<usize> = (0..self.spec.measured.len()).collect();
+        self.residuals_at(z, &rows)
+    }
+}

@@ -1,0 +1,424 @@
+//! The sweep driver: [`run_sweep`] and [`run_sweep_shard`] validate every grid point, open
+//! (or resume) the CSV, run the points on a rayon pool and hand each finished row or error
+//! to the CSV writer, honouring the cancel flag.
+//!
+//! The top of the sweep modules: it uses the file format, the CSV I/O and the shard
+//! arithmetic; nothing imports it back.
+
+use super::csv_io::{errors_path, hash_path, parse_sweep_csv, Writer};
+use super::format::Sweep;
+use super::shard::Shard;
+use crate::error::{Error, Result};
+use std::fs::{File, OpenOptions};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+/// Options of [`run_sweep`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SweepOptions {
+    /// Worker threads (`None`: one per core).
+    pub threads: Option<usize>,
+    /// Append to an existing CSV of the same sweep, skipping its points.
+    pub resume: bool,
+}
+
+/// What a finished [`run_sweep`] did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepReport {
+    /// Grid points of the sweep.
+    pub total: usize,
+    /// Points found in the CSV already (resume) and not run again.
+    pub skipped: usize,
+    /// Points run now that produced a row.
+    pub computed: usize,
+    /// Points run now whose simulation failed (listed in the errors file).
+    pub failed: usize,
+    /// The CSV written.
+    pub csv: PathBuf,
+    /// The errors file, if any point failed.
+    pub errors_csv: Option<PathBuf>,
+}
+
+/// Run a sweep, writing `out_csv` (and its hash and errors files, see the `study::sweep`
+/// module doc).
+///
+/// Every point is validated first ([`Sweep::scenarios`]); nothing is written if one is
+/// invalid. Points run on a rayon pool of `opts.threads` threads (all cores by default),
+/// each with [`crate::simulate_summary`]; rows are appended and flushed as points finish.
+/// `progress(done, total)` is called once at the start (with the points already in a
+/// resumed CSV) and after each point. `cancel` is checked before each point; once it is
+/// set, the running points finish and are written, and the call returns
+/// [`Error::Interrupted`].
+///
+/// With `opts.resume` and an existing CSV whose hash file matches [`Sweep::hash`], the
+/// points already in the CSV are skipped and the others appended; a different or missing
+/// hash is an error and the CSV is left untouched. Without `resume`, an existing CSV is
+/// overwritten. A point whose simulation fails is listed in the errors file and counted in
+/// [`SweepReport::failed`]; the sweep goes on.
+pub fn run_sweep(
+    sweep: &Sweep,
+    out_csv: &Path,
+    opts: &SweepOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+) -> Result<SweepReport> {
+    run_sweep_shard(sweep, Shard::ALL, out_csv, opts, progress, cancel)
+}
+
+/// [`run_sweep`] restricted to one shard of the grid: only the points `i` with
+/// `shard.contains(i)` (`i % N == K - 1` for shard `K/N`) run and are written. The CSV's
+/// header and hash file are those of the whole sweep, the same for every shard, so shard
+/// CSVs can be merged ([`crate::study::merge_sweep_csvs`]) and resumed like whole ones.
+/// [`SweepReport::total`] and `progress`'s total count the shard's points.
+pub fn run_sweep_shard(
+    sweep: &Sweep,
+    shard: Shard,
+    out_csv: &Path,
+    opts: &SweepOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+) -> Result<SweepReport> {
+    let scenarios = sweep.runnable()?;
+    let grid_total = scenarios.len();
+    let total = (0..grid_total).filter(|&i| shard.contains(i)).count();
+    let hash_file = hash_path(out_csv);
+    let errors_file = errors_path(out_csv);
+    let mut done = vec![false; grid_total];
+    let mut header = None;
+    let csv = if opts.resume && out_csv.exists() {
+        let stored = std::fs::read_to_string(&hash_file).map_err(|e| {
+            Error::invalid(
+                out_csv.display().to_string(),
+                "hash",
+                "(unreadable)",
+                format!(
+                    "cannot resume: {} cannot be read ({e}); remove the CSV or run \
+                     without --resume",
+                    hash_file.display()
+                ),
+            )
+        })?;
+        let stored = stored.trim();
+        if stored != sweep.hash {
+            return Err(Error::invalid(
+                out_csv.display().to_string(),
+                "hash",
+                stored,
+                format!(
+                    "cannot resume: the CSV was written by a different sweep (base scenario, \
+                     axes or contactwave version); this sweep's hash is {}; remove the CSV \
+                     or run without --resume",
+                    sweep.hash
+                ),
+            ));
+        }
+        let text = std::fs::read_to_string(out_csv).map_err(|e| Error::io(out_csv, e))?;
+        let table = parse_sweep_csv(&text, out_csv)?;
+        if !table.header.is_empty() {
+            let expected: Vec<String> = sweep.header(std::iter::empty());
+            if table.header.len() < expected.len() || table.header[..expected.len()] != expected {
+                return Err(Error::Parse {
+                    file: out_csv.display().to_string(),
+                    message: format!(
+                        "cannot resume: the header does not start with `{}`",
+                        expected.join(",")
+                    ),
+                });
+            }
+            for r in &table.rows {
+                let p = r[0];
+                if p >= 0.0 && p.fract() == 0.0 && (p as usize) < grid_total {
+                    done[p as usize] = true;
+                }
+            }
+            header = Some(table.header);
+        }
+        // drop a last line cut short by an interruption
+        let keep = text.rfind('\n').map(|k| k + 1).unwrap_or(0);
+        let f = OpenOptions::new()
+            .write(true)
+            .open(out_csv)
+            .map_err(|e| Error::io(out_csv, e))?;
+        f.set_len(keep as u64).map_err(|e| Error::io(out_csv, e))?;
+        drop(f);
+        OpenOptions::new()
+            .append(true)
+            .open(out_csv)
+            .map_err(|e| Error::io(out_csv, e))?
+    } else {
+        std::fs::write(&hash_file, format!("{}\n", sweep.hash))
+            .map_err(|e| Error::io(&hash_file, e))?;
+        File::create(out_csv).map_err(|e| Error::io(out_csv, e))?
+    };
+    if errors_file.exists() {
+        std::fs::remove_file(&errors_file).map_err(|e| Error::io(&errors_file, e))?;
+    }
+    let todo: Vec<usize> = (0..grid_total)
+        .filter(|&i| shard.contains(i) && !done[i])
+        .collect();
+    let skipped = total - todo.len();
+    let writer = Mutex::new(Writer {
+        csv,
+        csv_path: out_csv.to_path_buf(),
+        header,
+        errors: None,
+        errors_path: errors_file.clone(),
+        n_axes: sweep.axes.len(),
+        computed: 0,
+        failed: 0,
+    });
+    let processed = AtomicUsize::new(skipped);
+    progress(skipped, total);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.threads.unwrap_or(0))
+        .build()
+        .map_err(|e| Error::io(out_csv, std::io::Error::other(e.to_string())))?;
+    use rayon::prelude::*;
+    pool.install(|| {
+        todo.par_iter()
+            .with_max_len(1)
+            .try_for_each(|&i| -> Result<()> {
+                if cancel.load(Ordering::SeqCst) {
+                    return Ok(());
+                }
+                let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                    scenarios[i].summary()
+                }));
+                {
+                    let mut w = writer.lock().unwrap_or_else(|p| p.into_inner());
+                    match outcome {
+                        Ok(Ok(summary)) => w.row(i, &sweep.points[i], &summary, || {
+                            sweep.header(summary.keys())
+                        })?,
+                        Ok(Err(e)) => w.error(i, &e.to_string())?,
+                        Err(panic) => {
+                            let msg = panic
+                                .downcast_ref::<&str>()
+                                .map(|s| s.to_string())
+                                .or_else(|| panic.downcast_ref::<String>().cloned())
+                                .unwrap_or_else(|| "unknown panic".to_string());
+                            w.error(i, &format!("internal error (panic): {msg}"))?
+                        }
+                    }
+                }
+                let d = processed.fetch_add(1, Ordering::SeqCst) + 1;
+                progress(d, total);
+                Ok(())
+            })
+    })?;
+    let w = writer.into_inner().unwrap_or_else(|p| p.into_inner());
+    let _ = w.csv.sync_data();
+    if cancel.load(Ordering::SeqCst) && processed.load(Ordering::SeqCst) < total {
+        return Err(Error::Interrupted);
+    }
+    Ok(SweepReport {
+        total,
+        skipped,
+        computed: w.computed,
+        failed: w.failed,
+        csv: out_csv.to_path_buf(),
+        errors_csv: (w.failed > 0).then_some(errors_file),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::csv_io::read_sweep_csv;
+    use super::super::shard::merge_sweep_csvs;
+    use super::super::test_support::{setup, tmpdir, BASE};
+    use super::*;
+
+    #[test]
+    fn run_and_resume_skip_done_points() {
+        let (d, s) = setup(
+            "resume",
+            "base = \"base.toml\"\n[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.3, 1.2, 4]\n",
+        );
+        let sweep = Sweep::load(&s).unwrap();
+        let csv = d.join("sweep.csv");
+        let cancel = AtomicBool::new(false);
+        let opts = SweepOptions {
+            threads: Some(2),
+            resume: false,
+        };
+        let r = run_sweep(&sweep, &csv, &opts, &|_, _| {}, &cancel).unwrap();
+        assert_eq!((r.total, r.skipped, r.computed, r.failed), (4, 0, 4, 0));
+        let t = read_sweep_csv(&csv).unwrap();
+        assert_eq!(t.header[0], "point");
+        assert_eq!(t.header[1], "incident.xi");
+        assert_eq!(t.header[2], "xi");
+        assert_eq!(t.rows.len(), 4);
+        // keep the header and two rows plus half a line, then resume
+        let text = std::fs::read_to_string(&csv).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        let partial = format!(
+            "{}\n{}\n{}\n{}",
+            lines[0],
+            lines[1],
+            lines[2],
+            &lines[3][..5]
+        );
+        std::fs::write(&csv, partial).unwrap();
+        let opts = SweepOptions {
+            threads: Some(1),
+            resume: true,
+        };
+        let r = run_sweep(&sweep, &csv, &opts, &|_, _| {}, &cancel).unwrap();
+        assert_eq!((r.skipped, r.computed), (2, 2));
+        let t = read_sweep_csv(&csv).unwrap();
+        let mut pts: Vec<usize> = t.rows.iter().map(|r| r[0] as usize).collect();
+        pts.sort();
+        assert_eq!(pts, vec![0, 1, 2, 3]);
+        // nothing left to do
+        let r = run_sweep(&sweep, &csv, &opts, &|_, _| {}, &cancel).unwrap();
+        assert_eq!((r.skipped, r.computed), (4, 0));
+        // a different sweep refuses to resume into this CSV and leaves it alone
+        std::fs::write(
+            &s,
+            "base = \"base.toml\"\n[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.3, 1.2, 5]\n",
+        )
+        .unwrap();
+        let other = Sweep::load(&s).unwrap();
+        let before = std::fs::read_to_string(&csv).unwrap();
+        let e = run_sweep(&other, &csv, &opts, &|_, _| {}, &cancel).unwrap_err();
+        assert!(e.to_string().contains("hash"), "{e}");
+        assert_eq!(std::fs::read_to_string(&csv).unwrap(), before);
+        let _ = std::fs::remove_dir_all(d);
+    }
+
+    #[test]
+    fn cancel_before_start_is_interrupted() {
+        let (d, s) = setup(
+            "cancel",
+            "base = \"base.toml\"\n[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.3, 0.5]\n",
+        );
+        let sweep = Sweep::load(&s).unwrap();
+        let cancel = AtomicBool::new(true);
+        let e = run_sweep(
+            &sweep,
+            &d.join("sweep.csv"),
+            &SweepOptions::default(),
+            &|_, _| {},
+            &cancel,
+        )
+        .unwrap_err();
+        assert!(matches!(e, Error::Interrupted));
+        let _ = std::fs::remove_dir_all(d);
+    }
+
+    // sharded runs and their merge (moved from the shard module, which sits below the driver)
+
+    fn shard_setup(name: &str) -> (PathBuf, Sweep) {
+        let d = tmpdir(name);
+        std::fs::write(d.join("base.toml"), BASE).unwrap();
+        let s = d.join("sweep.toml");
+        std::fs::write(
+            &s,
+            "base = \"base.toml\"\n[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.2, 1.0, 5]\n\
+             [[axis]]\nparameter = \"interface.static_pressure\"\nvalues = [1e5, 2e5]\n",
+        )
+        .unwrap();
+        let sweep = Sweep::load(&s).unwrap();
+        (d, sweep)
+    }
+
+    fn opts() -> SweepOptions {
+        SweepOptions {
+            threads: Some(2),
+            resume: false,
+        }
+    }
+
+    #[test]
+    fn shards_merge_to_the_whole_sweep() {
+        let (d, sweep) = shard_setup("shard-merge");
+        let cancel = AtomicBool::new(false);
+        let whole = d.join("whole.csv");
+        run_sweep(&sweep, &whole, &opts(), &|_, _| {}, &cancel).unwrap();
+        let mut parts = vec![];
+        for k in 1..=3 {
+            let p = d.join(format!("shard{k}.csv"));
+            let r = run_sweep_shard(
+                &sweep,
+                Shard::new(k, 3).unwrap(),
+                &p,
+                &opts(),
+                &|_, _| {},
+                &cancel,
+            )
+            .unwrap();
+            assert_eq!(r.total, [4, 3, 3][k - 1]);
+            let t = read_sweep_csv(&p).unwrap();
+            assert!(t.rows.iter().all(|r| r[0] as usize % 3 == k - 1));
+            assert_eq!(
+                std::fs::read_to_string(hash_path(&p)).unwrap().trim(),
+                sweep.hash
+            );
+            parts.push(p);
+        }
+        // shards in any order; with and without the sweep for the completeness check
+        parts.reverse();
+        let out = d.join("merged/sweep.csv");
+        let r = merge_sweep_csvs(&out, &parts, Some(&sweep)).unwrap();
+        assert_eq!((r.points, r.shards), (10, 3));
+        merge_sweep_csvs(&out, &parts, None).unwrap();
+        let merged = read_sweep_csv(&out).unwrap();
+        let mut reference = read_sweep_csv(&whole).unwrap();
+        reference.rows.sort_by(|a, b| a[0].total_cmp(&b[0]));
+        assert_eq!(merged.header, reference.header);
+        let bits = |rows: &[Vec<f64>]| -> Vec<Vec<u64>> {
+            rows.iter()
+                .map(|r| r.iter().map(|v| v.to_bits()).collect())
+                .collect()
+        };
+        assert_eq!(bits(&merged.rows), bits(&reference.rows));
+        assert_eq!(
+            std::fs::read_to_string(hash_path(&out)).unwrap().trim(),
+            sweep.hash
+        );
+
+        // a missing shard
+        let e = merge_sweep_csvs(&d.join("m2.csv"), &parts[..2], Some(&sweep))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("missing"), "{e}");
+        assert!(!d.join("m2.csv").exists());
+        // a duplicated shard
+        let dup = vec![parts[0].clone(), parts[1].clone(), parts[0].clone()];
+        let e = merge_sweep_csvs(&d.join("m3.csv"), &dup, None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("twice"), "{e}");
+        // a shard of another sweep
+        std::fs::write(hash_path(&parts[1]), "0123\n").unwrap();
+        let e = merge_sweep_csvs(&d.join("m4.csv"), &parts, None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("hash") && e.contains("different sweeps"), "{e}");
+        let e = merge_sweep_csvs(&d.join("m5.csv"), &parts[1..], Some(&sweep))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("different sweep"), "{e}");
+        let _ = std::fs::remove_dir_all(d);
+    }
+
+    #[test]
+    fn resume_a_shard() {
+        let (d, sweep) = shard_setup("shard-resume");
+        let cancel = AtomicBool::new(false);
+        let p = d.join("s.csv");
+        let shard = Shard::new(2, 2).unwrap();
+        run_sweep_shard(&sweep, shard, &p, &opts(), &|_, _| {}, &cancel).unwrap();
+        let text = std::fs::read_to_string(&p).unwrap();
+        let keep: Vec<&str> = text.lines().take(3).collect();
+        std::fs::write(&p, keep.join("\n") + "\n").unwrap();
+        let o = SweepOptions {
+            threads: Some(1),
+            resume: true,
+        };
+        let r = run_sweep_shard(&sweep, shard, &p, &o, &|_, _| {}, &cancel).unwrap();
+        assert_eq!((r.total, r.skipped, r.computed), (5, 2, 3));
+        let _ = std::fs::remove_dir_all(d);
+    }
+}
