@@ -79,7 +79,7 @@ impl PyScenario {
     /// for a bar stack, at its first interface; 0 without an incident wave).
     #[getter]
     fn xi(&self) -> f64 {
-        self.template.base().load_ratio()
+        self.template.base().map_or(f64::NAN, |m| m.load_ratio())
     }
 
     /// Path the scenario stands for: its file, or `<dict>` (its folder resolves the
@@ -181,7 +181,9 @@ fn scenario_from_json(py: Python<'_>, text: &str, file: &str) -> PyResult<PyScen
     let table = table_from_json(text, file).map_err(to_py)?;
     let path = PathBuf::from(file);
     let p = path.clone();
-    let template = py.detach(move || model::plan(table, &p)).map_err(to_py)?;
+    let template = py
+        .detach(move || model::plan_valid(table, &p))
+        .map_err(to_py)?;
     Ok(PyScenario { template, path })
 }
 
@@ -222,7 +224,7 @@ fn value_to_py(py: Python<'_>, v: Value) -> PyResult<Bound<'_, PyAny>> {
 /// `frf`, `waves`, `probes`, `static_pressure`, `dt`, `summary`).
 #[pyfunction]
 fn run<'py>(py: Python<'py>, scenario: &PyScenario) -> PyResult<Bound<'py, PyDict>> {
-    let m = scenario.template.base();
+    let m = scenario.template.base().map_err(to_py)?;
     let record = py
         .detach(move || m.run(&RunControl::default()).map(|o| o.record()))
         .map_err(to_py)?;
@@ -279,7 +281,7 @@ fn rows<'py>(py: Python<'py>, v: &[Vec<f64>]) -> PyResult<Bound<'py, numpy::PyAr
 /// each, in seconds. For measuring the Python overhead of `run`.
 #[pyfunction]
 fn bench_simulate(py: Python<'_>, scenario: &PyScenario, n: usize) -> PyResult<Vec<f64>> {
-    let m = scenario.template.base();
+    let m = scenario.template.base().map_err(to_py)?;
     py.detach(move || {
         (0..n)
             .map(|_| {
@@ -311,7 +313,7 @@ fn law_curve<'py>(
             "gap: {g} is not a number; every gap must be a number (m)"
         )));
     }
-    let base = scenario.template.base();
+    let base = scenario.template.base().map_err(to_py)?;
     let Some(hs) = base.as_any().downcast_ref::<Scenario>() else {
         return Err(PyValueError::new_err(format!(
             "{}: law_curve takes a half-space scenario (or a law dict), not a {} scenario",

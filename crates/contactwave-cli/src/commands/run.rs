@@ -25,7 +25,7 @@ pub struct Args {
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
     let (path, out) = (args.scenario.as_path(), args.out.as_path());
-    let template = model::plan(read_table(path)?, path)?;
+    let template = model::plan_valid(read_table(path)?, path)?;
     check_out_dir(out)?;
     let t0 = Instant::now();
     // long runs report progress on a terminal
@@ -37,7 +37,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             b.set_position(done as u64);
         }))),
     };
-    let outcome = template.base().run(&control);
+    let outcome = template.base()?.run(&control);
     bar.finish_and_clear();
     let outcome = outcome?;
     let wall = t0.elapsed();

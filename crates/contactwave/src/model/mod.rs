@@ -47,7 +47,7 @@
 //!     assert!((s.get("xi").unwrap() - v).abs() < 1e-12);
 //! }
 //! // a full run gives the signals, the files and the arrays
-//! let outcome = template.base().run(&model::RunControl::default()).unwrap();
+//! let outcome = template.base().unwrap().run(&model::RunControl::default()).unwrap();
 //! assert!(outcome.summary().get("A2_over_Ainc").unwrap() > 0.05);
 //! assert!(outcome.files().unwrap().iter().any(|f| f.name == "timeseries.csv"));
 //! ```
@@ -59,7 +59,7 @@ mod param;
 mod record;
 
 pub use fields::{Fields, Slot};
-pub use param::{Param, ParamTable};
+pub use param::{toml_number, wants_integer, Param, ParamTable};
 pub use record::{Record, Value};
 
 use crate::analysis::Summary;
@@ -85,8 +85,9 @@ pub trait Kind: Sync {
     fn name(&self) -> &'static str;
     /// Whether a parsed scenario table is of this kind.
     fn matches(&self, table: &toml::Table) -> bool;
-    /// Validate a table that came from (or stands for) `path` into a template; relative
-    /// paths in it resolve against `path`'s folder.
+    /// Plan a template from a table that came from (or stands for) `path`; relative paths
+    /// in it resolve against `path`'s folder. Values are validated when a model is built
+    /// ([`Template::build`], [`Template::base`]).
     fn plan(&self, table: toml::Table, path: &Path) -> Result<Arc<dyn Template>>;
 }
 
@@ -107,16 +108,24 @@ pub fn plan(table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> {
     kind_of(&table).plan(table, path)
 }
 
-/// Load a scenario file and plan its template.
-pub fn load(path: &Path) -> Result<Arc<dyn Template>> {
-    plan(read_table(path)?, path)
+/// Plan a template and validate the scenario as given (what loading a scenario to run it
+/// means).
+pub fn plan_valid(table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> {
+    let t = plan(table, path)?;
+    t.base()?;
+    Ok(t)
 }
 
-/// Parse TOML text named `file` (relative paths resolve against the current folder) and
-/// plan its template.
+/// Load a scenario file, plan its template and validate it.
+pub fn load(path: &Path) -> Result<Arc<dyn Template>> {
+    plan_valid(read_table(path)?, path)
+}
+
+/// Parse TOML text named `file` (relative paths resolve against the current folder), plan
+/// its template and validate it.
 pub fn from_toml_str(text: &str, file: &str) -> Result<Arc<dyn Template>> {
     let table = crate::scenario::parse_toml(text, file)?;
-    plan(table, Path::new(file))
+    plan_valid(table, Path::new(file))
 }
 
 /// A validated scenario with typed parameters: plan once, build many.
@@ -127,8 +136,8 @@ pub trait Template: Debug + Send + Sync {
     fn file(&self) -> &str;
     /// The scenario table as given (before defaults).
     fn table(&self) -> &toml::Table;
-    /// The model of the template as given.
-    fn base(&self) -> Arc<dyn Model>;
+    /// The model of the template as given (validated on first use).
+    fn base(&self) -> Result<Arc<dyn Model>>;
     /// Resolve a dotted scenario key (e.g. `incident.xi`, `interface.1.compression.c`) to
     /// a parameter. An unknown key, or one that does not take a number, is an error that
     /// names the key.

@@ -43,19 +43,18 @@ pub fn toml_number(key: &str, v: f64) -> toml::Value {
 pub struct ParamTable<S> {
     file: String,
     table: toml::Table,
-    spec: S,
+    /// The spec of the table as given; `None` when the table is not a spec by itself
+    /// (e.g. a sweep's base without a key that every point sets): every key then goes
+    /// through the table.
+    spec: Option<S>,
     to_spec: fn(toml::Table, &str) -> Result<S>,
 }
 
 impl<S: Fields + Clone> ParamTable<S> {
-    /// The table as given (`file` names it in errors), its spec, and the conversion from
-    /// a table to a spec (for keys that are not typed).
-    pub fn new(
-        file: &str,
-        table: toml::Table,
-        spec: S,
-        to_spec: fn(toml::Table, &str) -> Result<S>,
-    ) -> Self {
+    /// The table as given (`file` names it in errors) and the conversion from a table to
+    /// a spec.
+    pub fn new(file: &str, table: toml::Table, to_spec: fn(toml::Table, &str) -> Result<S>) -> Self {
+        let spec = to_spec(table.clone(), file).ok();
         ParamTable {
             file: file.to_string(),
             table,
@@ -69,9 +68,12 @@ impl<S: Fields + Clone> ParamTable<S> {
         &self.table
     }
 
-    /// The spec as given.
-    pub fn spec(&self) -> &S {
-        &self.spec
+    /// The spec as given, or its error.
+    pub fn spec(&self) -> Result<S> {
+        match &self.spec {
+            Some(s) => Ok(s.clone()),
+            None => (self.to_spec)(self.table.clone(), &self.file),
+        }
     }
 
     /// Resolve `key`: a typed number of the spec, or else a key the table can take (its
@@ -79,8 +81,11 @@ impl<S: Fields + Clone> ParamTable<S> {
     /// through a value that is not a table, is an error naming it.
     pub fn param(&self, key: &str) -> Result<Param> {
         let parts: Vec<&str> = key.split('.').collect();
-        let mut spec = self.spec.clone();
-        if !parts.iter().any(|p| p.is_empty()) && spec.slot(&parts).is_some() {
+        let typed = match self.spec.clone() {
+            Some(mut spec) => !parts.iter().any(|p| p.is_empty()) && spec.slot(&parts).is_some(),
+            None => false,
+        };
+        if typed {
             return Ok(Param {
                 key: key.to_string(),
                 typed: true,
@@ -97,14 +102,15 @@ impl<S: Fields + Clone> ParamTable<S> {
     /// The spec with `values` set. Typed parameters are written by their setters; the
     /// others go through the table and its validation, as if written in the file.
     pub fn spec_with(&self, values: &[(&Param, f64)]) -> Result<S> {
-        let mut spec = if values.iter().any(|(p, _)| !p.typed) {
-            let mut t = self.table.clone();
-            for (p, v) in values.iter().filter(|(p, _)| !p.typed) {
-                set_dotted(&mut t, &p.key, toml_number(&p.key, *v))?;
+        let mut spec = match &self.spec {
+            Some(spec) if values.iter().all(|(p, _)| p.typed) => spec.clone(),
+            _ => {
+                let mut t = self.table.clone();
+                for (p, v) in values.iter().filter(|(p, _)| !p.typed) {
+                    set_dotted(&mut t, &p.key, toml_number(&p.key, *v))?;
+                }
+                (self.to_spec)(t, &self.file)?
             }
-            (self.to_spec)(t, &self.file)?
-        } else {
-            self.spec.clone()
         };
         for (p, v) in values.iter().filter(|(p, _)| p.typed) {
             let parts: Vec<&str> = p.key.split('.').collect();

@@ -22,7 +22,7 @@ use crate::scenario::bar_stack::{BarStackScenario, BarStackSpec};
 use crate::scenario::BuildCache;
 use std::any::Any;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// The bar-stack kind: tables with `[model] kind = "bar_stack"`.
 #[derive(Debug)]
@@ -41,54 +41,58 @@ impl Kind for BarStackKind {
     }
 
     fn plan(&self, table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> {
-        Ok(Arc::new(BarStackTemplate::new(table, path)?))
+        Ok(Arc::new(BarStackTemplate::new(table, path)))
     }
 }
 
-/// A validated bar-stack scenario with typed parameters.
+/// A planned bar-stack scenario with typed parameters: its table parsed once, its
+/// laws and files built once ([`BuildCache`]), each point validated when built.
 #[derive(Debug)]
 pub struct BarStackTemplate {
+    file: String,
     params: ParamTable<BarStackSpec>,
     dir: PathBuf,
     cache: BuildCache,
-    base: Arc<BarStackScenario>,
+    base: OnceLock<Arc<BarStackScenario>>,
 }
 
 impl BarStackTemplate {
-    /// Validate a table that came from `path`.
-    pub fn new(table: toml::Table, path: &Path) -> Result<Self> {
+    /// Plan a table that came from `path` (its values are validated when a model is built;
+    /// [`Template::base`] validates the table as given).
+    pub fn new(table: toml::Table, path: &Path) -> Self {
         let file = path.display().to_string();
-        let spec = BarStackSpec::from_table(table.clone(), &file)?;
-        let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
-        let cache = BuildCache::new();
-        let base = Arc::new(BarStackScenario::from_spec_cached(
-            spec.clone(),
-            &file,
-            &dir,
-            &cache,
+        BarStackTemplate {
+            params: ParamTable::new(&file, table, BarStackSpec::from_table),
+            dir: path.parent().unwrap_or(Path::new(".")).to_path_buf(),
+            cache: BuildCache::new(),
+            base: OnceLock::new(),
+            file,
+        }
+    }
+
+    /// The scenario as given, validated.
+    pub fn scenario(&self) -> Result<Arc<BarStackScenario>> {
+        if let Some(s) = self.base.get() {
+            return Ok(s.clone());
+        }
+        let s = Arc::new(BarStackScenario::from_spec_cached(
+            self.params.spec()?,
+            &self.file,
+            &self.dir,
+            &self.cache,
         )?);
-        Ok(BarStackTemplate {
-            params: ParamTable::new(&file, table, spec, BarStackSpec::from_table),
-            dir,
-            cache,
-            base,
-        })
+        Ok(self.base.get_or_init(|| s).clone())
     }
 
-    /// The scenario as given.
-    pub fn scenario(&self) -> &Arc<BarStackScenario> {
-        &self.base
-    }
-
-    /// The scenario with `values` set.
+    /// The scenario with `values` set, validated.
     pub fn scenario_with(&self, values: &[(&Param, f64)]) -> Result<Arc<BarStackScenario>> {
         if values.is_empty() {
-            return Ok(self.base.clone());
+            return self.scenario();
         }
         let spec = self.params.spec_with(values)?;
         Ok(Arc::new(BarStackScenario::from_spec_cached(
             spec,
-            &self.base.file,
+            &self.file,
             &self.dir,
             &self.cache,
         )?))
@@ -101,15 +105,15 @@ impl Template for BarStackTemplate {
     }
 
     fn file(&self) -> &str {
-        &self.base.file
+        &self.file
     }
 
     fn table(&self) -> &toml::Table {
         self.params.table()
     }
 
-    fn base(&self) -> Arc<dyn Model> {
-        self.base.clone()
+    fn base(&self) -> Result<Arc<dyn Model>> {
+        Ok(self.scenario()?)
     }
 
     fn param(&self, key: &str) -> Result<Param> {

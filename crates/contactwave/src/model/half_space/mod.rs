@@ -17,7 +17,7 @@ use crate::scenario::spec::ScenarioSpec;
 use crate::scenario::{table_to_spec, BuildCache, Scenario};
 use std::any::Any;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// The half-space kind: every scenario table that no other kind claims.
 #[derive(Debug)]
@@ -36,54 +36,58 @@ impl Kind for HalfSpaceKind {
     }
 
     fn plan(&self, table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> {
-        Ok(Arc::new(HalfSpaceTemplate::new(table, path)?))
+        Ok(Arc::new(HalfSpaceTemplate::new(table, path)))
     }
 }
 
-/// A validated half-space scenario with typed parameters.
+/// A planned half-space scenario with typed parameters: its table parsed once, its
+/// laws and files built once ([`BuildCache`]), each point validated when built.
 #[derive(Debug)]
 pub struct HalfSpaceTemplate {
+    file: String,
     params: ParamTable<ScenarioSpec>,
     dir: PathBuf,
     cache: BuildCache,
-    base: Arc<Scenario>,
+    base: OnceLock<Arc<Scenario>>,
 }
 
 impl HalfSpaceTemplate {
-    /// Validate a table that came from `path`.
-    pub fn new(table: toml::Table, path: &Path) -> Result<Self> {
+    /// Plan a table that came from `path` (its values are validated when a model is built;
+    /// [`Template::base`] validates the table as given).
+    pub fn new(table: toml::Table, path: &Path) -> Self {
         let file = path.display().to_string();
-        let spec = table_to_spec(table.clone(), &file)?;
-        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-        let cache = BuildCache::new();
-        let base = Arc::new(Scenario::from_spec_cached(
-            spec.clone(),
-            &file,
-            &dir,
-            &cache,
+        HalfSpaceTemplate {
+            params: ParamTable::new(&file, table, table_to_spec),
+            dir: path.parent().map(Path::to_path_buf).unwrap_or_default(),
+            cache: BuildCache::new(),
+            base: OnceLock::new(),
+            file,
+        }
+    }
+
+    /// The scenario as given, validated.
+    pub fn scenario(&self) -> Result<Arc<Scenario>> {
+        if let Some(s) = self.base.get() {
+            return Ok(s.clone());
+        }
+        let s = Arc::new(Scenario::from_spec_cached(
+            self.params.spec()?,
+            &self.file,
+            &self.dir,
+            &self.cache,
         )?);
-        Ok(HalfSpaceTemplate {
-            params: ParamTable::new(&file, table, spec, table_to_spec),
-            dir,
-            cache,
-            base,
-        })
+        Ok(self.base.get_or_init(|| s).clone())
     }
 
-    /// The scenario as given.
-    pub fn scenario(&self) -> &Arc<Scenario> {
-        &self.base
-    }
-
-    /// The scenario with `values` set.
+    /// The scenario with `values` set, validated.
     pub fn scenario_with(&self, values: &[(&Param, f64)]) -> Result<Arc<Scenario>> {
         if values.is_empty() {
-            return Ok(self.base.clone());
+            return self.scenario();
         }
         let spec = self.params.spec_with(values)?;
         Ok(Arc::new(Scenario::from_spec_cached(
             spec,
-            &self.base.file,
+            &self.file,
             &self.dir,
             &self.cache,
         )?))
@@ -96,15 +100,15 @@ impl Template for HalfSpaceTemplate {
     }
 
     fn file(&self) -> &str {
-        &self.base.file
+        &self.file
     }
 
     fn table(&self) -> &toml::Table {
         self.params.table()
     }
 
-    fn base(&self) -> Arc<dyn Model> {
-        self.base.clone()
+    fn base(&self) -> Result<Arc<dyn Model>> {
+        Ok(self.scenario()?)
     }
 
     fn param(&self, key: &str) -> Result<Param> {

@@ -1,6 +1,7 @@
-//! The sweep driver: [`run_sweep`] and [`run_sweep_shard`] validate every grid point, open
-//! (or resume) the CSV, run the points on a rayon pool and hand each finished row or error
-//! to the CSV writer, honouring the cancel flag.
+//! The sweep driver: [`run_sweep`] and [`run_sweep_shard`] plan the sweep and validate
+//! every grid point, open (or resume) the CSV, run the points on the [`Executor`] and hand
+//! each finished row or error to the CSV writer (the executor's observer), honouring the
+//! cancel flag.
 //!
 //! The top of the sweep modules: it uses the file format, the CSV I/O and the shard
 //! arithmetic; nothing imports it back.
@@ -8,11 +9,46 @@
 use super::csv_io::{errors_path, hash_path, parse_sweep_csv, Writer};
 use super::format::Sweep;
 use super::shard::Shard;
+use crate::analysis::Summary;
 use crate::error::{Error, Result};
+use crate::run::{Executor, Observer};
 use std::fs::{File, OpenOptions};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
+
+/// The sweep's observer: writes each finished point's row (or error) to the CSV as it
+/// ends, reports progress counting the points of a resumed CSV, cancels on the flag.
+struct Rows<'a> {
+    sweep: &'a Sweep,
+    todo: &'a [usize],
+    writer: &'a Mutex<Writer>,
+    skipped: usize,
+    total: usize,
+    progress: &'a (dyn Fn(usize, usize) + Sync),
+    cancel: &'a AtomicBool,
+}
+
+impl Observer<Summary> for Rows<'_> {
+    fn point(&self, k: usize, result: &Result<Summary>) -> Result<()> {
+        let i = self.todo[k];
+        let mut w = self.writer.lock().unwrap_or_else(|p| p.into_inner());
+        match result {
+            Ok(summary) => w.row(i, &self.sweep.points[i], summary, || {
+                self.sweep.header(summary.keys())
+            }),
+            Err(e) => w.error(i, &e.to_string()),
+        }
+    }
+
+    fn progress(&self, done: usize, _total: usize) {
+        (self.progress)(self.skipped + done, self.total)
+    }
+
+    fn cancelled(&self) -> bool {
+        self.cancel.load(Ordering::SeqCst)
+    }
+}
 
 /// Options of [`run_sweep`].
 #[derive(Debug, Clone, Copy, Default)]
@@ -43,9 +79,10 @@ pub struct SweepReport {
 /// Run a sweep, writing `out_csv` (and its hash and errors files, see the `study::sweep`
 /// module doc).
 ///
-/// Every point is validated first ([`Sweep::scenarios`]); nothing is written if one is
-/// invalid. Points run on a rayon pool of `opts.threads` threads (all cores by default),
-/// each with [`crate::simulate_summary`]; rows are appended and flushed as points finish.
+/// The sweep is planned once ([`Sweep::plan`]) and every point is validated first
+/// ([`Sweep::runnable`]); nothing is written if one is invalid. Points run on the
+/// [`Executor`] with `opts.threads` threads (all cores by default), each with
+/// [`crate::model::Model::summary`]; rows are appended and flushed as points finish.
 /// `progress(done, total)` is called once at the start (with the points already in a
 /// resumed CSV) and after each point. `cancel` is checked before each point; once it is
 /// set, the running points finish and are written, and the call returns
@@ -79,8 +116,8 @@ pub fn run_sweep_shard(
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: &AtomicBool,
 ) -> Result<SweepReport> {
-    let scenarios = sweep.runnable()?;
-    let grid_total = scenarios.len();
+    let models = sweep.runnable()?;
+    let grid_total = models.len();
     let total = (0..grid_total).filter(|&i| shard.contains(i)).count();
     let hash_file = hash_path(out_csv);
     let errors_file = errors_path(out_csv);
@@ -168,48 +205,22 @@ pub fn run_sweep_shard(
         computed: 0,
         failed: 0,
     });
-    let processed = AtomicUsize::new(skipped);
-    progress(skipped, total);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.threads.unwrap_or(0))
-        .build()
-        .map_err(|e| Error::io(out_csv, std::io::Error::other(e.to_string())))?;
-    use rayon::prelude::*;
-    pool.install(|| {
-        todo.par_iter()
-            .with_max_len(1)
-            .try_for_each(|&i| -> Result<()> {
-                if cancel.load(Ordering::SeqCst) {
-                    return Ok(());
-                }
-                let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    scenarios[i].summary()
-                }));
-                {
-                    let mut w = writer.lock().unwrap_or_else(|p| p.into_inner());
-                    match outcome {
-                        Ok(Ok(summary)) => w.row(i, &sweep.points[i], &summary, || {
-                            sweep.header(summary.keys())
-                        })?,
-                        Ok(Err(e)) => w.error(i, &e.to_string())?,
-                        Err(panic) => {
-                            let msg = panic
-                                .downcast_ref::<&str>()
-                                .map(|s| s.to_string())
-                                .or_else(|| panic.downcast_ref::<String>().cloned())
-                                .unwrap_or_else(|| "unknown panic".to_string());
-                            w.error(i, &format!("internal error (panic): {msg}"))?
-                        }
-                    }
-                }
-                let d = processed.fetch_add(1, Ordering::SeqCst) + 1;
-                progress(d, total);
-                Ok(())
-            })
-    })?;
+    let observer = Rows {
+        sweep,
+        todo: &todo,
+        writer: &writer,
+        skipped,
+        total,
+        progress,
+        cancel,
+    };
+    let done = Executor::new()
+        .threads(opts.threads)
+        .map(&todo, |&i| models[i].summary(), &observer)?;
+    let processed = skipped + done.iter().filter(|r| r.is_some()).count();
     let w = writer.into_inner().unwrap_or_else(|p| p.into_inner());
     let _ = w.csv.sync_data();
-    if cancel.load(Ordering::SeqCst) && processed.load(Ordering::SeqCst) < total {
+    if cancel.load(Ordering::SeqCst) && processed < total {
         return Err(Error::Interrupted);
     }
     Ok(SweepReport {

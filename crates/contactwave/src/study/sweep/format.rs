@@ -1,7 +1,8 @@
 //! The sweep file format: parsing a sweep file (`base`, the optional `[set]` table and the
 //! `[[axis]]` tables) into a [`Sweep`] with its [`Axis`]es ([`AxisSpec`]: `values`,
 //! `linspace`, `logspace`), the checks on them, and the scenario table of each grid point
-//! ([`point_table`], [`Sweep::runnable`]). The file format is described in the
+//! ([`point_table`]), and the sweep's plan: the base template with one typed parameter
+//! per axis ([`Sweep::plan`], [`Sweep::model`]). The file format is described in the
 //! `study::sweep` module doc.
 //!
 //! Below it: the grid (values and cartesian product) and the CSV side (the hash and the
@@ -10,7 +11,9 @@
 use super::csv_io::{fmt_f64, hash_sweep};
 use super::grid::{grid, linspace, logspace};
 use crate::error::{Error, Result};
-use crate::scenario::{apply_set, parse_toml, set_dotted, AnyScenario, Scenario};
+use crate::model::{self, toml_number, Model, Param, Template};
+use crate::scenario::{apply_set, parse_toml, set_dotted};
+use std::sync::Arc;
 use std::path::{Path, PathBuf};
 
 /// Largest number of points of one axis.
@@ -307,44 +310,49 @@ impl Sweep {
         )
     }
 
-    /// Validate every grid point and return the scenarios, in grid order. The first invalid
-    /// point fails with the scenario error (naming the base file and the field), followed by
-    /// the sweep file, the point index and its values.
-    pub fn scenarios(&self) -> Result<Vec<Scenario>> {
-        self.runnable()?
-            .into_iter()
-            .map(|s| match s {
-                AnyScenario::HalfSpace(s) => Ok(*s),
-                AnyScenario::BarStack(_) => Err(Error::invalid(
-                    self.base.display().to_string(),
-                    "model.kind",
-                    "bar_stack",
-                    "this call needs half-space scenarios",
-                )),
+    /// Plan the sweep once: the base template (its table parsed, laws and files built
+    /// once) and one typed parameter per axis. A key the scenario cannot take is an error
+    /// naming the sweep file and the field `axis[k].parameter`.
+    pub fn plan(&self) -> Result<SweepPlan> {
+        let template = model::plan(self.base_table.clone(), &self.base)?;
+        let file = self.file.display().to_string();
+        let params = self
+            .axes
+            .iter()
+            .enumerate()
+            .map(|(k, a)| {
+                template
+                    .param(&a.parameter)
+                    .map_err(|e| axis_error(e, &file, k))
             })
-            .collect()
+            .collect::<Result<Vec<_>>>()?;
+        Ok(SweepPlan { template, params })
     }
 
-    /// Validate every grid point (half-space or bar-stack scenarios), in grid order.
-    pub fn runnable(&self) -> Result<Vec<AnyScenario>> {
-        (0..self.points.len())
-            .map(|i| {
-                let table = self.point_table(i)?;
-                AnyScenario::from_table(table, &self.base).map_err(|e| {
-                    let values = self
-                        .axes
-                        .iter()
-                        .zip(&self.points[i])
-                        .map(|(a, v)| format!("{} = {}", a.parameter, fmt_f64(*v)))
-                        .collect::<Vec<_>>()
-                        .join(", ");
-                    with_context(
-                        e,
-                        &format!("in sweep {} at point {i}: {values}", self.file.display()),
-                    )
-                })
-            })
-            .collect()
+    /// The model of grid point `i`, validated; an invalid point fails with the scenario
+    /// error (naming the base file and the field), followed by the sweep file, the point
+    /// index and its values.
+    pub fn model(&self, plan: &SweepPlan, i: usize) -> Result<Arc<dyn Model>> {
+        let values: Vec<(&Param, f64)> = plan.params.iter().zip(self.points[i].iter().copied()).collect();
+        plan.template.build(&values).map_err(|e| {
+            let values = self
+                .axes
+                .iter()
+                .zip(&self.points[i])
+                .map(|(a, v)| format!("{} = {}", a.parameter, fmt_f64(*v)))
+                .collect::<Vec<_>>()
+                .join(", ");
+            with_context(
+                e,
+                &format!("in sweep {} at point {i}: {values}", self.file.display()),
+            )
+        })
+    }
+
+    /// Plan the sweep and validate every grid point (any kind of scenario), in grid order.
+    pub fn runnable(&self) -> Result<Vec<Arc<dyn Model>>> {
+        let plan = self.plan()?;
+        (0..self.points.len()).map(|i| self.model(&plan, i)).collect()
     }
 
     /// CSV header: `point`, the parameters, then the summary keys.
@@ -354,6 +362,28 @@ impl Sweep {
             .chain(summary_keys)
             .map(str::to_string)
             .collect()
+    }
+}
+
+/// A planned sweep: the base scenario's template and the parameter of each axis.
+#[derive(Debug, Clone)]
+pub struct SweepPlan {
+    /// The base scenario (after `[set]`), planned once.
+    pub template: Arc<dyn Template>,
+    /// The parameter of each axis, in axis order.
+    pub params: Vec<Param>,
+}
+
+/// A key error of axis `k`, naming the sweep file and `axis[k].parameter`.
+fn axis_error(e: Error, file: &str, k: usize) -> Error {
+    match e {
+        Error::Invalid { value, allowed, .. } => Error::Invalid {
+            file: file.to_string(),
+            field: format!("axis[{k}].parameter"),
+            value,
+            allowed,
+        },
+        other => other,
     }
 }
 
@@ -368,20 +398,8 @@ pub fn point_table(
 ) -> Result<toml::Table> {
     let mut table = base_table.clone();
     for (k, (parameter, &v)) in parameters.iter().zip(values).enumerate() {
-        let value = if wants_integer(parameter) && v.fract() == 0.0 {
-            toml::Value::Integer(v as i64)
-        } else {
-            toml::Value::Float(v)
-        };
-        set_dotted(&mut table, parameter, value).map_err(|e| match e {
-            Error::Invalid { value, allowed, .. } => Error::Invalid {
-                file: file.to_string(),
-                field: format!("axis[{k}].parameter"),
-                value,
-                allowed,
-            },
-            other => other,
-        })?;
+        set_dotted(&mut table, parameter, toml_number(parameter, v))
+            .map_err(|e| axis_error(e, file, k))?;
     }
     Ok(table)
 }
@@ -414,12 +432,6 @@ fn check_axes(file: &str, axes: &[Axis]) -> Result<()> {
         ));
     }
     Ok(())
-}
-
-/// Whether the swept key is an integer in the scenario format (written as a TOML integer
-/// when the value is integral; every other key takes a float).
-fn wants_integer(key: &str) -> bool {
-    key == "solver.samples_per_period"
 }
 
 fn parse_axis(a: &toml::Value, i: usize, file: &str) -> Result<Axis> {
@@ -635,10 +647,7 @@ mod tests {
         assert_eq!(law(0), "modified_power");
         assert_eq!(law(1), "power");
         assert_eq!(t["excitation"]["peak"].as_float(), Some(32.0));
-        match &sw.runnable().unwrap()[0] {
-            AnyScenario::BarStack(_) => {}
-            AnyScenario::HalfSpace(_) => panic!("a bar stack was expected"),
-        }
+        assert_eq!(sw.runnable().unwrap()[0].kind(), "bar_stack");
         // an index past the end names the [set] key
         let bad = good.replace("interface.1.", "interface.2.");
         std::fs::write(dir.join("bad.toml"), bad).unwrap();
