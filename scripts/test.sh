@@ -2,8 +2,9 @@
 # The one command that runs every test of the workspace on a fresh machine:
 #   ./scripts/test.sh
 # Steps: formatting, lints (warnings are errors), the whole test suite in release mode (the
-# physics tests are heavy), and the library's doc tests. Exits non-zero at the first
-# failing step.
+# physics tests are heavy), the library's doc tests, every output of the release CLI
+# against tests/reference/outputs.json, and the Python package's tests. Exits non-zero at
+# the first failing step.
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -81,6 +82,12 @@ step "pip install ${PY_DEPS[*]}"
 
 step "cargo build --release -p contactwave-cli (the CLI the Python tests compare with)"
 cargo build --release -p contactwave-cli
+
+# Every output of the CLI (reproduce, run, sweep, merge, law, convergence, identify, fit,
+# validate) against the fingerprints recorded in tests/reference/outputs.json (about two
+# minutes on 2 cores); re-record only for an intended change: tests/reference/README.md
+step "reference outputs of the CLI (scripts/reference_outputs.py check)"
+"$VPY" scripts/reference_outputs.py check
 
 step "pip install . (maturin: the contactwave wheel, abi3, Python >= 3.9)"
 rm -f python/contactwave/_core*.so  # a stale `maturin develop` build would shadow the wheel
