@@ -12,9 +12,10 @@
 //! `KeyboardInterrupt`.
 
 use contactwave::model::{self, Record, RunControl, Template, Value};
+use contactwave::run::{Executor, Progress, Quiet};
 use contactwave::scenario::bar_stack::BarStackScenario;
-use contactwave::scenario::{parse_toml, AnyScenario, Scenario};
-use contactwave::study::{point_table, Sweep};
+use contactwave::scenario::{parse_toml, Scenario};
+use contactwave::study::Sweep;
 use contactwave::Error;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
@@ -360,19 +361,15 @@ fn fit_power_law<'py>(
 /// What one sweep point gave: its summary or its error message.
 type Outcome = Result<contactwave::analysis::Summary, String>;
 
-fn run_one(scenario: &AnyScenario) -> Outcome {
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| scenario.summary())) {
-        Ok(Ok(s)) => Ok(s),
-        Ok(Err(e)) => Err(e.to_string()),
-        Err(panic) => Err(format!(
-            "internal error (panic): {}",
-            panic
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| panic.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown panic".into())
-        )),
-    }
+/// The executor's results as outcomes (a point not started: `cancelled`).
+fn outcomes(results: Vec<Option<contactwave::Result<contactwave::analysis::Summary>>>) -> Vec<Outcome> {
+    results
+        .into_iter()
+        .map(|r| match r {
+            Some(r) => r.map_err(|e| e.to_string()),
+            None => Err("cancelled".to_string()),
+        })
+        .collect()
 }
 
 /// Outcomes -> `(keys, values[n_points, n_keys], errors[(row, message)])`. Keys: those of
@@ -449,24 +446,18 @@ fn sweep_local<'py>(
 ) -> PyResult<(Bound<'py, numpy::PyArray2<f64>>, String, Table<'py>)> {
     let file = base_path.display().to_string();
     let table = table_from_json(base_json, &file).map_err(to_py)?;
-    let (sweep, scenarios) = py
+    let (sweep, models) = py
         .detach(move || -> Result<_, Error> {
             let sweep = Sweep::from_parts(Path::new("<sweep>"), base_path, table, axes)?;
-            let scenarios = sweep.runnable()?;
-            Ok((sweep, scenarios))
+            let models = sweep.runnable()?;
+            Ok((sweep, models))
         })
         .map_err(to_py)?;
-    let pool = match threads {
-        Some(0) => return Err(PyValueError::new_err("threads: must be >= 1 (or None)")),
-        Some(n) => Some(
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?,
-        ),
-        None => None,
-    };
-    let outcomes = run_interruptibly(py, &scenarios, pool.as_ref())?;
+    if threads == Some(0) {
+        return Err(PyValueError::new_err("threads: must be >= 1 (or None)"));
+    }
+    let executor = Executor::new().threads(threads);
+    let outcomes = run_interruptibly(py, &models, executor)?;
     Ok((
         points_array(py, &sweep)?,
         sweep.hash.clone(),
@@ -481,36 +472,24 @@ fn points_array<'py>(py: Python<'py>, sweep: &Sweep) -> PyResult<Bound<'py, nump
     Ok(arr.into_pyarray(py))
 }
 
-/// Run `scenarios` on rayon in a helper thread while this thread (GIL released between
-/// polls) checks for signals every [`SIGNAL_POLL`]; on a signal, set the cancel flag,
-/// wait for the running points and return the signal's exception.
+/// Run `models` on the executor in a helper thread while this thread (GIL released
+/// between polls) checks for signals every [`SIGNAL_POLL`]; on a signal, cancel (the
+/// executor starts no new point), wait for the running points and return the signal's
+/// exception.
 fn run_interruptibly(
     py: Python<'_>,
-    scenarios: &[AnyScenario],
-    pool: Option<&rayon::ThreadPool>,
+    models: &[Arc<dyn contactwave::model::Model>],
+    executor: Executor,
 ) -> PyResult<Vec<Outcome>> {
-    use rayon::prelude::*;
     let cancel = AtomicBool::new(false);
     let finished = (Mutex::new(false), Condvar::new());
     std::thread::scope(|s| {
         let worker = s.spawn(|| {
-            let work = || -> Vec<Outcome> {
-                scenarios
-                    .par_iter()
-                    .with_max_len(1)
-                    .map(|sc| {
-                        if cancel.load(Ordering::Relaxed) {
-                            Err("cancelled".to_string())
-                        } else {
-                            run_one(sc)
-                        }
-                    })
-                    .collect()
+            let observer = Progress {
+                report: &|_, _| {},
+                cancel: Some(&cancel),
             };
-            let out = match pool {
-                Some(p) => p.install(work),
-                None => work(),
-            };
+            let out = executor.map(models, |m| m.summary(), &observer);
             let (m, cv) = &finished;
             *m.lock().unwrap_or_else(|p| p.into_inner()) = true;
             cv.notify_all();
@@ -535,7 +514,9 @@ fn run_interruptibly(
             }
         }
         py.detach(|| worker.join())
-            .map_err(|_| PyRuntimeError::new_err("sweep worker thread panicked"))
+            .map_err(|_| PyRuntimeError::new_err("sweep worker thread panicked"))?
+            .map(outcomes)
+            .map_err(to_py)
     })
 }
 
@@ -562,17 +543,22 @@ fn run_points<'py>(
         )));
     }
     let rows: Vec<Vec<f64>> = pts.outer_iter().map(|r| r.to_vec()).collect();
-    let outcomes = py.detach(move || {
-        let params: Vec<&str> = parameters.iter().map(String::as_str).collect();
-        rows.iter()
-            .map(|values| {
-                point_table(&table, &params, values, "<sweep>")
-                    .and_then(|t| AnyScenario::from_table(t, &base_path))
-                    .map_err(|e| e.to_string())
-                    .and_then(|sc| run_one(&sc))
-            })
-            .collect::<Vec<Outcome>>()
-    });
+    let outcomes = py
+        .detach(move || -> Result<Vec<Outcome>, Error> {
+            // plan once, set numbers per point: exactly what a local sweep does
+            let template = model::plan(table, &base_path)?;
+            let params = parameters
+                .iter()
+                .map(|k| template.param(k))
+                .collect::<Result<Vec<_>, Error>>()?;
+            let run = |values: &Vec<f64>| {
+                let v: Vec<_> = params.iter().zip(values.iter().copied()).collect();
+                template.build(&v)?.summary()
+            };
+            // one task runs its points one after the other (the cluster runs the tasks)
+            Ok(outcomes(Executor::new().threads(Some(1)).map(&rows, run, &Quiet)?))
+        })
+        .map_err(to_py)?;
     outcomes_table(py, outcomes)
 }
 
