@@ -144,9 +144,10 @@ fn every_example_loads_and_runs() {
                 .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
             points
                 .into_iter()
-                .filter_map(|s| match s {
-                    contactwave::scenario::AnyScenario::HalfSpace(s) => Some(*s),
-                    contactwave::scenario::AnyScenario::BarStack(_) => None,
+                .filter_map(|m| {
+                    m.as_any()
+                        .downcast_ref::<contactwave::scenario::Scenario>()
+                        .cloned()
                 })
                 .collect()
         } else {

@@ -546,7 +546,7 @@ fn run_points<'py>(
     let outcomes = py
         .detach(move || -> Result<Vec<Outcome>, Error> {
             // plan once, set numbers per point: exactly what a local sweep does
-            let template = model::plan(table, &base_path)?;
+            let template = model::plan(table, &base_path);
             let params = parameters
                 .iter()
                 .map(|k| template.param(k))
@@ -632,7 +632,7 @@ fn identify(
             (json, files)
         } else {
             let r = inverse::identify(&spec, &|_| {})?;
-            (r.to_json(), r.files()?)
+            (r.to_json(), contactwave::output::identify::identification_files(&r)?)
         };
         if let Some(o) = &out {
             contactwave::output::write_files(o, &files)?;

@@ -116,7 +116,7 @@ fn undamaged_rccm_stiffness_recovered_within_5_percent() {
     ] {
         assert!(j.get(k).is_some(), "identification.json lacks {k}");
     }
-    let files = r.files().unwrap();
+    let files = contactwave::output::identify::identification_files(&r).unwrap();
     let html = files
         .iter()
         .find(|f| f.name == "identification.html")

@@ -88,7 +88,7 @@ fn identify(path: &Path, out: Option<&Path>, design: bool) -> contactwave::Resul
         return Ok(EXIT_OK);
     }
     let result = inverse::identify(&spec, &progress)?;
-    let files = result.files()?;
+    let files = contactwave::output::identify::identification_files(&result)?;
     for line in result.verdict_lines() {
         println!("{line}");
     }

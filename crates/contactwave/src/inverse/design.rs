@@ -12,7 +12,7 @@ use super::model::{toml_number, Model};
 use super::sensitivity::svd_right;
 use super::spec::Scale;
 use crate::error::{Error, Result};
-use rayon::prelude::*;
+use crate::run::Executor;
 use serde_json::json;
 
 /// One ranked candidate.
@@ -85,9 +85,8 @@ pub fn design(model: &Model) -> Result<DesignReport> {
         .iter()
         .map(|&value| {
             // rows: control values; columns of S: parameters
-            let rows: Vec<Vec<f64>> = control_values
-                .par_iter()
-                .map(|&c| {
+            let rows: Vec<Vec<f64>> = Executor::new()
+                .try_map(&control_values, |&c| {
                     let extra = vec![(control.clone(), c), (d.key.clone(), value)];
                     let run = |vals: &[f64]| -> Result<Vec<f64>> {
                         let s = model.run_with(0, vals, &extra)?;
@@ -130,8 +129,7 @@ pub fn design(model: &Model) -> Result<DesignReport> {
                     Ok((0..nobs)
                         .map(|k| cols.iter().map(|c| c[k]).collect::<Vec<f64>>())
                         .collect::<Vec<Vec<f64>>>())
-                })
-                .collect::<Result<Vec<_>>>()?
+                })?
                 .into_iter()
                 .flatten()
                 .collect();

@@ -7,7 +7,7 @@
 use super::estimate::estimate;
 use super::identifiability;
 use super::model::Model;
-use super::report::Identification;
+use super::result::Identification;
 use super::spec::IdentifySpec;
 use crate::error::{Error, Result};
 

@@ -72,7 +72,7 @@ pub mod estimate;
 pub mod identifiability;
 mod model;
 mod parse;
-pub mod report;
+mod result;
 mod sensitivity;
 mod spec;
 
@@ -82,5 +82,5 @@ pub use estimate::{estimate, Estimate};
 pub use identifiability::{Identifiability, Verdict};
 pub use model::Model;
 pub use parse::get_dotted;
-pub use report::{identification_files, Identification};
+pub use result::Identification;
 pub use spec::{DesignSpec, FitOptions, IdentifySpec, Measured, Observed, Parameter, Scale};

@@ -1,29 +1,20 @@
 //! The forward model of an identification: [`Model`] maps parameter values (or scaled
 //! coordinates) to the scenario of each measured row, runs it, and returns the model curve
-//! and the weighted residuals `(model - y) / sigma`. [`toml_number`] writes a value into a
-//! scenario table as the scenario format expects it.
+//! and the weighted residuals `(model - y) / sigma`. The base scenario is planned once
+//! ([`crate::model::Template`]); each forward run sets the row's conditions and the
+//! parameter values on it and runs on the [`Executor`].
 
 use super::spec::IdentifySpec;
 use crate::analysis::Summary;
 use crate::error::{Error, Result};
-use crate::scenario::{set_dotted, AnyScenario};
-use rayon::prelude::*;
+use crate::model::{self, Model as ForwardModel, Param, Template};
+use crate::run::Executor;
 use std::sync::atomic::{AtomicUsize, Ordering};
-
-/// Keys whose TOML value must be an integer.
-fn wants_integer(key: &str) -> bool {
-    key == "solver.samples_per_period"
-}
+use std::sync::{Arc, Mutex};
 
 /// A value for `key` in a scenario table: an integer where the format wants one (and the
 /// value is integral), a float otherwise.
-pub(crate) fn toml_number(key: &str, v: f64) -> toml::Value {
-    if wants_integer(key) && v.fract() == 0.0 && v.abs() < 9e15 {
-        toml::Value::Integer(v as i64)
-    } else {
-        toml::Value::Float(v)
-    }
-}
+pub(crate) use crate::model::toml_number;
 
 /// The forward model of an identification: scenario of row `i` at parameter values `p`,
 /// and the weighted residuals. Counts its forward runs.
@@ -31,6 +22,10 @@ pub struct Model<'a> {
     /// The spec.
     pub spec: &'a IdentifySpec,
     runs: AtomicUsize,
+    /// The base scenario, planned once: every forward run sets numbers on it.
+    template: Arc<dyn Template>,
+    /// Keys resolved to parameters of the template so far.
+    params: Mutex<Vec<(String, Param)>>,
 }
 
 impl<'a> Model<'a> {
@@ -39,7 +34,20 @@ impl<'a> Model<'a> {
         Model {
             spec,
             runs: AtomicUsize::new(0),
+            template: model::plan(spec.base_table.clone(), &spec.base),
+            params: Mutex::new(Vec::new()),
         }
+    }
+
+    /// The template's parameter for `key` (resolved once).
+    fn param(&self, key: &str) -> Result<Param> {
+        let mut ps = self.params.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some((_, p)) = ps.iter().find(|(k, _)| k == key) {
+            return Ok(p.clone());
+        }
+        let p = self.template.param(key)?;
+        ps.push((key.to_string(), p.clone()));
+        Ok(p)
     }
 
     /// Forward runs so far.
@@ -57,30 +65,33 @@ impl<'a> Model<'a> {
             .collect()
     }
 
-    /// The table of row `i` with `conditions` overridden by `extra` (key, value) pairs.
-    fn table(&self, i: usize, values: &[f64], extra: &[(String, f64)]) -> Result<toml::Table> {
+    /// The model of row `i` with `conditions` overridden by `extra` (key, value) pairs, at
+    /// parameter values `values`: conditions, then the other extras, then the parameters
+    /// (each key and its `also` keys) are set on the template.
+    fn build(&self, i: usize, values: &[f64], extra: &[(String, f64)]) -> Result<Arc<dyn ForwardModel>> {
         let spec = self.spec;
-        let mut t = spec.base_table.clone();
         let m = &spec.measured;
+        let mut set: Vec<(Param, f64)> = Vec::new();
         for (k, c) in m.conditions.iter().enumerate() {
             let v = extra
                 .iter()
                 .find(|(e, _)| e == c)
                 .map(|e| e.1)
                 .unwrap_or(m.rows[i][k]);
-            set_dotted(&mut t, c, toml_number(c, v)).map_err(|e| e.in_file(&self.data_name()))?;
+            set.push((self.param(c).map_err(|e| e.in_file(&self.data_name()))?, v));
         }
         for (e, v) in extra {
             if !m.conditions.contains(e) {
-                set_dotted(&mut t, e, toml_number(e, *v))?;
+                set.push((self.param(e)?, *v));
             }
         }
         for (p, &v) in spec.parameters.iter().zip(values) {
             for key in std::iter::once(&p.key).chain(&p.also) {
-                set_dotted(&mut t, key, toml_number(key, v))?;
+                set.push((self.param(key)?, v));
             }
         }
-        Ok(t)
+        let refs: Vec<(&Param, f64)> = set.iter().map(|(p, v)| (p, *v)).collect();
+        self.template.build(&refs)
     }
 
     /// The data file (or the identification file, for inline data), for error messages.
@@ -94,9 +105,8 @@ impl<'a> Model<'a> {
     }
 
     /// The validated scenario of row `i` at parameter values `values`.
-    pub fn scenario(&self, i: usize, values: &[f64]) -> Result<AnyScenario> {
-        let t = self.table(i, values, &[])?;
-        AnyScenario::from_table(t, &self.spec.base).map_err(|e| match e {
+    pub fn scenario(&self, i: usize, values: &[f64]) -> Result<Arc<dyn ForwardModel>> {
+        self.build(i, values, &[]).map_err(|e| match e {
             Error::Invalid {
                 field,
                 value,
@@ -114,8 +124,7 @@ impl<'a> Model<'a> {
 
     /// Run row `i` with overrides `extra` and parameter `values`.
     pub fn run_with(&self, i: usize, values: &[f64], extra: &[(String, f64)]) -> Result<Summary> {
-        let t = self.table(i, values, extra)?;
-        let s = AnyScenario::from_table(t, &self.spec.base)?;
+        let s = self.build(i, values, extra)?;
         self.runs.fetch_add(1, Ordering::Relaxed);
         s.summary()
     }
@@ -124,18 +133,16 @@ impl<'a> Model<'a> {
     /// (forward runs in parallel).
     pub fn curves_at(&self, z: &[f64], rows: &[usize]) -> Result<Vec<Vec<f64>>> {
         let values = self.values(z);
-        rows.par_iter()
-            .map(|&i| {
-                let s = self.run_with(i, &values, &[])?;
-                Ok(self
-                    .spec
-                    .measured
-                    .observed
-                    .iter()
-                    .map(|o| s.get(&o.key).unwrap_or(f64::NAN))
-                    .collect())
-            })
-            .collect()
+        Executor::new().try_map(rows, |&i| {
+            let s = self.run_with(i, &values, &[])?;
+            Ok(self
+                .spec
+                .measured
+                .observed
+                .iter()
+                .map(|o| s.get(&o.key).unwrap_or(f64::NAN))
+                .collect())
+        })
     }
 
     /// Model values for every row.

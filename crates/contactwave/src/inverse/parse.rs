@@ -7,7 +7,8 @@
 use super::model::{toml_number, Model};
 use super::spec::{DesignSpec, FitOptions, IdentifySpec, Measured, Observed, Parameter, Scale};
 use crate::error::{Error, Result};
-use crate::scenario::{apply_set, parse_toml, set_dotted, AnyScenario};
+use crate::model;
+use crate::scenario::{apply_set, parse_toml, set_dotted};
 use std::path::{Path, PathBuf};
 
 fn show(v: &toml::Value) -> String {
@@ -121,7 +122,7 @@ impl IdentifySpec {
             apply_set(&mut base_table, set, &file)?;
         }
         // the base (with overrides) must be a valid scenario
-        AnyScenario::from_table(base_table.clone(), &base)?;
+        model::plan_valid(base_table.clone(), &base)?;
 
         let fit = parse_fit(table.get("fit"), &file)?;
         let (measured, data_file) = parse_data(&table, dir, &file, &fit)?;
@@ -177,7 +178,7 @@ impl IdentifySpec {
             std::iter::once(&p.key)
                 .chain(&p.also)
                 .try_for_each(|key| set_dotted(&mut table, key, toml_number(key, p.initial)))
-                .and_then(|_| AnyScenario::from_table(table, &spec.base))
+                .and_then(|_| model::plan_valid(table, &spec.base))
                 .map_err(|e| {
                     let why = match e {
                         Error::Invalid { field, allowed, .. } => format!("{field}: {allowed}"),

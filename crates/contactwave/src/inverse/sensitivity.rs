@@ -8,7 +8,7 @@
 use super::model::Model;
 use super::spec::Scale;
 use crate::error::Result;
-use rayon::prelude::*;
+use crate::run::Executor;
 
 /// Eigen-decomposition of a symmetric matrix by cyclic Jacobi rotations: (eigenvalues
 /// descending, eigenvectors as rows in the same order).
@@ -70,9 +70,8 @@ pub fn symmetric_eigen(a: &[Vec<f64>]) -> (Vec<f64>, Vec<Vec<f64>>) {
 /// linear ones; one-sided at a bound). `[residual][param]`.
 pub fn jacobian(model: &Model, z: &[f64], rows: &[usize]) -> Result<Vec<Vec<f64>>> {
     let params = &model.spec.parameters;
-    let cols: Vec<Vec<f64>> = (0..params.len())
-        .into_par_iter()
-        .map(|j| {
+    let columns: Vec<usize> = (0..params.len()).collect();
+    let cols: Vec<Vec<f64>> = Executor::new().try_map(&columns, |&j| {
             let p = &params[j];
             let (lo, hi) = p.scaled_bounds();
             let h = match p.scale {
@@ -87,8 +86,7 @@ pub fn jacobian(model: &Model, z: &[f64], rows: &[usize]) -> Result<Vec<Vec<f64>
             let ra = model.residuals_at(&za, rows)?;
             let rb = model.residuals_at(&zb, rows)?;
             Ok(ra.iter().zip(&rb).map(|(x, y)| (y - x) / (b - a)).collect())
-        })
-        .collect::<Result<_>>()?;
+        })?;
     let n = cols.first().map(Vec::len).unwrap_or(0);
     Ok((0..n)
         .map(|i| cols.iter().map(|c| c[i]).collect())

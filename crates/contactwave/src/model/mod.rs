@@ -88,7 +88,7 @@ pub trait Kind: Sync {
     /// Plan a template from a table that came from (or stands for) `path`; relative paths
     /// in it resolve against `path`'s folder. Values are validated when a model is built
     /// ([`Template::build`], [`Template::base`]).
-    fn plan(&self, table: toml::Table, path: &Path) -> Result<Arc<dyn Template>>;
+    fn plan(&self, table: toml::Table, path: &Path) -> Arc<dyn Template>;
 }
 
 /// The registered kinds, tried in order (the half-space problem, the default, last).
@@ -103,15 +103,16 @@ pub fn kind_of(table: &toml::Table) -> &'static dyn Kind {
         .unwrap_or(&half_space::KIND)
 }
 
-/// Plan a template from a parsed table that came from `path`, whichever its kind.
-pub fn plan(table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> {
+/// Plan a template from a parsed table that came from `path`, whichever its kind (nothing
+/// is validated yet: see [`plan_valid`]).
+pub fn plan(table: toml::Table, path: &Path) -> Arc<dyn Template> {
     kind_of(&table).plan(table, path)
 }
 
 /// Plan a template and validate the scenario as given (what loading a scenario to run it
 /// means).
 pub fn plan_valid(table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> {
-    let t = plan(table, path)?;
+    let t = plan(table, path);
     t.base()?;
     Ok(t)
 }

@@ -16,6 +16,7 @@
 //!
 //! Numbers are written so that they parse back to the same `f64`.
 
+pub mod identify;
 pub mod plot;
 
 pub use crate::render::{csv_columns, summary_json, OutputFile};

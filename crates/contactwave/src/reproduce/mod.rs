@@ -25,8 +25,9 @@ pub use report::{findings_json, report_html, write_report};
 use crate::analysis::Summary;
 use crate::error::{Error, Result};
 use crate::output::plot::{figure, Panel};
-use crate::scenario::{parse_toml, set_dotted, AnyScenario, Scenario};
-use rayon::prelude::*;
+use crate::model;
+use crate::run::{Executor, Observer};
+use crate::scenario::{parse_toml, set_dotted, Scenario};
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -313,20 +314,12 @@ impl Ctx<'_> {
         items: &[T],
         f: impl Fn(&T) -> Result<R> + Sync,
     ) -> Result<Vec<R>> {
-        let total = items.len();
-        let done = AtomicUsize::new(0);
-        (self.progress)(study, 0, total);
-        let out: Vec<Result<R>> = items
-            .par_iter()
-            .map(|it| {
-                let r = f(it);
-                self.runs.fetch_add(1, Ordering::SeqCst);
-                let d = done.fetch_add(1, Ordering::SeqCst) + 1;
-                (self.progress)(study, d, total);
-                r
-            })
-            .collect();
-        out.into_iter().collect()
+        let observer = StudyProgress { ctx: self, study };
+        Executor::new()
+            .map(items, f, &observer)?
+            .into_iter()
+            .map(|r| r.unwrap_or(Err(Error::Interrupted)))
+            .collect()
     }
 
     /// Summaries of the variants of `base` (half-space or bar stack), in parallel.
@@ -337,8 +330,27 @@ impl Ctx<'_> {
         variants: &[Edits],
     ) -> Result<Vec<Summary>> {
         self.map(study, variants, |e| {
-            AnyScenario::from_table(self.table(base, e)?, Path::new("<reproduce>"))?.summary()
+            model::plan(self.table(base, e)?, Path::new("<reproduce>"))
+                .base()?
+                .summary()
         })
+    }
+}
+
+/// Reports a study's progress and counts its runs (the executor's observer).
+struct StudyProgress<'a, 'b> {
+    ctx: &'a Ctx<'b>,
+    study: &'a str,
+}
+
+impl<R> Observer<R> for StudyProgress<'_, '_> {
+    fn point(&self, _index: usize, _result: &Result<R>) -> Result<()> {
+        self.ctx.runs.fetch_add(1, Ordering::SeqCst);
+        Ok(())
+    }
+
+    fn progress(&self, done: usize, total: usize) {
+        (self.ctx.progress)(self.study, done, total)
     }
 }
 
@@ -390,7 +402,7 @@ mod tests {
         };
         for (name, _) in SCENARIOS {
             let t = ctx.base(name).unwrap();
-            AnyScenario::from_table(t, Path::new(name)).unwrap();
+            model::plan(t, Path::new(name)).base().unwrap();
         }
         let x: Vec<f64> = (0..11).map(|i| i as f64 * 0.1).collect();
         let y: Vec<f64> = x.iter().map(|v| -(v - 0.37f64).powi(2)).collect();

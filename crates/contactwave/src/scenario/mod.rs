@@ -18,38 +18,6 @@ use spec::{CounterpartKind, IncidentKind, IncidentSpec, MaterialSpec, ScenarioSp
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-/// Any runnable scenario: a half-space problem or a bar stack.
-#[derive(Debug, Clone)]
-pub enum AnyScenario {
-    /// Half-space scenario (exact or FD solver).
-    HalfSpace(Box<Scenario>),
-    /// Bar-stack scenario (FD solver, hammer test).
-    BarStack(Box<bar_stack::BarStackScenario>),
-}
-
-impl AnyScenario {
-    /// Validate a parsed table that came from `path`, whichever its kind.
-    pub fn from_table(table: toml::Table, path: &Path) -> Result<AnyScenario> {
-        if bar_stack::BarStackScenario::is_bar_stack(&table) {
-            Ok(AnyScenario::BarStack(Box::new(
-                bar_stack::BarStackScenario::from_table(table, path)?,
-            )))
-        } else {
-            Ok(AnyScenario::HalfSpace(Box::new(Scenario::from_table(
-                table, path,
-            )?)))
-        }
-    }
-
-    /// Run and summarise (the row of a sweep).
-    pub fn summary(&self) -> Result<crate::analysis::Summary> {
-        match self {
-            AnyScenario::HalfSpace(s) => crate::simulate_summary(s),
-            AnyScenario::BarStack(s) => Ok(crate::simulate_bar_stack(s)?.summary),
-        }
-    }
-}
-
 /// A validated scenario, ready to run.
 #[derive(Debug, Clone)]
 pub struct Scenario {

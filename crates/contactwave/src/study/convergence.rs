@@ -35,7 +35,7 @@
 
 use crate::error::{Error, Result};
 use crate::scenario::{set_dotted, Scenario};
-use rayon::prelude::*;
+use crate::run::{Executor, Progress};
 use std::path::Path;
 
 /// Which solver the study refines.
@@ -212,7 +212,7 @@ pub fn loglog_slope(x: &[f64], y: &[f64]) -> f64 {
 }
 
 /// Run the study on a base half-space scenario table that came from `path`. Runs in
-/// parallel (rayon); `progress(done, total)` is called after each run.
+/// parallel (the [`Executor`]); `progress(done, total)` is called after each run.
 pub fn run_convergence(
     base: &toml::Table,
     path: &Path,
@@ -263,18 +263,18 @@ pub fn run_convergence(
         }
     }
     let key = format!("A{}_over_Ainc", spec.harmonic);
-    let total = jobs.len();
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    let values: Vec<f64> = jobs
-        .par_iter()
-        .map(|(_, _, s)| {
-            let v = crate::simulate_summary(s)
-                .map(|sum| sum.get(&key).unwrap_or(f64::NAN))
-                .unwrap_or(f64::NAN);
-            let d = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
-            progress(d, total);
-            v
-        })
+    let observer = Progress {
+        report: progress,
+        cancel: None,
+    };
+    let values: Vec<f64> = Executor::new()
+        .map(
+            &jobs,
+            |(_, _, s)| crate::simulate_summary(s).map(|sum| sum.get(&key).unwrap_or(f64::NAN)),
+            &observer,
+        )?
+        .into_iter()
+        .map(|r| r.and_then(|r| r.ok()).unwrap_or(f64::NAN))
         .collect();
     let nx = spec.xi.len();
     let mut exact = vec![f64::NAN; nx];

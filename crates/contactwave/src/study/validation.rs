@@ -9,7 +9,7 @@ use crate::error::Result;
 use crate::material::Material;
 use crate::scenario::Scenario;
 use crate::simulate;
-use rayon::prelude::*;
+use crate::run::Executor;
 
 /// One validation case.
 #[derive(Debug, Clone, PartialEq)]
@@ -68,9 +68,7 @@ fn summary_value(s: &Scenario, key: &str) -> Result<f64> {
 /// minimum; thesis chapter 3: 0.35 +- 0.03.
 pub fn unilateral_extrema() -> Result<[ValidationCase; 2]> {
     let xis: Vec<f64> = (20..=50).map(|k| k as f64 / 100.0).collect();
-    let vals: Vec<(f64, f64)> = xis
-        .par_iter()
-        .map(|xi| {
+    let vals: Vec<(f64, f64)> = Executor::new().try_map(&xis, |xi| {
             let s = pmma(
                 "static_pressure = 0.1e6",
                 &format!("frequency = 1e6\ncycles = 15\nxi = {xi:?}"),
@@ -80,8 +78,7 @@ pub fn unilateral_extrema() -> Result<[ValidationCase; 2]> {
                 sm.get("A1_over_Ainc").unwrap_or(f64::NAN),
                 sm.get("A2_over_Ainc").unwrap_or(f64::NAN),
             ))
-        })
-        .collect::<Result<Vec<_>>>()?;
+        })?;
     let argmax = (0..xis.len())
         .max_by(|&i, &j| vals[i].1.total_cmp(&vals[j].1))
         .unwrap_or(0);

@@ -40,8 +40,8 @@ impl Kind for BarStackKind {
         BarStackScenario::is_bar_stack(table)
     }
 
-    fn plan(&self, table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> {
-        Ok(Arc::new(BarStackTemplate::new(table, path)))
+    fn plan(&self, table: toml::Table, path: &Path) -> Arc<dyn Template> {
+        Arc::new(BarStackTemplate::new(table, path))
     }
 }
 

@@ -35,8 +35,8 @@ impl Kind for HalfSpaceKind {
         true
     }
 
-    fn plan(&self, table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> {
-        Ok(Arc::new(HalfSpaceTemplate::new(table, path)))
+    fn plan(&self, table: toml::Table, path: &Path) -> Arc<dyn Template> {
+        Arc::new(HalfSpaceTemplate::new(table, path))
     }
 }
 

@@ -314,7 +314,7 @@ impl Sweep {
     /// once) and one typed parameter per axis. A key the scenario cannot take is an error
     /// naming the sweep file and the field `axis[k].parameter`.
     pub fn plan(&self) -> Result<SweepPlan> {
-        let template = model::plan(self.base_table.clone(), &self.base)?;
+        let template = model::plan(self.base_table.clone(), &self.base);
         let file = self.file.display().to_string();
         let params = self
             .axes
@@ -674,9 +674,9 @@ mod tests {
         assert_eq!(a.hash.len(), 64);
         let b = Sweep::load(&s).unwrap();
         assert_eq!(a.hash, b.hash);
-        let sc = a.scenarios().unwrap();
+        let sc = a.runnable().unwrap();
         assert_eq!(sc.len(), 6);
-        assert!((sc[2].xi - 0.3).abs() < 1e-12);
+        assert!((sc[2].load_ratio() - 0.3).abs() < 1e-12);
         // a different grid gives a different hash
         std::fs::write(
             &s,
@@ -700,7 +700,7 @@ mod tests {
     fn load_err(name: &str, body: &str) -> String {
         let (d, s) = setup(name, body);
         let e = Sweep::load(&s)
-            .and_then(|sw| sw.scenarios().map(|_| ()))
+            .and_then(|sw| sw.runnable().map(|_| ()))
             .unwrap_err()
             .to_string();
         let _ = std::fs::remove_dir_all(d);
