@@ -362,7 +362,9 @@ fn fit_power_law<'py>(
 type Outcome = Result<contactwave::analysis::Summary, String>;
 
 /// The executor's results as outcomes (a point not started: `cancelled`).
-fn outcomes(results: Vec<Option<contactwave::Result<contactwave::analysis::Summary>>>) -> Vec<Outcome> {
+fn outcomes(
+    results: Vec<Option<contactwave::Result<contactwave::analysis::Summary>>>,
+) -> Vec<Outcome> {
     results
         .into_iter()
         .map(|r| match r {
@@ -556,7 +558,9 @@ fn run_points<'py>(
                 template.build(&v)?.summary()
             };
             // one task runs its points one after the other (the cluster runs the tasks)
-            Ok(outcomes(Executor::new().threads(Some(1)).map(&rows, run, &Quiet)?))
+            Ok(outcomes(
+                Executor::new().threads(Some(1)).map(&rows, run, &Quiet)?,
+            ))
         })
         .map_err(to_py)?;
     outcomes_table(py, outcomes)
@@ -632,7 +636,10 @@ fn identify(
             (json, files)
         } else {
             let r = inverse::identify(&spec, &|_| {})?;
-            (r.to_json(), contactwave::output::identify::identification_files(&r)?)
+            (
+                r.to_json(),
+                contactwave::output::identify::identification_files(&r)?,
+            )
         };
         if let Some(o) = &out {
             contactwave::output::write_files(o, &files)?;

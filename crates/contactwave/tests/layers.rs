@@ -139,7 +139,10 @@ fn paths(code: &str, module: &[String], is_mod_file: bool) -> Vec<Vec<String>> {
         }
         // a group `a::{b, c}`: one path per member
         if j < bytes.len() && bytes[j] == '{' {
-            let end = bytes[j..].iter().position(|&c| c == '}').map_or(j, |k| j + k);
+            let end = bytes[j..]
+                .iter()
+                .position(|&c| c == '}')
+                .map_or(j, |k| j + k);
             let inner: String = bytes[j + 1..end].iter().collect();
             for m in inner.split(',') {
                 let first: String = m.trim().chars().take_while(|&c| ident(c)).collect();
@@ -179,7 +182,9 @@ fn tree() -> Tree {
     };
     for f in &fs {
         let m = module_of(f);
-        let is_mod = f.file_name().is_some_and(|n| n == "mod.rs" || n == "lib.rs");
+        let is_mod = f
+            .file_name()
+            .is_some_and(|n| n == "mod.rs" || n == "lib.rs");
         let text = std::fs::read_to_string(f).unwrap();
         t.modules.insert(m.clone());
         t.code.insert(m, (code(&text), is_mod));
@@ -277,7 +282,11 @@ fn imports_go_downwards_only() {
             }
         }
     }
-    assert!(bad.is_empty(), "imports from a lower to a higher layer:\n{}", bad.join("\n"));
+    assert!(
+        bad.is_empty(),
+        "imports from a lower to a higher layer:\n{}",
+        bad.join("\n")
+    );
 }
 
 /// Cycles between siblings: for each module, its children (and for the crate, the
@@ -351,6 +360,8 @@ fn the_scanner_sees_a_known_edge() {
     // the check above must be able to fail: the model layer does use the solvers
     let t = tree();
     let e = t.edges();
-    assert!(e.iter().any(|(a, b)| a.first().is_some_and(|x| x == "model")
-        && b.first().is_some_and(|x| x == "solver")));
+    assert!(e
+        .iter()
+        .any(|(a, b)| a.first().is_some_and(|x| x == "model")
+            && b.first().is_some_and(|x| x == "solver")));
 }

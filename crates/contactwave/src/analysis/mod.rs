@@ -15,7 +15,6 @@ mod spectrum;
 mod summary;
 
 pub use spectrum::{
-    cell_velocity, spectral_peak, velocity_bands, with_analyzer, Analyzer, BandAmplitudes,
-    Spectrum,
+    cell_velocity, spectral_peak, velocity_bands, with_analyzer, Analyzer, BandAmplitudes, Spectrum,
 };
 pub use summary::{set_reflected_harmonics, Summary};

@@ -86,4 +86,3 @@ pub fn set_reflected_harmonics(
         s.set("Adiff_over_Ainc", refl.difference / a_inc);
     }
 }
-

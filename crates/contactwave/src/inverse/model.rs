@@ -68,7 +68,12 @@ impl<'a> Model<'a> {
     /// The model of row `i` with `conditions` overridden by `extra` (key, value) pairs, at
     /// parameter values `values`: conditions, then the other extras, then the parameters
     /// (each key and its `also` keys) are set on the template.
-    fn build(&self, i: usize, values: &[f64], extra: &[(String, f64)]) -> Result<Arc<dyn ForwardModel>> {
+    fn build(
+        &self,
+        i: usize,
+        values: &[f64],
+        extra: &[(String, f64)],
+    ) -> Result<Arc<dyn ForwardModel>> {
         let spec = self.spec;
         let m = &spec.measured;
         let mut set: Vec<(Param, f64)> = Vec::new();

@@ -72,21 +72,21 @@ pub fn jacobian(model: &Model, z: &[f64], rows: &[usize]) -> Result<Vec<Vec<f64>
     let params = &model.spec.parameters;
     let columns: Vec<usize> = (0..params.len()).collect();
     let cols: Vec<Vec<f64>> = Executor::new().try_map(&columns, |&j| {
-            let p = &params[j];
-            let (lo, hi) = p.scaled_bounds();
-            let h = match p.scale {
-                Scale::Log => 1e-2,
-                Scale::Linear => 1e-3 * (hi - lo),
-            };
-            let (a, b) = ((z[j] - h).max(lo), (z[j] + h).min(hi));
-            let mut za = z.to_vec();
-            let mut zb = z.to_vec();
-            za[j] = a;
-            zb[j] = b;
-            let ra = model.residuals_at(&za, rows)?;
-            let rb = model.residuals_at(&zb, rows)?;
-            Ok(ra.iter().zip(&rb).map(|(x, y)| (y - x) / (b - a)).collect())
-        })?;
+        let p = &params[j];
+        let (lo, hi) = p.scaled_bounds();
+        let h = match p.scale {
+            Scale::Log => 1e-2,
+            Scale::Linear => 1e-3 * (hi - lo),
+        };
+        let (a, b) = ((z[j] - h).max(lo), (z[j] + h).min(hi));
+        let mut za = z.to_vec();
+        let mut zb = z.to_vec();
+        za[j] = a;
+        zb[j] = b;
+        let ra = model.residuals_at(&za, rows)?;
+        let rb = model.residuals_at(&zb, rows)?;
+        Ok(ra.iter().zip(&rb).map(|(x, y)| (y - x) / (b - a)).collect())
+    })?;
     let n = cols.first().map(Vec::len).unwrap_or(0);
     Ok((0..n)
         .map(|i| cols.iter().map(|c| c[i]).collect())

@@ -2,10 +2,10 @@
 //! Adding a law = one new file in `compression/` or `traction/` + one match arm here.
 
 use super::compression::{self, ModifiedPower, StiffnessCurve};
+use super::spec::{CompressionSpec, TractionSpec};
 use super::traction;
 use super::{CompressionBranch, ContactLaw, TractionBranch};
 use crate::error::{Error, Result};
-use super::spec::{CompressionSpec, TractionSpec};
 
 fn positive(file: &str, field: &str, v: f64) -> Result<()> {
     if v.is_finite() && v > 0.0 {

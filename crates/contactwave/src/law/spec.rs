@@ -92,4 +92,3 @@ pub enum TractionSpec {
     /// Perfect bond: d = 0 (bilateral contact, the linear reference).
     Bonded,
 }
-

@@ -4,8 +4,7 @@
 use crate::error::{Error, Result};
 use crate::law::spec::{CompressionSpec, TractionSpec};
 use crate::scenario::spec::{
-    CounterpartSpec, IncidentSpec, InterfaceSpec, MaterialSpec, ProbeSpec, ScenarioSpec,
-    SolverSpec,
+    CounterpartSpec, IncidentSpec, InterfaceSpec, MaterialSpec, ProbeSpec, ScenarioSpec, SolverSpec,
 };
 
 /// A number of a spec, by reference.

@@ -53,7 +53,11 @@ pub struct ParamTable<S> {
 impl<S: Fields + Clone> ParamTable<S> {
     /// The table as given (`file` names it in errors) and the conversion from a table to
     /// a spec.
-    pub fn new(file: &str, table: toml::Table, to_spec: fn(toml::Table, &str) -> Result<S>) -> Self {
+    pub fn new(
+        file: &str,
+        table: toml::Table,
+        to_spec: fn(toml::Table, &str) -> Result<S>,
+    ) -> Self {
         let spec = to_spec(table.clone(), file).ok();
         ParamTable {
             file: file.to_string(),

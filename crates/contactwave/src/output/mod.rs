@@ -19,10 +19,10 @@
 pub mod identify;
 pub mod plot;
 
-pub use crate::render::{csv_columns, summary_json, OutputFile};
 use crate::error::{Error, Result};
 use crate::law::ContactLaw;
 use crate::model::Outcome;
+pub use crate::render::{csv_columns, summary_json, OutputFile};
 use crate::study::{read_sweep_csv, Sweep};
 use std::path::{Path, PathBuf};
 

@@ -1,10 +1,10 @@
 //! Plots of the project's own studies (law curves, sweeps, convergence), drawn with the
 //! primitives of [`crate::render::svg`].
 
-pub(crate) use crate::render::svg::{color, plot_error};
-pub use crate::render::svg::{figure, Panel, Series};
 use crate::error::Result;
 use crate::law::ContactLaw;
+pub(crate) use crate::render::svg::{color, plot_error};
+pub use crate::render::svg::{figure, Panel, Series};
 use crate::render::svg::{panel, render, scaled, short, Curve};
 use crate::study::{AxisSpec, Sweep, SweepTable};
 use plotters::prelude::*;
@@ -238,4 +238,3 @@ pub fn convergence(r: &crate::study::convergence::ConvergenceResult) -> Result<S
         Ok(())
     })
 }
-

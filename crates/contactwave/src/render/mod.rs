@@ -75,4 +75,3 @@ pub fn summary_json(scenario_file: &str, summary: &Summary) -> String {
     s.push('\n');
     s
 }
-

@@ -24,8 +24,8 @@ pub use report::{findings_json, report_html, write_report};
 
 use crate::analysis::Summary;
 use crate::error::{Error, Result};
-use crate::output::plot::{figure, Panel};
 use crate::model;
+use crate::output::plot::{figure, Panel};
 use crate::run::{Executor, Observer};
 use crate::scenario::{parse_toml, set_dotted, Scenario};
 use std::path::Path;

@@ -17,9 +17,9 @@
 //! transmitted, released by damage) are integrated with the same quadrature, so the energy
 //! audit closes to the integration error.
 
+pub use super::output::{EnergyAudit, HalfSpaceOutput};
 use super::radau::{self, System};
 use super::Solver;
-pub use super::output::{EnergyAudit, HalfSpaceOutput};
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::law::ContactLaw;

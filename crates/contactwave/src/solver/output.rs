@@ -81,4 +81,3 @@ pub struct FdOutput {
     /// Node updates performed.
     pub node_updates: u64,
 }
-

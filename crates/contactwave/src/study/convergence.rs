@@ -34,8 +34,8 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::scenario::{set_dotted, Scenario};
 use crate::run::{Executor, Progress};
+use crate::scenario::{set_dotted, Scenario};
 use std::path::Path;
 
 /// Which solver the study refines.

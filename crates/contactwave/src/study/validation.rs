@@ -7,9 +7,9 @@ use crate::analysis::fit::fit_power_law;
 use crate::analytic::Bilinear;
 use crate::error::Result;
 use crate::material::Material;
+use crate::run::Executor;
 use crate::scenario::Scenario;
 use crate::simulate;
-use crate::run::Executor;
 
 /// One validation case.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,16 +69,16 @@ fn summary_value(s: &Scenario, key: &str) -> Result<f64> {
 pub fn unilateral_extrema() -> Result<[ValidationCase; 2]> {
     let xis: Vec<f64> = (20..=50).map(|k| k as f64 / 100.0).collect();
     let vals: Vec<(f64, f64)> = Executor::new().try_map(&xis, |xi| {
-            let s = pmma(
-                "static_pressure = 0.1e6",
-                &format!("frequency = 1e6\ncycles = 15\nxi = {xi:?}"),
-            )?;
-            let sm = crate::simulate_summary(&s)?;
-            Ok((
-                sm.get("A1_over_Ainc").unwrap_or(f64::NAN),
-                sm.get("A2_over_Ainc").unwrap_or(f64::NAN),
-            ))
-        })?;
+        let s = pmma(
+            "static_pressure = 0.1e6",
+            &format!("frequency = 1e6\ncycles = 15\nxi = {xi:?}"),
+        )?;
+        let sm = crate::simulate_summary(&s)?;
+        Ok((
+            sm.get("A1_over_Ainc").unwrap_or(f64::NAN),
+            sm.get("A2_over_Ainc").unwrap_or(f64::NAN),
+        ))
+    })?;
     let argmax = (0..xis.len())
         .max_by(|&i, &j| vals[i].1.total_cmp(&vals[j].1))
         .unwrap_or(0);

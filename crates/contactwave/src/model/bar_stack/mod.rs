@@ -235,8 +235,14 @@ impl Outcome for BarStackResult {
         }
         if self.waves.is_some() {
             lines.push(format!("xi (first interface)   {:.6}", get("xi")));
-            lines.push(format!("A1/Ainc (reflected)    {:.6e}", get("A1_over_Ainc")));
-            lines.push(format!("A2/Ainc (reflected)    {:.6e}", get("A2_over_Ainc")));
+            lines.push(format!(
+                "A1/Ainc (reflected)    {:.6e}",
+                get("A1_over_Ainc")
+            ));
+            lines.push(format!(
+                "A2/Ainc (reflected)    {:.6e}",
+                get("A2_over_Ainc")
+            ));
             if s.get("transmitted_A1_over_Ainc").is_some() {
                 lines.push(format!(
                     "A1/Ainc (transmitted)  {:.6e}",
@@ -253,10 +259,19 @@ impl Outcome for BarStackResult {
                 s.get("energy_transmitted_fraction").unwrap_or(0.0)
             ));
         } else {
-            lines.push(format!("first mode             {:.2} Hz", get("first_mode_hz")));
-            lines.push(format!("second harmonic        {:.2} Hz", get("second_harmonic_hz")));
+            lines.push(format!(
+                "first mode             {:.2} Hz",
+                get("first_mode_hz")
+            ));
+            lines.push(format!(
+                "second harmonic        {:.2} Hz",
+                get("second_harmonic_hz")
+            ));
             lines.push(format!("A2/A1                  {:.4e}", get("A2_over_A1")));
-            lines.push(format!("guide mode             {:.1} Hz", get("guide_mode_hz")));
+            lines.push(format!(
+                "guide mode             {:.1} Hz",
+                get("guide_mode_hz")
+            ));
         }
         lines.push(format!(
             "min contact pressure   {:.4e} Pa",

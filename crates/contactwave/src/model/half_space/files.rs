@@ -74,10 +74,7 @@ pub fn spectrum_csv(result: &RunResult) -> String {
 /// Every file of a run, rendered in memory (see the module doc for the list).
 pub fn run_files(result: &RunResult) -> Result<Vec<OutputFile>> {
     Ok(vec![
-        OutputFile::new(
-            "summary.json",
-            summary_json(&result.file, &result.summary),
-        ),
+        OutputFile::new("summary.json", summary_json(&result.file, &result.summary)),
         OutputFile::new("timeseries.csv", timeseries_csv(result)),
         OutputFile::new("probe.csv", probe_csv(result)),
         OutputFile::new("spectrum.csv", spectrum_csv(result)),
@@ -231,4 +228,3 @@ pub fn stress_gap(r: &RunResult) -> Result<String> {
         )
     })
 }
-

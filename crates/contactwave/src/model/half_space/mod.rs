@@ -199,8 +199,14 @@ impl Outcome for RunResult {
             .with("probe_t", p.t.clone().into())
             .with("probe_incident_stress", p.incident_stress.clone().into())
             .with("probe_reflected_stress", p.reflected_stress.clone().into())
-            .with("probe_incident_velocity", p.incident_velocity.clone().into())
-            .with("probe_reflected_velocity", p.reflected_velocity.clone().into())
+            .with(
+                "probe_incident_velocity",
+                p.incident_velocity.clone().into(),
+            )
+            .with(
+                "probe_reflected_velocity",
+                p.reflected_velocity.clone().into(),
+            )
             .with("probe_displacement", p.displacement.clone().into())
             .with(
                 "summary",

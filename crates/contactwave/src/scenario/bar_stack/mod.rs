@@ -23,8 +23,8 @@ pub use spec::{
 };
 
 use crate::error::{Error, Result};
-use crate::scenario::BuildCache;
 use crate::excitation::Excitation;
+use crate::scenario::BuildCache;
 use crate::solver::barstack::{BarStack, InterfaceScheme, Signal};
 use std::path::Path;
 use std::sync::Arc;
@@ -123,8 +123,7 @@ impl BarStackScenario {
             incident: None,
         };
         let (force, pulse_duration) = source::force_source(&spec, file, dir, cache)?;
-        let incident =
-            source::incident_wave(&spec, &stack, &static_pressure, file, dir, cache)?;
+        let incident = source::incident_wave(&spec, &stack, &static_pressure, file, dir, cache)?;
         let wave = incident.as_ref().map(|(exc, _)| exc);
         let dt = settings::time_step(m, &stack.segments, wave, file)?;
         let duration = settings::duration(m, &stack.segments, wave, dt, file)?;

@@ -7,8 +7,8 @@ use crate::error::Result;
 use crate::excitation::{Delayed, Excitation};
 use crate::law::ContactLaw;
 use crate::numeric::pchip::Pchip;
-use crate::solver::barstack::{BarStack, End, Segment, Signal};
 use crate::scenario::BuildCache;
+use crate::solver::barstack::{BarStack, End, Segment, Signal};
 use std::path::Path;
 use std::sync::Arc;
 

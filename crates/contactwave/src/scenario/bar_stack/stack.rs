@@ -6,8 +6,8 @@ use super::spec::{BarStackSpec, ModelSpec, SegmentSpec};
 use super::{inv, pos};
 use crate::error::Result;
 use crate::law::ContactLaw;
-use crate::scenario::BuildCache;
 use crate::scenario::spec::MaterialSpec;
+use crate::scenario::BuildCache;
 use crate::solver::barstack::{End, Segment};
 use std::sync::Arc;
 

@@ -214,9 +214,10 @@ pub fn run_sweep_shard(
         progress,
         cancel,
     };
-    let done = Executor::new()
-        .threads(opts.threads)
-        .map(&todo, |&i| models[i].summary(), &observer)?;
+    let done =
+        Executor::new()
+            .threads(opts.threads)
+            .map(&todo, |&i| models[i].summary(), &observer)?;
     let processed = skipped + done.iter().filter(|r| r.is_some()).count();
     let w = writer.into_inner().unwrap_or_else(|p| p.into_inner());
     let _ = w.csv.sync_data();

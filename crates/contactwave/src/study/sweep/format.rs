@@ -13,8 +13,8 @@ use super::grid::{grid, linspace, logspace};
 use crate::error::{Error, Result};
 use crate::model::{self, toml_number, Model, Param, Template};
 use crate::scenario::{apply_set, parse_toml, set_dotted};
-use std::sync::Arc;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// Largest number of points of one axis.
 const MAX_AXIS_POINTS: usize = 1_000_000;
@@ -333,7 +333,11 @@ impl Sweep {
     /// error (naming the base file and the field), followed by the sweep file, the point
     /// index and its values.
     pub fn model(&self, plan: &SweepPlan, i: usize) -> Result<Arc<dyn Model>> {
-        let values: Vec<(&Param, f64)> = plan.params.iter().zip(self.points[i].iter().copied()).collect();
+        let values: Vec<(&Param, f64)> = plan
+            .params
+            .iter()
+            .zip(self.points[i].iter().copied())
+            .collect();
         plan.template.build(&values).map_err(|e| {
             let values = self
                 .axes
@@ -352,7 +356,9 @@ impl Sweep {
     /// Plan the sweep and validate every grid point (any kind of scenario), in grid order.
     pub fn runnable(&self) -> Result<Vec<Arc<dyn Model>>> {
         let plan = self.plan()?;
-        (0..self.points.len()).map(|i| self.model(&plan, i)).collect()
+        (0..self.points.len())
+            .map(|i| self.model(&plan, i))
+            .collect()
     }
 
     /// CSV header: `point`, the parameters, then the summary keys.
