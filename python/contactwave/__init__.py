@@ -437,7 +437,9 @@ def _base(base: ScenarioLike) -> Tuple[str, str]:
     """(table as JSON, path standing for it) of a sweep's base scenario."""
     if isinstance(base, Mapping):
         return _to_json(base, "<dict>"), "<dict>"
-    if isinstance(base, (str, os.PathLike)) and _is_bar_stack(base):
+    if isinstance(base, (str, os.PathLike)):
+        # the table as written: the sweep validates every point (as the CLI does), so a
+        # base that lacks a key every point sets is fine
         return _core.table_json(os.fspath(base)), os.fspath(base)
     s = _as_scenario(base)
     return s.to_json(), os.fspath(s.path)
