@@ -13,7 +13,6 @@
 
 use contactwave::model::{self, Record, RunControl, Template, Value};
 use contactwave::run::{Executor, Progress, Quiet};
-use contactwave::scenario::bar_stack::BarStackScenario;
 use contactwave::scenario::{parse_toml, Scenario};
 use contactwave::study::Sweep;
 use contactwave::Error;
@@ -262,13 +261,6 @@ fn table_json(path: PathBuf) -> PyResult<String> {
 
 /// Is this scenario file (TOML) or dict (JSON text) a bar stack (`[model] kind =
 /// "bar_stack"`)?
-#[pyfunction]
-#[pyo3(signature = (path = None, text = None, file = "<dict>"))]
-fn is_bar_stack(path: Option<PathBuf>, text: Option<&str>, file: &str) -> PyResult<bool> {
-    let (table, _) = any_table(path, text, file)?;
-    Ok(BarStackScenario::is_bar_stack(&table))
-}
-
 /// One row per history of equal length: a 2-D array (rows x samples).
 fn rows<'py>(py: Python<'py>, v: &[Vec<f64>]) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
     let n = v.first().map_or(0, Vec::len);
@@ -575,7 +567,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load_scenario, m)?)?;
     m.add_function(wrap_pyfunction!(scenario_from_json, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
-    m.add_function(wrap_pyfunction!(is_bar_stack, m)?)?;
     m.add_function(wrap_pyfunction!(table_json, m)?)?;
     m.add_function(wrap_pyfunction!(bench_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(law_curve, m)?)?;
