@@ -29,7 +29,7 @@ import json
 import math
 import os
 import warnings
-from typing import Any, Dict, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -478,6 +478,7 @@ def _run_on_executor(
     parameters: List[str],
     points: np.ndarray,
     chunk_size: int,
+    progress: Optional[Callable[[int, int], Any]] = None,
 ) -> List[Tuple[List[str], np.ndarray, List[Tuple[int, str]]]]:
     chunks = [
         np.ascontiguousarray(points[i : i + chunk_size])
@@ -489,9 +490,19 @@ def _run_on_executor(
         executor.submit(_run_chunk, base_json, base_path, parameters, c, **kw) for c in chunks
     ]
     try:
-        if dask:
-            return list(executor.gather(futures))
-        return [f.result() for f in futures]
+        if progress is None:
+            if dask:
+                return list(executor.gather(futures))
+            return [f.result() for f in futures]
+        # results in grid order; progress counts the points of the chunks done so far
+        out = []
+        done = 0
+        progress(0, len(points))
+        for f, c in zip(futures, chunks):
+            out.append(f.result())
+            done += len(c)
+            progress(done, len(points))
+        return out
     except BaseException:
         for f in futures:
             f.cancel()
@@ -506,6 +517,7 @@ def sweep(
     threads: Optional[int] = None,
     chunk_size: int = DEFAULT_CHUNK_SIZE,
     as_frame: Optional[bool] = None,
+    progress: Optional[Callable[[int, int], Any]] = None,
 ) -> Any:
     """Run a parameter sweep: the grid of ``axes`` over the ``base`` scenario.
 
@@ -519,7 +531,10 @@ def sweep(
     before anything runs (``ValueError`` naming the field and the point).
 
     ``executor=None``: all local cores (``threads`` to limit them), in Rust with the GIL
-    released; Ctrl-C stops the sweep (``KeyboardInterrupt``). Otherwise a
+    released; Ctrl-C stops the sweep (``KeyboardInterrupt``); ``progress(done, total)``,
+    if given, is called on the calling thread as points finish (at most every 50 ms, and
+    once at the end; an exception in it stops the sweep like Ctrl-C); with an executor it
+    is called as the chunks come back, in grid order. Otherwise a
     ``concurrent.futures.Executor`` or a ``dask.distributed.Client`` (any deployment:
     ``LocalCluster``, ``dask_jobqueue.SLURMCluster``, ...): the points go out as tasks of
     ``chunk_size`` points and come back in grid order. The results are bit-identical to a
@@ -538,13 +553,15 @@ def sweep(
     parameters = [k for k, _ in ax]
     if executor is None:
         points, sweep_hash, (keys, values, errors) = _core.sweep_local(
-            base_json, base_path, ax, threads
+            base_json, base_path, ax, threads, progress
         )
     else:
         if int(chunk_size) < 1:
             raise ValueError(f"chunk_size: {chunk_size}: must be >= 1")
         points, sweep_hash = _core.sweep_plan(base_json, base_path, ax)
-        parts = _run_on_executor(executor, base_json, base_path, parameters, points, int(chunk_size))
+        parts = _run_on_executor(
+            executor, base_json, base_path, parameters, points, int(chunk_size), progress
+        )
         keys, values, errors = _join(parts, len(points), int(chunk_size))
     columns: Dict[str, np.ndarray] = {"point": np.arange(len(points), dtype=np.int64)}
     for k, name in enumerate(parameters):

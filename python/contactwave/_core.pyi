@@ -48,6 +48,7 @@ def sweep_local(
     base_path: str,
     axes: List[Tuple[str, List[float]]],
     threads: Optional[int] = None,
+    progress: Optional[Any] = None,
 ) -> Tuple[npt.NDArray[np.float64], str, _Table]: ...
 def run_points(
     base_json: str, base_path: str, parameters: List[str], points: npt.NDArray[np.float64]

@@ -164,3 +164,28 @@ def test_ctrl_c_interrupts_a_local_sweep():
     # interrupt arrives after 0.5 s, once the points are validated; a loaded 2-core
     # machine needs up to about 12 s for that, so the bound only proves the interruption
     assert elapsed < 60, elapsed
+
+
+def test_progress_callback_counts_every_point(tmp_path):
+    """The executor's observer reaches Python: progress(done, total) ends at (n, n), never
+    goes back, and an exception in the callback stops the sweep."""
+    base = {
+        "medium": {"material": "pmma"},
+        "interface": {"static_pressure": 1e5},
+        "incident": {"frequency": 1e6, "cycles": 5, "xi": 0.3},
+        "solver": {"samples_per_period": 64},
+    }
+    xi = [0.2, 0.4, 0.6, 0.8, 1.0]
+    for executor in (None, cf.ThreadPoolExecutor(2)):
+        calls = []
+        cw.sweep(base, {"incident.xi": xi}, executor, chunk_size=2,
+                 progress=lambda d, n: calls.append((d, n)))
+        assert calls[-1] == (len(xi), len(xi))
+        assert all(a[0] <= b[0] for a, b in zip(calls, calls[1:]))
+        assert all(n == len(xi) for _, n in calls)
+
+    def stop(d, n):
+        raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        cw.sweep(base, {"incident.xi": xi}, progress=stop)

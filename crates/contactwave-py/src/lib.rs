@@ -24,7 +24,7 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
@@ -430,13 +430,14 @@ fn sweep_plan<'py>(
 /// Returns `(points[n, n_axes], hash, (keys, values[n_points, n_keys], errors[(point,
 /// message)]))` in grid order.
 #[pyfunction]
-#[pyo3(signature = (base_json, base_path, axes, threads = None))]
+#[pyo3(signature = (base_json, base_path, axes, threads = None, progress = None))]
 fn sweep_local<'py>(
     py: Python<'py>,
     base_json: &str,
     base_path: PathBuf,
     axes: Vec<(String, Vec<f64>)>,
     threads: Option<usize>,
+    progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, numpy::PyArray2<f64>>, String, Table<'py>)> {
     let file = base_path.display().to_string();
     let table = table_from_json(base_json, &file).map_err(to_py)?;
@@ -451,7 +452,7 @@ fn sweep_local<'py>(
         return Err(PyValueError::new_err("threads: must be >= 1 (or None)"));
     }
     let executor = Executor::new().threads(threads);
-    let outcomes = run_interruptibly(py, &models, executor)?;
+    let outcomes = run_interruptibly(py, &models, executor, progress.as_ref())?;
     Ok((
         points_array(py, &sweep)?,
         sweep.hash.clone(),
@@ -467,20 +468,26 @@ fn points_array<'py>(py: Python<'py>, sweep: &Sweep) -> PyResult<Bound<'py, nump
 }
 
 /// Run `models` on the executor in a helper thread while this thread (GIL released
-/// between polls) checks for signals every [`SIGNAL_POLL`]; on a signal, cancel (the
-/// executor starts no new point), wait for the running points and return the signal's
-/// exception.
+/// between polls) checks for signals every [`SIGNAL_POLL`] and calls the Python
+/// `progress(done, total)` callback when the count moved; on a signal (or an exception in
+/// the callback), cancel (the executor starts no new point), wait for the running points
+/// and return the exception.
 fn run_interruptibly(
     py: Python<'_>,
     models: &[Arc<dyn contactwave::model::Model>],
     executor: Executor,
+    progress: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Vec<Outcome>> {
     let cancel = AtomicBool::new(false);
+    let done = AtomicUsize::new(0);
+    let total = models.len();
     let finished = (Mutex::new(false), Condvar::new());
+    let mut reported = usize::MAX;
     std::thread::scope(|s| {
         let worker = s.spawn(|| {
+            let count = |d: usize, _total: usize| done.store(d, Ordering::SeqCst);
             let observer = Progress {
-                report: &|_, _| {},
+                report: &count,
                 cancel: Some(&cancel),
             };
             let out = executor.map(models, |m| m.summary(), &observer);
@@ -490,7 +497,7 @@ fn run_interruptibly(
             out
         });
         loop {
-            let done = py.detach(|| {
+            let finished_now = py.detach(|| {
                 let (m, cv) = &finished;
                 let g = m.lock().unwrap_or_else(|p| p.into_inner());
                 let (g, _) = cv
@@ -498,14 +505,25 @@ fn run_interruptibly(
                     .unwrap_or_else(|p| p.into_inner());
                 *g
             });
-            if done {
-                break;
+            let mut check = py.check_signals();
+            if let (Some(cb), Ok(())) = (progress, &check) {
+                let d = done.load(Ordering::SeqCst);
+                if d != reported {
+                    reported = d;
+                    check = cb.call1((d, total)).map(|_| ());
+                }
             }
-            if let Err(e) = py.check_signals() {
+            if let Err(e) = check {
                 cancel.store(true, Ordering::SeqCst);
                 let _ = py.detach(|| worker.join());
                 return Err(e);
             }
+            if finished_now {
+                break;
+            }
+        }
+        if let Some(cb) = progress {
+            cb.call1((done.load(Ordering::SeqCst), total))?;
         }
         py.detach(|| worker.join())
             .map_err(|_| PyRuntimeError::new_err("sweep worker thread panicked"))?
