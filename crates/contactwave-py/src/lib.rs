@@ -425,7 +425,7 @@ fn sweep_plan<'py>(
     Ok((points_array(py, &sweep)?, sweep.hash))
 }
 
-/// Run a whole sweep on local cores (rayon; `threads=None`: all cores) with the GIL
+/// Run a whole sweep on local cores (the executor; `threads=None`: all cores) with the GIL
 /// released; Ctrl-C cancels it (KeyboardInterrupt once the running points finish).
 /// Returns `(points[n, n_axes], hash, (keys, values[n_points, n_keys], errors[(point,
 /// message)]))` in grid order.

@@ -3,9 +3,10 @@
 //! cores, and print the timings. Writes no files.
 
 use super::EXIT_OK;
-use contactwave::scenario::{parse_toml, set_dotted, Scenario};
+use contactwave::model;
+use contactwave::run::Executor;
+use contactwave::scenario::parse_toml;
 use contactwave::study;
-use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
 
@@ -43,32 +44,27 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let Args { points, runs } = args;
     let file = "<bench: chapter-3 RCCM scenario>";
     let table = parse_toml(BENCH_SCENARIO, file)?;
-    let scenario = Scenario::from_table(table.clone(), Path::new(file))?;
+    let template = model::plan_valid(table, Path::new(file))?;
+    let scenario = template.base()?;
     // (a) one simulation, single thread, median of `runs`
     let mut times = Vec::with_capacity(runs);
     for _ in 0..runs {
         let t0 = Instant::now();
-        let s = contactwave::simulate_summary(&scenario)?;
+        let s = scenario.summary()?;
         times.push(t0.elapsed().as_secs_f64());
         std::hint::black_box(s);
     }
     times.sort_by(f64::total_cmp);
     let median = times[times.len() / 2];
-    // (b) xi sweep on all cores, in memory
+    // (b) xi sweep on all cores, in memory: the models are built from the template first
     let xis = study::linspace(0.05, 1.2, points);
-    let scenarios = xis
+    let xi = template.param("incident.xi")?;
+    let models = xis
         .iter()
-        .map(|&xi| {
-            let mut t = table.clone();
-            set_dotted(&mut t, "incident.xi", toml::Value::Float(xi))?;
-            Scenario::from_table(t, Path::new(file))
-        })
+        .map(|&v| template.build(&[(&xi, v)]))
         .collect::<contactwave::Result<Vec<_>>>()?;
     let t0 = Instant::now();
-    let results = scenarios
-        .par_iter()
-        .map(contactwave::simulate_summary)
-        .collect::<contactwave::Result<Vec<_>>>()?;
+    let results = Executor::new().try_map(&models, |m| m.summary())?;
     let sweep_s = t0.elapsed().as_secs_f64();
     std::hint::black_box(results);
     println!("single simulation (chapter-3 RCCM, 0.82 MPa, 1 thread):");
@@ -82,7 +78,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     println!(
         "xi sweep ({} points in [0.05, 1.2], {} threads):",
         points,
-        rayon::current_num_threads()
+        Executor::new().thread_count()
     );
     println!(
         "  total {:.1} ms ({:.3} ms per point)",
