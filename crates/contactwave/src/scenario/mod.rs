@@ -235,7 +235,27 @@ pub(crate) fn material_of(spec: &MaterialSpec, file: &str, prefix: &str) -> Resu
             ));
         }
     }
+    check_derived(&m, file, prefix)?;
     Ok(m)
+}
+
+/// The wave speed and impedance of a material must be finite and > 0: E and rho that are
+/// each in range can still overflow them (e.g. E = 1e300 Pa with rho = 1e-300 kg/m^3).
+/// The error names both inputs.
+pub(crate) fn check_derived(m: &Material, file: &str, prefix: &str) -> Result<()> {
+    let (c, z) = (m.wave_speed(), m.impedance());
+    if c.is_finite() && c > 0.0 && z.is_finite() && z > 0.0 {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        file,
+        format!("{prefix}.youngs_modulus, {prefix}.density"),
+        format!("{:e} Pa, {:e} kg/m^3", m.youngs_modulus, m.density),
+        format!(
+            "give a finite wave speed sqrt(E/rho) and impedance sqrt(E rho) (here {c:e} m/s, \
+             {z:e} Pa s/m)"
+        ),
+    ))
 }
 
 fn positive_opt(file: &str, key: &str, v: Option<f64>, default: Option<f64>) -> Result<f64> {

@@ -59,6 +59,7 @@ pub(super) fn build_segments(specs: &[SegmentSpec], area: f64, file: &str) -> Re
             let rho_eq = mass / (area * s.length);
             mat.youngs_modulus *= rho_eq / mat.density;
             mat.density = rho_eq;
+            crate::scenario::check_derived(&mat, file, &format!("segment[{i}]"))?;
         }
         if !(s.damping.is_finite() && s.damping >= 0.0) {
             return Err(inv(file, key("damping"), s.damping, "must be >= 0 (1/s)"));
