@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # The one command that runs every test of the workspace on a fresh machine:
 #   ./scripts/test.sh
-# Steps: formatting, lints (warnings are errors), the whole test suite in release mode (the
-# physics tests are heavy), the library's doc tests, every output of the release CLI
-# against tests/reference/outputs.json, and the Python package's tests. Exits non-zero at
-# the first failing step.
+# Steps: formatting, lints (warnings are errors; also for the library without its default
+# features, which must not depend on plotters or argmin), the whole test suite in release
+# mode (the physics tests are heavy), the library's doc tests, every output of the release
+# CLI against tests/reference/outputs.json, and the Python package's tests. Exits non-zero
+# at the first failing step.
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -29,6 +30,17 @@ cargo fmt --all -- --check
 
 step "cargo clippy --all-targets -- -D warnings"
 cargo clippy --all-targets -- -D warnings
+
+# The library without its optional parts (features plot, identify, reproduce): the solvers
+# alone must build, lint clean and pull in neither plotters nor argmin.
+step "cargo clippy -p contactwave --no-default-features --all-targets -- -D warnings"
+cargo clippy -p contactwave --no-default-features --all-targets -- -D warnings
+
+step "cargo tree -p contactwave --no-default-features -e normal (no plotters, no argmin)"
+if cargo tree -p contactwave --no-default-features -e normal | grep -E 'plotters|argmin'; then
+    echo "error: contactwave without default features depends on plotters or argmin" >&2
+    exit 1
+fi
 
 step "cargo test --workspace --release"
 cargo test --workspace --release

@@ -7,6 +7,14 @@
 //! thesis ([`analysis`]), scenario files ([`scenario`]), parameter studies ([`study`]) and
 //! result files ([`output`]).
 //!
+//! Cargo features (all on by default; the CLI and the Python package use them all):
+//! `plot` (SVG figures, with plotters: `render::svg`, `output::plot`; without it every
+//! output keeps its CSV and JSON files and has no SVG file), `identify` (inverse
+//! identification, with argmin and rand: `inverse`, `output::identify`; needs `plot`) and
+//! `reproduce` (the thesis' studies and their HTML report: `reproduce`; needs `plot`).
+//! A program that embeds only the solvers can depend on the library with
+//! `default-features = false`.
+//!
 //! Conventions (model.md section 2): SI units; stress tension-positive; the static
 //! pre-stress is a compression `p0 >= 0`; the gap `[u] = u(0+) - u(0-)` is opening-positive
 //! and measured from the pre-loaded equilibrium.
@@ -40,6 +48,7 @@ pub mod analysis;
 pub mod analytic;
 pub mod error;
 pub mod excitation;
+#[cfg(feature = "identify")]
 pub mod inverse;
 pub mod law;
 pub mod material;
@@ -47,6 +56,7 @@ pub mod model;
 pub mod numeric;
 pub mod output;
 pub mod render;
+#[cfg(feature = "reproduce")]
 pub mod reproduce;
 pub mod run;
 pub mod scenario;

@@ -2,6 +2,8 @@
 //! plus 1% multiplicative noise, fixed seeds), identifiability verdicts, design ranking
 //! and bad input.
 
+#![cfg(feature = "identify")]
+
 use contactwave::inverse::{design, identify, synthesize, IdentifySpec, Model};
 use contactwave::scenario::parse_toml;
 use contactwave::Error;

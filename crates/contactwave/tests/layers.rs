@@ -95,7 +95,7 @@ fn code(text: &str) -> String {
 
 /// Every path `crate::a::b::...` and `super::...` in the code, as segments (`super`
 /// resolved against the file's module).
-fn paths(code: &str, module: &[String], is_mod_file: bool) -> Vec<Vec<String>> {
+fn paths(code: &str, module: &[String]) -> Vec<Vec<String>> {
     let mut out = Vec::new();
     let bytes: Vec<char> = code.chars().collect();
     let ident = |c: char| c.is_alphanumeric() || c == '_';
@@ -106,12 +106,10 @@ fn paths(code: &str, module: &[String], is_mod_file: bool) -> Vec<Vec<String>> {
         let (mut segs, mut j) = if starts("crate::") {
             (Vec::new(), i + 7)
         } else if starts("super::") {
-            // a mod.rs's `super` is its parent; a file's is its folder's module
+            // one level up: a mod.rs's `super` is its parent, a file's its folder's module
+            // (the module path of a mod.rs already ends at its folder)
             let mut base = module.to_vec();
-            let up = if is_mod_file { 1 } else { 1 };
-            for _ in 0..up {
-                base.pop();
-            }
+            base.pop();
             let mut j = i + 7;
             while bytes[j..].iter().take(7).collect::<String>() == "super::" {
                 base.pop();
@@ -169,7 +167,7 @@ struct Tree {
     /// Names re-exported by a module, and the child module they come from.
     reexports: BTreeMap<(Vec<String>, String), Vec<String>>,
     /// Code of each module.
-    code: BTreeMap<Vec<String>, (String, bool)>,
+    code: BTreeMap<Vec<String>, String>,
 }
 
 fn tree() -> Tree {
@@ -182,21 +180,18 @@ fn tree() -> Tree {
     };
     for f in &fs {
         let m = module_of(f);
-        let is_mod = f
-            .file_name()
-            .is_some_and(|n| n == "mod.rs" || n == "lib.rs");
         let text = std::fs::read_to_string(f).unwrap();
         t.modules.insert(m.clone());
-        t.code.insert(m, (code(&text), is_mod));
+        t.code.insert(m, code(&text));
     }
     // `pub use child::...::{A, B}` in a module: A, B come from `child`
-    for (m, (c, is_mod)) in &t.code {
+    for (m, c) in &t.code {
         for line in c.split(';') {
             let line = line.trim();
             let Some(rest) = line.strip_prefix("pub use ") else {
                 continue;
             };
-            for p in paths(&format!("crate::{rest}"), m, *is_mod) {
+            for p in paths(&format!("crate::{rest}"), m) {
                 if p.len() >= 2 {
                     let name = p.last().cloned().unwrap_or_default();
                     let mut child = m.clone();
@@ -239,8 +234,8 @@ impl Tree {
 
     fn edges(&self) -> BTreeSet<(Vec<String>, Vec<String>)> {
         let mut e = BTreeSet::new();
-        for (m, (c, is_mod)) in &self.code {
-            for p in paths(c, m, *is_mod) {
+        for (m, c) in &self.code {
+            for p in paths(c, m) {
                 let target = self.resolve(&p);
                 if !target.is_empty() && &target != m {
                     e.insert((m.clone(), target));

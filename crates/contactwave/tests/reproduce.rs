@@ -1,6 +1,8 @@
 //! `reproduce`: the thesis findings of chapters 3 and 4 within the tolerances the report
 //! states, and a self-contained report (every figure inline, no external reference).
 
+#![cfg(feature = "reproduce")]
+
 use contactwave::reproduce::{run_chapter, write_report, Chapter, ChapterResult};
 
 fn value(r: &ChapterResult, key: &str) -> f64 {

@@ -1,7 +1,7 @@
 //! Result files: CSV tables, `summary.json`, SVG plots.
 //!
 //! This module owns the layout of an output folder. Everything is rendered in memory first
-//! ([`crate::model::Outcome::files`], [`law_files`], [`sweep_svg`]) and only then written
+//! ([`crate::model::Outcome::files`], [`law_files`], `sweep_svg`) and only then written
 //! ([`write_files`]), so a failure while computing or rendering never creates or touches
 //! the output folder. Each file is written to a temporary name in the folder and renamed
 //! into place.
@@ -14,16 +14,21 @@
 //! loading, damage in its rate-independent limit, see [`ContactLaw::curve`]) and
 //! `law_curve.svg`.
 //!
+//! SVG files need the `plot` feature (on by default): without it the files of a run or a
+//! law are their CSV and JSON files only, and `plot`, `sweep_svg` and `identify` (which
+//! also needs the `identify` feature) are absent.
+//!
 //! Numbers are written so that they parse back to the same `f64`.
 
+#[cfg(feature = "identify")]
 pub mod identify;
+#[cfg(feature = "plot")]
 pub mod plot;
 
 use crate::error::{Error, Result};
 use crate::law::ContactLaw;
 use crate::model::Outcome;
 pub use crate::render::{csv_columns, summary_json, OutputFile};
-use crate::study::{read_sweep_csv, Sweep};
 use std::path::{Path, PathBuf};
 
 /// Header of `law_curve.csv`.
@@ -67,24 +72,38 @@ pub fn law_gap_range(law: &ContactLaw) -> (f64, f64) {
     (low, uc + 4.0 * d)
 }
 
-/// `law_curve.csv` and `law_curve.svg` of a law, rendered in memory.
+/// `law_curve.csv` and (with the `plot` feature) `law_curve.svg` of a law, rendered in
+/// memory.
 pub fn law_files(law: &ContactLaw) -> Result<Vec<OutputFile>> {
     let (g0, g1) = law_gap_range(law);
     let (gap, stress) = law.curve(g0, g1, 801);
-    Ok(vec![
-        OutputFile::new(
-            "law_curve.csv",
-            csv_columns(LAW_CURVE_HEADER, &[&gap, &stress]),
-        ),
-        OutputFile::new("law_curve.svg", plot::law_curve(law, &gap, &stress)?),
-    ])
+    let mut files = vec![OutputFile::new(
+        "law_curve.csv",
+        csv_columns(LAW_CURVE_HEADER, &[&gap, &stress]),
+    )];
+    files.extend(law_figures(law, &gap, &stress)?);
+    Ok(files)
+}
+
+/// `law_curve.svg` of a law's curve (nothing without the `plot` feature).
+#[cfg(feature = "plot")]
+fn law_figures(law: &ContactLaw, gap: &[f64], stress: &[f64]) -> Result<Vec<OutputFile>> {
+    let svg = plot::law_curve(law, gap, stress)?;
+    Ok(vec![OutputFile::new("law_curve.svg", svg)])
+}
+
+/// `law_curve.svg` of a law's curve (nothing without the `plot` feature).
+#[cfg(not(feature = "plot"))]
+fn law_figures(_law: &ContactLaw, _gap: &[f64], _stress: &[f64]) -> Result<Vec<OutputFile>> {
+    Ok(Vec::new())
 }
 
 /// Plot of a sweep CSV: `A1_over_Ainc` and `A2_over_Ainc` (two panels) against the first
 /// axis, one curve per combination of the other axes' values. `None` when the CSV has no
 /// rows (every point failed).
-pub fn sweep_svg(sweep: &Sweep, csv: &Path) -> Result<Option<String>> {
-    let table = read_sweep_csv(csv)?;
+#[cfg(feature = "plot")]
+pub fn sweep_svg(sweep: &crate::study::Sweep, csv: &Path) -> Result<Option<String>> {
+    let table = crate::study::read_sweep_csv(csv)?;
     if table.rows.is_empty() {
         return Ok(None);
     }
@@ -115,7 +134,7 @@ pub fn write_outcome(outcome: &dyn Outcome, dir: &Path) -> Result<Vec<PathBuf>> 
     write_files(dir, &files)
 }
 
-/// Render and write `law_curve.csv` and `law_curve.svg` into `dir` (created if needed).
+/// Render and write the files of a law ([`law_files`]) into `dir` (created if needed).
 pub fn write_law_curve(law: &ContactLaw, dir: &Path) -> Result<Vec<PathBuf>> {
     let files = law_files(law)?;
     write_files(dir, &files)
@@ -174,7 +193,13 @@ mod tests {
         .unwrap();
         let r = crate::simulate(&s).unwrap();
         let files = crate::model::Outcome::files(&r).unwrap();
-        assert_eq!(files.len(), 8);
+        // 4 CSV/JSON files, and 4 SVG files with the `plot` feature
+        let svgs = if cfg!(feature = "plot") { 4 } else { 0 };
+        assert_eq!(files.len(), 4 + svgs);
+        assert_eq!(
+            files.iter().filter(|f| f.name.ends_with(".svg")).count(),
+            svgs
+        );
         let ts = &files[1].contents;
         let header = crate::model::half_space::files::TIMESERIES_HEADER;
         assert!(ts.starts_with(&format!("{header}\n")));
@@ -185,6 +210,7 @@ mod tests {
             }
         }
         let law = law_files(&s.law).unwrap();
+        assert_eq!(law.len(), if cfg!(feature = "plot") { 2 } else { 1 });
         assert!(law[0].contents.starts_with("gap,stress\n"));
         assert!(law[0].contents.lines().count() > 100);
         // rigid compression + free traction and a bonded law render too

@@ -1,7 +1,9 @@
 //! Rendering results into files in memory: CSV columns, `summary.json`, and SVG figures
-//! ([`svg`]). Nothing here touches the disk or knows the physics; models and studies
-//! describe their files with these primitives and [`crate::output`] writes them.
+//! (`svg`, with the `plot` feature). Nothing here touches the disk or knows the physics;
+//! models and studies describe their files with these primitives and [`crate::output`]
+//! writes them.
 
+#[cfg(feature = "plot")]
 pub mod svg;
 
 use crate::analysis::Summary;

@@ -10,9 +10,13 @@
 //! | `waves.svg` | incident and reflected stress at the probe |
 //! | `spectrum.svg` | spectra in dB relative to the incident peak, with markers at the harmonics n f0 |
 //! | `stress_gap.svg` | contact stress against gap over the run (the hysteresis loop) |
+//!
+//! The SVG files (and the functions that draw them) need the `plot` feature (on by
+//! default); without it a run has its JSON and CSV files only.
 
 use super::RunResult;
 use crate::error::Result;
+#[cfg(feature = "plot")]
 use crate::render::svg::{color, decimate, max_abs, panel, prefix, render, scaled, stride, Curve};
 use crate::render::{csv_columns, summary_json, OutputFile};
 
@@ -73,11 +77,20 @@ pub fn spectrum_csv(result: &RunResult) -> String {
 
 /// Every file of a run, rendered in memory (see the module doc for the list).
 pub fn run_files(result: &RunResult) -> Result<Vec<OutputFile>> {
-    Ok(vec![
+    let mut files = vec![
         OutputFile::new("summary.json", summary_json(&result.file, &result.summary)),
         OutputFile::new("timeseries.csv", timeseries_csv(result)),
         OutputFile::new("probe.csv", probe_csv(result)),
         OutputFile::new("spectrum.csv", spectrum_csv(result)),
+    ];
+    files.extend(figures(result)?);
+    Ok(files)
+}
+
+/// The SVG files of a run, rendered in memory (none without the `plot` feature).
+#[cfg(feature = "plot")]
+pub fn figures(result: &RunResult) -> Result<Vec<OutputFile>> {
+    Ok(vec![
         OutputFile::new("time_histories.svg", time_histories(result)?),
         OutputFile::new("waves.svg", waves(result)?),
         OutputFile::new("spectrum.svg", spectrum(result, result.fundamental)?),
@@ -85,7 +98,14 @@ pub fn run_files(result: &RunResult) -> Result<Vec<OutputFile>> {
     ])
 }
 
+/// The SVG files of a run, rendered in memory (none without the `plot` feature).
+#[cfg(not(feature = "plot"))]
+pub fn figures(_result: &RunResult) -> Result<Vec<OutputFile>> {
+    Ok(Vec::new())
+}
+
 /// `time_histories.svg`: gap, contact stress and beta against time, three panels.
+#[cfg(feature = "plot")]
 pub fn time_histories(r: &RunResult) -> Result<String> {
     let o = &r.interface;
     let (t, tu) = scaled(&o.t, "s");
@@ -132,6 +152,7 @@ pub fn time_histories(r: &RunResult) -> Result<String> {
 }
 
 /// `waves.svg`: incident and reflected stress at the probe.
+#[cfg(feature = "plot")]
 pub fn waves(r: &RunResult) -> Result<String> {
     let p = &r.probe;
     let (t, tu) = scaled(&p.t, "s");
@@ -165,6 +186,7 @@ pub fn waves(r: &RunResult) -> Result<String> {
 
 /// `spectrum.svg`: incident and reflected velocity spectra, dB relative to the incident
 /// peak (floor at -160 dB), grey markers at the harmonics n f0.
+#[cfg(feature = "plot")]
 pub fn spectrum(r: &RunResult, f0: f64) -> Result<String> {
     let f = &r.incident_spectrum.frequency;
     let (fs, fu) = scaled(f, "Hz");
@@ -208,6 +230,7 @@ pub fn spectrum(r: &RunResult, f0: f64) -> Result<String> {
 }
 
 /// `stress_gap.svg`: contact stress against gap over the whole run.
+#[cfg(feature = "plot")]
 pub fn stress_gap(r: &RunResult) -> Result<String> {
     let o = &r.interface;
     let (gap, gu) = scaled(&o.gap, "m");
