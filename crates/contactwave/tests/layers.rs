@@ -106,12 +106,11 @@ fn paths(code: &str, module: &[String], is_mod_file: bool) -> Vec<Vec<String>> {
         let (mut segs, mut j) = if starts("crate::") {
             (Vec::new(), i + 7)
         } else if starts("super::") {
-            // a mod.rs's `super` is its parent; a file's is its folder's module
+            // a mod.rs's `super` is its parent; a file's is its folder's module: in both
+            // cases one segment up, since `module_of` already drops the `mod`
+            let _ = is_mod_file;
             let mut base = module.to_vec();
-            let up = if is_mod_file { 1 } else { 1 };
-            for _ in 0..up {
-                base.pop();
-            }
+            base.pop();
             let mut j = i + 7;
             while bytes[j..].iter().take(7).collect::<String>() == "super::" {
                 base.pop();
