@@ -15,7 +15,30 @@ pub struct PowerLawFit {
 }
 
 /// Fit `K = C p^m` by least squares on `(ln p, ln K)`. Pressures in Pa, stiffnesses in
-/// Pa/m, all > 0, at least 2 points.
+/// Pa/m, all > 0, at least 2 points with two distinct pressures.
+///
+/// ```
+/// use contactwave::analysis::fit::fit_power_law;
+/// // K = C p^m with the Al-Al values of thesis Table 2 (C = 1.81e10 Pa^(1-m)/m, m = 0.35),
+/// // at 0.1 ... 12.8 MPa, with alternating +-2 % deviations
+/// let p: Vec<f64> = (0..8).map(|i| 0.1e6 * 2f64.powi(i)).collect();
+/// let k: Vec<f64> = p
+///     .iter()
+///     .enumerate()
+///     .map(|(i, p)| 1.81e10 * p.powf(0.35) * if i % 2 == 0 { 1.02 } else { 0.98 })
+///     .collect();
+/// let fit = fit_power_law(&p, &k).unwrap();
+/// assert!((fit.m - 0.35).abs() < 0.01);
+/// assert!((fit.c / 1.81e10 - 1.0).abs() < 0.05);
+/// assert!(fit.r2 > 0.99);
+/// // exact data are recovered exactly
+/// let exact: Vec<f64> = p.iter().map(|p| 1.81e10 * p.powf(0.35)).collect();
+/// let fit = fit_power_law(&p, &exact).unwrap();
+/// assert!((fit.m - 0.35).abs() < 1e-12 && (fit.c / 1.81e10 - 1.0).abs() < 1e-9);
+/// // a single point, or a stiffness <= 0, is an error
+/// assert!(fit_power_law(&[1e6], &[1e12]).is_err());
+/// assert!(fit_power_law(&[1e6, 2e6], &[1e12, 0.0]).is_err());
+/// ```
 pub fn fit_power_law(pressure: &[f64], stiffness: &[f64]) -> Result<PowerLawFit> {
     if pressure.len() != stiffness.len() || pressure.len() < 2 {
         return Err(Error::invalid(

@@ -3,10 +3,10 @@
 //! (the starting values of the identification file).
 //!
 //! For a candidate, the sensitivity matrix `S[i][j] = (d model_i / d z_j) / sigma_i` (rows:
-//! control values x observed keys; `z`: scaled parameters; `sigma_i = relative_noise |y_i|
-//! + absolute_noise` of `[fit]`, `y_i` the nominal model value) is built by central
-//! differences. Ranked by `log10 det(S^T S)` (D-optimality), ties broken by the smallest
-//! singular value of `S` (E-optimality).
+//! control values x observed keys; `z`: scaled parameters;
+//! `sigma_i = relative_noise |y_i| + absolute_noise` of `[fit]`, `y_i` the nominal model
+//! value) is built by central differences. Ranked by `log10 det(S^T S)` (D-optimality),
+//! ties broken by the smallest singular value of `S` (E-optimality).
 
 use super::model::{toml_number, Model};
 use super::sensitivity::svd_right;

@@ -13,6 +13,57 @@ use crate::error::{Error, Result};
 
 /// Run a whole identification: estimate, identifiability (Jacobian SVD, linearised and
 /// bootstrap intervals, verdicts). `progress` receives one-line messages.
+///
+/// A round trip on a tiny problem (one unknown, three load ratios, a coarse time step, the
+/// local stage only; about 200 forward runs):
+///
+/// ```
+/// use contactwave::inverse::{identify, synthesize, IdentifySpec};
+/// use contactwave::scenario::parse_toml;
+/// let dir = std::env::temp_dir().join(format!("contactwave-doc-identify-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir).unwrap();
+/// std::fs::write(dir.join("base.toml"), r#"
+///     [medium]
+///     material = "pmma"
+///     [interface]
+///     static_pressure = 0.1e6                             # Pa
+///     compression = { law = "linear", stiffness = 1e12 }  # Pa/m
+///     [incident]
+///     frequency = 1e6                                     # Hz
+///     cycles = 5
+///     xi = 0.5
+///     [solver]
+///     samples_per_period = 32
+/// "#).unwrap();
+/// let table = parse_toml(r#"
+///     base = "base.toml"
+///     observed = ["A2_over_A1"]
+///     [data]                      # placeholders, replaced by synthetic data below
+///     "incident.xi" = [0.3, 0.5, 0.8]
+///     A2_over_A1 = [1.0, 1.0, 1.0]
+///     [[parameter]]
+///     key = "interface.compression.stiffness"
+///     bounds = [1e10, 1e14]       # Pa/m
+///     scale = "log"
+///     initial = 1e11
+///     [fit]
+///     particles = 0               # no swarm: Nelder-Mead from `initial`
+///     local_iterations = 30
+///     local_starts = 1
+///     bootstrap = 0
+/// "#, "identify.toml").unwrap();
+/// let spec = IdentifySpec::from_table(table, &dir.join("identify.toml")).unwrap();
+/// // data simulated with K = 1e12 Pa/m (no noise), then K identified from them
+/// let key = "interface.compression.stiffness";
+/// let data = synthesize(&spec, &[(key.to_string(), 1e12)], 0.0, 1).unwrap();
+/// let result = identify(&data, &|_| {}).unwrap();
+/// let k = result.estimate_of(key).unwrap();
+/// assert!((k / 1e12 - 1.0).abs() < 1e-3, "K = {k:e} Pa/m");
+/// assert!(result.identified(key));
+/// let (lo, hi) = result.interval_of(key).unwrap();
+/// assert!(lo <= k && k <= hi);
+/// std::fs::remove_dir_all(&dir).unwrap();
+/// ```
 pub fn identify(spec: &IdentifySpec, progress: &(dyn Fn(&str) + Sync)) -> Result<Identification> {
     let t0 = std::time::Instant::now();
     let model = Model::new(spec);

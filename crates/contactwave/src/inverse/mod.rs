@@ -62,7 +62,7 @@
 //! - [`estimate`](mod@estimate): the weighted least squares and its minimisation;
 //! - [`identifiability`]: intervals and verdicts at the optimum;
 //! - [`design`](mod@design): ranking of candidate experiments;
-//! - [`report`]: the result ([`Identification`]) and its files (it also draws with
+//! - `result`: the result ([`Identification`]) and its files (it also draws with
 //!   `crate::output`, a layer above this one; no other inverse module imports upwards);
 //! - `driver`: [`identify`], [`synthesize`].
 

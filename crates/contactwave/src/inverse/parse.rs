@@ -61,7 +61,55 @@ impl IdentifySpec {
 
     /// Build from a parsed identification table that came from `path` (relative paths
     /// resolve against its folder). `data` may be a file name or an inline table of
-    /// equally long arrays (column name -> values).
+    /// equally long arrays (column name -> values). The format is described in the
+    /// [`inverse`](crate::inverse) module doc.
+    ///
+    /// ```
+    /// use contactwave::inverse::IdentifySpec;
+    /// use contactwave::scenario::parse_toml;
+    /// let dir = std::env::temp_dir().join(format!("contactwave-doc-spec-{}", std::process::id()));
+    /// std::fs::create_dir_all(&dir).unwrap();
+    /// std::fs::write(dir.join("base.toml"), r#"
+    ///     [medium]
+    ///     material = "pmma"
+    ///     [interface]
+    ///     static_pressure = 0.1e6                             # Pa
+    ///     compression = { law = "linear", stiffness = 1e12 }  # Pa/m
+    ///     [incident]
+    ///     frequency = 1e6                                     # Hz
+    ///     cycles = 5
+    ///     xi = 0.5
+    /// "#).unwrap();
+    /// let table = parse_toml(r#"
+    ///     base = "base.toml"
+    ///     observed = ["A2_over_A1"]
+    ///     [data]                      # inline: one row per load ratio
+    ///     "incident.xi" = [0.3, 0.5, 0.8]
+    ///     A2_over_A1 = [0.058, 0.054, 0.043]
+    ///     [[parameter]]
+    ///     key = "interface.compression.stiffness"
+    ///     bounds = [1e10, 1e14]       # Pa/m
+    ///     scale = "log"
+    /// "#, "identify.toml").unwrap();
+    /// let spec = IdentifySpec::from_table(table, &dir.join("identify.toml")).unwrap();
+    /// assert_eq!(spec.measured.conditions, ["incident.xi"]);
+    /// assert_eq!((spec.measured.len(), spec.parameters.len()), (3, 1));
+    /// // sigma = relative_noise |y| with the default relative_noise = 1 %
+    /// assert!((spec.measured.observed[0].sigma[0] - 0.00058).abs() < 1e-12);
+    /// // a parameter key the scenario does not have is an error naming it
+    /// let table = parse_toml(r#"
+    ///     base = "base.toml"
+    ///     [data]
+    ///     "incident.xi" = [0.3, 0.5, 0.8]
+    ///     A2_over_A1 = [0.058, 0.054, 0.043]
+    ///     [[parameter]]
+    ///     key = "interface.compression.stifness"
+    ///     bounds = [1e10, 1e14]
+    /// "#, "identify.toml").unwrap();
+    /// let err = IdentifySpec::from_table(table, &dir.join("identify.toml")).unwrap_err();
+    /// assert!(err.to_string().contains("parameter[0].key"));
+    /// std::fs::remove_dir_all(&dir).unwrap();
+    /// ```
     pub fn from_table(table: toml::Table, path: &Path) -> Result<IdentifySpec> {
         let file = path.display().to_string();
         const KEYS: &[&str] = &[

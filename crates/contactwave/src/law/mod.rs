@@ -163,9 +163,34 @@ impl ContactLaw {
         }
     }
 
-    /// Monotone-loading stress-gap curve: `n` gaps from `gap_min` to `gap_max` and the
-    /// stress at each, damage evolving in its rate-independent limit. Rigid branches are
-    /// drawn as vertical segments (two points at the same gap).
+    /// Monotone-loading stress-gap curve: `n` gaps from `gap_min` to `gap_max` (m) and the
+    /// stress at each (Pa), damage evolving in its rate-independent limit. Rigid branches
+    /// are drawn as vertical segments (two points at the same gap).
+    ///
+    /// ```
+    /// use contactwave::law::registry::build_law;
+    /// use contactwave::law::spec::{CompressionSpec, TractionSpec};
+    /// // p0 = 1 MPa; linear compression K = 1e12 Pa/m; RCCM traction C_N = 2e13 Pa/m,
+    /// // w = 0.1 J/m^2, rate-independent damage
+    /// let law = build_law(
+    ///     1e6,
+    ///     &CompressionSpec::Linear { stiffness: 1e12 },
+    ///     &TractionSpec::Rccm { stiffness: 2e13, energy: 0.1, viscosity: 0.0 },
+    ///     "<doc>",
+    ///     "interface",
+    /// )
+    /// .unwrap();
+    /// let uc = law.critical_gap(); // p0 / K = 1 µm
+    /// assert!((uc - 1e-6).abs() < 1e-18);
+    /// let (gap, stress) = law.curve(0.0, uc + 0.5e-6, 20001);
+    /// assert_eq!((gap.len(), stress.len()), (20001, 20001));
+    /// assert_eq!(stress[0], -1e6); // sigma(0) = -p0
+    /// // the traction peaks at sqrt(w C_N) = 1.414 MPa (opening sqrt(w / C_N) = 70.7 nm),
+    /// // then damage softens it to w^2 / (C_N d^3) = 4 kPa at d = 0.5 µm
+    /// let peak = stress.iter().copied().fold(f64::MIN, f64::max);
+    /// assert!((peak / (0.1f64 * 2e13).sqrt() - 1.0).abs() < 1e-3);
+    /// assert!((stress[20000] / 4e3 - 1.0).abs() < 1e-6);
+    /// ```
     pub fn curve(&self, gap_min: f64, gap_max: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
         let uc = self.critical_gap();
         let p0 = self.static_pressure;

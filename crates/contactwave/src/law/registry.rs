@@ -176,7 +176,28 @@ pub fn build_traction(
     })
 }
 
-/// Build a whole contact law.
+/// Build a whole contact law for static pressure `p0` (Pa, >= 0), validating every
+/// parameter; `prefix` is the dotted key of the interface (for messages), e.g.
+/// `interface`. See [`ContactLaw::curve`] for the law it returns.
+///
+/// ```
+/// use contactwave::law::registry::build_law;
+/// use contactwave::law::spec::{CompressionSpec, TractionSpec};
+/// let law = build_law(0.1e6, &CompressionSpec::Rigid, &TractionSpec::Free, "<doc>", "interface")
+///     .unwrap();
+/// assert_eq!(law.critical_gap(), 0.0); // Signorini: contact is lost at [u] = 0
+/// assert!(law.compression.stiffness_at_rest().is_infinite());
+/// // an invalid parameter is an error naming its dotted key
+/// let err = build_law(
+///     0.1e6,
+///     &CompressionSpec::Linear { stiffness: -1.0 },
+///     &TractionSpec::Free,
+///     "<doc>",
+///     "interface",
+/// )
+/// .unwrap_err();
+/// assert!(err.to_string().contains("interface.compression.stiffness"));
+/// ```
 pub fn build_law(
     p0: f64,
     compression: &CompressionSpec,

@@ -74,7 +74,7 @@ pub enum TractionSpec {
     /// `sigma = 0` (unilateral contact, clapping).
     #[default]
     Free,
-    /// `sigma = K_t d`, d = [u] - [u]_c.
+    /// `sigma = K_t d`, `d = [u] - [u]_c`.
     Linear {
         /// K_t, Pa/m.
         stiffness: f64,

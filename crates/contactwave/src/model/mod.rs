@@ -117,13 +117,80 @@ pub fn plan_valid(table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> 
     Ok(t)
 }
 
-/// Load a scenario file, plan its template and validate it.
+/// Load a scenario file, plan its template and validate it. Relative paths in the file
+/// (excitation files) resolve against its folder.
+///
+/// ```
+/// use contactwave::model;
+/// let dir = std::env::temp_dir().join(format!("contactwave-doc-load-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let path = dir.join("unilateral.toml");
+/// std::fs::write(&path, r#"
+///     [medium]
+///     material = "aluminium"
+///     [interface]
+///     static_pressure = 1e6       # Pa
+///     [incident]
+///     frequency = 0.5e6           # Hz
+///     cycles = 5
+///     xi = 0.5
+/// "#).unwrap();
+/// let template = model::load(&path).unwrap();
+/// assert_eq!(template.kind(), "half_space");
+/// assert_eq!(template.file(), path.display().to_string());
+/// assert_eq!(template.base().unwrap().load_ratio(), 0.5);
+/// // a missing file is an I/O error naming the path
+/// let err = model::load(&dir.join("missing.toml")).unwrap_err();
+/// assert!(err.to_string().contains("missing.toml"));
+/// std::fs::remove_dir_all(&dir).unwrap();
+/// ```
 pub fn load(path: &Path) -> Result<Arc<dyn Template>> {
     plan_valid(read_table(path)?, path)
 }
 
 /// Parse TOML text named `file` (relative paths resolve against the current folder), plan
-/// its template and validate it.
+/// its template and validate it. The kind is recognised from the table (see [`KINDS`]).
+///
+/// ```
+/// use contactwave::model;
+/// // `[model] kind = "bar_stack"` makes a bar stack; a `[medium]` table the half-space problem
+/// let stack = model::from_toml_str(r#"
+///     [model]
+///     kind = "bar_stack"
+///     area = 1.0                  # m^2
+///     static_force = 0.082e6      # N
+///     first_end = "transparent"
+///     last_end = "transparent"
+///     [[segment]]
+///     name = "upper"
+///     length = 0.005              # m
+///     material = "pmma"
+///     [[segment]]
+///     name = "lower"
+///     length = 0.005
+///     material = "pmma"
+///     [[interface]]
+///     between = ["upper", "lower"]
+///     traction = { law = "rccm", stiffness = 2e13, energy = 0.1 }
+///     [incident]
+///     frequency = 1e6             # Hz
+///     cycles = 5
+///     amplitude = 2.5e6           # Pa
+/// "#, "stack.toml").unwrap();
+/// assert_eq!(stack.kind(), "bar_stack");
+/// // the scenario is validated here: errors name the file, the field and what is allowed
+/// let err = model::from_toml_str(r#"
+///     [medium]
+///     material = "glass"
+///     [interface]
+///     static_pressure = 0.1e6
+///     [incident]
+///     frequency = 1e6
+///     cycles = 10
+///     xi = 0.5
+/// "#, "bad.toml").unwrap_err();
+/// assert!(err.to_string().contains("bad.toml: field `medium.material`"));
+/// ```
 pub fn from_toml_str(text: &str, file: &str) -> Result<Arc<dyn Template>> {
     let table = crate::scenario::parse_toml(text, file)?;
     plan_valid(table, Path::new(file))
@@ -161,6 +228,32 @@ pub trait Model: Debug + Send + Sync {
     /// series or spectra beyond what the summary uses).
     fn summary(&self) -> Result<Summary>;
     /// Run fully: signals, spectra, summary.
+    ///
+    /// ```
+    /// use contactwave::model::{self, RunControl};
+    /// let m = model::from_toml_str(r#"
+    ///     [medium]
+    ///     material = "pmma"
+    ///     [interface]
+    ///     static_pressure = 0.1e6     # Pa
+    ///     [incident]
+    ///     frequency = 1e6             # Hz
+    ///     cycles = 10
+    ///     xi = 2.0                    # A = p0 / 4: the interface stays closed
+    ///     [solver]
+    ///     samples_per_period = 64
+    /// "#, "closed.toml").unwrap().base().unwrap();
+    /// let outcome = m.run(&RunControl::default()).unwrap();
+    /// let s = outcome.summary();
+    /// // a closed interface reflects linearly: no contact loss, no energy lost, and the
+    /// // reflected second harmonic is the incident burst's own
+    /// assert_eq!(s.get("contact_loss_fraction"), Some(0.0));
+    /// assert_eq!(s.get("max_gap"), Some(0.0));
+    /// let (e_inc, e_refl) = (s.get("energy_incident").unwrap(), s.get("energy_reflected").unwrap());
+    /// assert!((e_refl / e_inc - 1.0).abs() < 1e-9);
+    /// let a2 = s.get("A2_over_Ainc").unwrap();
+    /// assert!((a2 - s.get("incident_A2_over_Ainc").unwrap()).abs() < 1e-6);
+    /// ```
     fn run(&self, control: &RunControl) -> Result<Box<dyn Outcome>>;
     /// The concrete model, for callers that need kind-specific inputs.
     fn as_any(&self) -> &dyn Any;
@@ -173,8 +266,66 @@ pub trait Outcome: Debug + Send + Sync {
     /// The summary scalars (`summary.json`, a sweep row).
     fn summary(&self) -> &Summary;
     /// The run's files, rendered in memory (`summary.json` first).
+    ///
+    /// ```
+    /// use contactwave::model::{self, RunControl};
+    /// let outcome = model::from_toml_str(r#"
+    ///     [medium]
+    ///     material = "pmma"
+    ///     [interface]
+    ///     static_pressure = 0.1e6
+    ///     [incident]
+    ///     frequency = 1e6
+    ///     cycles = 10
+    ///     xi = 0.5
+    ///     [solver]
+    ///     samples_per_period = 64
+    /// "#, "open.toml").unwrap().base().unwrap().run(&RunControl::default()).unwrap();
+    /// let files = outcome.files().unwrap();
+    /// assert_eq!(files[0].name, "summary.json");
+    /// assert!(files[0].contents.contains("\"A2_over_Ainc\""));
+    /// let ts = files.iter().find(|f| f.name == "timeseries.csv").unwrap();
+    /// assert!(ts.contents.starts_with("t,gap,contact_stress,"));
+    /// assert!(files.iter().any(|f| f.name == "spectrum.svg"));
+    /// // write them where they belong
+    /// let dir = std::env::temp_dir().join(format!("contactwave-doc-files-{}", std::process::id()));
+    /// std::fs::create_dir_all(&dir).unwrap();
+    /// for f in &files {
+    ///     std::fs::write(dir.join(&f.name), &f.contents).unwrap();
+    /// }
+    /// std::fs::remove_dir_all(&dir).unwrap();
+    /// ```
     fn files(&self) -> Result<Vec<OutputFile>>;
     /// The run as plain named values and arrays (what Python receives as numpy arrays).
+    ///
+    /// ```
+    /// use contactwave::model::{self, RunControl, Value};
+    /// let outcome = model::from_toml_str(r#"
+    ///     [medium]
+    ///     material = "pmma"
+    ///     [interface]
+    ///     static_pressure = 0.1e6     # p0, Pa; rigid (Signorini) compression by default
+    ///     [incident]
+    ///     frequency = 1e6
+    ///     cycles = 10
+    ///     xi = 0.5                    # A = p0: the interface opens
+    ///     [solver]
+    ///     samples_per_period = 64
+    /// "#, "open.toml").unwrap().base().unwrap().run(&RunControl::default()).unwrap();
+    /// let r = outcome.record();
+    /// let (Some(Value::Array(t)), Some(Value::Array(gap)), Some(Value::Array(stress))) =
+    ///     (r.get("t"), r.get("gap"), r.get("contact_stress"))
+    /// else {
+    ///     panic!("half-space records hold t, gap and contact_stress arrays")
+    /// };
+    /// assert_eq!((t.len(), stress.len()), (gap.len(), gap.len()));
+    /// // Signorini: the gap (m) never closes below 0 and the stress (Pa) vanishes while open
+    /// assert!(gap.iter().all(|&g| g >= 0.0) && gap.iter().any(|&g| g > 0.0));
+    /// assert!(gap.iter().zip(stress).all(|(&g, &s)| g == 0.0 || s == 0.0));
+    /// // closed, the interface carries -(p0 + 2 A) at most: -0.3 MPa
+    /// let most = stress.iter().copied().fold(0.0, f64::min);
+    /// assert!((most / -0.3e6 - 1.0).abs() < 0.01);
+    /// ```
     fn record(&self) -> Record;
     /// The lines a person reads after the run (`contactwave run` prints them): the
     /// quantities that matter for this kind, one per line, label padded to 23 columns.

@@ -2,7 +2,7 @@
 //! the project is drawn with (panels, curves, palette, scaled units, decimation).
 //!
 //! Quantities are drawn in scaled SI units (e.g. µs, nm, MPa) named in the axis labels.
-//! Long time series are reduced to at most [`MAX_POINTS`] points per curve by keeping the
+//! Long time series are reduced to at most `MAX_POINTS` (4000) points per curve by keeping the
 //! minimum and maximum of each bucket, which preserves peaks.
 
 use crate::error::{Error, Result};

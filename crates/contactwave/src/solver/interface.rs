@@ -19,7 +19,7 @@ use crate::numeric::root::brent_past;
 /// Result of one interface update.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InterfaceUpdate {
-    /// Gap [u], m.
+    /// Gap `[u]`, m.
     pub gap: f64,
     /// Dynamic interface stress S = sigma + p0, Pa.
     pub dynamic_stress: f64,

@@ -34,7 +34,7 @@ pub struct HalfSpaceOutput {
     pub dt: f64,
     /// Times t_k = k dt, s (t = 0: the incident front reaches the interface).
     pub t: Vec<f64>,
-    /// Gap [u], m.
+    /// Gap `[u]`, m.
     pub gap: Vec<f64>,
     /// Interface stress sigma, Pa (tension positive; -p0 at rest).
     pub contact_stress: Vec<f64>,

@@ -21,7 +21,7 @@ impl Power {
         let q = 1.0 - self.m;
         (self.static_pressure.powf(q) - q * self.c * gap).max(0.0)
     }
-    /// Pressure p([u]) >= 0, Pa.
+    /// Pressure `p([u]) >= 0`, Pa.
     #[inline]
     pub fn pressure(&self, gap: f64) -> f64 {
         self.base(gap).powf(1.0 / (1.0 - self.m))

@@ -15,7 +15,7 @@ pub struct BarProbe {
     /// Global node recorded.
     pub node: usize,
     /// The neighbouring node of the same segment used for the strain, and the signed
-    /// distance to it (m): stress = E (u[other] - u[node]) / distance.
+    /// distance to it (m): `stress = E (u[other] - u[node]) / distance`.
     pub other: usize,
     /// Signed distance from `node` to `other`, m.
     pub distance: f64,

@@ -93,6 +93,54 @@ pub struct SweepReport {
 /// hash is an error and the CSV is left untouched. Without `resume`, an existing CSV is
 /// overwritten. A point whose simulation fails is listed in the errors file and counted in
 /// [`SweepReport::failed`]; the sweep goes on.
+///
+/// ```
+/// use contactwave::scenario::parse_toml;
+/// use contactwave::study::{read_sweep_csv, run_sweep, Sweep, SweepOptions};
+/// use std::path::{Path, PathBuf};
+/// use std::sync::atomic::AtomicBool;
+/// let base = parse_toml(r#"
+///     [medium]
+///     material = "pmma"
+///     [interface]
+///     static_pressure = 0.1e6     # Pa
+///     [incident]
+///     frequency = 1e6             # Hz
+///     cycles = 10
+///     xi = 0.5
+///     [solver]
+///     samples_per_period = 64
+/// "#, "base.toml").unwrap();
+/// let sweep = Sweep::from_parts(
+///     Path::new("xi_sweep"),
+///     PathBuf::from("base.toml"),
+///     base,
+///     vec![("incident.xi".into(), vec![0.25, 0.5, 2.0])],
+/// )
+/// .unwrap();
+/// let dir = std::env::temp_dir().join(format!("contactwave-doc-sweep-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let csv = dir.join("sweep.csv");
+/// let (quiet, cancel) = (|_: usize, _: usize| {}, AtomicBool::new(false));
+/// let report = run_sweep(&sweep, &csv, &SweepOptions::default(), &quiet, &cancel).unwrap();
+/// assert_eq!((report.total, report.computed, report.failed), (3, 3, 0));
+/// // rows come in completion order: sort them by `point` to get grid order
+/// let table = read_sweep_csv(&csv).unwrap();
+/// let mut rows = table.rows.clone();
+/// rows.sort_by(|a, b| a[0].total_cmp(&b[0]));
+/// let loss = table.column("contact_loss_fraction").unwrap();
+/// let a2 = table.column("A2_over_Ainc").unwrap();
+/// // xi < 1 opens the interface (strong second harmonic); xi = 2 keeps it closed
+/// assert!(rows[0][loss] > 0.0 && rows[0][a2] > 0.1);
+/// assert!(rows[1][loss] > 0.0 && rows[1][a2] > 0.1);
+/// assert_eq!(rows[2][loss], 0.0);
+/// assert!(rows[2][a2] < 0.01);
+/// // resuming the same sweep (same hash) skips the points already in the CSV
+/// let resume = SweepOptions { resume: true, ..SweepOptions::default() };
+/// let again = run_sweep(&sweep, &csv, &resume, &quiet, &cancel).unwrap();
+/// assert_eq!((again.skipped, again.computed), (3, 0));
+/// std::fs::remove_dir_all(&dir).unwrap();
+/// ```
 pub fn run_sweep(
     sweep: &Sweep,
     out_csv: &Path,

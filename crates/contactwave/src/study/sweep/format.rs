@@ -113,7 +113,7 @@ fn show(v: &toml::Value) -> String {
 impl Sweep {
     /// Load a sweep file and its base scenario, and build the grid. Errors name the sweep
     /// file and the field (`axis[1].linspace`, ...). The points are validated as scenarios
-    /// by [`Sweep::scenarios`].
+    /// by [`Sweep::runnable`].
     pub fn load(path: &Path) -> Result<Sweep> {
         let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
         let file = path.display().to_string();
@@ -215,7 +215,51 @@ impl Sweep {
     /// from (or stands for) `base`, and `(dotted key, values)` axes, first axis slowest.
     /// `file` names the sweep in error messages and [`Sweep::file`]. The axes are checked
     /// like a sweep file's `values` axes; the grid and the hash are built the same way, so a
-    /// sweep file with the same base table and values has the same [`Sweep::hash`].
+    /// sweep file with the same base table and values has the same [`Sweep::hash`]. Values
+    /// are in the SI unit of their key.
+    ///
+    /// ```
+    /// use contactwave::scenario::parse_toml;
+    /// use contactwave::study::Sweep;
+    /// use std::path::{Path, PathBuf};
+    /// let base = parse_toml(r#"
+    ///     [medium]
+    ///     material = "pmma"
+    ///     [interface]
+    ///     static_pressure = 0.1e6
+    ///     [incident]
+    ///     frequency = 1e6
+    ///     cycles = 10
+    ///     xi = 0.5
+    /// "#, "base.toml").unwrap();
+    /// let sweep = Sweep::from_parts(
+    ///     Path::new("xi_p0_sweep"),
+    ///     PathBuf::from("base.toml"),
+    ///     base.clone(),
+    ///     vec![
+    ///         ("incident.xi".into(), vec![0.25, 0.5, 2.0]),
+    ///         ("interface.static_pressure".into(), vec![0.1e6, 1e6]), // Pa
+    ///     ],
+    /// )
+    /// .unwrap();
+    /// // the cartesian grid, first axis slowest
+    /// assert_eq!(sweep.points.len(), 6);
+    /// assert_eq!(sweep.points[1], [0.25, 1e6]);
+    /// assert_eq!(sweep.parameters(), ["incident.xi", "interface.static_pressure"]);
+    /// // every point builds a valid model
+    /// let models = sweep.runnable().unwrap();
+    /// assert_eq!(models[5].load_ratio(), 2.0);
+    /// // a value the scenario rejects is reported with the point it belongs to
+    /// let bad = Sweep::from_parts(
+    ///     Path::new("bad_sweep"),
+    ///     PathBuf::from("base.toml"),
+    ///     base,
+    ///     vec![("interface.static_pressure".into(), vec![0.1e6, -1.0])],
+    /// )
+    /// .unwrap();
+    /// let err = bad.runnable().unwrap_err().to_string();
+    /// assert!(err.contains("interface.static_pressure") && err.contains("at point 1"));
+    /// ```
     pub fn from_parts(
         file: &Path,
         base: PathBuf,
