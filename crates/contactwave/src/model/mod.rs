@@ -57,10 +57,12 @@ mod fields;
 pub mod half_space;
 mod param;
 mod record;
+mod template;
 
 pub use fields::{Fields, Slot};
 pub use param::{toml_number, wants_integer, Param, ParamTable};
 pub use record::{Record, Value};
+pub use template::{FromSpec, SpecTemplate};
 
 use crate::analysis::Summary;
 use crate::error::Result;

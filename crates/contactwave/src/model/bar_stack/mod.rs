@@ -14,7 +14,8 @@ pub use simulate::{
 };
 
 use super::record::summary_record;
-use super::{Kind, Model, Outcome, Param, ParamTable, Record, RunControl, Template, Value};
+use super::template::{FromSpec, SpecTemplate};
+use super::{Kind, Model, Outcome, Record, RunControl, Template, Value};
 use crate::analysis::Summary;
 use crate::error::Result;
 use crate::render::OutputFile;
@@ -22,7 +23,7 @@ use crate::scenario::bar_stack::{BarStackScenario, BarStackSpec};
 use crate::scenario::BuildCache;
 use std::any::Any;
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, OnceLock};
+use std::sync::Arc;
 
 /// The bar-stack kind: tables with `[model] kind = "bar_stack"`.
 #[derive(Debug)]
@@ -33,7 +34,7 @@ pub static KIND: BarStackKind = BarStackKind;
 
 impl Kind for BarStackKind {
     fn name(&self) -> &'static str {
-        "bar_stack"
+        <BarStackScenario as FromSpec>::KIND
     }
 
     fn matches(&self, table: &toml::Table) -> bool {
@@ -45,83 +46,23 @@ impl Kind for BarStackKind {
     }
 }
 
-/// A planned bar-stack scenario with typed parameters: its table parsed once, its
-/// laws and files built once ([`BuildCache`]), each point validated when built.
-#[derive(Debug)]
-pub struct BarStackTemplate {
-    file: String,
-    params: ParamTable<BarStackSpec>,
-    dir: PathBuf,
-    cache: BuildCache,
-    base: OnceLock<Arc<BarStackScenario>>,
-}
+/// A planned bar-stack scenario with typed parameters.
+pub type BarStackTemplate = SpecTemplate<BarStackScenario>;
 
-impl BarStackTemplate {
-    /// Plan a table that came from `path` (its values are validated when a model is built;
-    /// [`Template::base`] validates the table as given).
-    pub fn new(table: toml::Table, path: &Path) -> Self {
-        let file = path.display().to_string();
-        BarStackTemplate {
-            params: ParamTable::new(&file, table, BarStackSpec::from_table),
-            dir: path.parent().unwrap_or(Path::new(".")).to_path_buf(),
-            cache: BuildCache::new(),
-            base: OnceLock::new(),
-            file,
-        }
+impl FromSpec for BarStackScenario {
+    type Spec = BarStackSpec;
+    const KIND: &'static str = "bar_stack";
+
+    fn to_spec(table: toml::Table, file: &str) -> Result<BarStackSpec> {
+        BarStackSpec::from_table(table, file)
     }
 
-    /// The scenario as given, validated.
-    pub fn scenario(&self) -> Result<Arc<BarStackScenario>> {
-        if let Some(s) = self.base.get() {
-            return Ok(s.clone());
-        }
-        let s = Arc::new(BarStackScenario::from_spec_cached(
-            self.params.spec()?,
-            &self.file,
-            &self.dir,
-            &self.cache,
-        )?);
-        Ok(self.base.get_or_init(|| s).clone())
+    fn from_spec(spec: BarStackSpec, file: &str, dir: &Path, cache: &BuildCache) -> Result<Self> {
+        BarStackScenario::from_spec_cached(spec, file, dir, cache)
     }
 
-    /// The scenario with `values` set, validated.
-    pub fn scenario_with(&self, values: &[(&Param, f64)]) -> Result<Arc<BarStackScenario>> {
-        if values.is_empty() {
-            return self.scenario();
-        }
-        let spec = self.params.spec_with(values)?;
-        Ok(Arc::new(BarStackScenario::from_spec_cached(
-            spec,
-            &self.file,
-            &self.dir,
-            &self.cache,
-        )?))
-    }
-}
-
-impl Template for BarStackTemplate {
-    fn kind(&self) -> &'static str {
-        KIND.name()
-    }
-
-    fn file(&self) -> &str {
-        &self.file
-    }
-
-    fn table(&self) -> &toml::Table {
-        self.params.table()
-    }
-
-    fn base(&self) -> Result<Arc<dyn Model>> {
-        Ok(self.scenario()?)
-    }
-
-    fn param(&self, key: &str) -> Result<Param> {
-        self.params.param(key)
-    }
-
-    fn build(&self, values: &[(&Param, f64)]) -> Result<Arc<dyn Model>> {
-        Ok(self.scenario_with(values)?)
+    fn base_dir(path: &Path) -> PathBuf {
+        path.parent().unwrap_or(Path::new(".")).to_path_buf()
     }
 }
 

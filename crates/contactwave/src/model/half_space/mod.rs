@@ -9,7 +9,8 @@ mod simulate;
 pub use simulate::{half_space, settings, simulate, simulate_summary, ProbeSeries, RunResult};
 
 use super::record::summary_record;
-use super::{Kind, Model, Outcome, Param, ParamTable, Record, RunControl, Template, Value};
+use super::template::{FromSpec, SpecTemplate};
+use super::{Kind, Model, Outcome, Record, RunControl, Template, Value};
 use crate::analysis::{BandAmplitudes, Summary};
 use crate::error::Result;
 use crate::render::OutputFile;
@@ -17,7 +18,7 @@ use crate::scenario::spec::ScenarioSpec;
 use crate::scenario::{table_to_spec, BuildCache, Scenario};
 use std::any::Any;
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, OnceLock};
+use std::sync::Arc;
 
 /// The half-space kind: every scenario table that no other kind claims.
 #[derive(Debug)]
@@ -28,7 +29,7 @@ pub static KIND: HalfSpaceKind = HalfSpaceKind;
 
 impl Kind for HalfSpaceKind {
     fn name(&self) -> &'static str {
-        "half_space"
+        <Scenario as FromSpec>::KIND
     }
 
     fn matches(&self, _table: &toml::Table) -> bool {
@@ -40,83 +41,23 @@ impl Kind for HalfSpaceKind {
     }
 }
 
-/// A planned half-space scenario with typed parameters: its table parsed once, its
-/// laws and files built once ([`BuildCache`]), each point validated when built.
-#[derive(Debug)]
-pub struct HalfSpaceTemplate {
-    file: String,
-    params: ParamTable<ScenarioSpec>,
-    dir: PathBuf,
-    cache: BuildCache,
-    base: OnceLock<Arc<Scenario>>,
-}
+/// A planned half-space scenario with typed parameters.
+pub type HalfSpaceTemplate = SpecTemplate<Scenario>;
 
-impl HalfSpaceTemplate {
-    /// Plan a table that came from `path` (its values are validated when a model is built;
-    /// [`Template::base`] validates the table as given).
-    pub fn new(table: toml::Table, path: &Path) -> Self {
-        let file = path.display().to_string();
-        HalfSpaceTemplate {
-            params: ParamTable::new(&file, table, table_to_spec),
-            dir: path.parent().map(Path::to_path_buf).unwrap_or_default(),
-            cache: BuildCache::new(),
-            base: OnceLock::new(),
-            file,
-        }
+impl FromSpec for Scenario {
+    type Spec = ScenarioSpec;
+    const KIND: &'static str = "half_space";
+
+    fn to_spec(table: toml::Table, file: &str) -> Result<ScenarioSpec> {
+        table_to_spec(table, file)
     }
 
-    /// The scenario as given, validated.
-    pub fn scenario(&self) -> Result<Arc<Scenario>> {
-        if let Some(s) = self.base.get() {
-            return Ok(s.clone());
-        }
-        let s = Arc::new(Scenario::from_spec_cached(
-            self.params.spec()?,
-            &self.file,
-            &self.dir,
-            &self.cache,
-        )?);
-        Ok(self.base.get_or_init(|| s).clone())
+    fn from_spec(spec: ScenarioSpec, file: &str, dir: &Path, cache: &BuildCache) -> Result<Self> {
+        Scenario::from_spec_cached(spec, file, dir, cache)
     }
 
-    /// The scenario with `values` set, validated.
-    pub fn scenario_with(&self, values: &[(&Param, f64)]) -> Result<Arc<Scenario>> {
-        if values.is_empty() {
-            return self.scenario();
-        }
-        let spec = self.params.spec_with(values)?;
-        Ok(Arc::new(Scenario::from_spec_cached(
-            spec,
-            &self.file,
-            &self.dir,
-            &self.cache,
-        )?))
-    }
-}
-
-impl Template for HalfSpaceTemplate {
-    fn kind(&self) -> &'static str {
-        KIND.name()
-    }
-
-    fn file(&self) -> &str {
-        &self.file
-    }
-
-    fn table(&self) -> &toml::Table {
-        self.params.table()
-    }
-
-    fn base(&self) -> Result<Arc<dyn Model>> {
-        Ok(self.scenario()?)
-    }
-
-    fn param(&self, key: &str) -> Result<Param> {
-        self.params.param(key)
-    }
-
-    fn build(&self, values: &[(&Param, f64)]) -> Result<Arc<dyn Model>> {
-        Ok(self.scenario_with(values)?)
+    fn base_dir(path: &Path) -> PathBuf {
+        path.parent().map(Path::to_path_buf).unwrap_or_default()
     }
 }
 
