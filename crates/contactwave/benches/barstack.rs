@@ -1,10 +1,12 @@
 //! Throughput of the finite-difference bar-stack solver (issue 3, item 9): node updates
 //! per second on the half-space case at the thesis resolution (dx = 2e-5 m, about 3000
-//! nodes, unilateral contact with a rigid wall) and on the Tribobrake model.
+//! nodes, unilateral contact with a rigid wall) and on the Tribobrake model; and the whole
+//! Tribobrake hammer test as `contactwave run` does it (issue 13, item 4).
 
 use contactwave::excitation::{ToneBurst, Window};
 use contactwave::law::{compression::Rigid, traction::Free, ContactLaw};
 use contactwave::material::Material;
+use contactwave::model::bar_stack::simulate_bar_stack;
 use contactwave::scenario::bar_stack::BarStackScenario;
 use contactwave::solver::barstack::{BarStack, End, FdRun, InterfaceScheme, Segment};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
@@ -96,5 +98,20 @@ fn tribobrake(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, half_space, tribobrake);
+/// The whole hammer test of examples/tribobrake.toml (0.2 s simulated, FRF, modes,
+/// guide-mode probe run, interface histories): the work inside `contactwave run`, without
+/// the files.
+fn tribobrake_run(c: &mut Criterion) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/tribobrake.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let s = BarStackScenario::from_table(text.parse().unwrap(), &path).unwrap();
+    let mut g = c.benchmark_group("tribobrake_run");
+    g.sample_size(10);
+    g.bench_function("simulate_0.2s", |b| {
+        b.iter(|| simulate_bar_stack(&s).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, half_space, tribobrake, tribobrake_run);
 criterion_main!(benches);

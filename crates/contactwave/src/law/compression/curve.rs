@@ -32,6 +32,11 @@ pub struct StiffnessCurve<K: StiffnessPressure> {
     h: Vec<f64>,
     /// Stiffness at the nodes, Pa/m.
     k: Vec<f64>,
+    /// Interval index of the grid at uniform steps of `bucket_width` in G (see
+    /// [`StiffnessCurve::interval`]).
+    bucket: Vec<u32>,
+    /// Width of one bucket in G, m.
+    bucket_width: f64,
     g0: f64,
     h0: f64,
     name: &'static str,
@@ -62,6 +67,7 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
             h[i] = h[i - 1] + gauss4(p[i - 1], p[i], |x| x / law.stiffness(x));
         }
         let k = p.iter().map(|&x| law.stiffness(x)).collect();
+        let (bucket, bucket_width) = buckets(&p, &g, p_lin, 4 * n_lin);
         let mut c = StiffnessCurve {
             law,
             static_pressure: p0,
@@ -69,6 +75,8 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
             g,
             h,
             k,
+            bucket,
+            bucket_width,
             g0: 0.0,
             h0: 0.0,
             name,
@@ -98,6 +106,26 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
         )
     }
 
+    /// The grid interval holding `target` in G, m: the last `i` with `g[i] <= target`, for
+    /// `0 <= target < g[n-1]` (what a binary search over `g` returns). On the uniform
+    /// part of the pressure grid the bucket of `target` gives the interval to within a
+    /// few nodes, then a short forward scan; beyond it, a binary search.
+    fn interval(&self, target: f64) -> usize {
+        let j = (target / self.bucket_width) as usize;
+        if j >= self.bucket.len() {
+            return self.g.partition_point(|&v| v <= target).saturating_sub(1);
+        }
+        let mut i = self.bucket[j] as usize;
+        // the bucket's edge j w may round above target
+        while i > 0 && self.g[i] > target {
+            i -= 1;
+        }
+        while self.g[i + 1] <= target {
+            i += 1;
+        }
+        i
+    }
+
     /// Pressure at gap `[u]`, Pa (0 beyond `[u]_c`).
     pub fn pressure(&self, gap: f64) -> f64 {
         // G(p) = G(p0) - [u]
@@ -110,7 +138,7 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
             let k = self.law.stiffness(self.p[n - 1]);
             return self.p[n - 1] + (target - self.g[n - 1]) * k;
         }
-        let i = self.g.partition_point(|&v| v <= target).saturating_sub(1);
+        let i = self.interval(target);
         let (a, b) = (self.p[i], self.p[(i + 1).min(n - 1)]);
         let (ga, gb) = (self.g[i], self.g[(i + 1).min(n - 1)]);
         // cubic Hermite guess in g with the exact slopes dp/dg = K at the nodes (fourth
@@ -143,6 +171,24 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
         }
         x
     }
+}
+
+/// Bucket index of the curve inversion: `nb` buckets of equal width in G over the uniform
+/// part of the pressure grid (`p <= p_lin`, Pa), each holding the last grid index `i`
+/// with `g[i] <= ` its lower edge. Returns the buckets and their width, m.
+fn buckets(p: &[f64], g: &[f64], p_lin: f64, nb: usize) -> (Vec<u32>, f64) {
+    let end = p.partition_point(|&v| v <= p_lin).saturating_sub(1);
+    let width = g[end] / nb as f64;
+    let mut bucket = Vec::with_capacity(nb);
+    let mut i = 0;
+    for j in 0..nb {
+        let edge = j as f64 * width;
+        while i + 1 < g.len() && g[i + 1] <= edge {
+            i += 1;
+        }
+        bucket.push(i as u32);
+    }
+    (bucket, width)
 }
 
 impl<K: StiffnessPressure> CompressionBranch for StiffnessCurve<K> {

@@ -301,34 +301,35 @@ fn interface_histories(
     let mut stiffness = Vec::new();
     for (i, law) in laws.iter().enumerate() {
         let uc = law.critical_gap();
-        stiffness.push(
-            out.gap[i]
-                .iter()
-                .zip(&out.beta[i])
-                .map(|(&g, &b)| {
-                    if g <= uc {
-                        if law.compression.is_rigid() {
-                            f64::INFINITY
-                        } else {
-                            law.compression.tangent(g)
-                        }
+        let k: Vec<f64> = out.gap[i]
+            .iter()
+            .zip(&out.beta[i])
+            .map(|(&g, &b)| {
+                if g <= uc {
+                    if law.compression.is_rigid() {
+                        f64::INFINITY
                     } else {
-                        law.traction.tangent(g - uc, b)
+                        law.compression.tangent(g)
                     }
-                })
-                .collect(),
-        );
+                } else {
+                    law.traction.tangent(g - uc, b)
+                }
+            })
+            .collect();
         let p: Vec<f64> = out.stress[i].iter().map(|x| -x).collect();
         let pmin = p.iter().cloned().fold(f64::INFINITY, f64::min);
         min_p = min_p.min(pmin);
         // eq. 4.2: mean of the tangent stiffness over the response (closed instants)
         let (mut sum, mut cnt) = (0.0, 0usize);
-        for &g in &out.gap[i] {
-            if g <= uc && !law.compression.is_rigid() {
-                sum += law.compression.tangent(g);
-                cnt += 1;
+        if !law.compression.is_rigid() {
+            for (&g, &kg) in out.gap[i].iter().zip(&k) {
+                if g <= uc {
+                    sum += kg;
+                    cnt += 1;
+                }
             }
         }
+        stiffness.push(k);
         summary.set(
             &format!("static_interface_pressure_{i}"),
             s.static_pressure.get(i).copied().unwrap_or(f64::NAN),
