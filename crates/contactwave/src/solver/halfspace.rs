@@ -730,7 +730,8 @@ impl<'a> Runner<'a> {
                 continue;
             }
             let st = self.step_ode(t, y0, h)?;
-            let mut first: Option<(usize, f64)> = None; // (which, tau_hi)
+            // (which, tau_hi, the step of length tau_hi: reused as the bracket's end)
+            let mut first: Option<(usize, f64, radau::Step)> = None;
             for which in 0..2 {
                 if e_start[which] > 0.0 || (which == 1 && t == self.last_mode_switch) {
                     continue;
@@ -740,8 +741,8 @@ impl<'a> Runner<'a> {
                 let thr = if which == 1 { EVENT_HYSTERESIS } else { 0.0 };
                 let e_end = self.ode_events(phase, t_end, st.end())[which];
                 if e_end > thr {
-                    if first.map_or(true, |(_, th)| h < th) {
-                        first = Some((which, h));
+                    if first.map_or(true, |(_, th, _)| h < th) {
+                        first = Some((which, h, st));
                     }
                     continue;
                 }
@@ -751,9 +752,9 @@ impl<'a> Runner<'a> {
                         let hj = radau::C[j] * h;
                         let sj = self.step_ode(t, y0, hj)?;
                         if self.ode_events(phase, tj, sj.end())[which] > thr
-                            && first.map_or(true, |(_, th)| hj < th)
+                            && first.map_or(true, |(_, th, _)| hj < th)
                         {
-                            first = Some((which, hj));
+                            first = Some((which, hj, sj));
                         }
                         break;
                     }
@@ -762,16 +763,22 @@ impl<'a> Runner<'a> {
             // an event found again at the very time of the previous switch is a grazing
             // touch (both phases agree there): step on without switching
             let mut event = None;
-            if let Some((which, hi)) = first {
+            if let Some((which, hi, s_hi)) = first {
                 let fa = e_start[which].min(-f64::MIN_POSITIVE);
-                let f_hi = {
-                    let s = self.step_ode(t, y0, hi)?;
-                    self.ode_events(phase, t + hi, s.end())[which]
-                };
+                let f_hi = self.ode_events(phase, t + hi, s_hi.end())[which];
                 let mut fail = None;
+                // the last evaluated step past the event (f >= 0): brent_past returns the
+                // bracket end on that side, whose step is then taken from here
+                let mut past = (hi, s_hi);
                 let tau = brent_past(
                     |tau| match self.step_ode(t, y0, tau) {
-                        Ok(s) => self.ode_events(phase, t + tau, s.end())[which],
+                        Ok(s) => {
+                            let f = self.ode_events(phase, t + tau, s.end())[which];
+                            if f >= 0.0 {
+                                past = (tau, s);
+                            }
+                            f
+                        }
                         Err(e) => {
                             fail = Some(e);
                             f64::NAN
@@ -808,7 +815,7 @@ impl<'a> Runner<'a> {
                     continue;
                 }
                 if !(t + tau <= t && t == self.last_switch) {
-                    event = Some((which, tau));
+                    event = Some((which, tau, (past.0 == tau).then_some(past.1)));
                 }
             }
             match event {
@@ -831,8 +838,11 @@ impl<'a> Runner<'a> {
                         self.ramp = (2.0 * r < self.h).then_some(2.0 * r);
                     }
                 }
-                Some((which, tau)) => {
-                    let se = self.step_ode(t, y0, tau)?;
+                Some((which, tau, past)) => {
+                    let se = match past {
+                        Some(se) => se,
+                        None => self.step_ode(t, y0, tau)?,
+                    };
                     for s in &se.stages {
                         self.max_gap = self.max_gap.max(s[0]);
                     }
