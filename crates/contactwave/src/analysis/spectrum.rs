@@ -25,8 +25,7 @@ pub fn cell_velocity(disp: &[f64], dt: f64) -> Vec<f64> {
 /// Band amplitudes (m/s) of the cell-averaged velocity of a displacement record (m, step
 /// `dt` s), for fundamental `f0` and optional second frequency `f2` (Hz).
 pub fn velocity_bands(displacement: &[f64], dt: f64, f0: f64, f2: Option<f64>) -> BandAmplitudes {
-    let v = cell_velocity(displacement, dt);
-    with_analyzer(|a| a.bands(&v, dt, f0, f2))
+    with_analyzer(|a| a.displacement_bands(displacement, dt, f0, f2))
 }
 
 /// Peak of the magnitudes `spec` (bin width `df` Hz) between `f_lo` and `f_hi` with
@@ -109,10 +108,16 @@ impl Analyzer {
     /// of two at least `2 len`, with the cell-average response divided out. Leaves the
     /// spectrum in `self.spec`; returns (n_fft, df).
     fn transform(&mut self, x: &[f64], dt: f64, min_len: usize) -> (usize, f64) {
-        let n_fft = fast_len((x.len() + x.len() / 8 + 16).max(min_len));
-        let plan = self.real.plan_fft_forward(n_fft);
         self.input.clear();
         self.input.extend_from_slice(x);
+        self.transform_input(dt, min_len)
+    }
+
+    /// [`Self::transform`] of the samples already in `self.input`.
+    fn transform_input(&mut self, dt: f64, min_len: usize) -> (usize, f64) {
+        let len = self.input.len();
+        let n_fft = fast_len((len + len / 8 + 16).max(min_len));
+        let plan = self.real.plan_fft_forward(n_fft);
         self.input.resize(n_fft, 0.0);
         self.spec.resize(n_fft / 2 + 1, Complex::new(0.0, 0.0));
         self.scratch
@@ -150,16 +155,40 @@ impl Analyzer {
     /// Band amplitudes of the cell-averaged signal `x` (step `dt`) for fundamental `f0`
     /// and optional second frequency `f2` (two-tone).
     pub fn bands(&mut self, x: &[f64], dt: f64, f0: f64, f2: Option<f64>) -> BandAmplitudes {
+        self.input.clear();
+        self.input.extend_from_slice(x);
+        self.input_bands(dt, f0, f2)
+    }
+
+    /// [`Self::bands`] of the cell-averaged velocity (m/s) of a displacement record (m,
+    /// step `dt` s): the velocities are written straight into the transform's input (the
+    /// same values as [`cell_velocity`], without a vector of their own).
+    pub fn displacement_bands(
+        &mut self,
+        displacement: &[f64],
+        dt: f64,
+        f0: f64,
+        f2: Option<f64>,
+    ) -> BandAmplitudes {
+        self.input.clear();
+        self.input
+            .extend(displacement.windows(2).map(|w| (w[1] - w[0]) / dt));
+        self.input_bands(dt, f0, f2)
+    }
+
+    /// [`Self::bands`] of the samples already in `self.input`.
+    fn input_bands(&mut self, dt: f64, f0: f64, f2: Option<f64>) -> BandAmplitudes {
+        let len = self.input.len();
         // zero-pad by BAND_PAD_PERIODS periods of f0 at least: the band filter's kernel
         // rings over tens of periods, and without the padding its circular wrap-around
         // makes the amplitudes depend on how long the record is (0.2% seen)
         let pad = (BAND_PAD_PERIODS / (f0 * dt)).ceil();
         let min_len = if pad.is_finite() && pad < 1e8 {
-            x.len() + pad as usize
+            len + pad as usize
         } else {
             0
         };
-        let (n_fft, df) = self.transform(x, dt, min_len);
+        let (n_fft, df) = self.transform_input(dt, min_len);
         let mut out = BandAmplitudes::default();
         for n in 1..=5 {
             let c = n as f64 * f0;

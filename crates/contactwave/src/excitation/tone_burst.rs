@@ -55,6 +55,10 @@ pub struct ToneBurst {
     duration: f64,
     window: Window,
     norm: f64,
+    /// `amplitude / norm`, Pa (computed once: the same value `stress` computed per call).
+    scale: f64,
+    /// `2 pi frequency`, rad/s.
+    omega: f64,
 }
 
 impl ToneBurst {
@@ -67,16 +71,18 @@ impl ToneBurst {
             duration,
             window,
             norm: 1.0,
+            scale: amplitude,
+            omega: 2.0 * std::f64::consts::PI * frequency,
         };
         let n = ((cycles * 64.0) as usize).clamp(256, 1 << 20);
         b.norm = numeric_peak(|t| b.raw(t), duration, n).max(1e-300);
+        b.scale = b.amplitude / b.norm;
         b
     }
 
     #[inline]
     fn raw(&self, t: f64) -> f64 {
-        -self.window.value(t / self.duration)
-            * (2.0 * std::f64::consts::PI * self.frequency * t).sin()
+        -self.window.value(t / self.duration) * (self.omega * t).sin()
     }
 }
 
@@ -86,7 +92,7 @@ impl Excitation for ToneBurst {
         if t < 0.0 || t > self.duration {
             return 0.0;
         }
-        self.amplitude / self.norm * self.raw(t)
+        self.scale * self.raw(t)
     }
     fn duration(&self) -> f64 {
         self.duration

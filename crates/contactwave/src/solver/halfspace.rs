@@ -36,6 +36,10 @@ pub struct HalfSpaceSettings {
     /// Fixed tail after the burst, periods of f0; `None` = automatic (until the interface
     /// is back at rest, at least 3 and at most 400 periods).
     pub tail_periods: Option<f64>,
+    /// Record only the histories a summary needs (`t`, `beta` and
+    /// `reflected_displacement`); the other histories of the output stay empty. The
+    /// solution and every scalar of the output are the same either way.
+    pub summary_only: bool,
 }
 
 impl Default for HalfSpaceSettings {
@@ -43,6 +47,7 @@ impl Default for HalfSpaceSettings {
         HalfSpaceSettings {
             samples_per_period: 200,
             tail_periods: None,
+            summary_only: false,
         }
     }
 }
@@ -322,6 +327,10 @@ struct Runner<'a> {
     last_switch: f64,
     /// Gap-event switches made at `last_switch` (guards a grazing ping-pong).
     flips_here: usize,
+    /// Whether the traction law damages (cached: asked at every event check).
+    has_damage: bool,
+    /// Normaliser of the damage event functions, `|w(beta = 1)|` (J/m^2, at least 1e-300).
+    w_norm: f64,
 }
 
 impl<'a> Runner<'a> {
@@ -364,6 +373,8 @@ impl<'a> Runner<'a> {
             last_mode_switch: f64::NAN,
             last_switch: f64::NAN,
             flips_here: 0,
+            has_damage: hs.law.traction.has_damage(),
+            w_norm: hs.law.traction.adhesion_energy(1.0).abs().max(1e-300),
         }
     }
 
@@ -392,9 +403,8 @@ impl<'a> Runner<'a> {
         match phase {
             Phase::Compression => [(y[0] - uc) / self.scale[0], f64::NEG_INFINITY],
             Phase::Traction => {
-                let dmg = if tr.has_damage() {
-                    -tr.damage_driving_force((y[0] - uc).max(0.0), y[1])
-                        / tr.adhesion_energy(1.0).abs().max(1e-300)
+                let dmg = if self.has_damage {
+                    -tr.damage_driving_force((y[0] - uc).max(0.0), y[1]) / self.w_norm
                 } else {
                     f64::NEG_INFINITY
                 };
@@ -402,8 +412,7 @@ impl<'a> Runner<'a> {
             }
             Phase::Damaging => {
                 let heal = if tr.damage_viscosity() > 0.0 {
-                    tr.damage_driving_force((y[0] - uc).max(0.0), y[1])
-                        / tr.adhesion_energy(1.0).abs().max(1e-300)
+                    tr.damage_driving_force((y[0] - uc).max(0.0), y[1]) / self.w_norm
                 } else {
                     // rate-independent: damage stops when the opening stops growing
                     -self.ode.gap_rate(t, y) * self.h / self.scale[0]
@@ -721,7 +730,8 @@ impl<'a> Runner<'a> {
                 continue;
             }
             let st = self.step_ode(t, y0, h)?;
-            let mut first: Option<(usize, f64)> = None; // (which, tau_hi)
+            // (which, tau_hi, the step of length tau_hi: reused as the bracket's end)
+            let mut first: Option<(usize, f64, radau::Step)> = None;
             for which in 0..2 {
                 if e_start[which] > 0.0 || (which == 1 && t == self.last_mode_switch) {
                     continue;
@@ -731,8 +741,8 @@ impl<'a> Runner<'a> {
                 let thr = if which == 1 { EVENT_HYSTERESIS } else { 0.0 };
                 let e_end = self.ode_events(phase, t_end, st.end())[which];
                 if e_end > thr {
-                    if first.map_or(true, |(_, th)| h < th) {
-                        first = Some((which, h));
+                    if first.map_or(true, |(_, th, _)| h < th) {
+                        first = Some((which, h, st));
                     }
                     continue;
                 }
@@ -742,9 +752,9 @@ impl<'a> Runner<'a> {
                         let hj = radau::C[j] * h;
                         let sj = self.step_ode(t, y0, hj)?;
                         if self.ode_events(phase, tj, sj.end())[which] > thr
-                            && first.map_or(true, |(_, th)| hj < th)
+                            && first.map_or(true, |(_, th, _)| hj < th)
                         {
-                            first = Some((which, hj));
+                            first = Some((which, hj, sj));
                         }
                         break;
                     }
@@ -753,16 +763,22 @@ impl<'a> Runner<'a> {
             // an event found again at the very time of the previous switch is a grazing
             // touch (both phases agree there): step on without switching
             let mut event = None;
-            if let Some((which, hi)) = first {
+            if let Some((which, hi, s_hi)) = first {
                 let fa = e_start[which].min(-f64::MIN_POSITIVE);
-                let f_hi = {
-                    let s = self.step_ode(t, y0, hi)?;
-                    self.ode_events(phase, t + hi, s.end())[which]
-                };
+                let f_hi = self.ode_events(phase, t + hi, s_hi.end())[which];
                 let mut fail = None;
+                // the last evaluated step past the event (f >= 0): brent_past returns the
+                // bracket end on that side, whose step is then taken from here
+                let mut past = (hi, s_hi);
                 let tau = brent_past(
                     |tau| match self.step_ode(t, y0, tau) {
-                        Ok(s) => self.ode_events(phase, t + tau, s.end())[which],
+                        Ok(s) => {
+                            let f = self.ode_events(phase, t + tau, s.end())[which];
+                            if f >= 0.0 {
+                                past = (tau, s);
+                            }
+                            f
+                        }
                         Err(e) => {
                             fail = Some(e);
                             f64::NAN
@@ -799,7 +815,7 @@ impl<'a> Runner<'a> {
                     continue;
                 }
                 if !(t + tau <= t && t == self.last_switch) {
-                    event = Some((which, tau));
+                    event = Some((which, tau, (past.0 == tau).then_some(past.1)));
                 }
             }
             match event {
@@ -822,8 +838,11 @@ impl<'a> Runner<'a> {
                         self.ramp = (2.0 * r < self.h).then_some(2.0 * r);
                     }
                 }
-                Some((which, tau)) => {
-                    let se = self.step_ode(t, y0, tau)?;
+                Some((which, tau, past)) => {
+                    let se = match past {
+                        Some(se) => se,
+                        None => self.step_ode(t, y0, tau)?,
+                    };
                     for s in &se.stages {
                         self.max_gap = self.max_gap.max(s[0]);
                     }
@@ -843,6 +862,12 @@ impl<'a> Runner<'a> {
     }
 
     fn record(&self, out: &mut HalfSpaceOutput, acc: &Acc, t: f64, y: [f64; 2]) {
+        out.t.push(t);
+        out.beta.push(self.ode.beta(y));
+        out.reflected_displacement.push(acc.disp_ref);
+        if self.settings.summary_only {
+            return;
+        }
         let sinc = self.ode.forcing(t);
         let sigma = if self.ode.phase.is_stuck() {
             self.stuck_s(t) - self.ode.p0
@@ -850,14 +875,11 @@ impl<'a> Runner<'a> {
             self.ode.sigma(y)
         };
         let s = sigma + self.ode.p0;
-        out.t.push(t);
         out.gap.push(y[0]);
         out.contact_stress.push(sigma);
-        out.beta.push(self.ode.beta(y));
         out.incident_stress.push(sinc);
         out.reflected_stress.push(s - sinc);
         out.transmitted_stress.push(s);
-        out.reflected_displacement.push(acc.disp_ref);
         out.incident_displacement.push(acc.disp_inc);
         out.transmitted_displacement.push(acc.disp_tr);
     }
@@ -884,19 +906,22 @@ impl<'a> Runner<'a> {
             burst_duration: self.duration,
             ..Default::default()
         };
-        for v in [
-            &mut out.t,
-            &mut out.gap,
-            &mut out.contact_stress,
-            &mut out.beta,
-            &mut out.incident_stress,
-            &mut out.reflected_stress,
-            &mut out.transmitted_stress,
-            &mut out.reflected_displacement,
-            &mut out.incident_displacement,
-            &mut out.transmitted_displacement,
+        let summary_only = self.settings.summary_only;
+        for (v, needed) in [
+            (&mut out.t, true),
+            (&mut out.beta, true),
+            (&mut out.reflected_displacement, true),
+            (&mut out.gap, !summary_only),
+            (&mut out.contact_stress, !summary_only),
+            (&mut out.incident_stress, !summary_only),
+            (&mut out.reflected_stress, !summary_only),
+            (&mut out.transmitted_stress, !summary_only),
+            (&mut out.incident_displacement, !summary_only),
+            (&mut out.transmitted_displacement, !summary_only),
         ] {
-            v.reserve(n_min + 1);
+            if needed {
+                v.reserve(n_min + 1);
+            }
         }
         let mut acc = Acc::default();
         let mut y = [0.0, 1.0];

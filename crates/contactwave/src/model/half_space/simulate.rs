@@ -74,10 +74,19 @@ pub fn half_space(scenario: &Scenario) -> HalfSpace {
 
 /// Interface histories by the scenario's method (`exact` or `fd`).
 pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
+    solve_with(scenario, false)
+}
+
+/// Interface histories by the scenario's method; with `summary_only` the exact solver
+/// records only what [`simulate_summary`] reads (`t`, `beta`, `reflected_displacement`).
+fn solve_with(scenario: &Scenario, summary_only: bool) -> Result<HalfSpaceOutput> {
     let problem = half_space(scenario);
     match scenario.spec.solver.method {
         Method::Exact => ExactSolver {
-            settings: settings(scenario),
+            settings: HalfSpaceSettings {
+                summary_only,
+                ..settings(scenario)
+            },
         }
         .solve(&problem),
         Method::Fd => FdSolver {
@@ -94,6 +103,7 @@ pub fn settings(scenario: &Scenario) -> HalfSpaceSettings {
     HalfSpaceSettings {
         samples_per_period: scenario.spec.solver.samples_per_period(),
         tail_periods: scenario.spec.solver.tail_periods,
+        summary_only: false,
     }
 }
 
@@ -102,7 +112,7 @@ pub fn settings(scenario: &Scenario) -> HalfSpaceSettings {
 /// The summary has the keys of [`simulate`]'s except the incident burst's own ratios
 /// (`incident_A*_over_Ainc`).
 pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
-    let out = solve(scenario)?;
+    let out = solve_with(scenario, true)?;
     let refl = bands(scenario, &out.reflected_displacement, out.dt);
     Ok(summarise(scenario, &out, None, &refl))
 }
