@@ -162,3 +162,65 @@ impl BilinearSolution {
         self.starts.iter().skip(1).map(|s| (s.0, s.2))
     }
 }
+
+/// Second-order perturbation solution for a smooth compression law without contact loss
+/// between medium 1 and medium 2 (or a rigid wall), model.md section 8.1.
+///
+/// Incident stress `S cos(omega t)`, interface stress `sigma + p0 = K u - K K' u^2 / 2 +
+/// O(u^3)` with `K = K(p0)`, `K' = dK/dp (p0)`. With `Y = 1/Z1 + 1/Z2`, `D = 1/Z1 - 1/Z2`,
+/// the steady second harmonic of the reflected and transmitted particle velocities gives
+///
+/// ```text
+/// beta*_R = 2 omega K |K'| / (Z1 sqrt(4 omega^2 + Y^2 K^2) (omega^2 + D^2 K^2))
+/// beta*_T = Z2 omega |K'| / (2 K sqrt(4 omega^2 + Y^2 K^2))
+/// ```
+///
+/// (`beta* = A2 / A1^2` of the particle velocities, s/m).
+#[derive(Debug, Clone, Copy)]
+pub struct Perturbation {
+    /// Angular frequency omega, rad/s.
+    pub omega: f64,
+    /// Impedance Z1 of the incident side, Pa s/m.
+    pub z1: f64,
+    /// Impedance Z2 of medium 2, Pa s/m (`f64::INFINITY` for a rigid wall).
+    pub z2: f64,
+    /// Tangent stiffness K(p0), Pa/m.
+    pub stiffness: f64,
+    /// Pressure derivative dK/dp at p0, 1/m.
+    pub stiffness_slope: f64,
+}
+
+impl Perturbation {
+    fn y(&self) -> f64 {
+        1.0 / self.z1 + 1.0 / self.z2
+    }
+    fn d(&self) -> f64 {
+        1.0 / self.z1 - 1.0 / self.z2
+    }
+
+    /// `beta* = A2/A1^2` of the reflected particle velocity, s/m.
+    pub fn beta_reflected(&self) -> f64 {
+        let (w, k) = (self.omega, self.stiffness);
+        let yk = self.y() * k;
+        let dk = self.d() * k;
+        2.0 * w * k * self.stiffness_slope.abs()
+            / (self.z1 * (4.0 * w * w + yk * yk).sqrt() * (w * w + dk * dk))
+    }
+
+    /// `beta* = A2/A1^2` of the transmitted particle velocity, s/m (NaN against a wall).
+    pub fn beta_transmitted(&self) -> f64 {
+        if !self.z2.is_finite() {
+            return f64::NAN;
+        }
+        let (w, k) = (self.omega, self.stiffness);
+        let yk = self.y() * k;
+        self.z2 * w * self.stiffness_slope.abs() / (2.0 * k * (4.0 * w * w + yk * yk).sqrt())
+    }
+
+    /// Steady gap amplitude for an incident stress amplitude `s` (Pa), m:
+    /// `2 S / (Z1 sqrt(omega^2 + Y^2 K^2))`; `|K'| u` measures how weak the nonlinearity is.
+    pub fn gap_amplitude(&self, s: f64) -> f64 {
+        let yk = self.y() * self.stiffness;
+        2.0 * s / (self.z1 * (self.omega * self.omega + yk * yk).sqrt())
+    }
+}

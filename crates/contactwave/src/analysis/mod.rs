@@ -11,10 +11,12 @@
 //! O(1/samples_per_period^2) only.
 
 pub mod fit;
+pub mod methods;
 mod spectrum;
 mod summary;
 
+pub use methods::AnalysisMethod;
 pub use spectrum::{
     cell_velocity, spectral_peak, velocity_bands, with_analyzer, Analyzer, BandAmplitudes, Spectrum,
 };
-pub use summary::{set_reflected_harmonics, Summary};
+pub use summary::{harmonics_near_floor, set_analysis_keys, set_reflected_harmonics, Summary};

@@ -86,3 +86,37 @@ pub fn set_reflected_harmonics(
         s.set("Adiff_over_Ainc", refl.difference / a_inc);
     }
 }
+
+/// The analysis keys, appended after the others: `analysis_method` (code of
+/// [`super::AnalysisMethod::code`]), the floors `A2_floor_over_Ainc` ...
+/// `A5_floor_over_Ainc` (what the method gives on the linear response, over `a_inc`) and
+/// `harmonic_floor_warning` (1 when a harmonic 2..5 is within a factor 10 of its floor).
+pub fn set_analysis_keys(
+    s: &mut Summary,
+    method: super::AnalysisMethod,
+    refl: &super::BandAmplitudes,
+    floor: &super::BandAmplitudes,
+    a_inc: f64,
+) {
+    s.set("analysis_method", method.code());
+    for n in 2..=5 {
+        s.set(&format!("A{n}_floor_over_Ainc"), floor.harmonic[n] / a_inc);
+    }
+    let near = super::methods::near_floor(refl, floor);
+    s.set(
+        "harmonic_floor_warning",
+        if near.is_empty() { 0.0 } else { 1.0 },
+    );
+}
+
+/// Harmonics 2..5 of a summary within a factor 10 of their floor (from the keys of
+/// [`set_analysis_keys`] and `A*_over_Ainc`).
+pub fn harmonics_near_floor(s: &Summary) -> Vec<usize> {
+    (2..=5)
+        .filter(|n| {
+            let a = s.get(&format!("A{n}_over_Ainc")).unwrap_or(f64::NAN);
+            let f = s.get(&format!("A{n}_floor_over_Ainc")).unwrap_or(f64::NAN);
+            f > 0.0 && a < 10.0 * f
+        })
+        .collect()
+}

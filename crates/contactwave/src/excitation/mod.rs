@@ -4,11 +4,13 @@
 
 mod delayed;
 mod file;
+mod negated;
 mod tone_burst;
 mod two_tone;
 
 pub use delayed::Delayed;
 pub use file::FileWaveform;
+pub use negated::Negated;
 pub use tone_burst::{ToneBurst, Window};
 pub use two_tone::TwoTone;
 

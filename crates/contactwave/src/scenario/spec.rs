@@ -5,6 +5,8 @@
 
 use serde::{Deserialize, Serialize};
 
+pub use crate::analysis::AnalysisMethod;
+
 pub use crate::law::spec::{
     default_transition_pressure, default_zero_pressure_fraction, CompressionSpec, TractionSpec,
 };
@@ -28,6 +30,18 @@ pub struct ScenarioSpec {
     /// Numerical method and resolution.
     #[serde(default)]
     pub solver: SolverSpec,
+    /// How harmonic amplitudes are extracted (model.md section 6.1).
+    #[serde(default)]
+    pub analysis: AnalysisSpec,
+}
+
+/// The `[analysis]` table.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnalysisSpec {
+    /// `band_peak` (default), `pulse_inversion`, `linear_reference` or `plateau_fit`.
+    #[serde(default)]
+    pub method: AnalysisMethod,
 }
 
 /// A material: a preset name or explicit `youngs_modulus` and `density`.

@@ -4,6 +4,7 @@
 //! wave, the analysis its harmonics.
 
 pub mod files;
+pub mod methods;
 mod simulate;
 
 pub use simulate::{half_space, settings, simulate, simulate_summary, ProbeSeries, RunResult};

@@ -1,8 +1,9 @@
 //! One simulation of a half-space scenario: solve, record the probe, analyse, summarise.
 
+use super::methods::{self, Analysis};
 use crate::analysis::{
-    cell_velocity, set_reflected_harmonics, velocity_bands, with_analyzer, BandAmplitudes,
-    Spectrum, Summary,
+    cell_velocity, set_analysis_keys, set_reflected_harmonics, velocity_bands, with_analyzer,
+    BandAmplitudes, Spectrum, Summary,
 };
 use crate::error::Result;
 use crate::scenario::spec::Method;
@@ -56,8 +57,10 @@ pub struct RunResult {
     pub reflected_spectrum: Spectrum,
     /// Band amplitudes of the incident velocity, m/s.
     pub incident_bands: BandAmplitudes,
-    /// Band amplitudes of the reflected velocity, m/s.
+    /// Band amplitudes of the reflected velocity by the scenario's analysis method, m/s.
     pub reflected_bands: BandAmplitudes,
+    /// The analysis floor of each component (the method on the linear response), m/s.
+    pub floor_bands: BandAmplitudes,
     /// Scalars of `summary.json`.
     pub summary: Summary,
 }
@@ -113,8 +116,8 @@ pub fn settings(scenario: &Scenario) -> HalfSpaceSettings {
 /// (`incident_A*_over_Ainc`).
 pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
     let out = solve_with(scenario, true)?;
-    let refl = bands(scenario, &out.reflected_displacement, out.dt);
-    Ok(summarise(scenario, &out, None, &refl))
+    let analysis = methods::analyse(scenario, &out, |s| solve_with(s, true))?;
+    Ok(summarise(scenario, &out, None, &analysis))
 }
 
 fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
@@ -144,8 +147,8 @@ fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
 pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
     let out = solve(scenario)?;
     let inc = bands(scenario, &out.incident_displacement, out.dt);
-    let refl = bands(scenario, &out.reflected_displacement, out.dt);
-    let summary = summarise(scenario, &out, Some(&inc), &refl);
+    let analysis = methods::analyse(scenario, &out, |s| solve_with(s, true))?;
+    let summary = summarise(scenario, &out, Some(&inc), &analysis);
     let f_max = 6.0 * scenario.incident.highest_frequency();
     let vr = cell_velocity(&out.reflected_displacement, out.dt);
     let vi = cell_velocity(&out.incident_displacement, out.dt);
@@ -166,7 +169,8 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
         incident_spectrum,
         reflected_spectrum,
         incident_bands: inc,
-        reflected_bands: refl,
+        reflected_bands: analysis.bands,
+        floor_bands: analysis.floor,
         summary,
     })
 }
@@ -219,8 +223,9 @@ fn summarise(
     scenario: &Scenario,
     out: &HalfSpaceOutput,
     inc: Option<&BandAmplitudes>,
-    refl: &BandAmplitudes,
+    analysis: &Analysis,
 ) -> Summary {
+    let refl = &analysis.bands;
     let z1 = scenario.medium.impedance();
     let a_inc = scenario.incident.peak() / z1;
     let mut s = Summary::new();
@@ -247,5 +252,6 @@ fn summarise(
     s.set("adhesion_energy_decrease", e.adhesion_decrease);
     s.set("events", out.events as f64);
     s.set("duration_simulated", out.t.last().copied().unwrap_or(0.0));
+    set_analysis_keys(&mut s, analysis.method, refl, &analysis.floor, a_inc);
     s
 }

@@ -1,0 +1,65 @@
+//! The phase-inverted copy of a waveform, `s(t) = -inner(t)`: the second burst of pulse
+//! inversion (thesis chapter 1; model.md section 6.1).
+
+use super::Excitation;
+use std::sync::Arc;
+
+/// `inner` with its sign reversed (same duration, breakpoints, frequencies and peak).
+#[derive(Debug, Clone)]
+pub struct Negated {
+    inner: Arc<dyn Excitation>,
+}
+
+impl Negated {
+    /// The phase-inverted copy of `inner`.
+    pub fn new(inner: Arc<dyn Excitation>) -> Self {
+        Negated { inner }
+    }
+}
+
+impl Excitation for Negated {
+    fn stress(&self, t: f64) -> f64 {
+        -self.inner.stress(t)
+    }
+    fn duration(&self) -> f64 {
+        self.inner.duration()
+    }
+    fn fundamental(&self) -> f64 {
+        self.inner.fundamental()
+    }
+    fn highest_frequency(&self) -> f64 {
+        self.inner.highest_frequency()
+    }
+    fn second_frequency(&self) -> Option<f64> {
+        self.inner.second_frequency()
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        self.inner.breakpoints()
+    }
+    fn peak(&self) -> f64 {
+        self.inner.peak()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::excitation::{ToneBurst, Window};
+
+    #[test]
+    fn negation_flips_the_sign_and_keeps_everything_else() {
+        let b: Arc<dyn Excitation> = Arc::new(ToneBurst::new(2.0, 1e5, 5.0, Window::Hann));
+        let n = Negated::new(b.clone());
+        let mut largest = 0.0f64;
+        for k in 0..500 {
+            let t = k as f64 * 1.1e-6;
+            assert_eq!(n.stress(t), -b.stress(t));
+            largest = largest.max(b.stress(t).abs());
+        }
+        assert!(largest > 1.0, "the burst was sampled where it is not zero");
+        assert_eq!(n.duration(), b.duration());
+        assert_eq!(n.fundamental(), 1e5);
+        assert_eq!(n.peak(), b.peak());
+        assert_eq!(n.breakpoints(), b.breakpoints());
+    }
+}

@@ -1,0 +1,138 @@
+//! The extra solves of the analysis methods (model.md section 6.1): the response to the
+//! phase-inverted burst (pulse inversion) and the response of the interface linearised at
+//! its static state (linear reference, and the floor every run reports).
+
+use crate::analysis::methods::{method_bands, method_floor, plateau, Records, Signal};
+use crate::analysis::{AnalysisMethod, BandAmplitudes};
+use crate::error::{Error, Result};
+use crate::excitation::Negated;
+use crate::law::compression::{Linear, Rigid};
+use crate::law::traction::{Bonded, Linear as LinearTraction};
+use crate::law::ContactLaw;
+use crate::scenario::Scenario;
+use crate::solver::halfspace::HalfSpaceOutput;
+use std::sync::Arc;
+
+/// Harmonic amplitudes of the reflected velocity by the scenario's method, and its floor.
+#[derive(Debug, Clone, Copy)]
+pub struct Analysis {
+    /// The method used.
+    pub method: AnalysisMethod,
+    /// Band amplitudes of the reflected velocity, m/s.
+    pub bands: BandAmplitudes,
+    /// The same analysis of the linearised interface's response, m/s (NaN where the
+    /// interface has no linearisation: `K(p0) = 0`).
+    pub floor: BandAmplitudes,
+}
+
+/// The contact law linearised at its static state: `sigma = -p0 + K(p0) [u]` on both sides
+/// of `[u]_c` (no contact loss), or a bonded interface where `K(p0)` is infinite (rigid
+/// compression). `None` when `K(p0)` is 0 or not a number (a power law at `p0 = 0`).
+pub fn linearised_law(law: &ContactLaw) -> Option<ContactLaw> {
+    let p0 = law.static_pressure;
+    let k0 = law.compression.stiffness_at_rest();
+    if law.compression.is_rigid() || k0 == f64::INFINITY {
+        Some(ContactLaw {
+            static_pressure: p0,
+            compression: Box::new(Rigid {
+                static_pressure: p0,
+            }),
+            traction: Box::new(Bonded),
+        })
+    } else if k0.is_finite() && k0 > 0.0 {
+        Some(ContactLaw {
+            static_pressure: p0,
+            compression: Box::new(Linear {
+                static_pressure: p0,
+                stiffness: k0,
+            }),
+            traction: Box::new(LinearTraction { stiffness: k0 }),
+        })
+    } else {
+        None
+    }
+}
+
+/// The scenario with its interface linearised ([`linearised_law`]).
+pub fn linearised(scenario: &Scenario) -> Option<Scenario> {
+    let law = linearised_law(&scenario.law)?;
+    let mut s = scenario.clone();
+    s.law = Arc::new(law);
+    Some(s)
+}
+
+/// The scenario with its burst phase-inverted.
+pub fn inverted(scenario: &Scenario) -> Scenario {
+    let mut s = scenario.clone();
+    s.incident = Arc::new(Negated::new(scenario.incident.clone()));
+    s
+}
+
+/// What the analysis needs to know about a scenario's signals on the grid of `out`.
+pub fn signal(scenario: &Scenario, out: &HalfSpaceOutput) -> Signal {
+    let inc = &scenario.incident;
+    let f0 = inc.fundamental();
+    Signal {
+        dt: out.dt,
+        t0: out.t.first().copied().unwrap_or(0.0),
+        f0,
+        f2: inc.second_frequency(),
+        plateau: plateau(|t| inc.stress(t), inc.duration(), f0),
+    }
+}
+
+/// Analyse the reflected wave of `out` (the scenario's solution) by the scenario's method,
+/// with the floor; `solve` runs the solver on the derived scenarios.
+pub fn analyse(
+    scenario: &Scenario,
+    out: &HalfSpaceOutput,
+    solve: impl Fn(&Scenario) -> Result<HalfSpaceOutput>,
+) -> Result<Analysis> {
+    let method = scenario.spec.analysis.method;
+    let sig = signal(scenario, out);
+    let linear = match linearised(scenario) {
+        Some(s) => Some(solve(&s)?),
+        None => None,
+    };
+    let inverse = match method {
+        AnalysisMethod::PulseInversion => Some(solve(&inverted(scenario))?),
+        _ => None,
+    };
+    if method == AnalysisMethod::LinearReference && linear.is_none() {
+        return Err(Error::invalid(
+            &scenario.file,
+            "analysis.method",
+            "linear_reference",
+            "needs a compression stiffness K(p0) > 0 at the static pressure (a power law \
+             at p0 = 0 has none); use pulse_inversion",
+        ));
+    }
+    let lin = linear.as_ref().map(|o| o.reflected_displacement.as_slice());
+    let records = Records {
+        response: &out.reflected_displacement,
+        inverse: inverse
+            .as_ref()
+            .map(|o| o.reflected_displacement.as_slice()),
+        linear: lin,
+    };
+    let bands = method_bands(method, &records, &sig)
+        .ok_or_else(|| Error::numerical(0.0, "a record of the analysis is missing", ""))?;
+    let floor = match lin {
+        Some(l) => method_floor(method, l, &sig),
+        None => {
+            let nan = f64::NAN;
+            BandAmplitudes {
+                harmonic: [nan; 6],
+                subharmonic: nan,
+                f2: nan,
+                sum: nan,
+                difference: nan,
+            }
+        }
+    };
+    Ok(Analysis {
+        method,
+        bands,
+        floor,
+    })
+}
