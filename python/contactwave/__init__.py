@@ -39,6 +39,7 @@ from ._core import Scenario, SimulationError
 __all__ = [
     "Scenario",
     "SimulationError",
+    "HarmonicFloorWarning",
     "Result",
     "BarStackResult",
     "Spectrum",
@@ -56,6 +57,32 @@ __all__ = [
 __version__: str = _core.__version__
 
 ScenarioLike = Union[Scenario, Mapping[str, Any], str, "os.PathLike[str]"]
+
+
+
+class HarmonicFloorWarning(UserWarning):
+    """A harmonic amplitude lies within a factor 10 of its analysis floor (what the same
+    analysis gives on the response of the linearised interface; summary keys
+    ``A2_floor_over_Ainc`` ... ``A5_floor_over_Ainc``, flag ``harmonic_floor_warning``).
+    Select a leakage-free method with ``[analysis] method = "pulse_inversion"`` or
+    ``"linear_reference"`` (docs/model.md section 6.1)."""
+
+
+def _warn_near_floor(summary: Mapping[str, Any], stacklevel: int = 3) -> None:
+    near = []
+    for n in range(2, 6):
+        a = summary.get(f"A{n}_over_Ainc")
+        f = summary.get(f"A{n}_floor_over_Ainc")
+        if a is not None and f is not None and f > 0 and a < 10 * f:
+            near.append(f"A{n}")
+    if near:
+        warnings.warn(
+            f"{', '.join(near)} within a factor 10 of the analysis floor "
+            f"(A*_floor_over_Ainc); pulse_inversion or linear_reference remove the leakage floor",
+            HarmonicFloorWarning,
+            stacklevel=stacklevel,
+        )
+
 
 #: Points per task when a sweep runs on an executor (see :func:`sweep`).
 DEFAULT_CHUNK_SIZE = 64
@@ -156,7 +183,13 @@ class Result:
 
     ``summary``: dict with the keys of ``summary.json`` in order (``scenario``, then the
     scalars: ``xi``, ``A1_over_Ainc`` ... ``A5_over_Ainc``, ``A2_over_A1``, ``beta_star``,
-    ``beta_end``, energies, ...); ``dt``: time step (s); ``scenario``: the Scenario run.
+    ``beta_end``, energies, ..., ``analysis_method`` (code), the floors
+    ``A2_floor_over_Ainc`` ... ``A5_floor_over_Ainc`` and ``harmonic_floor_warning``);
+    ``analysis_method``: the name of the analysis method (``[analysis] method``);
+    ``floor``: the band amplitudes of that method on the linear response (m/s, keys as
+    :meth:`harmonics`' ``A1`` ...); ``dt``: time step (s); ``scenario``: the Scenario run.
+    A summary with ``harmonic_floor_warning = 1`` makes :func:`run` emit a
+    :class:`HarmonicFloorWarning`.
     """
 
     t: np.ndarray
@@ -201,6 +234,8 @@ class Result:
         self.summary = raw["summary"]
         self._spectrum = Spectrum(*raw["spectrum"])
         self._bands = (raw["incident_bands"], raw["reflected_bands"], raw["A_inc"])
+        self.analysis_method: str = raw.get("analysis_method", "band_peak")
+        self.floor: Dict[str, float] = dict(raw.get("floor_bands", {}))
 
     def spectrum(self) -> Spectrum:
         """The spectra of ``spectrum.csv``: ``(frequency, incident, reflected)`` arrays."""
@@ -345,7 +380,10 @@ def run(scenario: ScenarioLike) -> Union[Result, BarStackResult]:
     """
     s = _as_scenario(scenario)
     raw = _core.run(s)
-    return _RESULTS[raw["kind"]](raw, s)
+    result = _RESULTS[raw["kind"]](raw, s)
+    if raw["kind"] == "half_space":
+        _warn_near_floor(result.summary)
+    return result
 
 
 def _bench_simulate(scenario: ScenarioLike, n: int) -> List[float]:
@@ -576,6 +614,15 @@ def sweep(
             f"{len(errs)} of {len(points)} sweep points failed (values NaN); first: "
             + "; ".join(f"point {i}: {errs[i]}" for i in first),
             RuntimeWarning,
+            stacklevel=2,
+        )
+    flag = columns.get("harmonic_floor_warning")
+    if flag is not None and np.any(flag == 1.0):
+        warnings.warn(
+            f"{int(np.sum(flag == 1.0))} of {len(points)} sweep points have a harmonic within a "
+            "factor 10 of its analysis floor (column harmonic_floor_warning); pulse_inversion "
+            "or linear_reference remove the leakage floor",
+            HarmonicFloorWarning,
             stacklevel=2,
         )
     if as_frame is None or as_frame:

@@ -81,6 +81,17 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             if plotted {
                 println!("wrote {}", out.join("sweep.svg").display());
             }
+            if let Ok(t) = study::read_sweep_csv(&csv) {
+                if let Some(c) = t.column("harmonic_floor_warning") {
+                    let n = t.rows.iter().filter(|r| r.get(c) == Some(&1.0)).count();
+                    if n > 0 {
+                        eprintln!(
+                            "warning: {n} of {} points have a harmonic within a factor 10 of its analysis floor (harmonic_floor_warning = 1, A*_floor_over_Ainc); see [analysis] method in docs/scenario.md",
+                            t.rows.len()
+                        );
+                    }
+                }
+            }
             if let Some(e) = report.errors_csv {
                 eprintln!(
                     "warning: {} points failed; messages in {}",

@@ -169,6 +169,7 @@ impl IdentifySpec {
             };
             apply_set(&mut base_table, set, &file)?;
         }
+        default_analysis(&mut base_table);
         // the base (with overrides) must be a valid scenario
         model::plan_valid(base_table.clone(), &base)?;
 
@@ -840,4 +841,36 @@ fn read_csv(text: &str, name: &str) -> Result<(Vec<String>, Vec<Vec<f64>>)> {
         return Err(Error::invalid(name, "rows", 0, "at least one data row"));
     }
     Ok((header, rows))
+}
+
+/// Identification defaults to a leakage-free analysis (model.md section 6.1) for a
+/// half-space scenario with a smooth compression law and no `[analysis]` table:
+/// `linear_reference` when `p0 > 0`, `pulse_inversion` otherwise (a power law has no
+/// linearisation at `p0 = 0`). Rigid compression and bar stacks keep `band_peak`.
+fn default_analysis(base: &mut toml::Table) {
+    if base.contains_key("analysis") || base.contains_key("model") {
+        return;
+    }
+    let Some(toml::Value::Table(interface)) = base.get("interface") else {
+        return;
+    };
+    let law = match interface.get("compression") {
+        Some(toml::Value::Table(c)) => c.get("law").and_then(|v| v.as_str()).unwrap_or("rigid"),
+        _ => "rigid",
+    };
+    if law == "rigid" {
+        return;
+    }
+    let p0 = interface
+        .get("static_pressure")
+        .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
+        .unwrap_or(0.0);
+    let method = if p0 > 0.0 {
+        "linear_reference"
+    } else {
+        "pulse_inversion"
+    };
+    let mut t = toml::Table::new();
+    t.insert("method".into(), toml::Value::String(method.into()));
+    base.insert("analysis".into(), toml::Value::Table(t));
 }

@@ -117,7 +117,8 @@ impl Outcome for RunResult {
 
     /// Interface arrays (`t`, `gap`, ...), probe arrays (`probe_t`, ...), `summary`,
     /// `spectrum` (frequency, incident, reflected), `incident_bands` / `reflected_bands`
-    /// (m/s), `A_inc` (m/s), `dt` (s), `probe_x` (m).
+    /// (m/s), `A_inc` (m/s), `dt` (s), `probe_x` (m), `analysis_method` (name) and
+    /// `floor_bands` (the method on the linear response, m/s).
     fn record(&self) -> Record {
         let o = &self.interface;
         let p = &self.probe;
@@ -171,11 +172,16 @@ impl Outcome for RunResult {
                 bands_record(&self.reflected_bands, self.two_tone).into(),
             )
             .with("A_inc", self.a_inc.into())
+            .with("analysis_method", Value::Text(self.method.name().into()))
+            .with(
+                "floor_bands",
+                bands_record(&self.floor_bands, self.two_tone).into(),
+            )
     }
 
     fn report(&self) -> Vec<String> {
         let get = |k: &str| self.summary.get(k).unwrap_or(f64::NAN);
-        vec![
+        let mut lines = vec![
             format!("xi                     {:.6}", get("xi")),
             format!("A1/Ainc                {:.6e}", get("A1_over_Ainc")),
             format!("A2/Ainc                {:.6e}", get("A2_over_Ainc")),
@@ -183,7 +189,21 @@ impl Outcome for RunResult {
             format!("beta_end               {:.6}", get("beta_end")),
             format!("contact loss fraction  {:.6}", get("contact_loss_fraction")),
             format!("energy closure error   {:.3e}", get("energy_closure_error")),
-        ]
+            format!(
+                "analysis method        {}",
+                self.method.name()
+            ),
+        ];
+        let near = crate::analysis::harmonics_near_floor(&self.summary);
+        if !near.is_empty() {
+            let names: Vec<String> = near.iter().map(|n| format!("A{n}")).collect();
+            lines.push(format!(
+                "warning: {} within a factor 10 of the analysis floor ({} on the linear response; A*_floor_over_Ainc); pulse_inversion or linear_reference remove the leakage floor",
+                names.join(", "),
+                self.method.name()
+            ));
+        }
+        lines
     }
 
     fn as_any(&self) -> &dyn Any {

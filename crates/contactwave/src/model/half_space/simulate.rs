@@ -61,6 +61,8 @@ pub struct RunResult {
     pub reflected_bands: BandAmplitudes,
     /// The analysis floor of each component (the method on the linear response), m/s.
     pub floor_bands: BandAmplitudes,
+    /// The analysis method of the harmonic amplitudes.
+    pub method: crate::analysis::AnalysisMethod,
     /// Scalars of `summary.json`.
     pub summary: Summary,
 }
@@ -171,6 +173,7 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
         incident_bands: inc,
         reflected_bands: analysis.bands,
         floor_bands: analysis.floor,
+        method: analysis.method,
         summary,
     })
 }
