@@ -189,10 +189,7 @@ impl Outcome for RunResult {
             format!("beta_end               {:.6}", get("beta_end")),
             format!("contact loss fraction  {:.6}", get("contact_loss_fraction")),
             format!("energy closure error   {:.3e}", get("energy_closure_error")),
-            format!(
-                "analysis method        {}",
-                self.method.name()
-            ),
+            format!("analysis method        {}", self.method.name()),
         ];
         let near = crate::analysis::harmonics_near_floor(&self.summary);
         if !near.is_empty() {

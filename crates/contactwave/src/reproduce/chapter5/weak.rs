@@ -16,8 +16,16 @@ const PRESSURES: [f64; 6] = [1e6, 2e6, 5e6, 10e6, 20e6, 50e6];
 const CURVES: [(&str, AnalysisMethod, f64); 5] = [
     ("band_peak, 15 cycles", AnalysisMethod::BandPeak, 15.0),
     ("band_peak, 40 cycles", AnalysisMethod::BandPeak, 40.0),
-    ("pulse_inversion, 15 cycles", AnalysisMethod::PulseInversion, 15.0),
-    ("linear_reference, 15 cycles", AnalysisMethod::LinearReference, 15.0),
+    (
+        "pulse_inversion, 15 cycles",
+        AnalysisMethod::PulseInversion,
+        15.0,
+    ),
+    (
+        "linear_reference, 15 cycles",
+        AnalysisMethod::LinearReference,
+        15.0,
+    ),
     ("plateau_fit, 15 cycles", AnalysisMethod::PlateauFit, 15.0),
 ];
 
@@ -36,17 +44,27 @@ pub(super) fn figure(ctx: &Ctx, out: &mut Collected) -> Result<()> {
             .map(|(_, l)| l)
             .unwrap_or_default();
         let s = weak_scenario(p0, &law, cycles, m)?;
-        Ok((crate::simulate_summary(&s)?, perturbation_of(&s).beta_reflected()))
+        Ok((
+            crate::simulate_summary(&s)?,
+            perturbation_of(&s).beta_reflected(),
+        ))
     })?;
     let mpa: Vec<f64> = PRESSURES.iter().map(|p| p / 1e6).collect();
     let n = PRESSURES.len();
     let reference: Vec<f64> = runs[..n].iter().map(|r| r.1).collect();
     let log = |v: &[f64]| v.iter().map(|x| x.log10()).collect::<Vec<_>>();
-    let mut beta_series = vec![Series::new("closed form (second order)", &mpa, &log(&reference))];
+    let mut beta_series = vec![Series::new(
+        "closed form (second order)",
+        &mpa,
+        &log(&reference),
+    )];
     let mut err_series = Vec::new();
     let mut floor_series = Vec::new();
     for (c, &(label, m, cycles)) in CURVES.iter().enumerate() {
-        let s: Vec<Summary> = runs[c * n..(c + 1) * n].iter().map(|r| r.0.clone()).collect();
+        let s: Vec<Summary> = runs[c * n..(c + 1) * n]
+            .iter()
+            .map(|r| r.0.clone())
+            .collect();
         let beta = column(&s, "beta_star");
         beta_series.push(Series::new(label, &mpa, &log(&beta)));
         let err: Vec<f64> = beta
