@@ -342,7 +342,9 @@ mod tests {
         let f = 1e6;
         let dt = 1.0 / (f * 100.0);
         let w = 2.0 * PI * f;
-        let v = |t: f64| 0.3 * (-t * 2e5).exp() + (w * t).sin() + 1e-4 * (2.0 * w * t + 0.3).cos();
+        // a decaying drift the size of the second harmonic, as the quasi-static part of a
+        // second-order response (model.md section 6.1)
+        let v = |t: f64| 1e-4 * (-t * 2e5).exp() + (w * t).sin() + 1e-4 * (2.0 * w * t + 0.3).cos();
         let d = record(v, dt, 2000);
         let s = Signal {
             dt,
