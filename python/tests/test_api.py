@@ -208,3 +208,33 @@ def test_fit_power_law():
 
 def test_simulation_error_is_runtime_error():
     assert issubclass(cw.SimulationError, RuntimeError)
+
+
+WEAK = {
+    "medium": {"material": "aluminium"},
+    "counterpart": {"kind": "medium", "material": "aluminium"},
+    "interface": {
+        "static_pressure": 10e6,
+        "compression": {"law": "power", "c": 1.81e10, "m": 0.35},
+    },
+    "incident": {"frequency": 5e6, "cycles": 15, "amplitude": 12.2e6},
+}
+
+
+def test_analysis_method_from_python_and_floor_warning():
+    """band_peak of a weak harmonic sits on its leakage floor and warns; pulse inversion
+    removes the floor of even harmonics (docs/model.md section 6.1)."""
+    with pytest.warns(cw.HarmonicFloorWarning):
+        band = cw.run(WEAK)
+    assert band.analysis_method == "band_peak"
+    assert band.summary["analysis_method"] == 0
+    assert band.summary["harmonic_floor_warning"] == 1
+    assert band.summary["A2_floor_over_Ainc"] > 0.1 * band.summary["A2_over_Ainc"]
+    pi = cw.run({**WEAK, "analysis": {"method": "pulse_inversion"}})
+    assert pi.analysis_method == "pulse_inversion"
+    assert pi.summary["A2_floor_over_Ainc"] == 0.0
+    assert pi.floor["A2"] == 0.0
+    # the leakage made band_peak's A2 many times larger than the harmonic
+    assert band.summary["beta_star"] > 10 * pi.summary["beta_star"]
+    with pytest.raises(ValueError, match="analysis"):
+        cw.run({**WEAK, "analysis": {"method": "fft"}})
