@@ -60,6 +60,8 @@ pub struct RunResult {
     pub reflected_bands: BandAmplitudes,
     /// Scalars of `summary.json`.
     pub summary: Summary,
+    /// The tangential results, for scenarios with a tangential part (model.md section 13).
+    pub shear: Option<super::shear::ShearResult>,
 }
 
 /// The half-space problem of a scenario.
@@ -112,6 +114,13 @@ pub fn settings(scenario: &Scenario) -> HalfSpaceSettings {
 /// The summary has the keys of [`simulate`]'s except the incident burst's own ratios
 /// (`incident_A*_over_Ainc`).
 pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
+    if let Some(sh) = &scenario.shear {
+        let (out, shear) = super::shear::solve(scenario, sh)?;
+        let refl = bands(scenario, &out.reflected_displacement, out.dt);
+        let mut s = summarise(scenario, &out, None, &refl);
+        super::shear::set_summary(&mut s, scenario, sh, &shear);
+        return Ok(s);
+    }
     let out = solve_with(scenario, true)?;
     let refl = bands(scenario, &out.reflected_displacement, out.dt);
     Ok(summarise(scenario, &out, None, &refl))
@@ -142,10 +151,19 @@ fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
 /// assert!(r.summary.get("A2_over_Ainc").unwrap() > 0.05);
 /// ```
 pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
-    let out = solve(scenario)?;
+    let (out, shear) = match &scenario.shear {
+        Some(sh) => {
+            let (out, r) = super::shear::solve(scenario, sh)?;
+            (out, Some(r))
+        }
+        None => (solve(scenario)?, None),
+    };
     let inc = bands(scenario, &out.incident_displacement, out.dt);
     let refl = bands(scenario, &out.reflected_displacement, out.dt);
-    let summary = summarise(scenario, &out, Some(&inc), &refl);
+    let mut summary = summarise(scenario, &out, Some(&inc), &refl);
+    if let (Some(sh), Some(r)) = (&scenario.shear, &shear) {
+        super::shear::set_summary(&mut summary, scenario, sh, r);
+    }
     let f_max = 6.0 * scenario.incident.highest_frequency();
     let vr = cell_velocity(&out.reflected_displacement, out.dt);
     let vi = cell_velocity(&out.incident_displacement, out.dt);
@@ -168,6 +186,7 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
         incident_bands: inc,
         reflected_bands: refl,
         summary,
+        shear,
     })
 }
 
@@ -230,7 +249,9 @@ fn summarise(
     s.set("frequency", scenario.incident.fundamental());
     s.set("A_inc", a_inc);
     let two_tone = scenario.incident.second_frequency().is_some();
-    set_reflected_harmonics(&mut s, refl, a_inc, two_tone, inc);
+    if a_inc > 0.0 {
+        set_reflected_harmonics(&mut s, refl, a_inc, two_tone, inc);
+    }
     s.set("beta_end", out.beta.last().copied().unwrap_or(1.0));
     s.set("max_gap", out.max_gap);
     s.set(
