@@ -216,7 +216,9 @@ mod tests {
             .unwrap()
             .set(0.5, "f", "k")
             .unwrap();
-        assert!(matches!(i.tangential, TangentialSpec::Coulomb { friction, .. } if friction == 0.5));
+        assert!(
+            matches!(i.tangential, TangentialSpec::Coulomb { friction, .. } if friction == 0.5)
+        );
         i.slot(&["compression", "m"])
             .unwrap()
             .set(0.3, "f", "k")

@@ -366,7 +366,12 @@ pub(crate) fn material_of(spec: &MaterialSpec, file: &str, prefix: &str) -> Resu
         if v.is_finite() && v > 0.0 {
             Ok(v)
         } else {
-            Err(Error::invalid(file, key(k), v, "must be a finite number > 0"))
+            Err(Error::invalid(
+                file,
+                key(k),
+                v,
+                "must be a finite number > 0",
+            ))
         }
     };
     let both = |a: &str, b: &str, v: f64| {
@@ -433,7 +438,11 @@ pub(crate) fn check_derived(m: &Material, file: &str, prefix: &str) -> Result<()
             return Err(Error::invalid(
                 file,
                 format!("{prefix}.shear_modulus, {prefix}.density"),
-                format!("{:e} Pa, {:e} kg/m^3", m.shear_modulus.unwrap_or(0.0), m.density),
+                format!(
+                    "{:e} Pa, {:e} kg/m^3",
+                    m.shear_modulus.unwrap_or(0.0),
+                    m.density
+                ),
                 format!(
                     "give a finite shear wave speed sqrt(G/rho) and impedance (here {ct:e} \
                      m/s, {zt:e} Pa s/m)"
@@ -516,7 +525,7 @@ pub(crate) fn build_wave(
             if !(r.is_finite() && r > 0.0 && r <= 0.5) {
                 return Err(Error::invalid(
                     file,
-                    &key("ramp_fraction"),
+                    key("ramp_fraction"),
                     r,
                     "must lie in (0, 0.5]",
                 ));
@@ -534,7 +543,7 @@ pub(crate) fn build_wave(
         (Some(_), Some(_)) => {
             return Err(Error::invalid(
                 file,
-                &key("xi"),
+                key("xi"),
                 inc.xi.unwrap_or_default(),
                 "give either `amplitude` or `xi`, not both",
             ))
@@ -543,7 +552,7 @@ pub(crate) fn build_wave(
             if !(a.is_finite() && a > 0.0) {
                 return Err(Error::invalid(
                     file,
-                    &key("amplitude"),
+                    key("amplitude"),
                     a,
                     "must be a finite number > 0 (Pa)",
                 ));
@@ -554,7 +563,7 @@ pub(crate) fn build_wave(
             if !(x.is_finite() && x > 0.0) {
                 return Err(Error::invalid(
                     file,
-                    &key("xi"),
+                    key("xi"),
                     x,
                     "must be a finite number > 0",
                 ));
@@ -563,7 +572,7 @@ pub(crate) fn build_wave(
                 let p_key = xi_ref.map_or("an interface", |r| r.pressure_key);
                 return Err(Error::invalid(
                     file,
-                    &key("xi"),
+                    key("xi"),
                     x,
                     format!("xi needs a static pressure > 0 ({p_key}); give `amplitude` instead"),
                 ));
@@ -574,7 +583,7 @@ pub(crate) fn build_wave(
             if inc.kind != IncidentKind::File {
                 return Err(Error::invalid(
                     file,
-                    &key("amplitude"),
+                    key("amplitude"),
                     "(missing)",
                     "give `amplitude` (Pa, > 0) or `xi` (> 0)",
                 ));
@@ -582,57 +591,57 @@ pub(crate) fn build_wave(
             None
         }
     };
-    let exc: Arc<dyn Excitation> =
-        match inc.kind {
-            IncidentKind::ToneBurst => {
-                Arc::new(ToneBurst::new(amplitude.unwrap_or(0.0), f0, cycles, window))
-            }
-            IncidentKind::TwoTone => {
-                let f2 = positive_opt(file, &key("frequency2"), inc.frequency2, None)?;
-                if (f2 - f0).abs() <= 1e-9 * f0 {
-                    return Err(Error::invalid(
-                        file,
-                        &key("frequency2"),
-                        f2,
-                        "must differ from incident.frequency",
-                    ));
-                }
-                let r = positive_opt(
+    let exc: Arc<dyn Excitation> = match inc.kind {
+        IncidentKind::ToneBurst => {
+            Arc::new(ToneBurst::new(amplitude.unwrap_or(0.0), f0, cycles, window))
+        }
+        IncidentKind::TwoTone => {
+            let f2 = positive_opt(file, &key("frequency2"), inc.frequency2, None)?;
+            if (f2 - f0).abs() <= 1e-9 * f0 {
+                return Err(Error::invalid(
                     file,
-                    &key("amplitude_ratio"),
-                    inc.amplitude_ratio,
-                    Some(1.0),
-                )?;
-                Arc::new(TwoTone::new(
-                    amplitude.unwrap_or(0.0),
-                    f0,
+                    key("frequency2"),
                     f2,
-                    r,
-                    cycles,
-                    window,
-                ))
+                    "must differ from incident.frequency",
+                ));
             }
-            IncidentKind::File => {
-                let rel = inc.path.as_ref().ok_or_else(|| {
-                    Error::invalid(
-                        file,
-                        &key("path"),
-                        "(missing)",
-                        "a CSV file (time s, stress Pa) is required with kind = \"file\"",
-                    )
-                })?;
-                let p: PathBuf = base_dir.join(rel);
-                let cols = cache.columns(&p, &key("path"), FileWaveform::read)?;
-                let (t, s) = (&cols.0, &cols.1);
-                Arc::new(FileWaveform::new(t, s, f0, amplitude).ok_or_else(|| {
-                    Error::invalid(file, &key("path"), rel, "invalid waveform")
-                })?)
-            }
-        };
+            let r = positive_opt(
+                file,
+                &key("amplitude_ratio"),
+                inc.amplitude_ratio,
+                Some(1.0),
+            )?;
+            Arc::new(TwoTone::new(
+                amplitude.unwrap_or(0.0),
+                f0,
+                f2,
+                r,
+                cycles,
+                window,
+            ))
+        }
+        IncidentKind::File => {
+            let rel = inc.path.as_ref().ok_or_else(|| {
+                Error::invalid(
+                    file,
+                    key("path"),
+                    "(missing)",
+                    "a CSV file (time s, stress Pa) is required with kind = \"file\"",
+                )
+            })?;
+            let p: PathBuf = base_dir.join(rel);
+            let cols = cache.columns(&p, &key("path"), FileWaveform::read)?;
+            let (t, s) = (&cols.0, &cols.1);
+            Arc::new(
+                FileWaveform::new(t, s, f0, amplitude)
+                    .ok_or_else(|| Error::invalid(file, key("path"), rel, "invalid waveform"))?,
+            )
+        }
+    };
     if !(exc.peak() > 0.0) {
         return Err(Error::invalid(
             file,
-            &key("path"),
+            key("path"),
             "waveform",
             "the waveform is identically zero",
         ));

@@ -6,8 +6,8 @@
 use serde::{Deserialize, Serialize};
 
 pub use crate::law::spec::{
-    default_transition_pressure, default_zero_pressure_fraction, CompressionSpec,
-    TangentialSpec, TractionSpec,
+    default_transition_pressure, default_zero_pressure_fraction, CompressionSpec, TangentialSpec,
+    TractionSpec,
 };
 
 /// A whole scenario file.

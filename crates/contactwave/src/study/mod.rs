@@ -8,6 +8,7 @@
 //! [`crate::simulate_summary`].
 
 pub mod convergence;
+pub mod shear_validation;
 mod sweep;
 pub mod validation;
 

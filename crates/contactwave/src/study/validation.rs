@@ -324,6 +324,7 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
     v.extend(energy()?);
     v.push(fd_vs_exact()?);
     v.extend(table2_fit());
+    v.extend(super::shear_validation::run_all()?);
     Ok(v)
 }
 

@@ -181,7 +181,10 @@ impl Outcome for RunResult {
                     .with("shear_stress", o.contact_stress.clone().into())
                     .with("shear_incident_stress", o.incident_stress.clone().into())
                     .with("shear_reflected_stress", o.reflected_stress.clone().into())
-                    .with("shear_transmitted_stress", o.transmitted_stress.clone().into())
+                    .with(
+                        "shear_transmitted_stress",
+                        o.transmitted_stress.clone().into(),
+                    )
                     .with("slip", sh.slip.clone().into())
                     .with("friction_limit", sh.friction_limit.clone().into())
                     .with("slip_state", sh.slip_state.clone().into())

@@ -106,7 +106,10 @@ pub fn set_summary(s: &mut Summary, scenario: &Scenario, shear: &ShearSetup, r: 
         }
         s.set(&format!("{prefix}A2_over_A1"), ratio(a[2], a[1]));
         s.set(&format!("{prefix}A3_over_A1"), ratio(a[3], a[1]));
-        s.set(&format!("{prefix}A3_over_A1_cubed"), ratio(a[3], a[1].powi(3)));
+        s.set(
+            &format!("{prefix}A3_over_A1_cubed"),
+            ratio(a[3], a[1].powi(3)),
+        );
     };
     put(s, "shear_", &r.reflected_bands);
     if shear.z2t.is_finite() {
@@ -118,7 +121,10 @@ pub fn set_summary(s: &mut Summary, scenario: &Scenario, shear: &ShearSetup, r: 
     s.set("shear_energy_reflected", e.reflected);
     s.set("shear_energy_transmitted", e.transmitted);
     s.set("friction_dissipation", r.friction_dissipation);
-    s.set("friction_dissipation_fraction", ratio(r.friction_dissipation, total));
+    s.set(
+        "friction_dissipation_fraction",
+        ratio(r.friction_dissipation, total),
+    );
     let delay = scenario
         .spec
         .shear_incident
