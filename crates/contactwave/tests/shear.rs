@@ -299,7 +299,7 @@ fn energy_audit_closes_on_combined_loading() {
 
 #[test]
 fn every_tangential_validation_case_passes() {
-    let cases = contactwave::study::shear_validation::run_all().unwrap();
+    let cases = contactwave::study::validation::shear::run_all().unwrap();
     assert!(cases.len() >= 11);
     for c in &cases {
         assert!(c.passed(), "{c:?}");

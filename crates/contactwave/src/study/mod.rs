@@ -8,7 +8,6 @@
 //! [`crate::simulate_summary`].
 
 pub mod convergence;
-pub mod shear_validation;
 mod sweep;
 pub mod validation;
 

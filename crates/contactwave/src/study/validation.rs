@@ -3,6 +3,8 @@
 //! exact identity, or a published finding (model.md section 7). The same cases are
 //! asserted, with more detail, by the test suite.
 
+pub mod shear;
+
 use crate::analysis::fit::fit_power_law;
 use crate::analytic::Bilinear;
 use crate::error::Result;
@@ -324,7 +326,7 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
     v.extend(energy()?);
     v.push(fd_vs_exact()?);
     v.extend(table2_fit());
-    v.extend(super::shear_validation::run_all()?);
+    v.extend(shear::run_all()?);
     Ok(v)
 }
 

@@ -6,7 +6,7 @@ use crate::analysis::{velocity_bands, BandAmplitudes, Summary};
 use crate::error::Result;
 use crate::scenario::{Scenario, ShearSetup};
 use crate::solver::coupled::{CoupledHalfSpace, CoupledOutput, CoupledSolver};
-use crate::solver::halfspace::HalfSpaceOutput;
+use crate::solver::halfspace::{HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
 use crate::solver::Solver;
 
 /// The tangential results of a run.
@@ -41,7 +41,12 @@ pub struct ShearResult {
 /// The coupled problem of a scenario with a tangential part.
 pub fn coupled_problem(scenario: &Scenario, shear: &ShearSetup) -> CoupledHalfSpace {
     CoupledHalfSpace {
-        normal: super::half_space(scenario),
+        normal: HalfSpace::new(
+            scenario.medium,
+            scenario.counterpart,
+            scenario.law.clone(),
+            scenario.incident.clone(),
+        ),
         z1t: shear.z1t,
         z2t: shear.z2t,
         tangential: shear.tangential.clone(),
@@ -52,7 +57,11 @@ pub fn coupled_problem(scenario: &Scenario, shear: &ShearSetup) -> CoupledHalfSp
 /// Solve a scenario with a tangential part: the normal histories and the shear results.
 pub fn solve(scenario: &Scenario, shear: &ShearSetup) -> Result<(HalfSpaceOutput, ShearResult)> {
     let out: CoupledOutput = CoupledSolver {
-        settings: super::settings(scenario),
+        settings: HalfSpaceSettings {
+            samples_per_period: scenario.spec.solver.samples_per_period(),
+            tail_periods: scenario.spec.solver.tail_periods,
+            summary_only: false,
+        },
     }
     .solve(&coupled_problem(scenario, shear))?;
     let f0 = shear.incident.fundamental();

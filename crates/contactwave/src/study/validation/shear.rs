@@ -5,7 +5,7 @@
 //! dissipated energy against the area of the friction loop, the full RCCM law without
 //! shear against the normal solver, and the coupled energy audit.
 
-use super::validation::ValidationCase;
+use super::ValidationCase;
 use crate::analysis::projection::period_harmonics;
 use crate::analytic::friction::ClippedShear;
 use crate::error::{Error, Result};
