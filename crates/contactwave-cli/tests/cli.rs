@@ -159,6 +159,36 @@ fn every_example_loads_and_runs() {
             assert!(summary.get("A1_over_Ainc").unwrap().is_finite());
         }
     }
+    // shear waves and friction (examples/shear): every scenario and sweep point runs
+    for entry in std::fs::read_dir(examples().join("shear")).unwrap() {
+        let p = entry.unwrap().path();
+        if p.extension().and_then(|e| e.to_str()) != Some("toml") {
+            continue;
+        }
+        let table: toml::Table = std::fs::read_to_string(&p).unwrap().parse().unwrap();
+        let scenarios: Vec<contactwave::scenario::Scenario> = if table.contains_key("axis") {
+            contactwave::study::Sweep::load(&p)
+                .unwrap()
+                .runnable()
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+                .into_iter()
+                .filter_map(|m| {
+                    m.as_any()
+                        .downcast_ref::<contactwave::scenario::Scenario>()
+                        .cloned()
+                })
+                .collect()
+        } else {
+            vec![contactwave::scenario::Scenario::load(&p).unwrap()]
+        };
+        assert!(!scenarios.is_empty(), "{}", p.display());
+        for s in scenarios.iter().take(3) {
+            let summary =
+                contactwave::simulate_summary(s).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            assert!(summary.get("shear_A1_over_Ainc").unwrap().is_finite());
+            assert!(summary.get("energy_closure_error").unwrap() < 1e-6);
+        }
+    }
 }
 
 /// A bar stack driven by an incident wave: the reflected and transmitted waves in
@@ -292,6 +322,61 @@ fn bad_inputs_fail_with_one_line_and_no_output() {
             "probe_x_positive",
             format!("{BASE}\n[probe]\nx = 0.03\n"),
             "probe.x",
+        ),
+        // tangential contact (model.md section 13)
+        (
+            "negative_friction",
+            with_traction("tangential = { law = \"coulomb\", friction = -0.3 }"),
+            "interface.tangential.friction",
+        ),
+        (
+            "poisson_above_half",
+            edit(
+                "material = \"pmma\"",
+                "material = \"pmma\"\npoisson_ratio = 0.6",
+            ),
+            "medium.poisson_ratio",
+        ),
+        (
+            "poisson_below_minus_one",
+            edit(
+                "material = \"pmma\"",
+                "material = \"pmma\"\npoisson_ratio = -1.5",
+            ),
+            "medium.poisson_ratio",
+        ),
+        (
+            "shear_wave_without_shear_modulus",
+            format!(
+                "{}\n[shear_incident]\nfrequency = 1e6\namplitude = 1e5\n",
+                edit(
+                    "material = \"pmma\"",
+                    "youngs_modulus = 5e9\ndensity = 1190.0",
+                )
+            ),
+            "medium.poisson_ratio",
+        ),
+        (
+            "static_shear_above_friction_limit",
+            with_traction(
+                "tangential = { law = \"coulomb\", friction = 0.3 }\nstatic_shear = 0.05e6",
+            ),
+            "interface.static_shear",
+        ),
+        (
+            "full_rccm_without_rccm_traction",
+            with_traction("tangential = { law = \"rccm\", stiffness = 1e13, friction = 0.3 }"),
+            "interface.tangential.law",
+        ),
+        (
+            "shear_xi",
+            format!("{BASE}\n[shear_incident]\nfrequency = 1e6\nxi = 0.5\n"),
+            "shear_incident.xi",
+        ),
+        (
+            "negative_shear_delay",
+            format!("{BASE}\n[shear_incident]\nfrequency = 1e6\namplitude = 1e5\ndelay = -1e-6\n"),
+            "shear_incident.delay",
         ),
     ];
     let d = tmpdir("bad");

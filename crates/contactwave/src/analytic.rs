@@ -18,6 +18,8 @@
 //! exact solution of the same initial-value problem the solver integrates, and iterating
 //! it over periods gives the periodic steady state (times T1, T2 of eqs. 5.11-5.15).
 
+pub mod friction;
+
 /// Parameters of the bilinear problem, SI units.
 #[derive(Debug, Clone, Copy)]
 pub struct Bilinear {

@@ -12,6 +12,7 @@
 
 pub mod fit;
 pub mod methods;
+pub mod projection;
 mod spectrum;
 mod summary;
 

@@ -11,6 +11,7 @@
 pub mod compression;
 pub mod registry;
 pub mod spec;
+pub mod tangential;
 pub mod traction;
 
 use std::fmt::Debug;
@@ -99,6 +100,66 @@ pub trait TractionBranch: Debug + Send + Sync {
     /// Tangent stiffness at `d = 0, beta = 1`, Pa/m (for relaxation-time estimates).
     fn stiffness_at_contact(&self) -> f64 {
         self.tangent(0.0, 1.0)
+    }
+}
+
+/// A tangential branch (model.md section 13): a reversible spring `k(beta) [u]_T` in
+/// parallel with a Coulomb slider (`|tau_f| <= mu N`, `N` the normal contact pressure),
+/// the slider sticking rigidly or through a stick stiffness `k_t` in series. The defaults
+/// describe a branch with none of them (free sliding).
+pub trait TangentialBranch: Debug + Send + Sync {
+    /// Short name, for reports.
+    fn name(&self) -> &'static str;
+    /// Stiffness of the reversible spring at adhesion `beta`, Pa/m.
+    fn spring_stiffness(&self, _adhesion: f64) -> f64 {
+        0.0
+    }
+    /// `d k / d beta`, Pa/m: the spring's energy `k [u]_T^2 / 2` then adds
+    /// `(dk/dbeta) [u]_T^2 / 2` to the energy released per unit decrease of beta.
+    fn spring_stiffness_d_adhesion(&self, _adhesion: f64) -> f64 {
+        0.0
+    }
+    /// Coulomb friction coefficient mu (0: no slider).
+    fn friction(&self) -> f64 {
+        0.0
+    }
+    /// Stick stiffness `k_t` of the slider, Pa/m (`f64::INFINITY`: rigid stick).
+    fn stick_stiffness(&self) -> f64 {
+        f64::INFINITY
+    }
+    /// Whether the branch takes its adhesion from a damaging traction branch (RCCM).
+    fn needs_adhesion(&self) -> bool {
+        false
+    }
+}
+
+/// The tangential part of a contact law: static shear and a tangential branch.
+#[derive(Debug)]
+pub struct TangentialLaw {
+    /// Static shear stress q0, Pa (carried by the slider at rest: `|q0| <= mu p0`).
+    pub static_shear: f64,
+    /// Tangential branch.
+    pub branch: Box<dyn TangentialBranch>,
+}
+
+impl TangentialLaw {
+    /// Whether the branch carries no tangential stress at all (free sliding, no static
+    /// shear): a normally incident longitudinal wave then never moves the interface
+    /// tangentially.
+    pub fn is_free(&self) -> bool {
+        self.static_shear == 0.0
+            && self.branch.friction() == 0.0
+            && self.branch.spring_stiffness(1.0) == 0.0
+    }
+
+    /// Friction limit `mu N`, Pa, at normal contact pressure `N` (Pa, >= 0).
+    pub fn friction_limit(&self, pressure: f64) -> f64 {
+        let mu = self.branch.friction();
+        if mu == 0.0 {
+            0.0
+        } else {
+            mu * pressure.max(0.0)
+        }
     }
 }
 

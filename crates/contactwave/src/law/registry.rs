@@ -2,9 +2,9 @@
 //! Adding a law = one new file in `compression/` or `traction/` + one match arm here.
 
 use super::compression::{self, ModifiedPower, StiffnessCurve};
-use super::spec::{CompressionSpec, TractionSpec};
-use super::traction;
-use super::{CompressionBranch, ContactLaw, TractionBranch};
+use super::spec::{CompressionSpec, TangentialSpec, TractionSpec};
+use super::{tangential, traction};
+use super::{CompressionBranch, ContactLaw, TangentialBranch, TangentialLaw, TractionBranch};
 use crate::error::{Error, Result};
 
 fn positive(file: &str, field: &str, v: f64) -> Result<()> {
@@ -210,5 +210,115 @@ pub fn build_law(
         static_pressure: p0,
         compression: build_compression(compression, p0, file, &format!("{prefix}.compression"))?,
         traction: build_traction(traction, file, &format!("{prefix}.traction"))?,
+    })
+}
+
+/// Build a tangential branch, validating its parameters.
+pub fn build_tangential_branch(
+    spec: &TangentialSpec,
+    file: &str,
+    prefix: &str,
+) -> Result<Box<dyn TangentialBranch>> {
+    let key = |k: &str| format!("{prefix}.{k}");
+    Ok(match spec {
+        TangentialSpec::Free => Box::new(tangential::Free),
+        TangentialSpec::Linear { stiffness } => {
+            positive(file, &key("stiffness"), *stiffness)?;
+            Box::new(tangential::Linear {
+                stiffness: *stiffness,
+            })
+        }
+        TangentialSpec::Coulomb {
+            friction,
+            stiffness,
+        } => {
+            non_negative(file, &key("friction"), *friction)?;
+            if let Some(k) = stiffness {
+                positive(file, &key("stiffness"), *k)?;
+            }
+            Box::new(tangential::Coulomb {
+                friction: *friction,
+                stick_stiffness: stiffness.unwrap_or(f64::INFINITY),
+            })
+        }
+        TangentialSpec::Rccm {
+            stiffness,
+            friction,
+        } => {
+            non_negative(file, &key("stiffness"), *stiffness)?;
+            non_negative(file, &key("friction"), *friction)?;
+            Box::new(tangential::Rccm {
+                stiffness: *stiffness,
+                friction: *friction,
+            })
+        }
+    })
+}
+
+/// Build the tangential part of a law for static shear `q0` (Pa), checking it against the
+/// normal law `normal` (static pressure `p0`): the full RCCM branch needs the RCCM
+/// traction branch, and the static shear must be carried at rest (by the slider:
+/// `|q0| <= mu p0`; by a spring alone: any value; free sliding: none). `prefix` is the interface's dotted key.
+///
+/// ```
+/// use contactwave::law::registry::{build_law, build_tangential};
+/// use contactwave::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
+/// let normal = build_law(10e6, &CompressionSpec::Rigid, &TractionSpec::Free, "<doc>", "interface")
+///     .unwrap();
+/// let coulomb = TangentialSpec::Coulomb { friction: 0.3, stiffness: None };
+/// let t = build_tangential(&coulomb, 1e6, &normal, "<doc>", "interface").unwrap();
+/// assert_eq!(t.friction_limit(10e6), 3e6); // mu N
+/// // a static shear above mu p0 cannot be carried at rest
+/// let err = build_tangential(&coulomb, 4e6, &normal, "<doc>", "interface").unwrap_err();
+/// assert!(err.to_string().contains("interface.static_shear"));
+/// ```
+pub fn build_tangential(
+    spec: &TangentialSpec,
+    q0: f64,
+    normal: &ContactLaw,
+    file: &str,
+    prefix: &str,
+) -> Result<TangentialLaw> {
+    let branch_key = format!("{prefix}.tangential");
+    let branch = build_tangential_branch(spec, file, &branch_key)?;
+    if !q0.is_finite() {
+        return Err(Error::invalid(
+            file,
+            format!("{prefix}.static_shear"),
+            q0,
+            "must be finite",
+        ));
+    }
+    if branch.needs_adhesion() && !normal.traction.has_damage() {
+        return Err(Error::invalid(
+            file,
+            format!("{branch_key}.law"),
+            branch.name(),
+            format!(
+                "the full RCCM tangential branch takes its adhesion from the RCCM traction \
+                 branch; set {prefix}.traction.law = \"rccm\" (now \"{}\")",
+                normal.traction.name()
+            ),
+        ));
+    }
+    let mu = branch.friction();
+    if q0 != 0.0 {
+        let limit = mu * normal.static_pressure;
+        let spring = branch.spring_stiffness(1.0) > 0.0;
+        if (mu > 0.0 || !spring) && q0.abs() > limit {
+            return Err(Error::invalid(
+                file,
+                format!("{prefix}.static_shear"),
+                q0,
+                format!(
+                    "|q0| must be <= mu p0 = {limit:e} Pa (friction coefficient times the \
+                     static pressure) for the interface to stick at rest"
+                ),
+            ));
+        }
+    }
+    Ok(TangentialLaw {
+        static_shear: q0,
+        branch,
     })
 }

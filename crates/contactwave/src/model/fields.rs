@@ -2,7 +2,7 @@
 //! and identification use on a planned template (no TOML round trip per point).
 
 use crate::error::{Error, Result};
-use crate::law::spec::{CompressionSpec, TractionSpec};
+use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 use crate::scenario::spec::{
     CounterpartSpec, IncidentSpec, InterfaceSpec, MaterialSpec, ProbeSpec, ScenarioSpec, SolverSpec,
 };
@@ -66,6 +66,7 @@ impl Fields for ScenarioSpec {
             "counterpart" => self.counterpart.slot(rest),
             "interface" => self.interface.slot(rest),
             "incident" => self.incident.slot(rest),
+            "shear_incident" => self.shear_incident.as_mut()?.slot(rest),
             "probe" => self.probe.slot(rest),
             "solver" => self.solver.slot(rest),
             _ => None,
@@ -76,14 +77,22 @@ impl Fields for ScenarioSpec {
 impl Fields for MaterialSpec {
     fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
         leaf!(path; OptF64 "youngs_modulus" => &mut self.youngs_modulus,
-                    OptF64 "density" => &mut self.density)
+                    OptF64 "density" => &mut self.density,
+                    OptF64 "poisson_ratio" => &mut self.poisson_ratio,
+                    OptF64 "shear_modulus" => &mut self.shear_modulus,
+                    OptF64 "cl" => &mut self.cl,
+                    OptF64 "ct" => &mut self.ct)
     }
 }
 
 impl Fields for CounterpartSpec {
     fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
         leaf!(path; OptF64 "youngs_modulus" => &mut self.youngs_modulus,
-                    OptF64 "density" => &mut self.density)
+                    OptF64 "density" => &mut self.density,
+                    OptF64 "poisson_ratio" => &mut self.poisson_ratio,
+                    OptF64 "shear_modulus" => &mut self.shear_modulus,
+                    OptF64 "cl" => &mut self.cl,
+                    OptF64 "ct" => &mut self.ct)
     }
 }
 
@@ -91,6 +100,8 @@ impl Fields for InterfaceSpec {
     fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
         match path {
             ["static_pressure"] => Some(Slot::F64(&mut self.static_pressure)),
+            ["static_shear"] => Some(Slot::F64(&mut self.static_shear)),
+            ["tangential", rest @ ..] => self.tangential.slot(rest),
             ["compression", rest @ ..] => self.compression.slot(rest),
             ["traction", rest @ ..] => self.traction.slot(rest),
             _ => None,
@@ -132,6 +143,23 @@ impl Fields for TractionSpec {
     }
 }
 
+impl Fields for TangentialSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        match self {
+            TangentialSpec::Free => None,
+            TangentialSpec::Linear { stiffness } => leaf!(path; F64 "stiffness" => stiffness),
+            TangentialSpec::Coulomb {
+                friction,
+                stiffness,
+            } => leaf!(path; F64 "friction" => friction, OptF64 "stiffness" => stiffness),
+            TangentialSpec::Rccm {
+                stiffness,
+                friction,
+            } => leaf!(path; F64 "stiffness" => stiffness, F64 "friction" => friction),
+        }
+    }
+}
+
 impl Fields for IncidentSpec {
     fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
         // `amplitude` and `xi` are two ways to give the same quantity: setting one
@@ -149,7 +177,8 @@ impl Fields for IncidentSpec {
                              OptF64 "frequency2" => &mut self.frequency2,
                              OptF64 "amplitude_ratio" => &mut self.amplitude_ratio,
                              OptF64 "cycles" => &mut self.cycles,
-                             OptF64 "ramp_fraction" => &mut self.ramp_fraction),
+                             OptF64 "ramp_fraction" => &mut self.ramp_fraction,
+                             OptF64 "delay" => &mut self.delay),
         }
     }
 }
@@ -177,7 +206,19 @@ mod tests {
             static_pressure: 1.0,
             compression: CompressionSpec::Power { c: 1.0, m: 0.5 },
             traction: TractionSpec::Free,
+            static_shear: 0.0,
+            tangential: TangentialSpec::Coulomb {
+                friction: 0.3,
+                stiffness: None,
+            },
         };
+        i.slot(&["tangential", "friction"])
+            .unwrap()
+            .set(0.5, "f", "k")
+            .unwrap();
+        assert!(
+            matches!(i.tangential, TangentialSpec::Coulomb { friction, .. } if friction == 0.5)
+        );
         i.slot(&["compression", "m"])
             .unwrap()
             .set(0.3, "f", "k")

@@ -114,39 +114,59 @@ pub fn sweep(sw: &Sweep, table: &SweepTable) -> Result<String> {
     };
     // half-space sweeps: the reflected harmonics; bar-stack sweeps: the resonance study
     // of thesis chapter 4 (first mode, A1, A2/A1, mean contact stiffness, min pressure)
-    let panels: Vec<(&str, &str, &str)> = if table.column("A1_over_Ainc").is_some() {
-        vec![
-            (
-                "A1_over_Ainc",
-                "Fundamental of the reflected wave",
-                "A1 / A_inc",
-            ),
-            (
-                "A2_over_Ainc",
-                "Second harmonic of the reflected wave",
-                "A2 / A_inc",
-            ),
-        ]
-    } else {
-        vec![
-            ("first_mode_hz", "First mode", "f1, Hz"),
-            ("A1", "Response at the first mode", "A1, m/s^2"),
-            ("A2_over_A1", "Second harmonic", "A2 / A1"),
-            (
-                "mean_contact_stiffness_0",
-                "Mean contact stiffness, interface 1 (eq. 4.2)",
-                "K, Pa/m",
-            ),
-            (
-                "min_contact_pressure",
-                "Minimum contact pressure",
-                "p_min, Pa",
-            ),
-        ]
-        .into_iter()
-        .filter(|(c, _, _)| table.column(c).is_some())
-        .collect()
-    };
+    // (shear sweeps: the third harmonic and the friction dissipation)
+    let panels: Vec<(&str, &str, &str)> =
+        if table.column("A1_over_Ainc").is_some() || table.column("shear_A1_over_Ainc").is_some() {
+            vec![
+                (
+                    "A1_over_Ainc",
+                    "Fundamental of the reflected wave",
+                    "A1 / A_inc",
+                ),
+                (
+                    "A2_over_Ainc",
+                    "Second harmonic of the reflected wave",
+                    "A2 / A_inc",
+                ),
+                (
+                    "shear_A3_over_A1",
+                    "Third harmonic of the reflected shear wave",
+                    "A3 / A1 (shear, reflected)",
+                ),
+                (
+                    "shear_tr_A3_over_A1",
+                    "Third harmonic of the transmitted shear wave",
+                    "A3 / A1 (shear, transmitted)",
+                ),
+                (
+                    "friction_dissipation_fraction",
+                    "Energy dissipated by friction",
+                    "fraction of the incident energy",
+                ),
+            ]
+            .into_iter()
+            .filter(|(c, _, _)| table.column(c).is_some())
+            .collect()
+        } else {
+            vec![
+                ("first_mode_hz", "First mode", "f1, Hz"),
+                ("A1", "Response at the first mode", "A1, m/s^2"),
+                ("A2_over_A1", "Second harmonic", "A2 / A1"),
+                (
+                    "mean_contact_stiffness_0",
+                    "Mean contact stiffness, interface 1 (eq. 4.2)",
+                    "K, Pa/m",
+                ),
+                (
+                    "min_contact_pressure",
+                    "Minimum contact pressure",
+                    "p_min, Pa",
+                ),
+            ]
+            .into_iter()
+            .filter(|(c, _, _)| table.column(c).is_some())
+            .collect()
+        };
     if panels.is_empty() {
         return Err(plot_error(name, "no known result column to plot".into()));
     }

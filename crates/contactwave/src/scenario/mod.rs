@@ -12,7 +12,8 @@ pub use value::{apply_set, parse_toml, read_table, set_dotted, table_to_spec};
 
 use crate::error::{Error, Result};
 use crate::excitation::{Excitation, FileWaveform, ToneBurst, TwoTone, Window};
-use crate::law::ContactLaw;
+use crate::law::spec::TangentialSpec;
+use crate::law::{ContactLaw, TangentialLaw};
 use crate::material::Material;
 use spec::{CounterpartKind, IncidentKind, IncidentSpec, MaterialSpec, ScenarioSpec, WindowKind};
 use std::path::{Path, PathBuf};
@@ -37,6 +38,30 @@ pub struct Scenario {
     pub xi: f64,
     /// Probe position x, m (< 0).
     pub probe_x: f64,
+    /// The tangential degree of freedom (model.md section 13): present when the scenario
+    /// has a shear wave, a tangential law other than `free` or a static shear.
+    pub shear: Option<ShearSetup>,
+}
+
+/// The tangential half of a scenario.
+#[derive(Debug, Clone)]
+pub struct ShearSetup {
+    /// Tangential law (static shear q0 and branch).
+    pub tangential: Arc<TangentialLaw>,
+    /// Incident shear wave `tau_inc(t)` at the interface (zero when the scenario has none).
+    pub incident: Arc<dyn Excitation>,
+    /// Whether the scenario has an incident shear wave.
+    pub has_wave: bool,
+    /// Shear impedance of medium 1, Pa s/m.
+    pub z1t: f64,
+    /// Shear impedance of medium 2, Pa s/m (`inf`: rigid wall).
+    pub z2t: f64,
+}
+
+/// A wave of zero amplitude at frequency `f` (Hz): one cycle, for the absent component of
+/// a scenario with a single wave type.
+fn silent(f: f64) -> Arc<dyn Excitation> {
+    Arc::new(ToneBurst::new(0.0, f, 1.0, Window::Rectangular))
 }
 
 impl Scenario {
@@ -114,7 +139,14 @@ impl Scenario {
         let counterpart = match spec.counterpart.kind {
             CounterpartKind::Rigid => {
                 let c = &spec.counterpart;
-                if c.material.is_some() || c.youngs_modulus.is_some() || c.density.is_some() {
+                if c.material.is_some()
+                    || c.youngs_modulus.is_some()
+                    || c.density.is_some()
+                    || c.poisson_ratio.is_some()
+                    || c.shear_modulus.is_some()
+                    || c.cl.is_some()
+                    || c.ct.is_some()
+                {
                     return Err(Error::invalid(
                         file,
                         "counterpart.kind",
@@ -131,6 +163,10 @@ impl Scenario {
                         material: c.material.clone(),
                         youngs_modulus: c.youngs_modulus,
                         density: c.density,
+                        poisson_ratio: c.poisson_ratio,
+                        shear_modulus: c.shear_modulus,
+                        cl: c.cl,
+                        ct: c.ct,
                     },
                     file,
                     "counterpart",
@@ -182,8 +218,74 @@ impl Scenario {
             z2,
             pressure_key: "interface.static_pressure",
         };
-        let (incident, xi) =
-            build_incident_cached(&spec.incident, file, base_dir, Some(&xi_ref), cache)?;
+        let shear_wave = match &spec.shear_incident {
+            Some(inc) => {
+                if let Some(x) = inc.xi {
+                    return Err(Error::invalid(
+                        file,
+                        "shear_incident.xi",
+                        x,
+                        "a shear wave takes `amplitude` (Pa), not xi",
+                    ));
+                }
+                Some(build_wave(inc, "shear_incident", file, base_dir, None, cache)?.0)
+            }
+            None => None,
+        };
+        let (incident, xi) = match &shear_wave {
+            Some(w) if spec.incident.is_absent() => (silent(w.fundamental()), 0.0),
+            _ => build_incident_cached(&spec.incident, file, base_dir, Some(&xi_ref), cache)?,
+        };
+        let i = &spec.interface;
+        let shear = if shear_wave.is_some()
+            || i.tangential != TangentialSpec::Free
+            || i.static_shear != 0.0
+        {
+            let tangential = Arc::new(crate::law::registry::build_tangential(
+                &i.tangential,
+                i.static_shear,
+                &law,
+                file,
+                "interface",
+            )?);
+            let need = |m: &Material, prefix: &str| {
+                m.shear_impedance().ok_or_else(|| {
+                    Error::invalid(
+                        file,
+                        format!("{prefix}.poisson_ratio"),
+                        "(missing)",
+                        format!(
+                            "a shear wave or a tangential law needs the shear modulus of \
+                             {prefix}: give `poisson_ratio` in (-1, 0.5), `shear_modulus` \
+                             (Pa) or `ct` (m/s), or a preset `material`"
+                        ),
+                    )
+                })
+            };
+            let z1t = need(&medium, "medium")?;
+            let z2t = match &counterpart {
+                Some(m) => need(m, "counterpart")?,
+                None => f64::INFINITY,
+            };
+            if spec.solver.method == spec::Method::Fd {
+                return Err(Error::invalid(
+                    file,
+                    "solver.method",
+                    "\"fd\"",
+                    "shear waves and tangential laws run on the exact solver only: use \
+                     method = \"exact\"",
+                ));
+            }
+            Some(ShearSetup {
+                tangential,
+                has_wave: shear_wave.is_some(),
+                incident: shear_wave.unwrap_or_else(|| silent(incident.fundamental())),
+                z1t,
+                z2t,
+            })
+        } else {
+            None
+        };
         Ok(Scenario {
             file: file.to_string(),
             medium,
@@ -192,6 +294,7 @@ impl Scenario {
             incident,
             xi,
             probe_x,
+            shear,
             spec,
         })
     }
@@ -230,46 +333,96 @@ pub fn xi_factor(law: &ContactLaw, z1: f64, z2: f64, frequency: f64) -> f64 {
 }
 
 pub(crate) fn material_of(spec: &MaterialSpec, file: &str, prefix: &str) -> Result<Material> {
-    let mut m = match &spec.material {
-        Some(name) => Material::preset(name).ok_or_else(|| {
+    let key = |k: &str| format!("{prefix}.{k}");
+    let preset = match &spec.material {
+        Some(name) => Some(Material::preset(name).ok_or_else(|| {
             Error::invalid(
                 file,
-                format!("{prefix}.material"),
+                key("material"),
                 format!("\"{name}\""),
                 format!("must be one of {}", Material::PRESETS.join(", ")),
             )
-        })?,
-        None => {
-            if spec.youngs_modulus.is_none() || spec.density.is_none() {
-                return Err(Error::invalid(
-                    file,
-                    format!("{prefix}.material"),
-                    "(missing)",
-                    "give a preset `material` or both `youngs_modulus` (Pa) and `density` (kg/m^3)",
-                ));
-            }
-            Material {
-                youngs_modulus: 0.0,
-                density: 0.0,
-            }
-        }
+        })?),
+        None => None,
     };
-    if let Some(e) = spec.youngs_modulus {
-        m.youngs_modulus = e;
+    let density = spec.density.or(preset.map(|m| m.density));
+    let Some(density) = density else {
+        return Err(Error::invalid(
+            file,
+            key("material"),
+            "(missing)",
+            "give a preset `material` or both `youngs_modulus` (Pa) and `density` (kg/m^3)",
+        ));
+    };
+    if !(density.is_finite() && density > 0.0) {
+        return Err(Error::invalid(
+            file,
+            key("density"),
+            density,
+            "must be a finite number > 0",
+        ));
     }
-    if let Some(r) = spec.density {
-        m.density = r;
-    }
-    for (k, v) in [("youngs_modulus", m.youngs_modulus), ("density", m.density)] {
-        if !(v.is_finite() && v > 0.0) {
-            return Err(Error::invalid(
+    let finite_pos = |k: &str, v: f64| -> Result<f64> {
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(Error::invalid(
                 file,
-                format!("{prefix}.{k}"),
+                key(k),
                 v,
                 "must be a finite number > 0",
-            ));
+            ))
         }
-    }
+    };
+    let both = |a: &str, b: &str, v: f64| {
+        Error::invalid(file, key(b), v, format!("give `{a}` or `{b}`, not both"))
+    };
+    let youngs = match (spec.youngs_modulus, spec.cl) {
+        (Some(_), Some(cl)) => return Err(both("youngs_modulus", "cl", cl)),
+        (Some(e), None) => finite_pos("youngs_modulus", e)?,
+        (None, Some(cl)) => density * finite_pos("cl", cl)?.powi(2),
+        (None, None) => match preset {
+            Some(m) => m.youngs_modulus,
+            None => {
+                return Err(Error::invalid(
+                    file,
+                    key("material"),
+                    "(missing)",
+                    "give a preset `material` or both `youngs_modulus` (Pa) and `density` \
+                     (kg/m^3)",
+                ))
+            }
+        },
+    };
+    let shear = match (spec.poisson_ratio, spec.shear_modulus, spec.ct) {
+        (Some(_), Some(g), _) => return Err(both("poisson_ratio", "shear_modulus", g)),
+        (Some(_), _, Some(ct)) => return Err(both("poisson_ratio", "ct", ct)),
+        (_, Some(_), Some(ct)) => return Err(both("shear_modulus", "ct", ct)),
+        (Some(nu), None, None) => {
+            if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
+                return Err(Error::invalid(
+                    file,
+                    key("poisson_ratio"),
+                    nu,
+                    "must lie in (-1, 0.5)",
+                ));
+            }
+            Some(youngs / (2.0 * (1.0 + nu)))
+        }
+        (None, Some(g), None) => Some(finite_pos("shear_modulus", g)?),
+        (None, None, Some(ct)) => Some(density * finite_pos("ct", ct)?.powi(2)),
+        (None, None, None) => preset.and_then(|m| {
+            // the preset's Poisson ratio, applied to the modulus in effect
+            let g = m.shear_modulus?;
+            let nu = m.youngs_modulus / (2.0 * g) - 1.0;
+            Some(youngs / (2.0 * (1.0 + nu)))
+        }),
+    };
+    let m = Material {
+        youngs_modulus: youngs,
+        density,
+        shear_modulus: shear,
+    };
     check_derived(&m, file, prefix)?;
     Ok(m)
 }
@@ -279,7 +432,25 @@ pub(crate) fn material_of(spec: &MaterialSpec, file: &str, prefix: &str) -> Resu
 /// The error names both inputs.
 pub(crate) fn check_derived(m: &Material, file: &str, prefix: &str) -> Result<()> {
     let (c, z) = (m.wave_speed(), m.impedance());
-    if c.is_finite() && c > 0.0 && z.is_finite() && z > 0.0 {
+    let ok = |c: f64, z: f64| c.is_finite() && c > 0.0 && z.is_finite() && z > 0.0;
+    if let (Some(ct), Some(zt)) = (m.shear_wave_speed(), m.shear_impedance()) {
+        if !ok(ct, zt) {
+            return Err(Error::invalid(
+                file,
+                format!("{prefix}.shear_modulus, {prefix}.density"),
+                format!(
+                    "{:e} Pa, {:e} kg/m^3",
+                    m.shear_modulus.unwrap_or(0.0),
+                    m.density
+                ),
+                format!(
+                    "give a finite shear wave speed sqrt(G/rho) and impedance (here {ct:e} \
+                     m/s, {zt:e} Pa s/m)"
+                ),
+            ));
+        }
+    }
+    if ok(c, z) {
         return Ok(());
     }
     Err(Error::invalid(
@@ -330,8 +501,22 @@ pub(crate) fn build_incident_cached(
     xi_ref: Option<&XiReference<'_>>,
     cache: &BuildCache,
 ) -> Result<(Arc<dyn Excitation>, f64)> {
-    let f0 = positive_opt(file, "incident.frequency", inc.frequency, None)?;
-    let cycles = positive_opt(file, "incident.cycles", inc.cycles, Some(15.0))?;
+    build_wave(inc, "incident", file, base_dir, xi_ref, cache)
+}
+
+/// [`build_incident_cached`] for the table at `prefix` (`incident`, `shear_incident`),
+/// applying its `delay`.
+pub(crate) fn build_wave(
+    inc: &IncidentSpec,
+    prefix: &str,
+    file: &str,
+    base_dir: &Path,
+    xi_ref: Option<&XiReference<'_>>,
+    cache: &BuildCache,
+) -> Result<(Arc<dyn Excitation>, f64)> {
+    let key = |k: &str| format!("{prefix}.{k}");
+    let f0 = positive_opt(file, &key("frequency"), inc.frequency, None)?;
+    let cycles = positive_opt(file, &key("cycles"), inc.cycles, Some(15.0))?;
     let window = match inc.window {
         WindowKind::Rectangular => Window::Rectangular,
         WindowKind::Hann => Window::Hann,
@@ -340,7 +525,7 @@ pub(crate) fn build_incident_cached(
             if !(r.is_finite() && r > 0.0 && r <= 0.5) {
                 return Err(Error::invalid(
                     file,
-                    "incident.ramp_fraction",
+                    key("ramp_fraction"),
                     r,
                     "must lie in (0, 0.5]",
                 ));
@@ -358,7 +543,7 @@ pub(crate) fn build_incident_cached(
         (Some(_), Some(_)) => {
             return Err(Error::invalid(
                 file,
-                "incident.xi",
+                key("xi"),
                 inc.xi.unwrap_or_default(),
                 "give either `amplitude` or `xi`, not both",
             ))
@@ -367,7 +552,7 @@ pub(crate) fn build_incident_cached(
             if !(a.is_finite() && a > 0.0) {
                 return Err(Error::invalid(
                     file,
-                    "incident.amplitude",
+                    key("amplitude"),
                     a,
                     "must be a finite number > 0 (Pa)",
                 ));
@@ -378,18 +563,18 @@ pub(crate) fn build_incident_cached(
             if !(x.is_finite() && x > 0.0) {
                 return Err(Error::invalid(
                     file,
-                    "incident.xi",
+                    key("xi"),
                     x,
                     "must be a finite number > 0",
                 ));
             }
             if p0 <= 0.0 {
-                let key = xi_ref.map_or("an interface", |r| r.pressure_key);
+                let p_key = xi_ref.map_or("an interface", |r| r.pressure_key);
                 return Err(Error::invalid(
                     file,
-                    "incident.xi",
+                    key("xi"),
                     x,
-                    format!("xi needs a static pressure > 0 ({key}); give `amplitude` instead"),
+                    format!("xi needs a static pressure > 0 ({p_key}); give `amplitude` instead"),
                 ));
             }
             Some(p0 * xf / (bf * x))
@@ -398,7 +583,7 @@ pub(crate) fn build_incident_cached(
             if inc.kind != IncidentKind::File {
                 return Err(Error::invalid(
                     file,
-                    "incident.amplitude",
+                    key("amplitude"),
                     "(missing)",
                     "give `amplitude` (Pa, > 0) or `xi` (> 0)",
                 ));
@@ -406,57 +591,57 @@ pub(crate) fn build_incident_cached(
             None
         }
     };
-    let exc: Arc<dyn Excitation> =
-        match inc.kind {
-            IncidentKind::ToneBurst => {
-                Arc::new(ToneBurst::new(amplitude.unwrap_or(0.0), f0, cycles, window))
-            }
-            IncidentKind::TwoTone => {
-                let f2 = positive_opt(file, "incident.frequency2", inc.frequency2, None)?;
-                if (f2 - f0).abs() <= 1e-9 * f0 {
-                    return Err(Error::invalid(
-                        file,
-                        "incident.frequency2",
-                        f2,
-                        "must differ from incident.frequency",
-                    ));
-                }
-                let r = positive_opt(
+    let exc: Arc<dyn Excitation> = match inc.kind {
+        IncidentKind::ToneBurst => {
+            Arc::new(ToneBurst::new(amplitude.unwrap_or(0.0), f0, cycles, window))
+        }
+        IncidentKind::TwoTone => {
+            let f2 = positive_opt(file, &key("frequency2"), inc.frequency2, None)?;
+            if (f2 - f0).abs() <= 1e-9 * f0 {
+                return Err(Error::invalid(
                     file,
-                    "incident.amplitude_ratio",
-                    inc.amplitude_ratio,
-                    Some(1.0),
-                )?;
-                Arc::new(TwoTone::new(
-                    amplitude.unwrap_or(0.0),
-                    f0,
+                    key("frequency2"),
                     f2,
-                    r,
-                    cycles,
-                    window,
-                ))
+                    "must differ from incident.frequency",
+                ));
             }
-            IncidentKind::File => {
-                let rel = inc.path.as_ref().ok_or_else(|| {
-                    Error::invalid(
-                        file,
-                        "incident.path",
-                        "(missing)",
-                        "a CSV file (time s, stress Pa) is required with kind = \"file\"",
-                    )
-                })?;
-                let p: PathBuf = base_dir.join(rel);
-                let cols = cache.columns(&p, "incident.path", FileWaveform::read)?;
-                let (t, s) = (&cols.0, &cols.1);
-                Arc::new(FileWaveform::new(t, s, f0, amplitude).ok_or_else(|| {
-                    Error::invalid(file, "incident.path", rel, "invalid waveform")
-                })?)
-            }
-        };
+            let r = positive_opt(
+                file,
+                &key("amplitude_ratio"),
+                inc.amplitude_ratio,
+                Some(1.0),
+            )?;
+            Arc::new(TwoTone::new(
+                amplitude.unwrap_or(0.0),
+                f0,
+                f2,
+                r,
+                cycles,
+                window,
+            ))
+        }
+        IncidentKind::File => {
+            let rel = inc.path.as_ref().ok_or_else(|| {
+                Error::invalid(
+                    file,
+                    key("path"),
+                    "(missing)",
+                    "a CSV file (time s, stress Pa) is required with kind = \"file\"",
+                )
+            })?;
+            let p: PathBuf = base_dir.join(rel);
+            let cols = cache.columns(&p, &key("path"), FileWaveform::read)?;
+            let (t, s) = (&cols.0, &cols.1);
+            Arc::new(
+                FileWaveform::new(t, s, f0, amplitude)
+                    .ok_or_else(|| Error::invalid(file, key("path"), rel, "invalid waveform"))?,
+            )
+        }
+    };
     if !(exc.peak() > 0.0) {
         return Err(Error::invalid(
             file,
-            "incident.path",
+            key("path"),
             "waveform",
             "the waveform is identically zero",
         ));
@@ -465,6 +650,20 @@ pub(crate) fn build_incident_cached(
         p0 * xf / (bf * exc.peak())
     } else {
         0.0
+    };
+    let delay = inc.delay.unwrap_or(0.0);
+    if !(delay.is_finite() && delay >= 0.0) {
+        return Err(Error::invalid(
+            file,
+            key("delay"),
+            delay,
+            "must be a finite time >= 0 (s)",
+        ));
+    }
+    let exc: Arc<dyn Excitation> = if delay > 0.0 {
+        Arc::new(crate::excitation::Delayed::new(exc, delay))
+    } else {
+        exc
     };
     Ok((exc, xi))
 }

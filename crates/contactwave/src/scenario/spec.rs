@@ -8,7 +8,8 @@ use serde::{Deserialize, Serialize};
 pub use crate::analysis::AnalysisMethod;
 
 pub use crate::law::spec::{
-    default_transition_pressure, default_zero_pressure_fraction, CompressionSpec, TractionSpec,
+    default_transition_pressure, default_zero_pressure_fraction, CompressionSpec, TangentialSpec,
+    TractionSpec,
 };
 
 /// A whole scenario file.
@@ -22,8 +23,12 @@ pub struct ScenarioSpec {
     pub counterpart: CounterpartSpec,
     /// The contact interface at x = 0.
     pub interface: InterfaceSpec,
-    /// The incident wave.
+    /// The incident longitudinal wave (may be left out when `shear_incident` is given).
+    #[serde(default)]
     pub incident: IncidentSpec,
+    /// An incident shear wave (model.md section 13), alone or with `incident`.
+    #[serde(default)]
+    pub shear_incident: Option<IncidentSpec>,
     /// Where the reflected wave is recorded.
     #[serde(default)]
     pub probe: ProbeSpec,
@@ -54,6 +59,15 @@ pub struct MaterialSpec {
     pub youngs_modulus: Option<f64>,
     /// Density, kg/m^3 (overrides the preset's).
     pub density: Option<f64>,
+    /// Poisson's ratio nu in (-1, 0.5): shear modulus `E / (2 (1 + nu))`.
+    pub poisson_ratio: Option<f64>,
+    /// Shear modulus G, Pa (instead of `poisson_ratio` or `ct`).
+    pub shear_modulus: Option<f64>,
+    /// Longitudinal wave speed, m/s: sets the modulus `rho cl^2` (instead of
+    /// `youngs_modulus`).
+    pub cl: Option<f64>,
+    /// Shear wave speed, m/s: sets `G = rho ct^2`.
+    pub ct: Option<f64>,
 }
 
 /// Kind of counterpart beyond the interface.
@@ -80,6 +94,15 @@ pub struct CounterpartSpec {
     pub youngs_modulus: Option<f64>,
     /// Density of medium 2, kg/m^3.
     pub density: Option<f64>,
+    /// Poisson's ratio nu in (-1, 0.5): shear modulus `E / (2 (1 + nu))`.
+    pub poisson_ratio: Option<f64>,
+    /// Shear modulus G, Pa (instead of `poisson_ratio` or `ct`).
+    pub shear_modulus: Option<f64>,
+    /// Longitudinal wave speed, m/s: sets the modulus `rho cl^2` (instead of
+    /// `youngs_modulus`).
+    pub cl: Option<f64>,
+    /// Shear wave speed, m/s: sets `G = rho ct^2`.
+    pub ct: Option<f64>,
 }
 
 /// The interface: static pressure and the two branches of the contact law.
@@ -94,6 +117,12 @@ pub struct InterfaceSpec {
     /// Traction branch (default: free, unilateral contact).
     #[serde(default)]
     pub traction: TractionSpec,
+    /// Static shear stress q0, Pa (default 0; `|q0| <= mu p0` with friction).
+    #[serde(default)]
+    pub static_shear: f64,
+    /// Tangential branch (default: free sliding).
+    #[serde(default)]
+    pub tangential: TangentialSpec,
 }
 
 /// Kind of incident wave.
@@ -148,6 +177,19 @@ pub struct IncidentSpec {
     pub ramp_fraction: Option<f64>,
     /// CSV file (time s, stress Pa) for `kind = "file"`, relative to the scenario file.
     pub path: Option<String>,
+    /// Arrival of the wave's front at the interface, s (default 0).
+    pub delay: Option<f64>,
+}
+
+impl IncidentSpec {
+    /// Whether the table gives no wave at all (every key left out).
+    pub fn is_absent(&self) -> bool {
+        self.frequency.is_none()
+            && self.amplitude.is_none()
+            && self.xi.is_none()
+            && self.path.is_none()
+            && self.cycles.is_none()
+    }
 }
 
 /// The probe where the reflected wave is recorded.

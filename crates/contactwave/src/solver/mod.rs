@@ -25,6 +25,7 @@
 //! ```
 
 pub mod barstack;
+pub mod coupled;
 pub mod halfspace;
 pub mod halfspace_fd;
 pub mod interface;

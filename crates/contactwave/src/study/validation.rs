@@ -3,6 +3,8 @@
 //! exact identity, or a published finding (model.md section 7). The same cases are
 //! asserted, with more detail, by the test suite.
 
+pub mod shear;
+
 use crate::analysis::fit::fit_power_law;
 use crate::analysis::AnalysisMethod;
 use crate::analytic::{Bilinear, Perturbation};
@@ -437,6 +439,7 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
     v.push(fd_vs_exact()?);
     v.extend(table2_fit());
     v.extend(weak_nonlinearity()?);
+    v.extend(shear::run_all()?);
     Ok(v)
 }
 

@@ -10,6 +10,8 @@
 //! | `waves.svg` | incident and reflected stress at the probe |
 //! | `spectrum.svg` | spectra in dB relative to the incident peak, with markers at the harmonics n f0 |
 //! | `stress_gap.svg` | contact stress against gap over the run (the hysteresis loop) |
+//! | `shear.csv` | with a tangential part: `t,shear_gap,slip,shear_stress,friction_limit,slip_state,shear_incident_stress,shear_reflected_stress,shear_transmitted_stress`: s, m, m, Pa, Pa, -, Pa, Pa, Pa (slip_state 0 stick, +-1 slipping, empty free) |
+//! | `shear_loop.svg` | with a tangential part: shear stress against tangential gap (the friction hysteresis loop) and the friction limit +-mu N against time |
 //!
 //! The SVG files (and the functions that draw them) need the `plot` feature (on by
 //! default); without it a run has its JSON and CSV files only.
@@ -26,6 +28,30 @@ pub const TIMESERIES_HEADER: &str =
 /// Header of `probe.csv`.
 pub const PROBE_HEADER: &str =
     "t,incident_stress,reflected_stress,incident_velocity,reflected_velocity,displacement";
+/// Header of `shear.csv`.
+pub const SHEAR_HEADER: &str = "t,shear_gap,slip,shear_stress,friction_limit,slip_state,\
+shear_incident_stress,shear_reflected_stress,shear_transmitted_stress";
+
+/// `shear.csv` of a run with a tangential part (interface values, SI); `None` without.
+pub fn shear_csv(result: &RunResult) -> Option<String> {
+    let sh = result.shear.as_ref()?;
+    let o = &sh.interface;
+    Some(csv_columns(
+        SHEAR_HEADER,
+        &[
+            &o.t,
+            &o.gap,
+            &sh.slip,
+            &o.contact_stress,
+            &sh.friction_limit,
+            &sh.slip_state,
+            &o.incident_stress,
+            &o.reflected_stress,
+            &o.transmitted_stress,
+        ],
+    ))
+}
+
 /// Header of `spectrum.csv`.
 pub const SPECTRUM_HEADER: &str = "frequency,incident,reflected";
 
@@ -83,6 +109,9 @@ pub fn run_files(result: &RunResult) -> Result<Vec<OutputFile>> {
         OutputFile::new("probe.csv", probe_csv(result)),
         OutputFile::new("spectrum.csv", spectrum_csv(result)),
     ];
+    if let Some(csv) = shear_csv(result) {
+        files.push(OutputFile::new("shear.csv", csv));
+    }
     files.extend(figures(result)?);
     Ok(files)
 }
@@ -90,12 +119,16 @@ pub fn run_files(result: &RunResult) -> Result<Vec<OutputFile>> {
 /// The SVG files of a run, rendered in memory (none without the `plot` feature).
 #[cfg(feature = "plot")]
 pub fn figures(result: &RunResult) -> Result<Vec<OutputFile>> {
-    Ok(vec![
+    let mut v = vec![
         OutputFile::new("time_histories.svg", time_histories(result)?),
         OutputFile::new("waves.svg", waves(result)?),
         OutputFile::new("spectrum.svg", spectrum(result, result.fundamental)?),
         OutputFile::new("stress_gap.svg", stress_gap(result)?),
-    ])
+    ];
+    if result.shear.is_some() {
+        v.push(OutputFile::new("shear_loop.svg", shear_loop(result)?));
+    }
+    Ok(v)
 }
 
 /// The SVG files of a run, rendered in memory (none without the `plot` feature).
@@ -246,6 +279,66 @@ pub fn stress_gap(r: &RunResult) -> Result<String> {
                 points: stride(&gap, &st),
                 color: color(0),
             }],
+            &[],
+            None,
+        )
+    })
+}
+
+/// `shear_loop.svg`: shear stress against tangential gap (the friction loop, left) and
+/// shear stress with the friction limit `+-mu N` against time (right).
+#[cfg(feature = "plot")]
+pub fn shear_loop(r: &RunResult) -> Result<String> {
+    let Some(sh) = &r.shear else {
+        return Ok(String::new());
+    };
+    let o = &sh.interface;
+    let (gap, gu) = scaled(&o.gap, "m");
+    let (tk, tp) = prefix(max_abs(&o.t));
+    let ss = max_abs(&o.contact_stress).max(max_abs(&sh.friction_limit));
+    let (sk, sp) = prefix(ss);
+    let (tu, su) = (format!("{tp}s"), format!("{sp}Pa"));
+    let t: Vec<f64> = o.t.iter().map(|v| v * tk).collect();
+    let tau: Vec<f64> = o.contact_stress.iter().map(|v| v * sk).collect();
+    let lim: Vec<f64> = sh.friction_limit.iter().map(|v| v * sk).collect();
+    let neg: Vec<f64> = lim.iter().map(|v| -v).collect();
+    render("shear_loop.svg", (1100, 480), |root| {
+        let (left, right) = root.split_horizontally(550);
+        panel(
+            &left,
+            "Shear stress against tangential gap",
+            &format!("tangential gap [u]_T, {gu}"),
+            &format!("shear stress tau, {su}"),
+            &[Curve {
+                label: String::new(),
+                points: stride(&gap, &tau),
+                color: color(0),
+            }],
+            &[],
+            None,
+        )?;
+        panel(
+            &right,
+            "Shear stress and friction limit",
+            &format!("time, {tu}"),
+            &format!("stress, {su}"),
+            &[
+                Curve {
+                    label: "tau".into(),
+                    points: decimate(&t, &tau),
+                    color: color(0),
+                },
+                Curve {
+                    label: "+mu N".into(),
+                    points: decimate(&t, &lim),
+                    color: color(1),
+                },
+                Curve {
+                    label: "-mu N".into(),
+                    points: decimate(&t, &neg),
+                    color: color(1),
+                },
+            ],
             &[],
             None,
         )

@@ -5,6 +5,7 @@
 
 pub mod files;
 pub mod methods;
+pub mod shear;
 mod simulate;
 
 pub use simulate::{half_space, settings, simulate, simulate_summary, ProbeSeries, RunResult};
@@ -118,7 +119,10 @@ impl Outcome for RunResult {
     /// Interface arrays (`t`, `gap`, ...), probe arrays (`probe_t`, ...), `summary`,
     /// `spectrum` (frequency, incident, reflected), `incident_bands` / `reflected_bands`
     /// (m/s), `A_inc` (m/s), `dt` (s), `probe_x` (m), `analysis_method` (name) and
-    /// `floor_bands` (the method on the linear response, m/s).
+    /// `floor_bands` (the method on the linear response, m/s); with a tangential part also
+    /// `shear_gap` (m), `shear_stress`, `shear_incident_stress`, `shear_reflected_stress`,
+    /// `shear_transmitted_stress` (Pa), `slip` (m), `friction_limit` (Pa), `slip_state`,
+    /// `shear_reflected_bands` / `shear_transmitted_bands` (m/s), `shear_A_inc` (m/s).
     fn record(&self) -> Record {
         let o = &self.interface;
         let p = &self.probe;
@@ -128,7 +132,7 @@ impl Outcome for RunResult {
             .len()
             .min(self.reflected_spectrum.magnitude.len());
         let cut = |v: &[f64]| Value::Array(v[..n.min(v.len())].to_vec());
-        Record::new()
+        let r = Record::new()
             .with("kind", Value::Text(KIND.name().into()))
             .with("dt", o.dt.into())
             .with("t", o.t.clone().into())
@@ -176,29 +180,84 @@ impl Outcome for RunResult {
             .with(
                 "floor_bands",
                 bands_record(&self.floor_bands, self.two_tone).into(),
-            )
+            );
+        match &self.shear {
+            Some(sh) => {
+                let o = &sh.interface;
+                r.with("shear_gap", o.gap.clone().into())
+                    .with("shear_stress", o.contact_stress.clone().into())
+                    .with("shear_incident_stress", o.incident_stress.clone().into())
+                    .with("shear_reflected_stress", o.reflected_stress.clone().into())
+                    .with(
+                        "shear_transmitted_stress",
+                        o.transmitted_stress.clone().into(),
+                    )
+                    .with("slip", sh.slip.clone().into())
+                    .with("friction_limit", sh.friction_limit.clone().into())
+                    .with("slip_state", sh.slip_state.clone().into())
+                    .with(
+                        "shear_reflected_bands",
+                        bands_record(&sh.reflected_bands, false).into(),
+                    )
+                    .with(
+                        "shear_transmitted_bands",
+                        bands_record(&sh.transmitted_bands, false).into(),
+                    )
+                    .with("shear_A_inc", sh.a_inc.into())
+            }
+            None => r,
+        }
     }
 
     fn report(&self) -> Vec<String> {
         let get = |k: &str| self.summary.get(k).unwrap_or(f64::NAN);
-        let mut lines = vec![
-            format!("xi                     {:.6}", get("xi")),
-            format!("A1/Ainc                {:.6e}", get("A1_over_Ainc")),
-            format!("A2/Ainc                {:.6e}", get("A2_over_Ainc")),
-            format!("A2/A1                  {:.6e}", get("A2_over_A1")),
+        let mut lines = Vec::new();
+        if self.a_inc > 0.0 {
+            lines.extend([
+                format!("xi                     {:.6}", get("xi")),
+                format!("A1/Ainc                {:.6e}", get("A1_over_Ainc")),
+                format!("A2/Ainc                {:.6e}", get("A2_over_Ainc")),
+                format!("A2/A1                  {:.6e}", get("A2_over_A1")),
+            ]);
+        }
+        lines.extend([
             format!("beta_end               {:.6}", get("beta_end")),
             format!("contact loss fraction  {:.6}", get("contact_loss_fraction")),
-            format!("energy closure error   {:.3e}", get("energy_closure_error")),
-            format!("analysis method        {}", self.method.name()),
-        ];
-        let near = crate::analysis::harmonics_near_floor(&self.summary);
-        if !near.is_empty() {
-            let names: Vec<String> = near.iter().map(|n| format!("A{n}")).collect();
-            lines.push(format!(
-                "warning: {} within a factor 10 of the analysis floor ({} on the linear response; A*_floor_over_Ainc); pulse_inversion or linear_reference remove the leakage floor",
-                names.join(", "),
-                self.method.name()
-            ));
+        ]);
+        if self.shear.is_some() {
+            lines.extend([
+                format!("mu p0 / tau_inc        {:.6}", get("friction_ratio")),
+                format!("shear A1/Ainc (refl.)  {:.6e}", get("shear_A1_over_Ainc")),
+                format!("shear A3/A1 (refl.)    {:.6e}", get("shear_A3_over_A1")),
+                format!("slip fraction          {:.6}", get("slip_fraction")),
+                format!(
+                    "friction dissipation   {:.6e} J/m^2 ({:.4} of incident)",
+                    get("friction_dissipation"),
+                    get("friction_dissipation_fraction")
+                ),
+            ]);
+            if self.summary.get("shear_tr_A3_over_A1").is_some() {
+                lines.push(format!(
+                    "shear A3/A1 (transm.)  {:.6e}",
+                    get("shear_tr_A3_over_A1")
+                ));
+            }
+        }
+        lines.push(format!(
+            "energy closure error   {:.3e}",
+            get("energy_closure_error")
+        ));
+        if self.a_inc > 0.0 {
+            lines.push(format!("analysis method        {}", self.method.name()));
+            let near = crate::analysis::harmonics_near_floor(&self.summary);
+            if !near.is_empty() {
+                let names: Vec<String> = near.iter().map(|n| format!("A{n}")).collect();
+                lines.push(format!(
+                    "warning: {} within a factor 10 of the analysis floor ({} on the linear response; A*_floor_over_Ainc); pulse_inversion or linear_reference remove the leakage floor",
+                    names.join(", "),
+                    self.method.name()
+                ));
+            }
         }
         lines
     }

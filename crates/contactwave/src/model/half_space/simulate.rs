@@ -65,6 +65,8 @@ pub struct RunResult {
     pub method: crate::analysis::AnalysisMethod,
     /// Scalars of `summary.json`.
     pub summary: Summary,
+    /// The tangential results, for scenarios with a tangential part (model.md section 13).
+    pub shear: Option<super::shear::ShearResult>,
 }
 
 /// The half-space problem of a scenario.
@@ -117,9 +119,39 @@ pub fn settings(scenario: &Scenario) -> HalfSpaceSettings {
 /// The summary has the keys of [`simulate`]'s except the incident burst's own ratios
 /// (`incident_A*_over_Ainc`).
 pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
+    if let Some(sh) = &scenario.shear {
+        let (out, shear) = super::shear::solve(scenario, sh)?;
+        let analysis = analyse(scenario, &out)?;
+        let mut s = summarise(scenario, &out, None, &analysis);
+        super::shear::set_summary(&mut s, scenario, sh, &shear);
+        return Ok(s);
+    }
     let out = solve_with(scenario, true)?;
-    let analysis = methods::analyse(scenario, &out, |s| solve_with(s, true))?;
+    let analysis = analyse(scenario, &out)?;
     Ok(summarise(scenario, &out, None, &analysis))
+}
+
+/// The normal histories of a scenario (through the coupled solver when it has a
+/// tangential part), recording only what the analysis reads.
+fn solve_normal(scenario: &Scenario) -> Result<HalfSpaceOutput> {
+    match &scenario.shear {
+        Some(sh) => Ok(super::shear::solve(scenario, sh)?.0),
+        None => solve_with(scenario, true),
+    }
+}
+
+/// The reflected longitudinal wave analysed by the scenario's method (nothing to analyse
+/// when the scenario has only a shear wave).
+fn analyse(scenario: &Scenario, out: &HalfSpaceOutput) -> Result<methods::Analysis> {
+    if scenario.incident.peak() > 0.0 {
+        methods::analyse(scenario, out, solve_normal)
+    } else {
+        Ok(methods::Analysis {
+            method: scenario.spec.analysis.method,
+            bands: BandAmplitudes::default(),
+            floor: BandAmplitudes::default(),
+        })
+    }
 }
 
 fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
@@ -147,10 +179,19 @@ fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
 /// assert!(r.summary.get("A2_over_Ainc").unwrap() > 0.05);
 /// ```
 pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
-    let out = solve(scenario)?;
+    let (out, shear) = match &scenario.shear {
+        Some(sh) => {
+            let (out, r) = super::shear::solve(scenario, sh)?;
+            (out, Some(r))
+        }
+        None => (solve(scenario)?, None),
+    };
     let inc = bands(scenario, &out.incident_displacement, out.dt);
-    let analysis = methods::analyse(scenario, &out, |s| solve_with(s, true))?;
-    let summary = summarise(scenario, &out, Some(&inc), &analysis);
+    let analysis = analyse(scenario, &out)?;
+    let mut summary = summarise(scenario, &out, Some(&inc), &analysis);
+    if let (Some(sh), Some(r)) = (&scenario.shear, &shear) {
+        super::shear::set_summary(&mut summary, scenario, sh, r);
+    }
     let f_max = 6.0 * scenario.incident.highest_frequency();
     let vr = cell_velocity(&out.reflected_displacement, out.dt);
     let vi = cell_velocity(&out.incident_displacement, out.dt);
@@ -175,6 +216,7 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
         floor_bands: analysis.floor,
         method: analysis.method,
         summary,
+        shear,
     })
 }
 
@@ -238,7 +280,9 @@ fn summarise(
     s.set("frequency", scenario.incident.fundamental());
     s.set("A_inc", a_inc);
     let two_tone = scenario.incident.second_frequency().is_some();
-    set_reflected_harmonics(&mut s, refl, a_inc, two_tone, inc);
+    if a_inc > 0.0 {
+        set_reflected_harmonics(&mut s, refl, a_inc, two_tone, inc);
+    }
     s.set("beta_end", out.beta.last().copied().unwrap_or(1.0));
     s.set("max_gap", out.max_gap);
     s.set(
@@ -255,6 +299,8 @@ fn summarise(
     s.set("adhesion_energy_decrease", e.adhesion_decrease);
     s.set("events", out.events as f64);
     s.set("duration_simulated", out.t.last().copied().unwrap_or(0.0));
-    set_analysis_keys(&mut s, analysis.method, refl, &analysis.floor, a_inc);
+    if a_inc > 0.0 {
+        set_analysis_keys(&mut s, analysis.method, refl, &analysis.floor, a_inc);
+    }
     s
 }

@@ -50,6 +50,7 @@ pub(super) fn build_segments(specs: &[SegmentSpec], area: f64, file: &str) -> Re
                 material: s.material.clone(),
                 youngs_modulus: s.youngs_modulus,
                 density: s.density,
+                ..Default::default()
             },
             file,
             &format!("segment[{i}]"),
@@ -58,6 +59,9 @@ pub(super) fn build_segments(specs: &[SegmentSpec], area: f64, file: &str) -> Re
             pos(file, &key("mass"), mass)?;
             let rho_eq = mass / (area * s.length);
             mat.youngs_modulus *= rho_eq / mat.density;
+            if let Some(g) = mat.shear_modulus.as_mut() {
+                *g *= rho_eq / mat.density;
+            }
             mat.density = rho_eq;
             crate::scenario::check_derived(&mat, file, &format!("segment[{i}]"))?;
         }

@@ -1,0 +1,36 @@
+//! The tangential half of the full RCCM law (Raous-Cangemi-Cocu-Monerie; thesis chapter 1,
+//! "The constitutive parameters", Figure 5): an adhesive spring `beta^2 C_T [u]_T` in
+//! parallel with rigid-stick Coulomb friction on the non-adhesive part of the normal
+//! reaction, `|tau - q0 - beta^2 C_T [u]_T| <= mu N`. The adhesion `beta` is the traction
+//! branch's (RCCM): its free energy gains `beta^2 C_T [u]_T^2 / 2`, so that damage is
+//! driven by `w - beta (C_N d^2 + C_T [u]_T^2)`. With the adhesion gone the law is
+//! Signorini (or the compression branch) with Coulomb friction.
+
+use crate::law::TangentialBranch;
+
+/// Tangential RCCM branch.
+#[derive(Debug, Clone, Copy)]
+pub struct Rccm {
+    /// Initial tangential stiffness C_T, Pa/m (>= 0).
+    pub stiffness: f64,
+    /// Friction coefficient mu (>= 0).
+    pub friction: f64,
+}
+
+impl TangentialBranch for Rccm {
+    fn name(&self) -> &'static str {
+        "rccm"
+    }
+    fn spring_stiffness(&self, adhesion: f64) -> f64 {
+        adhesion * adhesion * self.stiffness
+    }
+    fn spring_stiffness_d_adhesion(&self, adhesion: f64) -> f64 {
+        2.0 * adhesion * self.stiffness
+    }
+    fn friction(&self) -> f64 {
+        self.friction
+    }
+    fn needs_adhesion(&self) -> bool {
+        true
+    }
+}

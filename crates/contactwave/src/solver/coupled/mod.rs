@@ -1,0 +1,641 @@
+//! Exact solver of the half-space problem with two degrees of freedom (model.md section
+//! 13): a normal gap `[u]_N` and a tangential gap `[u]_T`, driven by a normally incident
+//! longitudinal wave `s_inc`, a shear wave `tau_inc`, or both, under a static pressure p0
+//! and a static shear q0.
+//!
+//! d'Alembert's solution reduces the problem exactly to two ODEs at the interface,
+//!
+//! ```text
+//! d[u]_N/dt = 2 s_inc/Z1  - (sigma + p0) (1/Z1  + 1/Z2)
+//! d[u]_T/dt = 2 tau_inc/Z1T - (tau - q0)  (1/Z1T + 1/Z2T)
+//! ```
+//!
+//! coupled through the contact law: Coulomb friction `|tau_f| <= mu N` takes the normal
+//! contact pressure N, and the full RCCM law's damage is driven by the energy of both gaps.
+//! Each phase (normal: held, compression, traction; tangential: free, stick, slip in each
+//! direction; damage on or off) is integrated with the 3-stage Radau IIA method on the
+//! output grid, split at the waveforms' breakpoints; every switch (opening, closing, stick
+//! to slip, slip reversal and arrest, damage onset and arrest) is located by a bracketing
+//! root-finder on its event function. Rigid branches hold their gap exactly and give the
+//! constraint stress. Energies (fluxes, stored, damage, friction) are integrated with the
+//! same quadrature, so the audit closes to the integration error.
+
+mod state;
+pub mod stepper;
+
+use self::state::{Eval, Interface, Normal, Phase, Scales, Tangential};
+use self::stepper::N;
+use super::halfspace::{HalfSpace, HalfSpaceSettings};
+use super::output::{EnergyAudit, HalfSpaceOutput};
+use super::radau::{B, C};
+use super::Solver;
+use crate::error::{Error, Result};
+use crate::excitation::Excitation;
+use crate::law::TangentialLaw;
+use crate::numeric::root::brent_past;
+use std::sync::Arc;
+
+/// The coupled problem: the normal half-space problem plus shear impedances, the
+/// tangential law and the incident shear wave.
+#[derive(Debug, Clone)]
+pub struct CoupledHalfSpace {
+    /// Normal problem: media, normal law, incident longitudinal wave.
+    pub normal: HalfSpace,
+    /// Shear impedance of medium 1 `Z1T = rho1 c_T1`, Pa s/m.
+    pub z1t: f64,
+    /// Shear impedance of medium 2, Pa s/m (`inf`: rigid wall).
+    pub z2t: f64,
+    /// Tangential law (static shear q0 and branch).
+    pub tangential: Arc<TangentialLaw>,
+    /// Incident shear stress at the interface `tau_inc(t)`, Pa.
+    pub shear_incident: Arc<dyn Excitation>,
+}
+
+/// Histories of a coupled run.
+#[derive(Debug, Clone, Default)]
+pub struct CoupledOutput {
+    /// Normal histories (the same form as the normal-only solver's).
+    pub normal: HalfSpaceOutput,
+    /// Tangential histories in the same form: `gap` is `[u]_T` (m), `contact_stress` the
+    /// shear stress tau (Pa, q0 at rest), incident/reflected/transmitted the shear
+    /// stresses and displacements; `energy` holds the shear fluxes and the tangential
+    /// stored energy.
+    pub shear: HalfSpaceOutput,
+    /// Accumulated slip s, m (equal to `[u]_T` for rigid stick).
+    pub slip: Vec<f64>,
+    /// Friction limit `mu N`, Pa.
+    pub friction_limit: Vec<f64>,
+    /// Slider state at each sample: 0 stick, +1 / -1 slipping in that direction, NaN
+    /// free (no friction load).
+    pub slip_state: Vec<f64>,
+    /// Energy dissipated by friction `int tau_f ds`, J/m^2.
+    pub friction_dissipation: f64,
+    /// Work of the static shear through the final slip, `q0 s_end`, J/m^2.
+    pub static_shear_work: f64,
+    /// Time spent slipping while a burst was at the interface, s.
+    pub slip_time_in_burst: f64,
+    /// Number of stick/slip switches located.
+    pub slip_events: usize,
+}
+
+impl CoupledOutput {
+    /// Energy brought by both incident waves, J/m^2.
+    pub fn incident_energy(&self) -> f64 {
+        self.normal.energy.incident + self.shear.energy.incident
+    }
+
+    /// Relative closure error of the energy audit: incident - reflected - transmitted
+    /// (both wave types) against stored + damage + friction - q0 s_end.
+    pub fn closure_error(&self) -> f64 {
+        let n = &self.normal.energy;
+        let s = &self.shear.energy;
+        let flux =
+            n.incident - n.reflected - n.transmitted + s.incident - s.reflected - s.transmitted;
+        let sink =
+            n.stored + s.stored + n.damage + self.friction_dissipation - self.static_shear_work;
+        (flux - sink).abs() / self.incident_energy().max(f64::MIN_POSITIVE)
+    }
+}
+
+/// The coupled exact solver as a [`Solver`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct CoupledSolver {
+    /// Sampling and tail settings (`summary_only` is ignored: every history is kept).
+    pub settings: HalfSpaceSettings,
+}
+
+impl Solver for CoupledSolver {
+    type Problem = CoupledHalfSpace;
+    type Output = CoupledOutput;
+    fn solve(&self, problem: &CoupledHalfSpace) -> Result<CoupledOutput> {
+        Runner::new(problem, &self.settings).run()
+    }
+}
+
+/// Running integrals.
+#[derive(Debug, Default, Clone, Copy)]
+struct Acc {
+    e_inc: [f64; 2],
+    e_ref: [f64; 2],
+    e_tr: [f64; 2],
+    disp_inc: [f64; 2],
+    disp_ref: [f64; 2],
+    disp_tr: [f64; 2],
+    damage: f64,
+    friction: f64,
+    open_in_burst: f64,
+    slip_in_burst: f64,
+}
+
+struct Runner<'a> {
+    p: &'a CoupledHalfSpace,
+    settings: HalfSpaceSettings,
+    iface: Interface<'a>,
+    scales: Scales,
+    h: f64,
+    f0: f64,
+    duration: f64,
+    breaks: Vec<f64>,
+    events: usize,
+    slip_events: usize,
+    max_gap: f64,
+}
+
+fn inv(z: f64) -> f64 {
+    if z.is_finite() {
+        1.0 / z
+    } else {
+        0.0
+    }
+}
+
+impl<'a> Runner<'a> {
+    fn new(p: &'a CoupledHalfSpace, settings: &HalfSpaceSettings) -> Self {
+        let hs = &p.normal;
+        let law = &*hs.law;
+        let tl = &*p.tangential;
+        let (sn, st) = (hs.incident.peak(), p.shear_incident.peak());
+        let primary: &dyn Excitation = if sn > 0.0 || st == 0.0 {
+            &*hs.incident
+        } else {
+            &*p.shear_incident
+        };
+        let f0 = primary.fundamental();
+        let fmax = hs
+            .incident
+            .highest_frequency()
+            .max(p.shear_incident.highest_frequency());
+        let h = 1.0 / (settings.samples_per_period.max(1) as f64 * fmax);
+        let duration = hs.incident.duration().max(p.shear_incident.duration());
+        let mut breaks: Vec<f64> = hs
+            .incident
+            .breakpoints()
+            .into_iter()
+            .chain(p.shear_incident.breakpoints())
+            .filter(|b| b.is_finite() && *b > 0.0)
+            .collect();
+        breaks.sort_by(f64::total_cmp);
+        breaks.dedup();
+        let k_n = 1.0 / hs.z1 + inv(hs.z2);
+        let k_t = 1.0 / p.z1t + inv(p.z2t);
+        let stress = sn
+            .max(st)
+            .max(law.static_pressure)
+            .max(tl.static_shear.abs())
+            .max(1.0);
+        let omega = 2.0 * std::f64::consts::PI * f0;
+        let velocity = stress * k_n.max(k_t);
+        let gap = velocity / omega;
+        let scales = Scales {
+            stress,
+            gap,
+            velocity,
+            energy: stress * gap,
+            power: stress * velocity,
+        };
+        let rigid_c = law.compression.is_rigid();
+        let mu = tl.branch.friction();
+        let phase = Phase {
+            normal: if rigid_c {
+                Normal::Held
+            } else {
+                Normal::Compression
+            },
+            tangential: if mu > 0.0 && law.static_pressure > 0.0 {
+                Tangential::Stick
+            } else {
+                Tangential::Free
+            },
+            damaging: false,
+        };
+        let iface = Interface {
+            law,
+            tangential: tl,
+            s_inc: &*hs.incident,
+            tau_inc: &*p.shear_incident,
+            two_over_z1: 2.0 / hs.z1,
+            k_n,
+            two_over_z1t: 2.0 / p.z1t,
+            k_t,
+            uc: law.critical_gap(),
+            held_gap: 0.0,
+            beta_frozen: 1.0,
+            slip: 0.0,
+            phase,
+            fd_dt: 1e-4 * h,
+        };
+        Runner {
+            p,
+            settings: *settings,
+            iface,
+            scales,
+            h,
+            f0,
+            duration,
+            breaks,
+            events: 0,
+            slip_events: 0,
+            max_gap: 0.0,
+        }
+    }
+
+    fn y_scale(&self) -> [f64; N] {
+        [self.scales.gap, 1.0, self.scales.gap]
+    }
+
+    /// One step of the current phase; split in halves when Newton fails.
+    fn step(&self, t: f64, y: &[f64; N], h: f64, depth: usize) -> Result<stepper::Step> {
+        let active = self.iface.active();
+        if let Some(s) = stepper::step(&self.iface, t, y, h, active, self.y_scale()) {
+            return Ok(s);
+        }
+        if depth >= 30 {
+            return Err(Error::numerical(
+                t,
+                format!("coupled interface solver: Newton iteration failed (step {h:e} s)"),
+                format!("y = {y:?}, phase {:?}", self.iface.phase),
+            ));
+        }
+        let a = self.step(t, y, 0.5 * h, depth + 1)?;
+        let b = self.step(t + 0.5 * h, &a.end(), 0.5 * h, depth + 1)?;
+        // stages of the combined step are only used for quadrature of smooth integrands:
+        // take the end state and re-evaluate stage states by the halves' stages
+        Ok(stepper::Step {
+            stages: [a.stages[2], b.stages[1], b.stages[2]],
+        })
+    }
+
+    /// Integrals over a substep `[t, t + h]` from the stage values.
+    fn accumulate(&self, acc: &mut Acc, t: f64, h: f64, step: &stepper::Step) {
+        let hs = &self.p.normal;
+        let (z1, z2, z1t, z2t) = (hs.z1, hs.z2, self.p.z1t, self.p.z2t);
+        let p0 = self.iface.law.static_pressure;
+        let q0 = self.iface.tangential.static_shear;
+        let kt = self.iface.tangential.branch.stick_stiffness();
+        for j in 0..3 {
+            let w = h * B[j];
+            let tj = t + C[j] * h;
+            let y = step.stages[j];
+            let e = self.iface.eval(tj, &y);
+            let (sn, st) = (e.sigma + p0, e.tau - q0);
+            let (rn, rt) = (sn - e.s_inc, st - e.tau_inc);
+            acc.e_inc[0] += w * e.s_inc * e.s_inc / z1;
+            acc.e_inc[1] += w * e.tau_inc * e.tau_inc / z1t;
+            acc.e_ref[0] += w * rn * rn / z1;
+            acc.e_ref[1] += w * rt * rt / z1t;
+            acc.e_tr[0] += w * sn * sn * inv(z2);
+            acc.e_tr[1] += w * st * st * inv(z2t);
+            acc.disp_inc[0] -= w * e.s_inc / z1;
+            acc.disp_inc[1] -= w * e.tau_inc / z1t;
+            acc.disp_ref[0] += w * rn / z1;
+            acc.disp_ref[1] += w * rt / z1t;
+            acc.disp_tr[0] -= w * sn * inv(z2);
+            acc.disp_tr[1] -= w * st * inv(z2t);
+            // friction: tau_f ds/dt (the slider's work; zero while sticking)
+            let slip_rate = match self.iface.phase.tangential {
+                Tangential::Stick => 0.0,
+                _ => e.slip_rate,
+            };
+            acc.friction += w * e.tau_f * slip_rate;
+            let _ = kt;
+            // damage: dpsi/dbeta (-dbeta/dt)
+            if self.iface.phase.damaging {
+                let beta_dot = if e.rate[1] != 0.0 {
+                    e.rate[1]
+                } else {
+                    let d = self.iface.fd_dt;
+                    let mut yp = y;
+                    for i in 0..N {
+                        yp[i] += d * e.rate[i];
+                    }
+                    (self.iface.beta(&yp) - e.beta) / d
+                };
+                acc.damage += w * e.psi_beta * (-beta_dot).max(0.0);
+            }
+            if tj < self.duration {
+                if self.iface.phase.normal == Normal::Traction {
+                    acc.open_in_burst += w;
+                }
+                if matches!(self.iface.phase.tangential, Tangential::Slip(_)) {
+                    acc.slip_in_burst += w;
+                }
+            }
+        }
+    }
+
+    /// Slider stress of the current phase at `(t, y)`, Pa.
+    fn slider_stress(&self, t: f64, y: &[f64; N]) -> f64 {
+        self.iface.eval(t, y).tau_f
+    }
+
+    /// Switch the phase after event `which` fired at `(t, y)`; then make the phase
+    /// consistent (every event function >= 0 at `(t, y)`).
+    fn switch(&mut self, which: usize, t: f64, y: &mut [f64; N]) {
+        self.events += 1;
+        for round in 0..8 {
+            let comp = if round == 0 {
+                Some(which)
+            } else {
+                let e = self.iface.eval(t, y);
+                let g = self.iface.events(t, y, &e, &self.scales);
+                (0..3).find(|&k| g[k] < -1e-12)
+            };
+            let Some(k) = comp else { return };
+            self.switch_one(k, t, y);
+        }
+    }
+
+    fn switch_one(&mut self, k: usize, t: f64, y: &mut [f64; N]) {
+        let law = self.iface.law;
+        let uc = self.iface.uc;
+        match k {
+            0 => {
+                let before = self.iface.phase.normal;
+                let after = match before {
+                    Normal::Compression => {
+                        if law.traction.is_rigid() {
+                            self.iface.held_gap = uc;
+                            y[0] = uc;
+                            Normal::Held
+                        } else {
+                            Normal::Traction
+                        }
+                    }
+                    Normal::Traction => {
+                        if law.compression.is_rigid() {
+                            self.iface.held_gap = 0.0;
+                            y[0] = 0.0;
+                            Normal::Held
+                        } else {
+                            Normal::Compression
+                        }
+                    }
+                    Normal::Held => {
+                        if self.iface.held_gap == 0.0 && law.compression.is_rigid() {
+                            Normal::Traction
+                        } else {
+                            Normal::Compression
+                        }
+                    }
+                };
+                // the slider loses or regains its normal load
+                let tau_f = self.slider_stress(t, y);
+                self.iface.phase.normal = after;
+                let mu = self.iface.tangential.branch.friction();
+                if after == Normal::Traction {
+                    self.set_tangential(Tangential::Free, tau_f, y);
+                } else if before == Normal::Traction && mu > 0.0 {
+                    self.set_tangential(Tangential::Stick, tau_f, y);
+                }
+            }
+            1 => {
+                let e = self.iface.eval(t, y);
+                let next = match self.iface.phase.tangential {
+                    Tangential::Free => Tangential::Stick,
+                    Tangential::Stick => Tangential::Slip(if e.tau_f >= 0.0 { 1.0 } else { -1.0 }),
+                    Tangential::Slip(_) => Tangential::Stick,
+                };
+                self.slip_events += 1;
+                self.set_tangential(next, e.tau_f, y);
+            }
+            _ => {
+                let beta = self.iface.beta(y);
+                y[1] = beta;
+                self.iface.beta_frozen = beta;
+                self.iface.phase.damaging = !self.iface.phase.damaging;
+            }
+        }
+    }
+
+    /// Enter tangential phase `next`; `tau_f` is the slider stress just before.
+    fn set_tangential(&mut self, next: Tangential, tau_f: f64, y: &[f64; N]) {
+        let tl = self.iface.tangential;
+        let kt = tl.branch.stick_stiffness();
+        if next == Tangential::Stick {
+            self.iface.slip = if kt.is_finite() {
+                y[2] - (tau_f - tl.static_shear) / kt
+            } else {
+                y[2]
+            };
+        }
+        self.iface.phase.tangential = next;
+    }
+
+    /// Accumulated slip at `(t, y)` in the current phase.
+    fn slip_of(&self, e: &Eval, y: &[f64; N]) -> f64 {
+        let tl = self.iface.tangential;
+        let kt = tl.branch.stick_stiffness();
+        match self.iface.phase.tangential {
+            Tangential::Stick => self.iface.slip,
+            _ if kt.is_finite() => y[2] - (e.tau_f - tl.static_shear) / kt,
+            _ => y[2],
+        }
+    }
+
+    /// Advance from `t` to `t_end` (no breakpoint inside), locating events.
+    fn advance(&mut self, acc: &mut Acc, mut t: f64, t_end: f64, y: &mut [f64; N]) -> Result<()> {
+        let mut guard = 0usize;
+        while t < t_end {
+            guard += 1;
+            if guard > 10_000 {
+                return Err(Error::numerical(
+                    t,
+                    "coupled interface solver: more than 10000 events in one time step \
+                     (the contact state chatters)",
+                    format!("y = {y:?}, phase {:?}", self.iface.phase),
+                ));
+            }
+            let h = t_end - t;
+            let st = self.step(t, y, h, 0)?;
+            let yend = st.end();
+            let e_end = self.iface.eval(t_end, &yend);
+            let g_end = self.iface.events(t_end, &yend, &e_end, &self.scales);
+            let crossing: Vec<usize> = (0..3).filter(|&k| g_end[k] < -1e-12).collect();
+            if crossing.is_empty() {
+                self.accumulate(acc, t, h, &st);
+                *y = yend;
+                self.after_step(y);
+                return Ok(());
+            }
+            let e0 = self.iface.eval(t, y);
+            let g0 = self.iface.events(t, y, &e0, &self.scales);
+            // earliest root among the crossing events
+            let mut best: Option<(f64, usize)> = None;
+            for &k in &crossing {
+                let ga = g0[k].max(1e-300);
+                let f = |hh: f64| -> f64 {
+                    if hh <= 0.0 {
+                        return ga;
+                    }
+                    match self.step(t, y, hh, 0) {
+                        Ok(s) => {
+                            let ye = s.end();
+                            let e = self.iface.eval(t + hh, &ye);
+                            self.iface.events(t + hh, &ye, &e, &self.scales)[k]
+                        }
+                        Err(_) => f64::NAN,
+                    }
+                };
+                let root = brent_past(f, 0.0, h, ga, g_end[k], 200).unwrap_or(h);
+                if best.map_or(true, |(r, _)| root < r) {
+                    best = Some((root, k));
+                }
+            }
+            let (hh, k) = best.unwrap_or((h, crossing[0]));
+            let hh = hh.max(f64::EPSILON * t.abs().max(h));
+            let st = if hh >= h { st } else { self.step(t, y, hh, 0)? };
+            self.accumulate(acc, t, hh, &st);
+            *y = st.end();
+            t = if hh >= h { t_end } else { t + hh };
+            self.after_step(y);
+            self.switch(k, t, y);
+        }
+        Ok(())
+    }
+
+    /// Keep the frozen adhesion of a rate-independent damaging phase current.
+    fn after_step(&mut self, y: &mut [f64; N]) {
+        if self.iface.phase.damaging && self.iface.law.traction.damage_viscosity() == 0.0 {
+            let b = self.iface.beta(y);
+            y[1] = b;
+            self.iface.beta_frozen = b;
+        }
+        self.max_gap = self.max_gap.max(y[0]);
+    }
+
+    fn record(&self, out: &mut CoupledOutput, acc: &Acc, t: f64, y: &[f64; N]) {
+        let e = self.iface.eval(t, y);
+        let p0 = self.iface.law.static_pressure;
+        let q0 = self.iface.tangential.static_shear;
+        for (o, gap, stress, inc, dyn_stress, c) in [
+            (&mut out.normal, y[0], e.sigma, e.s_inc, e.sigma + p0, 0),
+            (&mut out.shear, y[2], e.tau, e.tau_inc, e.tau - q0, 1),
+        ] {
+            o.t.push(t);
+            o.beta.push(e.beta);
+            o.gap.push(gap);
+            o.contact_stress.push(stress);
+            o.incident_stress.push(inc);
+            o.reflected_stress.push(dyn_stress - inc);
+            o.transmitted_stress.push(dyn_stress);
+            o.reflected_displacement.push(acc.disp_ref[c]);
+            o.incident_displacement.push(acc.disp_inc[c]);
+            o.transmitted_displacement.push(acc.disp_tr[c]);
+        }
+        out.slip.push(self.slip_of(&e, y));
+        out.friction_limit
+            .push(self.iface.tangential.friction_limit(e.pressure));
+        out.slip_state.push(match self.iface.phase.tangential {
+            Tangential::Free => f64::NAN,
+            Tangential::Stick => 0.0,
+            Tangential::Slip(s) => s,
+        });
+    }
+
+    fn at_rest(&self, t: f64, y: &[f64; N]) -> bool {
+        let e = self.iface.eval(t, y);
+        let v = 1e-9 * self.scales.velocity;
+        !self.iface.phase.damaging
+            && e.rate[0].abs() < v
+            && e.rate[2].abs() < v
+            && (self.iface.phase.normal != Normal::Compression
+                || (y[0]).abs() < 1e-9 * self.scales.gap)
+    }
+
+    fn run(mut self) -> Result<CoupledOutput> {
+        let h = self.h;
+        let period = 1.0 / self.f0;
+        let (min_tail, max_tail) = match self.settings.tail_periods {
+            Some(p) => (p * period, p * period),
+            None => (3.0 * period, 400.0 * period),
+        };
+        let n_min = ((self.duration + min_tail) / h).ceil() as usize;
+        let n_max = ((self.duration + max_tail) / h).ceil() as usize;
+        let mut out = CoupledOutput::default();
+        out.normal.dt = h;
+        out.shear.dt = h;
+        out.normal.burst_duration = self.duration;
+        out.shear.burst_duration = self.duration;
+        let mut acc = Acc::default();
+        let mut y = [0.0, 1.0, 0.0];
+        // make the rest phase consistent (e.g. p0 = 0 with friction)
+        {
+            let e = self.iface.eval(0.0, &y);
+            let g = self.iface.events(0.0, &y, &e, &self.scales);
+            if let Some(k) = (0..3).find(|&k| g[k] < -1e-12) {
+                self.switch(k, 0.0, &mut y);
+                self.events = 0;
+            }
+        }
+        self.record(&mut out, &acc, 0.0, &y);
+        let breaks = std::mem::take(&mut self.breaks);
+        let mut bi = 0usize;
+        let mut k = 0usize;
+        let mut rest = 0usize;
+        while k < n_max {
+            let ta = k as f64 * h;
+            let tb = (k + 1) as f64 * h;
+            let mut t = ta;
+            while bi < breaks.len() && breaks[bi] <= ta {
+                bi += 1;
+            }
+            while bi < breaks.len() && breaks[bi] < tb {
+                self.advance(&mut acc, t, breaks[bi], &mut y)?;
+                t = breaks[bi];
+                bi += 1;
+            }
+            self.advance(&mut acc, t, tb, &mut y)?;
+            k += 1;
+            self.record(&mut out, &acc, tb, &y);
+            if k >= n_min && tb > self.duration {
+                if self.settings.tail_periods.is_some() {
+                    break;
+                }
+                if self.at_rest(tb, &y) {
+                    rest += 1;
+                    if rest as f64 * h >= period {
+                        break;
+                    }
+                } else {
+                    rest = 0;
+                }
+            }
+        }
+        let law = self.iface.law;
+        let tl = self.iface.tangential;
+        let e = self.iface.eval(k as f64 * h, &y);
+        let kt = tl.branch.stick_stiffness();
+        let series = if kt.is_finite() {
+            let f = e.tau_f - tl.static_shear;
+            0.5 * f * f / kt
+        } else {
+            0.0
+        };
+        out.normal.energy = EnergyAudit {
+            incident: acc.e_inc[0],
+            reflected: acc.e_ref[0],
+            transmitted: acc.e_tr[0],
+            stored: law.stored_energy(y[0], e.beta),
+            damage: acc.damage,
+            adhesion_decrease: law.traction.adhesion_energy(1.0)
+                - law.traction.adhesion_energy(e.beta),
+        };
+        out.shear.energy = EnergyAudit {
+            incident: acc.e_inc[1],
+            reflected: acc.e_ref[1],
+            transmitted: acc.e_tr[1],
+            stored: 0.5 * tl.branch.spring_stiffness(e.beta) * y[2] * y[2] + series,
+            damage: 0.0,
+            adhesion_decrease: 0.0,
+        };
+        out.friction_dissipation = acc.friction;
+        out.static_shear_work = tl.static_shear * self.slip_of(&e, &y);
+        out.normal.open_time_in_burst = acc.open_in_burst;
+        out.normal.max_gap = self.max_gap;
+        out.normal.events = self.events;
+        out.shear.events = self.slip_events;
+        out.slip_events = self.slip_events;
+        out.slip_time_in_burst = acc.slip_in_burst;
+        Ok(out)
+    }
+}
