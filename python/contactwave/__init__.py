@@ -190,6 +190,15 @@ class Result:
     :meth:`harmonics`' ``A1`` ...); ``dt``: time step (s); ``scenario``: the Scenario run.
     A summary with ``harmonic_floor_warning = 1`` makes :func:`run` emit a
     :class:`HarmonicFloorWarning`.
+
+    With a tangential part (a shear wave, a tangential law or a static shear; docs/model.md
+    section 13) ``shear`` is a dict of numpy arrays on the same time grid (the columns of
+    ``shear.csv``): ``shear_gap`` ([u]_T, m), ``slip`` (m), ``shear_stress`` (Pa),
+    ``friction_limit`` (mu N, Pa), ``slip_state`` (0 stick, +1/-1 slipping, NaN free),
+    ``shear_incident_stress``, ``shear_reflected_stress``, ``shear_transmitted_stress``
+    (Pa), plus ``shear_reflected_bands`` / ``shear_transmitted_bands`` (m/s) and
+    ``shear_A_inc`` (m/s); ``None`` otherwise. The summary then has the ``shear_*``,
+    ``friction_*`` and ``slip_*`` keys.
     """
 
     t: np.ndarray
@@ -225,6 +234,20 @@ class Result:
         "probe_displacement",
     )
 
+    _SHEAR = (
+        "shear_gap",
+        "slip",
+        "shear_stress",
+        "friction_limit",
+        "slip_state",
+        "shear_incident_stress",
+        "shear_reflected_stress",
+        "shear_transmitted_stress",
+        "shear_reflected_bands",
+        "shear_transmitted_bands",
+        "shear_A_inc",
+    )
+
     def __init__(self, raw: Dict[str, Any], scenario: Scenario) -> None:
         self.scenario = scenario
         for k in self._ARRAYS:
@@ -236,6 +259,9 @@ class Result:
         self._bands = (raw["incident_bands"], raw["reflected_bands"], raw["A_inc"])
         self.analysis_method: str = raw.get("analysis_method", "band_peak")
         self.floor: Dict[str, float] = dict(raw.get("floor_bands", {}))
+        self.shear: Optional[Dict[str, Any]] = None
+        if "shear_gap" in raw:
+            self.shear = {k: raw[k] for k in self._SHEAR if k in raw}
 
     def spectrum(self) -> Spectrum:
         """The spectra of ``spectrum.csv``: ``(frequency, incident, reflected)`` arrays."""
@@ -251,7 +277,7 @@ class Result:
         h: Dict[str, float] = dict(refl)
         h["A_inc"] = a_inc
         for n in range(1, 6):
-            h[f"A{n}_over_Ainc"] = refl[f"A{n}"] / a_inc
+            h[f"A{n}_over_Ainc"] = refl[f"A{n}"] / a_inc if a_inc > 0 else math.nan
         a1, a2 = refl["A1"], refl["A2"]
         h["A2_over_A1"] = a2 / a1 if a1 > 0 else 0.0
         h["beta_star"] = a2 / (a1 * a1) if a1 > 0 else 0.0
@@ -261,6 +287,12 @@ class Result:
 
     def __repr__(self) -> str:
         s = self.summary
+        if self.shear is not None and "A2_over_Ainc" not in s:
+            return (
+                f"Result(scenario={s.get('scenario')!r}, samples={len(self.t)}, "
+                f"friction_ratio={s.get('friction_ratio'):.6g}, "
+                f"shear_A3_over_A1={s.get('shear_A3_over_A1'):.6g})"
+            )
         return (
             f"Result(scenario={s.get('scenario')!r}, samples={len(self.t)}, "
             f"xi={s.get('xi'):.6g}, A2_over_Ainc={s.get('A2_over_Ainc'):.6g})"

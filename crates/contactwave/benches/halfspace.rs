@@ -5,7 +5,11 @@
 //!   amplitude 0.82 MPa), solver plus harmonic analysis, one thread;
 //! - `simulate_summary/unilateral_xi0.35`: unilateral contact (rigid x free) at xi = 0.35;
 //! - `xi_sweep/rccm_100_points`: 100 load ratios xi in [0.05, 1.2] of the RCCM scenario,
-//!   scenarios built beforehand, run with rayon `par_iter` on all cores.
+//!   scenarios built beforehand, run with rayon `par_iter` on all cores;
+//! - `shear_sweep/friction_ratio_100_points`: the coupled normal/tangential solver on 100
+//!   static pressures (mu p0 / tau_inc from 0.03 to 1.2) of a rigid-stick Coulomb interface
+//!   between aluminium half-spaces hit by a 15-cycle, 5 MPa, 1 MHz shear burst
+//!   (examples/shear/clipping.toml at 200 samples per period), on all cores.
 //!
 //! Sample sizes are small so that `cargo bench -p contactwave` finishes in a few minutes on
 //! two cores.
@@ -87,5 +91,46 @@ fn xi_sweep(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, single_runs, xi_sweep);
+/// A shear burst at a rigid-stick Coulomb interface (aluminium half-spaces, mu = 0.3).
+const SHEAR: &str = r#"
+[medium]
+material = "aluminium"
+[counterpart]
+kind = "medium"
+material = "aluminium"
+[interface]
+static_pressure = 10e6
+tangential = { law = "coulomb", friction = 0.3 }
+[shear_incident]
+frequency = 1e6
+cycles = 15
+amplitude = 5e6
+"#;
+
+fn shear_sweep(c: &mut Criterion) {
+    let n = SWEEP_POINTS;
+    let scenarios: Vec<Scenario> = (0..n)
+        .map(|i| {
+            let p0 = 0.5e6 + (20e6 - 0.5e6) * i as f64 / (n - 1) as f64;
+            let text = SHEAR.replace(
+                "static_pressure = 10e6",
+                &format!("static_pressure = {p0:?}"),
+            );
+            scenario(&text, "shear.toml")
+        })
+        .collect();
+    let mut g = c.benchmark_group("shear_sweep");
+    g.sample_size(10).measurement_time(Duration::from_secs(10));
+    g.bench_function("friction_ratio_100_points", |b| {
+        b.iter(|| {
+            scenarios
+                .par_iter()
+                .map(|s| simulate_summary(s).expect("run succeeds"))
+                .collect::<Vec<_>>()
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, single_runs, xi_sweep, shear_sweep);
 criterion_main!(benches);

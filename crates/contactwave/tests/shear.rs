@@ -305,3 +305,45 @@ fn every_tangential_validation_case_passes() {
         assert!(c.passed(), "{c:?}");
     }
 }
+
+#[test]
+fn static_shear_alone_keeps_the_interface_at_rest() {
+    // a pre-stressed interface with no wave stays in equilibrium for every branch that can
+    // carry q0: a spring (linear), a sticking slider (coulomb, |q0| < mu p0)
+    let f = 1e6;
+    for (tang, q0) in [
+        (TangentialSpec::Linear { stiffness: 1e13 }, 0.5e6),
+        (
+            TangentialSpec::Coulomb {
+                friction: 0.5,
+                stiffness: Some(5e12),
+            },
+            1e6,
+        ),
+        (
+            TangentialSpec::Coulomb {
+                friction: 0.5,
+                stiffness: None,
+            },
+            -1e6,
+        ),
+    ] {
+        let p = problem(
+            5e6,
+            CompressionSpec::Linear { stiffness: 1e13 },
+            TractionSpec::Free,
+            tang.clone(),
+            q0,
+            silent(f),
+            silent(f),
+        );
+        let out = CoupledSolver::default().solve(&p).unwrap();
+        let drift = out.shear.gap.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert_eq!(drift, 0.0, "{tang:?}");
+        assert!(out
+            .shear
+            .contact_stress
+            .iter()
+            .all(|&t| (t - q0).abs() < 1e-9 * q0.abs()));
+    }
+}

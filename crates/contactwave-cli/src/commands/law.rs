@@ -1,5 +1,7 @@
 //! `contactwave law SCENARIO --out DIR`: the contact law of a scenario, written as
-//! DIR/law_curve.csv (gap m, stress Pa) and DIR/law_curve.svg; prints `wrote PATH` per file.
+//! DIR/law_curve.csv (gap m, stress Pa) and DIR/law_curve.svg, and for a scenario with a
+//! tangential part DIR/law_tangential.csv (tangential gap m, shear stress Pa) and
+//! DIR/law_tangential.svg; prints `wrote PATH` per file.
 
 use super::{check_out_dir, write_and_list, EXIT_OK};
 use contactwave::output;
@@ -20,7 +22,8 @@ pub struct Args {
 pub fn run(args: Args) -> contactwave::Result<u8> {
     let scenario = Scenario::load(&args.scenario)?;
     check_out_dir(&args.out)?;
-    let files = output::law_files(&scenario.law)?;
+    let tangential = scenario.shear.as_ref().map(|s| &*s.tangential);
+    let files = output::law_files_with(&scenario.law, tangential)?;
     write_and_list(&args.out, &files)?;
     Ok(EXIT_OK)
 }

@@ -152,6 +152,76 @@ impl TangentialLaw {
             && self.branch.spring_stiffness(1.0) == 0.0
     }
 
+    /// Monotone tangential loading from rest at the static pressure (the interface held
+    /// closed, `N = p0`): `n` tangential gaps from 0 to `gap_max` (m) and the shear stress at
+    /// each (Pa), the adhesion of a full RCCM law damaging in its rate-independent limit.
+    /// A rigid-stick slider jumps from `q0` to `mu p0` at zero gap (two points at 0).
+    pub fn curve(&self, normal: &ContactLaw, gap_max: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
+        let n = n.max(2);
+        let br = &*self.branch;
+        let limit = self.friction_limit(normal.static_pressure);
+        let kt = br.stick_stiffness();
+        let slider = br.friction() > 0.0;
+        let mut gaps = vec![0.0];
+        let mut stress = vec![self.static_shear];
+        let mut beta = 1.0f64;
+        for i in 1..n {
+            let u = gap_max * i as f64 / (n - 1) as f64;
+            if normal.traction.has_damage() && br.needs_adhesion() {
+                // rate-independent damage, interface closed (d = 0): phi affine in beta
+                let phi = |b: f64| {
+                    normal.traction.damage_driving_force(0.0, b)
+                        - 0.5 * br.spring_stiffness_d_adhesion(b) * u * u
+                };
+                let (a0, a1) = (phi(0.0), phi(beta));
+                if a1 < 0.0 && beta > 0.0 {
+                    beta = (a0 * beta / (a0 - a1)).clamp(0.0, beta);
+                }
+            }
+            let tau_f = if !slider {
+                self.static_shear
+            } else if kt.is_finite() {
+                (self.static_shear + kt * u).min(limit)
+            } else {
+                if i == 1 {
+                    gaps.push(0.0);
+                    stress.push(limit);
+                }
+                limit
+            };
+            gaps.push(u);
+            stress.push(br.spring_stiffness(beta) * u + tau_f);
+        }
+        (gaps, stress)
+    }
+
+    /// A tangential gap range that shows the branch: a few times the gap at which the
+    /// slider saturates, the spring reaches the friction stress or damage sets in, m.
+    pub fn curve_gap_range(&self, normal: &ContactLaw) -> f64 {
+        let br = &*self.branch;
+        let s = self
+            .friction_limit(normal.static_pressure)
+            .max(self.static_shear.abs())
+            .max(normal.static_pressure)
+            .max(1e5);
+        let mut g: f64 = 0.0;
+        for k in [br.stick_stiffness(), br.spring_stiffness(1.0)] {
+            if k.is_finite() && k > 0.0 {
+                g = g.max(3.0 * s / k);
+            }
+        }
+        let c_t = br.spring_stiffness(1.0);
+        if normal.traction.has_damage() && br.needs_adhesion() && c_t > 0.0 {
+            let w = normal.traction.damage_driving_force(0.0, 1.0).max(0.0);
+            g = g.max(4.0 * (w / c_t).sqrt());
+        }
+        if g > 0.0 {
+            g
+        } else {
+            3.0 * s / 1e13
+        }
+    }
+
     /// Friction limit `mu N`, Pa, at normal contact pressure `N` (Pa, >= 0).
     pub fn friction_limit(&self, pressure: f64) -> f64 {
         let mu = self.branch.friction();

@@ -85,6 +85,29 @@ pub fn law_files(law: &ContactLaw) -> Result<Vec<OutputFile>> {
     Ok(files)
 }
 
+/// The files of [`law_files`] plus, for a tangential law, `law_tangential.csv`
+/// (tangential gap m, shear stress Pa: monotone loading at the static pressure) and
+/// `law_tangential.svg`.
+pub fn law_files_with(
+    law: &ContactLaw,
+    tangential: Option<&crate::law::TangentialLaw>,
+) -> Result<Vec<OutputFile>> {
+    let mut files = law_files(law)?;
+    if let Some(t) = tangential {
+        let (gap, tau) = t.curve(law, t.curve_gap_range(law), 801);
+        files.push(OutputFile::new(
+            "law_tangential.csv",
+            csv_columns("tangential_gap,shear_stress", &[&gap, &tau]),
+        ));
+        #[cfg(feature = "plot")]
+        files.push(OutputFile::new(
+            "law_tangential.svg",
+            plot::tangential_law_curve(law, t, &gap, &tau)?,
+        ));
+    }
+    Ok(files)
+}
+
 /// `law_curve.svg` of a law's curve (nothing without the `plot` feature).
 #[cfg(feature = "plot")]
 fn law_figures(law: &ContactLaw, gap: &[f64], stress: &[f64]) -> Result<Vec<OutputFile>> {

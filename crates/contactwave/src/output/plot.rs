@@ -36,6 +36,40 @@ pub fn law_curve(law: &ContactLaw, gap: &[f64], stress: &[f64]) -> Result<String
     })
 }
 
+/// `law_tangential.svg`: shear stress against tangential gap under monotone loading at the
+/// static pressure.
+pub fn tangential_law_curve(
+    law: &ContactLaw,
+    t: &crate::law::TangentialLaw,
+    gap: &[f64],
+    tau: &[f64],
+) -> Result<String> {
+    let (g, gu) = scaled(gap, "m");
+    let (s, su) = scaled(tau, "Pa");
+    let title = format!(
+        "Tangential law: {}, mu = {}, p0 = {} Pa, q0 = {} Pa",
+        t.branch.name(),
+        t.branch.friction(),
+        law.static_pressure,
+        t.static_shear
+    );
+    render("law_tangential.svg", (750, 550), |root| {
+        panel(
+            root,
+            &title,
+            &format!("tangential gap [u]_T, {gu}"),
+            &format!("shear stress tau, {su}"),
+            &[Curve {
+                label: String::new(),
+                points: g.iter().copied().zip(s.iter().copied()).collect(),
+                color: color(0),
+            }],
+            &[],
+            None,
+        )
+    })
+}
+
 /// `sweep.svg`: the results against the first axis, one curve per combination of the other
 /// axes (at most 12 curves are labelled): `A1_over_Ainc` and `A2_over_Ainc` for half-space
 /// sweeps; `first_mode_hz`, `A1`, `A2_over_A1`, the mean contact stiffness and the minimum

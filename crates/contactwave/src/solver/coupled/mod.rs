@@ -271,7 +271,6 @@ impl<'a> Runner<'a> {
         let (z1, z2, z1t, z2t) = (hs.z1, hs.z2, self.p.z1t, self.p.z2t);
         let p0 = self.iface.law.static_pressure;
         let q0 = self.iface.tangential.static_shear;
-        let kt = self.iface.tangential.branch.stick_stiffness();
         for j in 0..3 {
             let w = h * B[j];
             let tj = t + C[j] * h;
@@ -293,11 +292,11 @@ impl<'a> Runner<'a> {
             acc.disp_tr[1] -= w * st * inv(z2t);
             // friction: tau_f ds/dt (the slider's work; zero while sticking)
             let slip_rate = match self.iface.phase.tangential {
+                _ if self.iface.tangential.branch.friction() == 0.0 => 0.0,
                 Tangential::Stick => 0.0,
                 _ => e.slip_rate,
             };
             acc.friction += w * e.tau_f * slip_rate;
-            let _ = kt;
             // damage: dpsi/dbeta (-dbeta/dt)
             if self.iface.phase.damaging {
                 let beta_dot = if e.rate[1] != 0.0 {
@@ -426,6 +425,7 @@ impl<'a> Runner<'a> {
         let tl = self.iface.tangential;
         let kt = tl.branch.stick_stiffness();
         match self.iface.phase.tangential {
+            _ if tl.branch.friction() == 0.0 => 0.0,
             Tangential::Stick => self.iface.slip,
             _ if kt.is_finite() => y[2] - (e.tau_f - tl.static_shear) / kt,
             _ => y[2],

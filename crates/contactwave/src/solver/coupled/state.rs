@@ -177,6 +177,9 @@ impl Interface<'_> {
                 let tau_f = match other {
                     Tangential::Stick => q0 + kt * (y[2] - self.slip),
                     Tangential::Slip(sg) => sg * self.tangential.friction_limit(pressure),
+                    // no slider: the spring carries the static shear (tau = q0 + k [u]_T);
+                    // a slider without normal load carries nothing
+                    Tangential::Free if br.friction() == 0.0 => q0,
                     Tangential::Free => 0.0,
                 };
                 (tau_f, drive - self.k_t * (spring + tau_f - q0))
