@@ -12,7 +12,8 @@ Standard library only; run from anywhere (commands run in the repository root, s
 paths written into outputs, such as summary.json's "scenario", are relative).
 
 Commands (commands() below; 1.5 to 2.5 minutes on 2 cores, most of it `identify`):
-  reproduce all; run on every scenario of examples/*.toml (files with a top-level `base =`
+  reproduce all; run, law and sweep on every file of examples/shear/; run on every
+  scenario of examples/*.toml (files with a top-level `base =`
   or an `[[axis]]` table are sweeps); sweep --threads 2 on every sweep of examples/;
   sweep --shard 1/2 and 2/2 of examples/stiffness_xi_grid.toml, then merge; law on every
   half-space scenario of examples/ and examples/thesis/ (law refuses bar stacks);
@@ -128,8 +129,20 @@ def commands():
     scenarios = [p for p in sorted(ex.glob("*.toml")) if not is_sweep_file(p)]
     sweeps = [p for p in sorted(ex.glob("*.toml")) if is_sweep_file(p)]
     thesis = [p for p in sorted((ex / "thesis").glob("*.toml")) if not is_sweep_file(p)]
+    shear = sorted((ex / "shear").glob("*.toml"))
     rel = lambda p: p.relative_to(ROOT).as_posix()  # noqa: E731
     cmds = [("reproduce", ["reproduce", "all", "--out", "{OUT}/reproduce"], "txt")]
+    # shear waves and friction (examples/shear): runs, laws and sweeps
+    for p in shear:
+        if is_sweep_file(p):
+            cmds.append((f"sweep_shear_{p.stem}",
+                         ["sweep", rel(p), "--out", f"{{OUT}}/sweep/shear_{p.stem}",
+                          "--threads", "2"], "txt"))
+        else:
+            cmds.append((f"run_shear_{p.stem}",
+                         ["run", rel(p), "--out", f"{{OUT}}/run/shear_{p.stem}"], "txt"))
+            cmds.append((f"law_shear_{p.stem}",
+                         ["law", rel(p), "--out", f"{{OUT}}/law/shear_{p.stem}"], "txt"))
     for p in scenarios:
         cmds.append((f"run_{p.stem}", ["run", rel(p), "--out", f"{{OUT}}/run/{p.stem}"], "txt"))
     for p in sweeps:
