@@ -45,7 +45,8 @@ fn clipped_sine_coefficient(a: f64, c: f64, n: usize) -> f64 {
         4.0 / PI * (a * (tc / 2.0 - (2.0 * tc).sin() / 4.0) + c * tc.cos())
     } else {
         4.0 / PI
-            * (a / 2.0 * (((nf - 1.0) * tc).sin() / (nf - 1.0) - ((nf + 1.0) * tc).sin() / (nf + 1.0))
+            * (a / 2.0
+                * (((nf - 1.0) * tc).sin() / (nf - 1.0) - ((nf + 1.0) * tc).sin() / (nf + 1.0))
                 + c * (nf * tc).cos() / nf)
     }
 }
@@ -75,7 +76,12 @@ fn rigid_stick_clipping_matches_closed_form() {
     };
     let t0 = std::time::Instant::now();
     let out = solver.solve(&p).unwrap();
-    eprintln!("solve {:?}, {} samples, {} slip events", t0.elapsed(), out.shear.t.len(), out.slip_events);
+    eprintln!(
+        "solve {:?}, {} samples, {} slip events",
+        t0.elapsed(),
+        out.shear.t.len(),
+        out.slip_events
+    );
     let c = mu * p0;
     let mut err: f64 = 0.0;
     for (i, &t) in out.shear.t.iter().enumerate() {
@@ -101,7 +107,11 @@ fn rigid_stick_clipping_matches_closed_form() {
         eprintln!("n = {n}: {amp:e} vs {exact:e}: {:e}", amp / exact - 1.0);
         assert!((amp / exact - 1.0).abs() < 1e-4);
     }
-    eprintln!("closure {:e}, friction {:e}", out.closure_error(), out.friction_dissipation);
+    eprintln!(
+        "closure {:e}, friction {:e}",
+        out.closure_error(),
+        out.friction_dissipation
+    );
     assert!(out.closure_error() < 1e-6);
 }
 
@@ -112,7 +122,9 @@ fn no_shear_reproduces_the_normal_solver() {
         1.6e6,
         f,
         15.0,
-        Window::HannRamps { ramp_fraction: 0.25 },
+        Window::HannRamps {
+            ramp_fraction: 0.25,
+        },
     ));
     let trac = TractionSpec::Rccm {
         stiffness: 2e13,
@@ -155,19 +167,42 @@ fn no_shear_reproduces_the_normal_solver() {
 }
 
 fn hann(a: f64, f: f64, cycles: f64) -> Arc<dyn Excitation> {
-    Arc::new(ToneBurst::new(a, f, cycles, Window::HannRamps { ramp_fraction: 0.25 }))
+    Arc::new(ToneBurst::new(
+        a,
+        f,
+        cycles,
+        Window::HannRamps {
+            ramp_fraction: 0.25,
+        },
+    ))
 }
 
 #[test]
 fn energy_audit_closes_on_combined_loading() {
     let f = 1e6;
-    let cases: Vec<(&str, f64, CompressionSpec, TractionSpec, TangentialSpec, f64, f64, f64)> = vec![
+    let cases: Vec<(
+        &str,
+        f64,
+        CompressionSpec,
+        TractionSpec,
+        TangentialSpec,
+        f64,
+        f64,
+        f64,
+    )> = vec![
         (
             "rccm full, damaging, normal + shear",
             0.82e6,
             CompressionSpec::Rigid,
-            TractionSpec::Rccm { stiffness: 2e13, energy: 0.1, viscosity: 0.0 },
-            TangentialSpec::Rccm { stiffness: 1e13, friction: 0.4 },
+            TractionSpec::Rccm {
+                stiffness: 2e13,
+                energy: 0.1,
+                viscosity: 0.0,
+            },
+            TangentialSpec::Rccm {
+                stiffness: 1e13,
+                friction: 0.4,
+            },
             0.0,
             3e6,
             2e6,
@@ -176,8 +211,15 @@ fn energy_audit_closes_on_combined_loading() {
             "rccm full, viscous",
             0.82e6,
             CompressionSpec::Rigid,
-            TractionSpec::Rccm { stiffness: 2e13, energy: 0.1, viscosity: 1e-7 },
-            TangentialSpec::Rccm { stiffness: 1e13, friction: 0.4 },
+            TractionSpec::Rccm {
+                stiffness: 2e13,
+                energy: 0.1,
+                viscosity: 1e-7,
+            },
+            TangentialSpec::Rccm {
+                stiffness: 1e13,
+                friction: 0.4,
+            },
             0.0,
             3e6,
             2e6,
@@ -187,7 +229,10 @@ fn energy_audit_closes_on_combined_loading() {
             5e6,
             CompressionSpec::Power { c: 4e9, m: 0.5 },
             TractionSpec::Free,
-            TangentialSpec::Coulomb { friction: 0.5, stiffness: Some(5e12) },
+            TangentialSpec::Coulomb {
+                friction: 0.5,
+                stiffness: Some(5e12),
+            },
             1e6,
             4e6,
             2e6,
@@ -197,7 +242,10 @@ fn energy_audit_closes_on_combined_loading() {
             1e6,
             CompressionSpec::Linear { stiffness: 1e13 },
             TractionSpec::Free,
-            TangentialSpec::Coulomb { friction: 0.6, stiffness: None },
+            TangentialSpec::Coulomb {
+                friction: 0.6,
+                stiffness: None,
+            },
             0.2e6,
             3e6,
             1e6,
@@ -214,7 +262,15 @@ fn energy_audit_closes_on_combined_loading() {
         ),
     ];
     for (name, p0, comp, trac, tang, q0, sn, st) in cases {
-        let p = problem(p0, comp, trac, tang, q0, hann(sn, f, 15.0), hann(st, f, 15.0));
+        let p = problem(
+            p0,
+            comp,
+            trac,
+            tang,
+            q0,
+            hann(sn, f, 15.0),
+            hann(st, f, 15.0),
+        );
         let t0 = std::time::Instant::now();
         let out = CoupledSolver::default().solve(&p).unwrap();
         eprintln!(
@@ -231,6 +287,9 @@ fn energy_audit_closes_on_combined_loading() {
         assert!(out.closure_error() < 1e-5, "{name}");
         assert!(out.friction_dissipation >= 0.0);
         // beta never increases
-        assert!(out.normal.beta.windows(2).all(|w| w[1] <= w[0] + 1e-15), "{name}");
+        assert!(
+            out.normal.beta.windows(2).all(|w| w[1] <= w[0] + 1e-15),
+            "{name}"
+        );
     }
 }

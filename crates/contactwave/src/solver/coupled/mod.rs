@@ -89,11 +89,10 @@ impl CoupledOutput {
     pub fn closure_error(&self) -> f64 {
         let n = &self.normal.energy;
         let s = &self.shear.energy;
-        let flux = n.incident - n.reflected - n.transmitted + s.incident
-            - s.reflected
-            - s.transmitted;
-        let sink = n.stored + s.stored + n.damage + self.friction_dissipation
-            - self.static_shear_work;
+        let flux =
+            n.incident - n.reflected - n.transmitted + s.incident - s.reflected - s.transmitted;
+        let sink =
+            n.stored + s.stored + n.damage + self.friction_dissipation - self.static_shear_work;
         (flux - sink).abs() / self.incident_energy().max(f64::MIN_POSITIVE)
     }
 }
@@ -478,7 +477,7 @@ impl<'a> Runner<'a> {
                     }
                 };
                 let root = brent_past(f, 0.0, h, ga, g_end[k], 200).unwrap_or(h);
-                if best.is_none_or(|(r, _)| root < r) {
+                if best.map_or(true, |(r, _)| root < r) {
                     best = Some((root, k));
                 }
             }
@@ -524,7 +523,8 @@ impl<'a> Runner<'a> {
             o.transmitted_displacement.push(acc.disp_tr[c]);
         }
         out.slip.push(self.slip_of(&e, y));
-        out.friction_limit.push(self.iface.tangential.friction_limit(e.pressure));
+        out.friction_limit
+            .push(self.iface.tangential.friction_limit(e.pressure));
         out.slip_state.push(match self.iface.phase.tangential {
             Tangential::Free => f64::NAN,
             Tangential::Stick => 0.0,
