@@ -5,6 +5,7 @@
 //! |---|---|---|
 //! | [`halfspace::ExactSolver`] (gap ODE with located events, model.md section 4) | [`halfspace::HalfSpace`] | [`HalfSpaceOutput`] |
 //! | [`halfspace_fd::FdSolver`] (the bar-stack scheme on the same problem) | [`halfspace::HalfSpace`] | [`HalfSpaceOutput`] |
+//! | [`halfspace_fd_shear::FdCoupledSolver`] (the bar-stack scheme with a shear field, model.md section 13) | [`coupled::CoupledHalfSpace`] | [`coupled::CoupledOutput`] |
 //! | [`barstack::FdRun`] (explicit FD bar stack, model.md section 5) | [`barstack::BarStack`] | [`FdOutput`] |
 //!
 //! ```
@@ -28,7 +29,9 @@ pub mod barstack;
 pub mod coupled;
 pub mod halfspace;
 pub mod halfspace_fd;
+pub mod halfspace_fd_shear;
 pub mod interface;
+pub mod interface_shear;
 pub mod output;
 pub mod radau;
 
