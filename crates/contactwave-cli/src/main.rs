@@ -58,6 +58,7 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    commands::install_interrupt_handler();
     match dispatch(cli.command) {
         Ok(code) => ExitCode::from(code),
         Err(e) => {

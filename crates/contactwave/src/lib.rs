@@ -47,9 +47,11 @@
 
 pub mod analysis;
 pub mod analytic;
+pub mod budget;
 pub mod error;
 pub mod excitation;
 #[cfg(feature = "identify")]
+pub mod interrupt;
 pub mod inverse;
 pub mod law;
 pub mod material;

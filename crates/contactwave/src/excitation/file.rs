@@ -21,6 +21,8 @@ impl FileWaveform {
     /// strictly increasing and finite; the waveform is shifted so it starts at t = 0.
     pub fn read(path: &Path, field: &str) -> Result<(Vec<f64>, Vec<f64>)> {
         let shown = path.display().to_string();
+        // parsed rows and their interpolant take a few times the text in memory
+        crate::budget::check_file(path, field, 4.0)?;
         let mut rdr = csv::ReaderBuilder::new()
             .has_headers(false)
             .comment(Some(b'#'))

@@ -116,6 +116,9 @@ pub fn write_files(dir: &Path, files: &[OutputFile]) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let mut written = Vec::with_capacity(files.len());
     for f in files {
+        // an interruption stops between files: those written are complete
+        crate::interrupt::check()?;
+        let _writing = crate::interrupt::Writing::start();
         let path = dir.join(&f.name);
         let tmp = dir.join(format!(".{}.tmp{}", f.name, std::process::id()));
         std::fs::write(&tmp, &f.contents).map_err(|e| Error::io(&tmp, e))?;

@@ -3,6 +3,7 @@
 //! what is allowed; nothing downstream sees an invalid value.
 
 pub mod bar_stack;
+pub mod budget;
 mod cache;
 pub mod spec;
 mod value;
@@ -184,7 +185,7 @@ impl Scenario {
         };
         let (incident, xi) =
             build_incident_cached(&spec.incident, file, base_dir, Some(&xi_ref), cache)?;
-        Ok(Scenario {
+        let scenario = Scenario {
             file: file.to_string(),
             medium,
             counterpart,
@@ -193,7 +194,9 @@ impl Scenario {
             xi,
             probe_x,
             spec,
-        })
+        };
+        budget::check_half_space(&scenario)?;
+        Ok(scenario)
     }
 
     /// Acoustic impedance of medium 2, Pa s/m (`inf` for a rigid wall).

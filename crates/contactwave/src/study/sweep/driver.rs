@@ -32,11 +32,14 @@ struct Rows<'a> {
 impl Observer<Summary> for Rows<'_> {
     fn point(&self, k: usize, result: &Result<Summary>) -> Result<()> {
         let i = self.todo[k];
+        let _writing = crate::interrupt::Writing::start();
         let mut w = self.writer.lock().unwrap_or_else(|p| p.into_inner());
         match result {
             Ok(summary) => w.row(i, &self.sweep.points[i], summary, || {
                 self.sweep.header(summary.keys())
             }),
+            // a point stopped by an interruption is not a failure: --resume runs it
+            Err(Error::Interrupted) => Ok(()),
             Err(e) => w.error(i, &e.to_string()),
         }
     }
@@ -164,8 +167,12 @@ pub fn run_sweep_shard(
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: &AtomicBool,
 ) -> Result<SweepReport> {
-    let models = sweep.runnable()?;
-    let grid_total = models.len();
+    // every point validated before anything is written, none kept (flat memory)
+    let plan = sweep.validate()?;
+    let grid_total = sweep.points.len();
+    if let Some(dir) = out_csv.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    }
     let total = (0..grid_total).filter(|&i| shard.contains(i)).count();
     let hash_file = hash_path(out_csv);
     let errors_file = errors_path(out_csv);
@@ -262,14 +269,16 @@ pub fn run_sweep_shard(
         progress,
         cancel,
     };
-    let done =
-        Executor::new()
-            .threads(opts.threads)
-            .map(&todo, |&i| models[i].summary(), &observer)?;
-    let processed = skipped + done.iter().filter(|r| r.is_some()).count();
+    let ran = Executor::new().threads(opts.threads).for_each(
+        &todo,
+        |&i| sweep.model(&plan, i)?.summary(),
+        &observer,
+    )?;
+    let _ = ran;
     let w = writer.into_inner().unwrap_or_else(|p| p.into_inner());
+    let processed = skipped + w.computed + w.failed;
     let _ = w.csv.sync_data();
-    if cancel.load(Ordering::SeqCst) && processed < total {
+    if (cancel.load(Ordering::SeqCst) || crate::interrupt::requested()) && processed < total {
         return Err(Error::Interrupted);
     }
     Ok(SweepReport {
