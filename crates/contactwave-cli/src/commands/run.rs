@@ -12,8 +12,11 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
-/// Simulate one scenario and write summary.json, timeseries.csv, probe.csv,
-/// spectrum.csv and SVG plots into DIR (SI units: s, m, Pa, m/s, Hz).
+/// Simulate one scenario and write its files into DIR (SI units: s, m, Pa, m/s, Hz): for a
+/// half-space scenario summary.json, timeseries.csv, probe.csv, spectrum.csv and SVG plots;
+/// for a bar stack summary.json, timeseries.csv and frf.csv (hammer) or waves.csv and
+/// probes.csv (incident wave) (docs/scenario.md section 4). Ctrl-C stops it (exit 130,
+/// nothing written).
 #[derive(clap::Args)]
 pub struct Args {
     /// Scenario file (TOML; see docs/scenario.md).

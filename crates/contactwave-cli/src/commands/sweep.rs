@@ -49,7 +49,20 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let out = args.out.as_path();
     let sweep = Sweep::load(&args.sweep)?;
     check_out_dir(out)?;
-    // the driver validates every point before it creates the folder or any file
+    // every point validated before the folder or any file is created (progress on a
+    // terminal: a large grid takes seconds)
+    let setup = progress_bar(
+        "validating {bar:40} {pos}/{len} points  {elapsed_precise} elapsed, eta {eta}",
+        sweep.points.len() as u64,
+    );
+    let checked = |d: usize, _total: usize| {
+        if d % 1024 == 0 || d == sweep.points.len() {
+            setup.set_position(d as u64);
+        }
+    };
+    let validated = sweep.validate_with(&checked);
+    setup.finish_and_clear();
+    validated?;
     let cancel = cancel_on_ctrl_c();
     let shard = args.shard.unwrap_or(study::Shard::ALL);
     let total = (0..sweep.points.len())
@@ -68,6 +81,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let opts = SweepOptions {
         threads: args.threads,
         resume: args.resume,
+        validated: true,
     };
     match study::run_sweep_shard(&sweep, shard, &csv, &opts, &progress, cancel) {
         Ok(report) => {

@@ -60,6 +60,9 @@ pub struct SweepOptions {
     pub threads: Option<usize>,
     /// Append to an existing CSV of the same sweep, skipping its points.
     pub resume: bool,
+    /// The caller validated every point already ([`Sweep::validate_with`], e.g. with a
+    /// progress bar): the driver does not validate them again.
+    pub validated: bool,
 }
 
 /// What a finished [`run_sweep`] did.
@@ -168,7 +171,11 @@ pub fn run_sweep_shard(
     cancel: &AtomicBool,
 ) -> Result<SweepReport> {
     // every point validated before anything is written, none kept (flat memory)
-    let plan = sweep.validate()?;
+    let plan = if opts.validated {
+        sweep.plan()?
+    } else {
+        sweep.validate()?
+    };
     let grid_total = sweep.points.len();
     if let Some(dir) = out_csv.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
@@ -281,6 +288,8 @@ pub fn run_sweep_shard(
     if (cancel.load(Ordering::SeqCst) || crate::interrupt::requested()) && processed < total {
         return Err(Error::Interrupted);
     }
+    drop(w.csv);
+    sort_rows(out_csv)?;
     Ok(SweepReport {
         total,
         skipped,
@@ -288,6 +297,48 @@ pub fn run_sweep_shard(
         failed: w.failed,
         csv: out_csv.to_path_buf(),
         errors_csv: (w.failed > 0).then_some(errors_file),
+    })
+}
+
+/// Rewrite a finished sweep CSV with its rows in point order (they were appended in
+/// completion order), byte for byte otherwise, through a temporary file and a rename. A
+/// CSV whose sorting would exceed the memory budget stays in completion order.
+fn sort_rows(csv: &Path) -> Result<()> {
+    if crate::budget::check_file(csv, "sweep.csv", 3.0).is_err() {
+        return Ok(());
+    }
+    let text = std::fs::read_to_string(csv).map_err(|e| Error::io(csv, e))?;
+    let mut lines = text.lines();
+    let Some(header) = lines.next() else {
+        return Ok(());
+    };
+    let mut rows: Vec<(u64, &str)> = lines
+        .map(|l| {
+            let point = l
+                .split(',')
+                .next()
+                .and_then(|p| p.trim().parse::<u64>().ok())
+                .unwrap_or(u64::MAX);
+            (point, l)
+        })
+        .collect();
+    if rows.windows(2).all(|w| w[0].0 <= w[1].0) {
+        return Ok(());
+    }
+    rows.sort_by_key(|r| r.0);
+    let mut sorted = String::with_capacity(text.len());
+    sorted.push_str(header);
+    sorted.push('\n');
+    for (_, l) in rows {
+        sorted.push_str(l);
+        sorted.push('\n');
+    }
+    let tmp = csv.with_extension(format!("csv.sorting{}", std::process::id()));
+    let _writing = crate::interrupt::Writing::start();
+    std::fs::write(&tmp, sorted).map_err(|e| Error::io(&tmp, e))?;
+    std::fs::rename(&tmp, csv).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        Error::io(csv, e)
     })
 }
 
@@ -310,6 +361,7 @@ mod tests {
         let opts = SweepOptions {
             threads: Some(2),
             resume: false,
+            validated: false,
         };
         let r = run_sweep(&sweep, &csv, &opts, &|_, _| {}, &cancel).unwrap();
         assert_eq!((r.total, r.skipped, r.computed, r.failed), (4, 0, 4, 0));
@@ -332,6 +384,7 @@ mod tests {
         let opts = SweepOptions {
             threads: Some(1),
             resume: true,
+            validated: false,
         };
         let r = run_sweep(&sweep, &csv, &opts, &|_, _| {}, &cancel).unwrap();
         assert_eq!((r.skipped, r.computed), (2, 2));
@@ -396,6 +449,7 @@ mod tests {
         SweepOptions {
             threads: Some(2),
             resume: false,
+            validated: false,
         }
     }
 
@@ -485,6 +539,7 @@ mod tests {
         let o = SweepOptions {
             threads: Some(1),
             resume: true,
+            validated: false,
         };
         let r = run_sweep_shard(&sweep, shard, &p, &o, &|_, _| {}, &cancel).unwrap();
         assert_eq!((r.total, r.skipped, r.computed), (5, 2, 3));

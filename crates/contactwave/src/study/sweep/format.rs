@@ -401,6 +401,11 @@ impl Sweep {
     /// without keeping the models (flat memory): the first invalid point in grid order is
     /// the error.
     pub fn validate(&self) -> Result<SweepPlan> {
+        self.validate_with(&|_, _| {})
+    }
+
+    /// [`Sweep::validate`] reporting (points checked, total) to `progress` as it goes.
+    pub fn validate_with(&self, progress: &(dyn Fn(usize, usize) + Sync)) -> Result<SweepPlan> {
         let plan = self.plan()?;
         let idx: Vec<usize> = (0..self.points.len()).collect();
         let first_bad = std::sync::atomic::AtomicUsize::new(usize::MAX);
@@ -415,7 +420,10 @@ impl Sweep {
                     first_bad.fetch_min(i, std::sync::atomic::Ordering::SeqCst);
                 })
             },
-            &crate::run::Quiet,
+            &crate::run::Progress {
+                report: progress,
+                cancel: None,
+            },
         )?;
         // an interruption skipped points: they are not validated
         crate::interrupt::check()?;
