@@ -24,6 +24,7 @@
 pub mod identify;
 #[cfg(feature = "plot")]
 pub mod plot;
+pub mod recording;
 
 use crate::error::{Error, Result};
 use crate::law::ContactLaw;
