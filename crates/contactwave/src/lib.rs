@@ -50,8 +50,8 @@ pub mod analytic;
 pub mod budget;
 pub mod error;
 pub mod excitation;
-#[cfg(feature = "identify")]
 pub mod interrupt;
+#[cfg(feature = "identify")]
 pub mod inverse;
 pub mod law;
 pub mod material;
