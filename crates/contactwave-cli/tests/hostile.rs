@@ -357,6 +357,23 @@ fn ctrl_c_and_sigterm_stop_run_and_sweep_with_130_and_no_partial_file() {
             took.as_secs_f64() * 1e3
         );
     }
+    // identification (tens of seconds) and reproduce (about 15 s)
+    let ident = examples().join("identify/rccm_undamaged.toml");
+    for (name, args) in [
+        ("identify", vec![ident.to_str().unwrap(), "--out", "out"]),
+        ("reproduce", vec!["--out", "out"]),
+    ] {
+        let mut c = bin();
+        c.current_dir(&d).arg(name).args(&args);
+        let (code, took, err) = interrupt(c, "INT", Duration::from_millis(1500));
+        assert_eq!(code, Some(130), "{name}: {err}");
+        assert!(took < Duration::from_secs(1), "{name}: {took:?}");
+        assert!(!d.join("out").exists(), "{name}: output written");
+        println!(
+            "{name} + SIGINT | stopped in {:.1} ms",
+            took.as_secs_f64() * 1e3
+        );
+    }
     // a sweep of slow bar-stack points: what is in sweep.csv is complete rows
     std::fs::write(
         d.join("sweep.toml"),

@@ -114,6 +114,7 @@ pub fn sweep_svg(sweep: &crate::study::Sweep, csv: &Path) -> Result<Option<Strin
 /// Create `dir` (and its parents) and write the files into it, each through a temporary
 /// name and a rename. Returns the paths written.
 pub fn write_files(dir: &Path, files: &[OutputFile]) -> Result<Vec<PathBuf>> {
+    crate::interrupt::check()?;
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let mut written = Vec::with_capacity(files.len());
     for f in files {
