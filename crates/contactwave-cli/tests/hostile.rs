@@ -357,11 +357,30 @@ fn ctrl_c_and_sigterm_stop_run_and_sweep_with_130_and_no_partial_file() {
             took.as_secs_f64() * 1e3
         );
     }
-    // identification (tens of seconds) and reproduce (about 15 s)
+    // identification (tens of seconds), reproduce (about 15 s), convergence (about 5 s)
     let ident = examples().join("identify/rccm_undamaged.toml");
     for (name, args) in [
-        ("identify", vec![ident.to_str().unwrap(), "--out", "out"]),
-        ("reproduce", vec!["--out", "out"]),
+        (
+            "identify",
+            vec![
+                ident.to_str().unwrap().to_string(),
+                "--out".into(),
+                "out".into(),
+            ],
+        ),
+        ("reproduce", vec!["--out".to_string(), "out".into()]),
+        (
+            "convergence",
+            vec![
+                examples()
+                    .join("rccm_1.6MPa.toml")
+                    .to_str()
+                    .unwrap()
+                    .to_string(),
+                "--out".into(),
+                "out".into(),
+            ],
+        ),
     ] {
         let mut c = bin();
         c.current_dir(&d).arg(name).args(&args);

@@ -129,8 +129,9 @@ impl Executor {
     /// Run `f` on every item in parallel (one point per task), reporting to `observer`.
     /// Returns the results in the items' order; `None` for points not started because the
     /// observer cancelled. A panic in `f` is that point's [`Error::Internal`]. The map
-    /// itself fails only when the thread pool cannot be built or the observer's
-    /// [`Observer::point`] fails.
+    /// itself fails when the thread pool cannot be built, the observer's
+    /// [`Observer::point`] fails, or an interruption was requested
+    /// ([`crate::interrupt`]: [`Error::Interrupted`]).
     pub fn map<I, T, F>(
         &self,
         items: &[I],
@@ -170,7 +171,11 @@ impl Executor {
                 .map(one)
                 .collect::<Result<Vec<_>>>()
         };
-        self.install(run)
+        let results = self.install(run)?;
+        // an interruption ([`crate::interrupt`]) skipped or stopped points: the map's
+        // results are incomplete, so the map is interrupted as a whole
+        crate::interrupt::check()?;
+        Ok(results)
     }
 
     /// [`Executor::map`] keeping no result: each point's result goes to the observer's
