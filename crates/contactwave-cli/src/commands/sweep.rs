@@ -1,10 +1,12 @@
 //! `contactwave sweep SWEEP --out DIR`: run the points of a parameter sweep on a thread pool
-//! and write DIR/sweep.csv (one row per point, appended as points finish), its hash file
-//! DIR/sweep.csv.hash, DIR/sweep.svg and, if points fail, DIR/sweep_errors.csv.
+//! and write DIR/sweep.csv (one row per point, appended as points finish, sorted by point
+//! once finished), its hash file DIR/sweep.csv.hash, DIR/sweep.svg and, if points fail,
+//! DIR/sweep_errors.csv (exit code 1 unless --tolerate-failures).
 //!
 //! `--resume` computes only the points missing from an existing sweep.csv, `--shard K/N`
-//! one shard of the points (combined by `merge`). Ctrl-C stops after the running points
-//! (exit code 130, rerun with --resume); a second Ctrl-C exits at once.
+//! one shard of the points (combined by `merge`). Ctrl-C or SIGTERM stops the running
+//! points at their next check (exit code 130, rerun with --resume); a second one exits at
+//! once.
 
 use super::{
     cancel_on_ctrl_c, check_out_dir, output_file, progress_bar, EXIT_FAILED, EXIT_INTERRUPTED,

@@ -2,7 +2,6 @@
 //! before a solver allocates: time samples x recorded series of a half-space run, mesh
 //! nodes and time steps x recorded series of a bar stack.
 
-use super::bar_stack::BarStackScenario;
 use super::spec::IncidentKind;
 use super::Scenario;
 use crate::budget::{self, BYTES_PER_SAMPLE};
@@ -125,12 +124,4 @@ pub fn check_bar_stack(
         (steps + 1.0) * series * BYTES_PER_SAMPLE,
         &format!("{steps:.3e} time steps of {series} recorded series"),
     )
-}
-
-/// Number of series a bar-stack run records per time step: time, the first node and two
-/// nodes per probe, gap, stress and damage of every interface (and an obstacle), and the
-/// derived velocity, acceleration and stress of each probe.
-pub fn bar_stack_series(s: &BarStackScenario) -> f64 {
-    let n_if = s.stack.interfaces.len() + 2;
-    (3 + 5 * s.probes.len() + 3 * n_if) as f64
 }
