@@ -101,6 +101,10 @@ cargo build --release -p contactwave-cli
 step "reference outputs of the CLI (scripts/reference_outputs.py check)"
 "$VPY" scripts/reference_outputs.py check
 
+# Every contactwave command of README.md and docs/*.md, in a fresh clone (3 to 5 minutes)
+step "commands of the docs (scripts/doc_commands.py)"
+"$VPY" scripts/doc_commands.py
+
 step "pip install . (maturin: the contactwave wheel, abi3, Python >= 3.9)"
 rm -f python/contactwave/_core*.so  # a stale `maturin develop` build would shadow the wheel
 "$VPY" -m pip install --no-build-isolation --force-reinstall --no-deps .

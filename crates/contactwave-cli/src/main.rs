@@ -1,8 +1,9 @@
 //! `contactwave`: command-line interface of the contactwave library.
 //!
-//! Exit codes: 0 success; 1 `validate` found a case outside its tolerance; 2 invalid input
-//! (scenario or sweep file, missing file, output path, I/O); 3 numerical failure of a
-//! simulation; 130 interrupted (Ctrl-C). Every error is one line on stderr starting with
+//! Exit codes: 0 success; 1 `validate` found a case outside its tolerance, or a sweep
+//! finished with failed points; 2 invalid input (scenario or sweep file, missing file,
+//! output path, I/O, beyond the memory budget); 3 numerical failure of a simulation; 130
+//! interrupted (Ctrl-C or SIGTERM). Every error is one line on stderr starting with
 //! `error: `, and no output folder is created or modified when an input is invalid or the
 //! simulation fails.
 //!
@@ -25,8 +26,13 @@ Units are SI throughout: Pa (stress, p0, amplitude), m (gap, probe position), s,
 kg/m^3, Pa/m (interface stiffness), J/m^2 (decohesion energy). Stress is tension-positive;
 p0 is a compression.
 
-Exit codes: 0 success, 1 validation case outside tolerance, 2 invalid input or I/O error,
-3 numerical failure, 130 interrupted.";
+Memory: every command refuses work beyond the memory budget before allocating it
+(CONTACTWAVE_MEMORY_BUDGET, bytes with an optional k/M/G/T suffix; default half the
+available memory).
+
+Exit codes: 0 success, 1 validation case outside tolerance or failed sweep points, 2
+invalid input, I/O error or beyond the memory budget, 3 numerical failure, 130 interrupted
+(Ctrl-C or SIGTERM).";
 
 #[derive(Parser)]
 #[command(
@@ -58,6 +64,7 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    commands::install_interrupt_handler();
     match dispatch(cli.command) {
         Ok(code) => ExitCode::from(code),
         Err(e) => {

@@ -13,7 +13,7 @@
 
 use contactwave::model::{self, Record, RunControl, Template, Value};
 use contactwave::run::{Executor, Progress, Quiet};
-use contactwave::scenario::{parse_toml, Scenario};
+use contactwave::scenario::Scenario;
 use contactwave::study::Sweep;
 use contactwave::Error;
 use numpy::ndarray::Array2;
@@ -225,9 +225,41 @@ fn value_to_py(py: Python<'_>, v: Value) -> PyResult<Bound<'_, PyAny>> {
 #[pyfunction]
 fn run<'py>(py: Python<'py>, scenario: &PyScenario) -> PyResult<Bound<'py, PyDict>> {
     let m = scenario.template.base().map_err(to_py)?;
-    let record = py
-        .detach(move || m.run(&RunControl::default()).map(|o| o.record()))
-        .map_err(to_py)?;
+    contactwave::interrupt::clear();
+    // the run goes on a helper thread while this one watches for Ctrl-C: a long bar-stack
+    // run stops at its next time-step check and raises KeyboardInterrupt
+    let finished = (Mutex::new(false), Condvar::new());
+    let record = std::thread::scope(|s| {
+        let worker = s.spawn(|| {
+            let out = m.run(&RunControl::default()).map(|o| o.record());
+            let (done, cv) = &finished;
+            *done.lock().unwrap_or_else(|p| p.into_inner()) = true;
+            cv.notify_all();
+            out
+        });
+        loop {
+            let finished_now = py.detach(|| {
+                let (done, cv) = &finished;
+                let g = done.lock().unwrap_or_else(|p| p.into_inner());
+                let (g, _) = cv
+                    .wait_timeout_while(g, SIGNAL_POLL, |d| !*d)
+                    .unwrap_or_else(|p| p.into_inner());
+                *g
+            });
+            if let Err(e) = py.check_signals() {
+                contactwave::interrupt::request();
+                let _ = py.detach(|| worker.join());
+                contactwave::interrupt::clear();
+                return Err(e);
+            }
+            if finished_now {
+                return py
+                    .detach(|| worker.join())
+                    .map_err(|_| PyRuntimeError::new_err("internal error: the run panicked"))?
+                    .map_err(to_py);
+            }
+        }
+    })?;
     record_to_py(py, record)
 }
 
@@ -238,10 +270,7 @@ fn any_table(
     file: &str,
 ) -> PyResult<(toml::Table, PathBuf)> {
     match (path, text) {
-        (Some(p), None) => {
-            let t = std::fs::read_to_string(&p).map_err(|e| to_py(Error::io(&p, e)))?;
-            Ok((parse_toml(&t, &p.display().to_string()).map_err(to_py)?, p))
-        }
+        (Some(p), None) => Ok((contactwave::scenario::read_table(&p).map_err(to_py)?, p)),
         (None, Some(t)) => Ok((
             table_from_json(t, file).map_err(to_py)?,
             PathBuf::from(file),
@@ -448,8 +477,13 @@ fn sweep_local<'py>(
             Ok((sweep, models))
         })
         .map_err(to_py)?;
-    if threads == Some(0) {
-        return Err(PyValueError::new_err("threads: must be >= 1 (or None)"));
+    if let Some(n) = threads {
+        contactwave::run::check_threads(n).map_err(|_| {
+            PyValueError::new_err(format!(
+                "threads = {n}: must be an integer in [1, {}] (or None: one per core)",
+                contactwave::run::MAX_THREADS
+            ))
+        })?;
     }
     let executor = Executor::new().threads(threads);
     let outcomes = run_interruptibly(py, &models, executor, progress.as_ref())?;
@@ -478,6 +512,7 @@ fn run_interruptibly(
     executor: Executor,
     progress: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Vec<Outcome>> {
+    contactwave::interrupt::clear();
     let cancel = AtomicBool::new(false);
     let done = AtomicUsize::new(0);
     let total = models.len();
@@ -515,7 +550,10 @@ fn run_interruptibly(
             }
             if let Err(e) = check {
                 cancel.store(true, Ordering::SeqCst);
+                // running points stop at their next check too
+                contactwave::interrupt::request();
                 let _ = py.detach(|| worker.join());
+                contactwave::interrupt::clear();
                 return Err(e);
             }
             if finished_now {

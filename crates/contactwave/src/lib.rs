@@ -47,8 +47,10 @@
 
 pub mod analysis;
 pub mod analytic;
+pub mod budget;
 pub mod error;
 pub mod excitation;
+pub mod interrupt;
 #[cfg(feature = "identify")]
 pub mod inverse;
 pub mod law;

@@ -18,6 +18,8 @@ const LAYERS: &[(&str, u32)] = &[
     ("numeric", 1),
     ("material", 1),
     ("analytic", 1),
+    ("budget", 1),
+    ("interrupt", 1),
     ("analysis", 2),
     ("law", 2),
     ("excitation", 3),

@@ -58,15 +58,31 @@ fn identify(path: &Path, out: Option<&Path>, design: bool) -> contactwave::Resul
     if let Some(out) = out {
         check_out_dir(out)?;
     }
-    let quiet = !std::io::stderr().is_terminal();
-    let progress = |m: &str| {
-        if !quiet {
-            eprintln!("{m}");
+    // on a terminal: a spinner with the elapsed time and the current stage, each finished
+    // stage printed above it; nothing otherwise
+    let spinner = if std::io::stderr().is_terminal() {
+        let b = indicatif::ProgressBar::new_spinner();
+        if let Ok(style) =
+            indicatif::ProgressStyle::with_template("{spinner} {elapsed_precise} {msg}")
+        {
+            b.set_style(style);
         }
+        b.set_message("identifying (forward runs on all cores)");
+        b.enable_steady_tick(std::time::Duration::from_millis(200));
+        b
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    let progress = |m: &str| {
+        spinner.println(m);
+        spinner.set_message(format!("after: {m}"));
     };
     if design {
         let model = Model::new(&spec);
-        let report = inverse::design(&model)?;
+        spinner.set_message("ranking the design candidates");
+        let report = inverse::design(&model);
+        spinner.finish_and_clear();
+        let report = report?;
         println!(
             "candidate experiments ranked by log10 det(S^T S) ({} over {} = {} values; {} forward runs in {:.2} s):",
             report.key,
@@ -87,7 +103,9 @@ fn identify(path: &Path, out: Option<&Path>, design: bool) -> contactwave::Resul
         }
         return Ok(EXIT_OK);
     }
-    let result = inverse::identify(&spec, &progress)?;
+    let result = inverse::identify(&spec, &progress);
+    spinner.finish_and_clear();
+    let result = result?;
     let files = contactwave::output::identify::identification_files(&result)?;
     for line in result.verdict_lines() {
         println!("{line}");

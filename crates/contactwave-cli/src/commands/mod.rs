@@ -14,7 +14,6 @@ pub mod sweep;
 pub mod validate;
 
 use contactwave::output::{self, OutputFile};
-use contactwave::scenario::parse_toml;
 use contactwave::Error;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -25,6 +24,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 pub const EXIT_OK: u8 = 0;
 /// Exit code: `validate` found a case outside its tolerance.
 pub const EXIT_VALIDATION_FAILED: u8 = 1;
+/// Exit code: the work finished but some of its points failed (a sweep without
+/// `--tolerate-failures`); the same code as [`EXIT_VALIDATION_FAILED`].
+pub const EXIT_FAILED: u8 = 1;
 /// Exit code: invalid input (scenario or sweep file, missing file, output path, I/O).
 pub const EXIT_INVALID_INPUT: u8 = 2;
 /// Exit code: numerical failure of a simulation.
@@ -45,8 +47,7 @@ pub fn check_out_dir(out: &Path) -> contactwave::Result<()> {
 
 /// Read and parse a scenario file into its TOML table (not yet checked as a scenario).
 pub fn read_table(path: &Path) -> contactwave::Result<toml::Table> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-    parse_toml(&text, &path.display().to_string())
+    contactwave::scenario::read_table(path)
 }
 
 /// An output file named `name` (no folder).
@@ -82,17 +83,37 @@ pub fn progress_bar(template: &str, len: u64) -> ProgressBar {
     b
 }
 
-/// Set by Ctrl-C once [`cancel_on_ctrl_c`] has installed its handler.
+/// Set by Ctrl-C or SIGTERM once [`install_interrupt_handler`] has installed its handler.
 static CANCEL: AtomicBool = AtomicBool::new(false);
 
-/// Install the Ctrl-C handler and return the flag it sets: the first Ctrl-C asks the work
-/// to stop (checked by the caller), a second one exits at once with code 130.
-pub fn cancel_on_ctrl_c() -> &'static AtomicBool {
+/// How long the work may take to stop by itself after Ctrl-C or SIGTERM before the
+/// process ends (a sweep finishes writing its rows and prints what it did).
+const GRACE: std::time::Duration = std::time::Duration::from_millis(800);
+
+/// Install, for every command, the handler of Ctrl-C (SIGINT) and SIGTERM: the first
+/// signal asks the work to stop ([`contactwave::interrupt`]: solvers, executors and file
+/// writing stop at their next check, and the command exits 130); if it has not ended
+/// within [`GRACE`], the process exits 130 as soon as no file is being written (what was
+/// written is complete; nothing is half-written). A second signal exits at once.
+pub fn install_interrupt_handler() {
     let _ = ctrlc::set_handler(|| {
         if CANCEL.swap(true, Ordering::SeqCst) {
-            // second Ctrl-C: give up at once (finished work is on disk already)
+            // second signal: give up at once (finished work is on disk already)
             std::process::exit(EXIT_INTERRUPTED.into());
         }
+        contactwave::interrupt::request();
+        std::thread::spawn(|| {
+            std::thread::sleep(GRACE);
+            while contactwave::interrupt::writing() > 0 {
+                std::thread::sleep(std::time::Duration::from_millis(5));
+            }
+            eprintln!("error: interrupted");
+            std::process::exit(EXIT_INTERRUPTED.into());
+        });
     });
+}
+
+/// The flag Ctrl-C sets (the handler is installed by `main`): work checks it to stop.
+pub fn cancel_on_ctrl_c() -> &'static AtomicBool {
     &CANCEL
 }

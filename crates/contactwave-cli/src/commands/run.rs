@@ -7,13 +7,17 @@
 use super::{check_out_dir, progress_bar, read_table, EXIT_OK, STEPS_TEMPLATE};
 use contactwave::model::{self, RunControl};
 use contactwave::output;
+use contactwave::output::recording::{self, Recording, Series};
 use contactwave::solver::barstack::StepProgress;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
-/// Simulate one scenario and write summary.json, timeseries.csv, probe.csv,
-/// spectrum.csv and SVG plots into DIR (SI units: s, m, Pa, m/s, Hz).
+/// Simulate one scenario and write its files into DIR (SI units: s, m, Pa, m/s, Hz): for a
+/// half-space scenario summary.json, timeseries.csv, probe.csv, spectrum.csv and SVG plots;
+/// for a bar stack summary.json, timeseries.csv and frf.csv (hammer) or waves.csv and
+/// probes.csv (incident wave) (docs/scenario.md section 4). Ctrl-C stops it (exit 130,
+/// nothing written).
 #[derive(clap::Args)]
 pub struct Args {
     /// Scenario file (TOML; see docs/scenario.md).
@@ -21,10 +25,37 @@ pub struct Args {
     /// Output folder (created if needed; files in it are replaced).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
+    /// Recorded series written (timeseries.csv, probe.csv, probes.csv, waves.csv):
+    /// `decimated` keeps at most 20000 rows per file (every k-th time sample), `full`
+    /// every time sample, `none` no such file. Summaries, spectra and FRFs use the full
+    /// series whatever the choice.
+    #[arg(long, value_enum, default_value_t = Record::Decimated)]
+    record: Record,
+    /// Sampling step of the written series, s (rounded to whole time steps; implies
+    /// `--record decimated`).
+    #[arg(long, value_name = "SECONDS")]
+    record_step: Option<f64>,
+}
+
+/// `--record`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Record {
+    None,
+    Decimated,
+    Full,
 }
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
     let (path, out) = (args.scenario.as_path(), args.out.as_path());
+    let recording = Recording {
+        series: match args.record {
+            Record::None => Series::None,
+            Record::Decimated => Series::Decimated,
+            Record::Full => Series::Full,
+        },
+        step: args.record_step,
+    };
+    recording.validate()?;
     let template = model::plan_valid(read_table(path)?, path)?;
     check_out_dir(out)?;
     let t0 = Instant::now();
@@ -41,7 +72,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     bar.finish_and_clear();
     let outcome = outcome?;
     let wall = t0.elapsed();
-    let files = outcome.files()?;
+    let files = recording::apply(outcome.files()?, &recording)?;
     output::write_files(out, &files)?;
     println!("scenario               {}", path.display());
     for line in outcome.report() {

@@ -1,13 +1,16 @@
 //! `contactwave sweep SWEEP --out DIR`: run the points of a parameter sweep on a thread pool
-//! and write DIR/sweep.csv (one row per point, appended as points finish), its hash file
-//! DIR/sweep.csv.hash, DIR/sweep.svg and, if points fail, DIR/sweep_errors.csv.
+//! and write DIR/sweep.csv (one row per point, appended as points finish, sorted by point
+//! once finished), its hash file DIR/sweep.csv.hash, DIR/sweep.svg and, if points fail,
+//! DIR/sweep_errors.csv (exit code 1 unless --tolerate-failures).
 //!
 //! `--resume` computes only the points missing from an existing sweep.csv, `--shard K/N`
-//! one shard of the points (combined by `merge`). Ctrl-C stops after the running points
-//! (exit code 130, rerun with --resume); a second Ctrl-C exits at once.
+//! one shard of the points (combined by `merge`). Ctrl-C or SIGTERM stops the running
+//! points at their next check (exit code 130, rerun with --resume); a second one exits at
+//! once.
 
 use super::{
-    cancel_on_ctrl_c, check_out_dir, output_file, progress_bar, EXIT_INTERRUPTED, EXIT_OK,
+    cancel_on_ctrl_c, check_out_dir, output_file, progress_bar, EXIT_FAILED, EXIT_INTERRUPTED,
+    EXIT_OK,
 };
 use contactwave::output;
 use contactwave::study::{self, Sweep, SweepOptions};
@@ -29,23 +32,39 @@ pub struct Args {
     /// missing points (refused if the sweep, its base scenario or the version changed).
     #[arg(long)]
     resume: bool,
-    /// Worker threads (default: one per core).
+    /// Worker threads, 1 to 1024 (default: one per core).
     #[arg(long, value_name = "N",
-          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..))]
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new()
+              .range(1..=contactwave::run::MAX_THREADS as u64))]
     threads: Option<usize>,
     /// Run only shard K of N: the points whose index i has i % N == K - 1 (1 <= K <= N).
     /// Header and hash file are those of the whole sweep; combine shards with `merge`.
     #[arg(long, value_name = "K/N", value_parser = study::Shard::parse)]
     shard: Option<study::Shard>,
+    /// Exit 0 even when points fail (their messages are in DIR/sweep_errors.csv); without
+    /// it a sweep with failed points exits 1 after writing every row it could.
+    #[arg(long)]
+    tolerate_failures: bool,
 }
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
     let out = args.out.as_path();
     let sweep = Sweep::load(&args.sweep)?;
-    // validate every point before creating anything
-    sweep.runnable()?;
     check_out_dir(out)?;
-    std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
+    // every point validated before the folder or any file is created (progress on a
+    // terminal: a large grid takes seconds)
+    let setup = progress_bar(
+        "validating {bar:40} {pos}/{len} points  {elapsed_precise} elapsed, eta {eta}",
+        sweep.points.len() as u64,
+    );
+    let checked = |d: usize, _total: usize| {
+        if d % 1024 == 0 || d == sweep.points.len() {
+            setup.set_position(d as u64);
+        }
+    };
+    let validated = sweep.validate_with(&checked);
+    setup.finish_and_clear();
+    validated?;
     let cancel = cancel_on_ctrl_c();
     let shard = args.shard.unwrap_or(study::Shard::ALL);
     let total = (0..sweep.points.len())
@@ -64,6 +83,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let opts = SweepOptions {
         threads: args.threads,
         resume: args.resume,
+        validated: true,
     };
     match study::run_sweep_shard(&sweep, shard, &csv, &opts, &progress, cancel) {
         Ok(report) => {
@@ -93,11 +113,21 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
                 }
             }
             if let Some(e) = report.errors_csv {
+                let first = first_error(&e);
+                let what = if args.tolerate_failures {
+                    "warning"
+                } else {
+                    "error"
+                };
                 eprintln!(
-                    "warning: {} points failed; messages in {}",
+                    "{what}: {} of {} points failed (messages in {}); first: {first}",
                     report.failed,
+                    report.total,
                     e.display()
                 );
+                if !args.tolerate_failures {
+                    return Ok(EXIT_FAILED);
+                }
             }
             Ok(EXIT_OK)
         }
@@ -115,4 +145,17 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             Err(e)
         }
     }
+}
+
+/// The first message of an errors file (`point,message` rows): `point N: MESSAGE`.
+fn first_error(path: &std::path::Path) -> String {
+    std::fs::read_to_string(path)
+        .ok()
+        .and_then(|t| {
+            t.lines().nth(1).map(|l| {
+                let (p, m) = l.split_once(',').unwrap_or(("?", l));
+                format!("point {p}: {}", m.trim_matches('"').replace("\"\"", "\""))
+            })
+        })
+        .unwrap_or_else(|| "(unreadable)".to_string())
 }

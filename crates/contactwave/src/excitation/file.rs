@@ -20,6 +20,20 @@ impl FileWaveform {
     /// Read `path` (two columns: time, stress; an optional header line). Times must be
     /// strictly increasing and finite; the waveform is shifted so it starts at t = 0.
     pub fn read(path: &Path, field: &str) -> Result<(Vec<f64>, Vec<f64>)> {
+        // parsed rows and their interpolant take a few times the text in memory
+        crate::budget::check_file(path, field, 4.0)?;
+        Self::read_window(path, field, None)
+    }
+
+    /// [`FileWaveform::read`] of the rows within `window` seconds of the first sample
+    /// only (and the first row beyond, for the interpolation up to the window's end):
+    /// the rest of a file longer than the simulated time is never read, whatever its
+    /// size. The rows kept are checked against the memory budget as they are read.
+    pub fn read_window(
+        path: &Path,
+        field: &str,
+        window: Option<f64>,
+    ) -> Result<(Vec<f64>, Vec<f64>)> {
         let shown = path.display().to_string();
         let mut rdr = csv::ReaderBuilder::new()
             .has_headers(false)
@@ -62,6 +76,18 @@ impl FileWaveform {
                     }
                     t.push(a);
                     s.push(b);
+                    if t.len() % (1 << 20) == 0 {
+                        crate::budget::check(
+                            &shown,
+                            field,
+                            &shown,
+                            t.len() as f64 * 64.0,
+                            &format!("{} rows read", t.len()),
+                        )?;
+                    }
+                    if window.is_some_and(|w| a - t[0] > w) {
+                        break;
+                    }
                 }
                 _ if i == 0 => continue, // header
                 _ => {

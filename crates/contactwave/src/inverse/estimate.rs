@@ -94,6 +94,11 @@ pub struct Estimate {
 }
 
 fn argmin_err(e: argmin::core::Error) -> Error {
+    // an interruption inside a cost evaluation stays an interruption (exit 130,
+    // KeyboardInterrupt), not a numerical failure
+    if crate::interrupt::requested() {
+        return Error::Interrupted;
+    }
     Error::numerical(0.0, format!("optimiser: {e}"), "identification")
 }
 

@@ -24,6 +24,7 @@
 pub mod identify;
 #[cfg(feature = "plot")]
 pub mod plot;
+pub mod recording;
 
 use crate::error::{Error, Result};
 use crate::law::ContactLaw;
@@ -136,9 +137,13 @@ pub fn sweep_svg(sweep: &crate::study::Sweep, csv: &Path) -> Result<Option<Strin
 /// Create `dir` (and its parents) and write the files into it, each through a temporary
 /// name and a rename. Returns the paths written.
 pub fn write_files(dir: &Path, files: &[OutputFile]) -> Result<Vec<PathBuf>> {
+    crate::interrupt::check()?;
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let mut written = Vec::with_capacity(files.len());
     for f in files {
+        // an interruption stops between files: those written are complete
+        crate::interrupt::check()?;
+        let _writing = crate::interrupt::Writing::start();
         let path = dir.join(&f.name);
         let tmp = dir.join(format!(".{}.tmp{}", f.name, std::process::id()));
         std::fs::write(&tmp, &f.contents).map_err(|e| Error::io(&tmp, e))?;

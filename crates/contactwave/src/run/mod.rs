@@ -67,6 +67,32 @@ impl<T> Observer<T> for Progress<'_> {
     }
 }
 
+/// Most worker threads a map may use: more only costs memory (a stack each) and start-up
+/// time on any machine this runs on.
+pub const MAX_THREADS: usize = 1024;
+
+/// Check a thread count asked for by a user (`--threads`, Python's `threads=`): an integer
+/// in [1, [`MAX_THREADS`]].
+///
+/// ```
+/// use contactwave::run::check_threads;
+/// assert!(check_threads(4).is_ok());
+/// assert!(check_threads(0).is_err());
+/// assert!(check_threads(1_000_000).unwrap_err().to_string().contains("[1, 1024]"));
+/// ```
+pub fn check_threads(n: usize) -> Result<()> {
+    if (1..=MAX_THREADS).contains(&n) {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            "<arguments>",
+            "threads",
+            n,
+            format!("must be an integer in [1, {MAX_THREADS}] (default: one per core)"),
+        ))
+    }
+}
+
 /// Runs maps over points on a thread pool.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Executor {
@@ -88,9 +114,10 @@ impl Executor {
         Executor::default()
     }
 
-    /// On `n` threads (`None` or `Some(0)`: all cores).
+    /// On `n` threads (`None` or `Some(0)`: all cores; at most [`MAX_THREADS`], see
+    /// [`check_threads`]).
     pub fn threads(mut self, n: Option<usize>) -> Self {
-        self.threads = n.filter(|&n| n > 0);
+        self.threads = n.filter(|&n| n > 0).map(|n| n.min(MAX_THREADS));
         self
     }
 
@@ -102,8 +129,9 @@ impl Executor {
     /// Run `f` on every item in parallel (one point per task), reporting to `observer`.
     /// Returns the results in the items' order; `None` for points not started because the
     /// observer cancelled. A panic in `f` is that point's [`Error::Internal`]. The map
-    /// itself fails only when the thread pool cannot be built or the observer's
-    /// [`Observer::point`] fails.
+    /// itself fails when the thread pool cannot be built, the observer's
+    /// [`Observer::point`] fails, or an interruption was requested
+    /// ([`crate::interrupt`]: [`Error::Interrupted`]).
     pub fn map<I, T, F>(
         &self,
         items: &[I],
@@ -121,7 +149,7 @@ impl Executor {
         observer.progress(0, total);
         let done = AtomicUsize::new(0);
         let one = |(i, item): (usize, &I)| -> Result<Option<Result<T>>> {
-            if observer.cancelled() {
+            if observer.cancelled() || crate::interrupt::requested() {
                 return Ok(None);
             }
             let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(item)))
@@ -143,15 +171,65 @@ impl Executor {
                 .map(one)
                 .collect::<Result<Vec<_>>>()
         };
+        let results = self.install(run)?;
+        // an interruption ([`crate::interrupt`]) skipped or stopped points: the map's
+        // results are incomplete, so the map is interrupted as a whole
+        crate::interrupt::check()?;
+        Ok(results)
+    }
+
+    /// [`Executor::map`] keeping no result: each point's result goes to the observer's
+    /// [`Observer::point`] and is dropped, so memory stays flat whatever the number of
+    /// points (a sweep streams its rows this way). Returns the number of points that ran
+    /// (fewer than the items when the observer cancelled).
+    pub fn for_each<I, T, F>(&self, items: &[I], f: F, observer: &dyn Observer<T>) -> Result<usize>
+    where
+        I: Sync,
+        T: Send,
+        F: Fn(&I) -> Result<T> + Sync,
+    {
+        use rayon::prelude::*;
+        let total = items.len();
+        observer.start(total);
+        observer.progress(0, total);
+        let done = AtomicUsize::new(0);
+        let one = |(i, item): (usize, &I)| -> Result<()> {
+            if observer.cancelled() || crate::interrupt::requested() {
+                return Ok(());
+            }
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(item)))
+                .unwrap_or_else(|p| {
+                    Err(Error::Internal {
+                        message: panic_message(p),
+                    })
+                });
+            observer.point(i, &r)?;
+            let d = done.fetch_add(1, Ordering::SeqCst) + 1;
+            observer.progress(d, total);
+            Ok(())
+        };
+        let run = || {
+            items
+                .par_iter()
+                .enumerate()
+                .with_max_len(1)
+                .try_for_each(one)
+        };
+        self.install(run)?;
+        Ok(done.load(Ordering::SeqCst))
+    }
+
+    /// Run `work` on this executor's pool (the global one without a thread count).
+    fn install<R: Send>(&self, work: impl FnOnce() -> Result<R> + Send) -> Result<R> {
         match self.threads {
-            None => run(),
+            None => work(),
             Some(n) => rayon::ThreadPoolBuilder::new()
                 .num_threads(n)
                 .build()
                 .map_err(|e| {
                     Error::invalid("<executor>", "threads", n, format!("thread pool: {e}"))
                 })?
-                .install(run),
+                .install(work),
         }
     }
 

@@ -3,6 +3,7 @@
 //! what is allowed; nothing downstream sees an invalid value.
 
 pub mod bar_stack;
+pub mod budget;
 mod cache;
 pub mod spec;
 mod value;
@@ -267,15 +268,6 @@ impl Scenario {
                 Some(m) => need(m, "counterpart")?,
                 None => f64::INFINITY,
             };
-            if spec.solver.method == spec::Method::Fd {
-                return Err(Error::invalid(
-                    file,
-                    "solver.method",
-                    "\"fd\"",
-                    "shear waves and tangential laws run on the exact solver only: use \
-                     method = \"exact\"",
-                ));
-            }
             Some(ShearSetup {
                 tangential,
                 has_wave: shear_wave.is_some(),
@@ -286,7 +278,7 @@ impl Scenario {
         } else {
             None
         };
-        Ok(Scenario {
+        let scenario = Scenario {
             file: file.to_string(),
             medium,
             counterpart,
@@ -296,7 +288,9 @@ impl Scenario {
             probe_x,
             shear,
             spec,
-        })
+        };
+        budget::check_half_space(&scenario)?;
+        Ok(scenario)
     }
 
     /// Acoustic impedance of medium 2, Pa s/m (`inf` for a rigid wall).

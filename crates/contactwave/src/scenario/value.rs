@@ -7,6 +7,8 @@ use std::path::Path;
 
 /// Read a TOML file into a table (errors name the file).
 pub fn read_table(path: &Path) -> Result<toml::Table> {
+    // a TOML table takes about ten times its text in memory
+    crate::budget::check_file(path, "<file size>", 10.0)?;
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
     parse_toml(&text, &path.display().to_string())
 }

@@ -351,6 +351,7 @@ impl BarStack {
         record(&mut out, run.t0, &u, &gaps, &stresses, &beta);
         for step in 0..run.steps {
             if step % 4096 == 0 {
+                crate::interrupt::check()?;
                 if let Some(p) = &run.progress {
                     (p.0)(step, run.steps);
                 }

@@ -944,6 +944,9 @@ impl<'a> Runner<'a> {
             }
             self.advance(&mut acc, t, tb, &mut y)?;
             k += 1;
+            if k % 4096 == 0 {
+                crate::interrupt::check()?;
+            }
             self.max_gap = self.max_gap.max(y[0]);
             self.record(&mut out, &acc, tb, y);
             if k >= n_min && tb > self.duration {

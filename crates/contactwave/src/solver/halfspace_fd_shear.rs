@@ -301,6 +301,9 @@ fn solve(p: &CoupledHalfSpace, settings: &FdCoupledSolver) -> Result<CoupledOutp
         (0.0, 0.0),
     );
     for step in 0..steps {
+        if step % 4096 == 4095 {
+            crate::interrupt::check()?;
+        }
         let t1 = t0 + (step + 1) as f64 * dt;
         let gn = normal.predict();
         let gt = shear.predict();

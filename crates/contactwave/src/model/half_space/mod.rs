@@ -81,6 +81,7 @@ impl Model for Scenario {
     }
 
     fn run(&self, _control: &RunControl) -> Result<Box<dyn Outcome>> {
+        crate::scenario::budget::check_half_space_run(self)?;
         Ok(Box::new(simulate(self)?))
     }
 

@@ -1,12 +1,15 @@
 //! Runs with a tangential degree of freedom (model.md section 13): the scenario's coupled
-//! problem on the exact 2-DOF solver, the harmonics of the reflected and transmitted shear
+//! problem on the exact 2-DOF solver (or, with `solver.method = "fd"`, the FD scheme with
+//! a shear field, model.md section 9.6), the harmonics of the reflected and transmitted shear
 //! waves, friction dissipation and slip.
 
 use crate::analysis::{velocity_bands, BandAmplitudes, Summary};
 use crate::error::Result;
+use crate::scenario::spec::Method;
 use crate::scenario::{Scenario, ShearSetup};
 use crate::solver::coupled::{CoupledHalfSpace, CoupledOutput, CoupledSolver};
 use crate::solver::halfspace::{HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
+use crate::solver::halfspace_fd_shear::FdCoupledSolver;
 use crate::solver::Solver;
 
 /// The tangential results of a run.
@@ -56,14 +59,24 @@ pub fn coupled_problem(scenario: &Scenario, shear: &ShearSetup) -> CoupledHalfSp
 
 /// Solve a scenario with a tangential part: the normal histories and the shear results.
 pub fn solve(scenario: &Scenario, shear: &ShearSetup) -> Result<(HalfSpaceOutput, ShearResult)> {
-    let out: CoupledOutput = CoupledSolver {
-        settings: HalfSpaceSettings {
-            samples_per_period: scenario.spec.solver.samples_per_period(),
-            tail_periods: scenario.spec.solver.tail_periods,
-            summary_only: false,
-        },
-    }
-    .solve(&coupled_problem(scenario, shear))?;
+    let problem = coupled_problem(scenario, shear);
+    let sp = &scenario.spec.solver;
+    let out: CoupledOutput = match sp.method {
+        Method::Exact => CoupledSolver {
+            settings: HalfSpaceSettings {
+                samples_per_period: sp.samples_per_period(),
+                tail_periods: sp.tail_periods,
+                summary_only: false,
+            },
+        }
+        .solve(&problem)?,
+        Method::Fd => FdCoupledSolver {
+            samples_per_period: sp.samples_per_period(),
+            tail_periods: sp.tail_periods,
+            interface_scheme: sp.interface_update.into(),
+        }
+        .solve(&problem)?,
+    };
     let f0 = shear.incident.fundamental();
     let sh = &out.shear;
     let reflected_bands = velocity_bands(&sh.reflected_displacement, sh.dt, f0, None);

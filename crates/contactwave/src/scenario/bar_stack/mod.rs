@@ -128,6 +128,7 @@ impl BarStackScenario {
         let dt = settings::time_step(m, &stack.segments, wave, file)?;
         let duration = settings::duration(m, &stack.segments, wave, dt, file)?;
         settings::validate_analysis(&spec.analysis, file)?;
+        check_size(&spec, &stack, dt, duration, file)?;
         let probes = probes::resolve_probes(&spec.probes, &stack, dt, file)?;
         let imposed_displacement = source::imposed_displacement(&spec, file)?;
         stack.incident = source::incident_at_first_interface(wave, &stack.segments);
@@ -147,6 +148,41 @@ impl BarStackScenario {
             spec,
         })
     }
+}
+
+/// Refuse, before the mesh is built, a stack whose mesh or recorded histories exceed the
+/// memory budget ([`crate::budget`]).
+fn check_size(
+    spec: &BarStackSpec,
+    stack: &BarStack,
+    dt: f64,
+    duration: f64,
+    file: &str,
+) -> Result<()> {
+    let nodes: f64 = stack
+        .segments
+        .iter()
+        .map(|s| (s.length / (s.material.wave_speed() * dt)).max(1.0) + 1.0)
+        .sum();
+    let cmax = stack
+        .segments
+        .iter()
+        .map(|s| s.material.wave_speed())
+        .fold(0.0, f64::max);
+    let (field, value) = match spec.model.time_step {
+        Some(ts) => ("model.time_step", ts),
+        None => ("model.cell_size", cmax * dt),
+    };
+    let series = (3 + 5 * spec.probes.len() + 3 * (stack.interfaces.len() + 2)) as f64;
+    crate::scenario::budget::check_bar_stack(
+        file,
+        nodes,
+        field,
+        value,
+        duration / dt,
+        series,
+        duration,
+    )
 }
 
 impl BarStackSpec {

@@ -64,7 +64,7 @@ pub(super) fn force_source(
     cache: &BuildCache,
 ) -> Result<(Arc<dyn Signal>, f64)> {
     match (&spec.excitation, &spec.incident) {
-        (Some(ex), None) => hammer(ex, file, dir, cache),
+        (Some(ex), None) => hammer(ex, spec.model.duration, file, dir, cache),
         (None, Some(_)) => Ok((Arc::new(NoForce), 0.0)),
         (Some(_), Some(_)) => Err(inv(
             file,
@@ -83,9 +83,10 @@ pub(super) fn force_source(
 }
 
 /// The `[excitation]` signal at the first node (force, N, or imposed displacement, m) and
-/// its pulse duration, s.
+/// its pulse duration, s; a file is read over the simulated time (`model.duration`) only.
 fn hammer(
     ex: &ForceSpec,
+    duration: Option<f64>,
     file: &str,
     dir: &Path,
     cache: &BuildCache,
@@ -118,10 +119,19 @@ fn hammer(
                     "a CSV file (time s, force N)",
                 )
             })?;
+            // only the simulated window is read: a file much longer than the run is
+            // truncated, not loaded (the cache key holds the window)
+            let window = duration.unwrap_or(super::DEFAULT_HAMMER_DURATION);
             let cols = cache.columns(
                 &dir.join(rel),
-                "excitation.path",
-                crate::excitation::FileWaveform::read,
+                &format!("excitation.path@{window:e}"),
+                |p, _| {
+                    crate::excitation::FileWaveform::read_window(
+                        p,
+                        "excitation.path",
+                        window.is_finite().then_some(window),
+                    )
+                },
             )?;
             let (t, f) = (&cols.0, &cols.1);
             let t0 = t[0];

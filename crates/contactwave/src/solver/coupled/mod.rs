@@ -586,6 +586,9 @@ impl<'a> Runner<'a> {
             }
             self.advance(&mut acc, t, tb, &mut y)?;
             k += 1;
+            if k % 4096 == 0 {
+                crate::interrupt::check()?;
+            }
             self.record(&mut out, &acc, tb, &y);
             if k >= n_min && tb > self.duration {
                 if self.settings.tail_periods.is_some() {

@@ -32,11 +32,14 @@ struct Rows<'a> {
 impl Observer<Summary> for Rows<'_> {
     fn point(&self, k: usize, result: &Result<Summary>) -> Result<()> {
         let i = self.todo[k];
+        let _writing = crate::interrupt::Writing::start();
         let mut w = self.writer.lock().unwrap_or_else(|p| p.into_inner());
         match result {
             Ok(summary) => w.row(i, &self.sweep.points[i], summary, || {
                 self.sweep.header(summary.keys())
             }),
+            // a point stopped by an interruption is not a failure: --resume runs it
+            Err(Error::Interrupted) => Ok(()),
             Err(e) => w.error(i, &e.to_string()),
         }
     }
@@ -57,6 +60,9 @@ pub struct SweepOptions {
     pub threads: Option<usize>,
     /// Append to an existing CSV of the same sweep, skipping its points.
     pub resume: bool,
+    /// The caller validated every point already ([`Sweep::validate_with`], e.g. with a
+    /// progress bar): the driver does not validate them again.
+    pub validated: bool,
 }
 
 /// What a finished [`run_sweep`] did.
@@ -164,8 +170,16 @@ pub fn run_sweep_shard(
     progress: &(dyn Fn(usize, usize) + Sync),
     cancel: &AtomicBool,
 ) -> Result<SweepReport> {
-    let models = sweep.runnable()?;
-    let grid_total = models.len();
+    // every point validated before anything is written, none kept (flat memory)
+    let plan = if opts.validated {
+        sweep.plan()?
+    } else {
+        sweep.validate()?
+    };
+    let grid_total = sweep.points.len();
+    if let Some(dir) = out_csv.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    }
     let total = (0..grid_total).filter(|&i| shard.contains(i)).count();
     let hash_file = hash_path(out_csv);
     let errors_file = errors_path(out_csv);
@@ -262,16 +276,20 @@ pub fn run_sweep_shard(
         progress,
         cancel,
     };
-    let done =
-        Executor::new()
-            .threads(opts.threads)
-            .map(&todo, |&i| models[i].summary(), &observer)?;
-    let processed = skipped + done.iter().filter(|r| r.is_some()).count();
+    let ran = Executor::new().threads(opts.threads).for_each(
+        &todo,
+        |&i| sweep.model(&plan, i)?.summary(),
+        &observer,
+    )?;
+    let _ = ran;
     let w = writer.into_inner().unwrap_or_else(|p| p.into_inner());
+    let processed = skipped + w.computed + w.failed;
     let _ = w.csv.sync_data();
-    if cancel.load(Ordering::SeqCst) && processed < total {
+    if (cancel.load(Ordering::SeqCst) || crate::interrupt::requested()) && processed < total {
         return Err(Error::Interrupted);
     }
+    drop(w.csv);
+    sort_rows(out_csv)?;
     Ok(SweepReport {
         total,
         skipped,
@@ -279,6 +297,48 @@ pub fn run_sweep_shard(
         failed: w.failed,
         csv: out_csv.to_path_buf(),
         errors_csv: (w.failed > 0).then_some(errors_file),
+    })
+}
+
+/// Rewrite a finished sweep CSV with its rows in point order (they were appended in
+/// completion order), byte for byte otherwise, through a temporary file and a rename. A
+/// CSV whose sorting would exceed the memory budget stays in completion order.
+fn sort_rows(csv: &Path) -> Result<()> {
+    if crate::budget::check_file(csv, "sweep.csv", 3.0).is_err() {
+        return Ok(());
+    }
+    let text = std::fs::read_to_string(csv).map_err(|e| Error::io(csv, e))?;
+    let mut lines = text.lines();
+    let Some(header) = lines.next() else {
+        return Ok(());
+    };
+    let mut rows: Vec<(u64, &str)> = lines
+        .map(|l| {
+            let point = l
+                .split(',')
+                .next()
+                .and_then(|p| p.trim().parse::<u64>().ok())
+                .unwrap_or(u64::MAX);
+            (point, l)
+        })
+        .collect();
+    if rows.windows(2).all(|w| w[0].0 <= w[1].0) {
+        return Ok(());
+    }
+    rows.sort_by_key(|r| r.0);
+    let mut sorted = String::with_capacity(text.len());
+    sorted.push_str(header);
+    sorted.push('\n');
+    for (_, l) in rows {
+        sorted.push_str(l);
+        sorted.push('\n');
+    }
+    let tmp = csv.with_extension(format!("csv.sorting{}", std::process::id()));
+    let _writing = crate::interrupt::Writing::start();
+    std::fs::write(&tmp, sorted).map_err(|e| Error::io(&tmp, e))?;
+    std::fs::rename(&tmp, csv).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        Error::io(csv, e)
     })
 }
 
@@ -301,6 +361,7 @@ mod tests {
         let opts = SweepOptions {
             threads: Some(2),
             resume: false,
+            validated: false,
         };
         let r = run_sweep(&sweep, &csv, &opts, &|_, _| {}, &cancel).unwrap();
         assert_eq!((r.total, r.skipped, r.computed, r.failed), (4, 0, 4, 0));
@@ -323,6 +384,7 @@ mod tests {
         let opts = SweepOptions {
             threads: Some(1),
             resume: true,
+            validated: false,
         };
         let r = run_sweep(&sweep, &csv, &opts, &|_, _| {}, &cancel).unwrap();
         assert_eq!((r.skipped, r.computed), (2, 2));
@@ -387,6 +449,7 @@ mod tests {
         SweepOptions {
             threads: Some(2),
             resume: false,
+            validated: false,
         }
     }
 
@@ -476,6 +539,7 @@ mod tests {
         let o = SweepOptions {
             threads: Some(1),
             resume: true,
+            validated: false,
         };
         let r = run_sweep_shard(&sweep, shard, &p, &o, &|_, _| {}, &cancel).unwrap();
         assert_eq!((r.total, r.skipped, r.computed), (5, 2, 3));

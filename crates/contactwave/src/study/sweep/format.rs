@@ -397,6 +397,44 @@ impl Sweep {
         })
     }
 
+    /// Plan the sweep and validate every grid point (any kind of scenario) on all cores
+    /// without keeping the models (flat memory): the first invalid point in grid order is
+    /// the error.
+    pub fn validate(&self) -> Result<SweepPlan> {
+        self.validate_with(&|_, _| {})
+    }
+
+    /// [`Sweep::validate`] reporting (points checked, total) to `progress` as it goes.
+    pub fn validate_with(&self, progress: &(dyn Fn(usize, usize) + Sync)) -> Result<SweepPlan> {
+        let plan = self.plan()?;
+        let idx: Vec<usize> = (0..self.points.len()).collect();
+        let first_bad = std::sync::atomic::AtomicUsize::new(usize::MAX);
+        crate::run::Executor::new().for_each(
+            &idx,
+            |&i| {
+                // points after a known bad one need no check
+                if i > first_bad.load(std::sync::atomic::Ordering::SeqCst) {
+                    return Ok(());
+                }
+                self.model(&plan, i).map(drop).inspect_err(|_| {
+                    first_bad.fetch_min(i, std::sync::atomic::Ordering::SeqCst);
+                })
+            },
+            &crate::run::Progress {
+                report: progress,
+                cancel: None,
+            },
+        )?;
+        // an interruption skipped points: they are not validated
+        crate::interrupt::check()?;
+        match first_bad.load(std::sync::atomic::Ordering::SeqCst) {
+            usize::MAX => Ok(plan),
+            i => Err(self.model(&plan, i).err().unwrap_or(Error::Internal {
+                message: format!("point {i} failed validation once only"),
+            })),
+        }
+    }
+
     /// Plan the sweep and validate every grid point (any kind of scenario), in grid order.
     pub fn runnable(&self) -> Result<Vec<Arc<dyn Model>>> {
         let plan = self.plan()?;
@@ -481,8 +519,22 @@ fn check_axes(file: &str, axes: &[Axis]) -> Result<()> {
             format!("the grid may have at most {MAX_GRID_POINTS} points"),
         ));
     }
-    Ok(())
+    let points = total.unwrap_or(0) as f64;
+    crate::budget::check(
+        file,
+        "axis",
+        axes.iter()
+            .map(|a| a.values.len().to_string())
+            .collect::<Vec<_>>()
+            .join(" x "),
+        points * (BYTES_PER_POINT + 8.0 * axes.len() as f64),
+        &format!("{points:.3e} grid points: their values, validated models and summary rows"),
+    )
 }
+
+/// Memory one grid point takes while a sweep runs (its validated model and its summary
+/// row), bytes: an upper estimate of what [`Sweep::runnable`] and the rows hold.
+const BYTES_PER_POINT: f64 = 4096.0;
 
 fn parse_axis(a: &toml::Value, i: usize, file: &str) -> Result<Axis> {
     let t = match a {

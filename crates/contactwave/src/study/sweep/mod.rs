@@ -24,8 +24,9 @@
 //!
 //! # Output
 //!
-//! `sweep.csv`: a header line, then one row per finished point in order of completion:
-//! `point` (0-based grid index; sort by it to get grid order), one column per axis named by
+//! `sweep.csv`: a header line, then one row per finished point, appended in order of
+//! completion and sorted by `point` (the 0-based grid index) once the sweep has finished
+//! (an interrupted one stays in completion order until `--resume` finishes it), one column per axis named by
 //! its dotted key, then the keys of [`crate::analysis::Summary`] in their order. Numbers are
 //! written so that they parse back to the same `f64` (`NaN`, `inf` for non-finite values).
 //! Each row is written with one `write` call as soon as its point finishes, so an

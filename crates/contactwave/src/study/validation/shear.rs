@@ -216,6 +216,38 @@ pub fn coupled_energy() -> Result<ValidationCase> {
     ))
 }
 
+/// Cross-validation of the two solvers with shear: the FD scheme with a shear field
+/// against the coupled exact solver on the full RCCM law hit by a longitudinal and a
+/// shear burst (damage and friction), 1000 samples per period: the transmitted shear
+/// wave's A3/A_inc and beta_end (1%).
+pub fn fd_vs_exact() -> Result<Vec<ValidationCase>> {
+    let base = "[medium]\nmaterial = \"aluminium\"\n[counterpart]\nkind = \"medium\"\nmaterial = \"aluminium\"\n\
+         [interface]\nstatic_pressure = 0.82e6\ntraction = { law = \"rccm\", stiffness = 2e13, energy = 0.1 }\n\
+         tangential = { law = \"rccm\", stiffness = 1e13, friction = 0.4 }\n\
+         [incident]\nfrequency = 1e6\ncycles = 15\namplitude = 3e6\n\
+         [shear_incident]\nfrequency = 1e6\ncycles = 15\namplitude = 2e6\n";
+    let run = |method: &str| -> Result<crate::analysis::Summary> {
+        let s = Scenario::from_toml_str(
+            &format!(
+                "{base}[solver]\nmethod = \"{method}\"\nsamples_per_period = 1000\ntail_periods = 20\n"
+            ),
+            "<validation>",
+        )?;
+        simulate_summary(&s)
+    };
+    let (ex, fd) = (run("exact")?, run("fd")?);
+    let mut v = Vec::new();
+    for key in ["shear_tr_A3_over_Ainc", "shear_A1_over_Ainc", "beta_end"] {
+        v.push(ValidationCase::new(
+            format!("FD vs exact, full RCCM with normal + shear bursts: {key}"),
+            ex.get(key).unwrap_or(f64::NAN),
+            fd.get(key).unwrap_or(f64::NAN),
+            0.01,
+        ));
+    }
+    Ok(v)
+}
+
 /// Every tangential case, in a stable order.
 pub fn run_all() -> Result<Vec<ValidationCase>> {
     let mut v = clipping()?;
@@ -223,5 +255,6 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
     v.push(below_threshold()?);
     v.extend(rccm_without_shear()?);
     v.push(coupled_energy()?);
+    v.extend(fd_vs_exact()?);
     Ok(v)
 }

@@ -1,0 +1,424 @@
+//! Hostile inputs (issue 12): sizes beyond any machine, absurd times and frequencies,
+//! bad signals, files and numbers. Every case must end with exit code 0, 1, 2 or 130 (here
+//! 2, or 130 for signals), one `error:` line naming what to change, no output folder or
+//! partial file, and quickly: no abort ("memory allocation failed", exit 134), no hang.
+//!
+//! The memory budget is fixed (`CONTACTWAVE_MEMORY_BUDGET=2G`) so that the refusals do not
+//! depend on the machine. `cargo test --release -p contactwave-cli --test hostile --
+//! --nocapture` prints each case's time to refusal.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+fn bin() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_contactwave"));
+    c.env("CONTACTWAVE_MEMORY_BUDGET", "2G");
+    c
+}
+
+fn tmpdir(name: &str) -> PathBuf {
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let d = std::env::temp_dir().join(format!(
+        "contactwave-hostile-{name}-{}-{}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::SeqCst)
+    ));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+const HALF_SPACE: &str = r#"[medium]
+material = "pmma"
+[interface]
+static_pressure = 0.082e6
+[incident]
+frequency = 1e6
+cycles = 15
+amplitude = 0.82e6
+"#;
+
+fn tribobrake() -> String {
+    std::fs::read_to_string(examples().join("tribobrake.toml")).unwrap()
+}
+
+/// Replace the line starting with `key =` of `text` (the first one) by `key = value`.
+fn with_line(text: &str, key: &str, value: &str) -> String {
+    let mut done = false;
+    text.lines()
+        .map(|l| {
+            if !done && l.trim_start().starts_with(&format!("{key} =")) {
+                done = true;
+                format!("{key} = {value}")
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+        + "\n"
+}
+
+/// Run `args` (with `{dir}` replaced by the case folder) and check the refusal: exit code
+/// `code`, first stderr line `error: ...` containing `needle`, one line only unless clap
+/// speaks, no `out` folder, within `limit`. Returns the time to refusal.
+fn refuse(dir: &Path, args: &[&str], code: i32, needle: &str, limit: Duration) -> Duration {
+    let args: Vec<String> = args
+        .iter()
+        .map(|a| a.replace("{dir}", &dir.display().to_string()))
+        .collect();
+    let t0 = Instant::now();
+    let o: Output = bin().args(&args).output().unwrap();
+    let took = t0.elapsed();
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(code), "{args:?}: stderr {err}");
+    let first = err.lines().next().unwrap_or("");
+    assert!(first.starts_with("error: "), "{args:?}: {err}");
+    assert!(
+        first.contains(needle),
+        "{args:?}: `{needle}` not in {first}"
+    );
+    if !first.contains("--threads") {
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    }
+    assert!(
+        !dir.join("out").exists(),
+        "{args:?}: an output folder was created"
+    );
+    assert!(took < limit, "{args:?}: took {took:?}");
+    took
+}
+
+struct Case {
+    name: &'static str,
+    file: String,
+    args: &'static [&'static str],
+    needle: &'static str,
+}
+
+fn case(name: &'static str, file: String, needle: &'static str) -> Case {
+    Case {
+        name,
+        file,
+        args: &["run", "{dir}/case.toml", "--out", "{dir}/out"],
+        needle,
+    }
+}
+
+#[test]
+fn size_time_and_numeric_mistakes_are_refused_before_any_allocation() {
+    let sweep = |axis: &str| {
+        format!(
+            "base = \"{}\"\n{axis}",
+            examples().join("unilateral.toml").display()
+        )
+    };
+    let long_segment = tribobrake().replacen("length = 0.229", "length = 1e6", 1);
+    let cases = [
+        case(
+            "burst of 1e9 cycles",
+            with_line(HALF_SPACE, "cycles", "1e9"),
+            "incident.cycles",
+        ),
+        case(
+            "frequency 1e15 Hz",
+            with_line(HALF_SPACE, "frequency", "1e15"),
+            "probe.x",
+        ),
+        case(
+            "probe 10 km away",
+            HALF_SPACE.to_string() + "[probe]\nx = -1e4\n",
+            "probe.x",
+        ),
+        case(
+            "tail of 1e5 periods at 1e5 samples per period",
+            HALF_SPACE.to_string() + "[solver]\ntail_periods = 1e5\nsamples_per_period = 100000\n",
+            "solver.tail_periods",
+        ),
+        case(
+            "bar stack of 1000 s",
+            with_line(&tribobrake(), "duration", "1e3"),
+            "model.duration",
+        ),
+        case(
+            "bar stack of 20 s",
+            with_line(&tribobrake(), "duration", "20.0"),
+            "needs about",
+        ),
+        case(
+            "bar stack segment of 1000 km",
+            long_segment,
+            "model.cell_size",
+        ),
+        case(
+            "overflowing Young's modulus",
+            with_line(
+                HALF_SPACE,
+                "material",
+                "\"pmma\"\nyoungs_modulus = 1e308\ndensity = 1e-308",
+            ),
+            "medium",
+        ),
+        case(
+            "NaN frequency",
+            with_line(HALF_SPACE, "frequency", "nan"),
+            "incident.frequency",
+        ),
+        case(
+            "infinite amplitude",
+            with_line(HALF_SPACE, "amplitude", "inf"),
+            "incident.amplitude",
+        ),
+        case(
+            "negative cycles",
+            with_line(HALF_SPACE, "cycles", "-3"),
+            "incident.cycles",
+        ),
+        case("empty file", String::new(), "medium"),
+        case(
+            "binary garbage",
+            "\u{0}\u{1}\u{2}[[[\u{ff}".to_string(),
+            "case.toml",
+        ),
+        Case {
+            name: "sweep of 1e7 points",
+            file: sweep(
+                "[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.1, 1.0, 1000000]\n\
+                 [[axis]]\nparameter = \"interface.static_pressure\"\nlinspace = [1e5, 1e6, 10]\n",
+            ),
+            args: &["sweep", "{dir}/case.toml", "--out", "{dir}/out"],
+            needle: "1.000e7 grid points",
+        },
+        Case {
+            name: "--threads 100000",
+            file: sweep("[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.3]\n"),
+            args: &[
+                "sweep",
+                "{dir}/case.toml",
+                "--out",
+                "{dir}/out",
+                "--threads",
+                "100000",
+            ],
+            needle: "1..=1024",
+        },
+        Case {
+            name: "--threads 0",
+            file: sweep("[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.3]\n"),
+            args: &[
+                "sweep",
+                "{dir}/case.toml",
+                "--out",
+                "{dir}/out",
+                "--threads",
+                "0",
+            ],
+            needle: "--threads",
+        },
+        Case {
+            name: "missing scenario file",
+            file: HALF_SPACE.to_string(),
+            args: &["run", "{dir}/missing.toml", "--out", "{dir}/out"],
+            needle: "missing.toml",
+        },
+        Case {
+            name: "scenario is a folder",
+            file: HALF_SPACE.to_string(),
+            args: &["run", "{dir}", "--out", "{dir}/out"],
+            needle: "error: ",
+        },
+    ];
+    let mut report = Vec::new();
+    for c in &cases {
+        let d = tmpdir("size");
+        std::fs::write(d.join("case.toml"), &c.file).unwrap();
+        let took = refuse(&d, c.args, 2, c.needle, Duration::from_secs(5));
+        report.push((c.name, took));
+        let _ = std::fs::remove_dir_all(&d);
+    }
+    println!("\ncase | time to refusal");
+    for (n, t) in report {
+        println!("{n} | {:.1} ms", t.as_secs_f64() * 1e3);
+    }
+}
+
+#[test]
+fn files_beyond_the_budget_are_refused_and_bad_budgets_named() {
+    let d = tmpdir("files");
+    // an excitation file of 2 MB against a budget of 1 MB
+    let mut csv = String::from("t,s\n");
+    let mut k = 0;
+    while csv.len() < 2_000_000 {
+        csv.push_str(&format!(
+            "{:.9e},{:.6e}\n",
+            k as f64 * 1e-9,
+            (k as f64).sin()
+        ));
+        k += 1;
+    }
+    std::fs::write(d.join("wave.csv"), &csv).unwrap();
+    std::fs::write(
+        d.join("case.toml"),
+        "[medium]\nmaterial = \"pmma\"\n[interface]\nstatic_pressure = 0.082e6\n\
+         [incident]\nkind = \"file\"\nfrequency = 1e6\npath = \"wave.csv\"\n",
+    )
+    .unwrap();
+    let args = ["run", "case.toml", "--out", "out"];
+    let t0 = Instant::now();
+    let o = bin()
+        .current_dir(&d)
+        .env("CONTACTWAVE_MEMORY_BUDGET", "1M")
+        .args(args)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("wave.csv") && err.contains("memory budget of 1 MB"),
+        "{err}"
+    );
+    assert!(!d.join("out").exists());
+    println!(
+        "excitation file over the budget | {:.1} ms",
+        t0.elapsed().as_secs_f64() * 1e3
+    );
+    // an unreadable budget names the variable
+    let o = bin()
+        .current_dir(&d)
+        .env("CONTACTWAVE_MEMORY_BUDGET", "lots")
+        .args(args)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("CONTACTWAVE_MEMORY_BUDGET"), "{err}");
+    // --out naming a file
+    std::fs::write(d.join("afile"), "x").unwrap();
+    std::fs::write(d.join("ok.toml"), HALF_SPACE).unwrap();
+    let o = bin()
+        .current_dir(&d)
+        .args(["run", "ok.toml", "--out", "afile"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(std::fs::read_to_string(d.join("afile")).unwrap(), "x");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Send `signal` to a running child after `after`; returns its exit code and how long it
+/// took to end after the signal.
+fn interrupt(mut cmd: Command, signal: &str, after: Duration) -> (Option<i32>, Duration, String) {
+    let child = cmd
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(after);
+    let t0 = Instant::now();
+    let killed = Command::new("kill")
+        .args([format!("-{signal}"), child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let o = child.wait_with_output().unwrap();
+    (
+        o.status.code(),
+        t0.elapsed(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn ctrl_c_and_sigterm_stop_run_and_sweep_with_130_and_no_partial_file() {
+    // a bar-stack run of 4 s simulated (tens of seconds of work)
+    let d = tmpdir("signal");
+    std::fs::write(
+        d.join("long.toml"),
+        with_line(&tribobrake(), "duration", "4.0"),
+    )
+    .unwrap();
+    for signal in ["INT", "TERM"] {
+        let mut c = bin();
+        c.env("CONTACTWAVE_MEMORY_BUDGET", "50G")
+            .current_dir(&d)
+            .args(["run", "long.toml", "--out", "out"]);
+        let (code, took, err) = interrupt(c, signal, Duration::from_millis(700));
+        assert_eq!(code, Some(130), "{signal}: {err}");
+        assert!(took < Duration::from_secs(1), "{signal}: {took:?}");
+        assert!(!d.join("out").exists(), "{signal}: output written");
+        println!(
+            "run + SIG{signal} | stopped in {:.1} ms",
+            took.as_secs_f64() * 1e3
+        );
+    }
+    // identification (tens of seconds), reproduce (about 15 s), convergence (about 5 s)
+    let ident = examples().join("identify/rccm_undamaged.toml");
+    for (name, args) in [
+        (
+            "identify",
+            vec![
+                ident.to_str().unwrap().to_string(),
+                "--out".into(),
+                "out".into(),
+            ],
+        ),
+        ("reproduce", vec!["--out".to_string(), "out".into()]),
+        (
+            "convergence",
+            vec![
+                examples()
+                    .join("rccm_1.6MPa.toml")
+                    .to_str()
+                    .unwrap()
+                    .to_string(),
+                "--out".into(),
+                "out".into(),
+            ],
+        ),
+    ] {
+        let mut c = bin();
+        c.current_dir(&d).arg(name).args(&args);
+        let (code, took, err) = interrupt(c, "INT", Duration::from_millis(1500));
+        assert_eq!(code, Some(130), "{name}: {err}");
+        assert!(took < Duration::from_secs(1), "{name}: {took:?}");
+        assert!(!d.join("out").exists(), "{name}: output written");
+        println!(
+            "{name} + SIGINT | stopped in {:.1} ms",
+            took.as_secs_f64() * 1e3
+        );
+    }
+    // a sweep of slow bar-stack points: what is in sweep.csv is complete rows
+    std::fs::write(
+        d.join("sweep.toml"),
+        "base = \"long.toml\"\n[[axis]]\nparameter = \"excitation.peak\"\n\
+         values = [5.0, 10.0, 15.0, 20.0, 25.0, 30.0]\n",
+    )
+    .unwrap();
+    let mut c = bin();
+    c.env("CONTACTWAVE_MEMORY_BUDGET", "50G")
+        .current_dir(&d)
+        .args(["sweep", "sweep.toml", "--out", "sw", "--threads", "2"]);
+    let (code, took, err) = interrupt(c, "INT", Duration::from_millis(700));
+    assert_eq!(code, Some(130), "{err}");
+    assert!(took < Duration::from_secs(1), "{took:?}");
+    let csv = std::fs::read_to_string(d.join("sw/sweep.csv")).unwrap_or_default();
+    assert!(
+        csv.is_empty() || csv.ends_with('\n'),
+        "a row was cut: {csv}"
+    );
+    assert!(
+        !d.join("sw/sweep_errors.csv").exists(),
+        "interrupted points are not failures"
+    );
+    println!(
+        "sweep + SIGINT | stopped in {:.1} ms",
+        took.as_secs_f64() * 1e3
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}

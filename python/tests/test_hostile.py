@@ -1,0 +1,105 @@
+"""Hostile inputs from Python (issue 12): the cases of the CLI's hostile suite raise
+exceptions (ValueError for sizes and numbers, FileNotFoundError for files,
+KeyboardInterrupt for Ctrl-C) and leave the interpreter alive: nothing reachable from
+Python aborts the process."""
+
+import os
+import signal
+import threading
+import time
+
+import pytest
+
+import contactwave as cw
+
+HALF_SPACE = {
+    "medium": {"material": "pmma"},
+    "interface": {"static_pressure": 0.082e6},
+    "incident": {"frequency": 1e6, "cycles": 15, "amplitude": 0.82e6},
+}
+
+
+def with_(d, section, **kv):
+    out = {k: dict(v) for k, v in d.items()}
+    out.setdefault(section, {}).update(kv)
+    return out
+
+
+@pytest.fixture(autouse=True)
+def fixed_budget(monkeypatch):
+    # the refusals do not depend on the machine
+    monkeypatch.setenv("CONTACTWAVE_MEMORY_BUDGET", "2G")
+
+
+SIZE_CASES = [
+    ("burst of 1e9 cycles", with_(HALF_SPACE, "incident", cycles=1e9), "incident.cycles"),
+    ("frequency 1e15 Hz", with_(HALF_SPACE, "incident", frequency=1e15), "probe.x"),
+    ("probe 10 km away", with_(HALF_SPACE, "probe", x=-1e4), "probe.x"),
+    (
+        "tail of 1e5 periods",
+        with_(HALF_SPACE, "solver", tail_periods=1e5, samples_per_period=100000),
+        "solver.tail_periods",
+    ),
+    ("NaN frequency", with_(HALF_SPACE, "incident", frequency=float("nan")), "frequency"),
+    ("infinite amplitude", with_(HALF_SPACE, "incident", amplitude=float("inf")), "amplitude"),
+]
+
+
+@pytest.mark.parametrize("name,scenario,key", SIZE_CASES, ids=[c[0] for c in SIZE_CASES])
+def test_size_and_numeric_mistakes_raise_value_error(name, scenario, key):
+    t0 = time.perf_counter()
+    with pytest.raises(ValueError, match=key.replace(".", r"\.")):
+        cw.run(scenario)
+    took = time.perf_counter() - t0
+    assert took < 5.0, f"{name}: {took:.2f} s"
+    # the interpreter is alive and runs a normal scenario afterwards
+    r = cw.run(with_(HALF_SPACE, "incident", cycles=5))
+    assert r.summary["A_inc"] > 0
+
+
+def test_bar_stack_too_long_and_sweep_too_large_raise(root, tmp_path):
+    with pytest.raises(ValueError, match="model.duration"):
+        cw.run(_tribobrake(root, tmp_path, "20.0"))
+    with pytest.raises(ValueError, match="grid points"):
+        cw.sweep(
+            os.path.join(root, "examples", "unilateral.toml"),
+            {
+                "incident.xi": list(range(1, 1_000_001)),
+                "interface.static_pressure": [1e5 * k for k in range(1, 11)],
+            },
+        )
+
+
+def _tribobrake(root, tmp_path, duration):
+    """The Tribobrake example with `model.duration` replaced, as a file path."""
+    with open(os.path.join(root, "examples", "tribobrake.toml")) as f:
+        text = f.read().replace("duration = 0.2 ", f"duration = {duration} ", 1)
+    path = tmp_path / "tribobrake.toml"
+    path.write_text(text)
+    return str(path)
+
+
+def test_threads_out_of_range_raise_value_error(root):
+    base = os.path.join(root, "examples", "unilateral.toml")
+    for n in (0, 100_000):
+        with pytest.raises(ValueError, match="threads"):
+            cw.sweep(base, {"incident.xi": [0.3]}, threads=n)
+
+
+def test_missing_file_raises_file_not_found():
+    with pytest.raises(FileNotFoundError):
+        cw.run("does/not/exist.toml")
+
+
+def test_ctrl_c_stops_a_long_bar_stack_run_with_keyboard_interrupt(root, tmp_path, monkeypatch):
+    monkeypatch.setenv("CONTACTWAVE_MEMORY_BUDGET", "50G")
+    scenario = cw.load_scenario(_tribobrake(root, tmp_path, "4.0"))
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        cw.run(scenario)
+    assert time.perf_counter() - t0 < 1.5
+    # the next run is not interrupted
+    r = cw.run(with_(HALF_SPACE, "incident", cycles=5))
+    assert r.summary["A_inc"] > 0
