@@ -1,5 +1,6 @@
 //! `reproduce`: the thesis findings of chapters 3 and 4 within the tolerances the report
-//! states, and a self-contained report (every figure inline, no external reference).
+//! states, and a self-contained report (every figure inline, no external reference); the
+//! shear chapter against the closed forms of the clipping problem.
 
 #![cfg(feature = "reproduce")]
 
@@ -101,4 +102,57 @@ fn chapters_3_and_4_reproduce_the_thesis_findings_and_render_a_self_contained_re
         }
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn shear_chapter_matches_the_clipping_closed_form_and_friction_takes_over_from_adhesion() {
+    use contactwave::analytic::friction::ClippedShear;
+    let c = run_chapter(Chapter::Shear, &|_, _, _| {}).unwrap();
+    // rigid-stick Coulomb clipping against the closed form (projection over whole periods)
+    assert!(value(&c, "shear_clip_A3_rel_error") < 1e-3);
+    assert!(value(&c, "shear_clip_reflected_A3_rel_error") < 1e-3);
+    assert!(value(&c, "shear_dissipation_rel_error") < 1e-3);
+    // above mu p0 / tau_inc = 1 the interface sticks: no harmonic, no dissipation, and the
+    // band peak of the Hann-ramped bursts sits on its floor (the incident burst's A3/A1)
+    assert!(value(&c, "shear_clip_harmonics_above_ratio_1") < 1e-9);
+    assert_eq!(value(&c, "shear_dissipation_above_ratio_1"), 0.0);
+    assert!((value(&c, "shear_band_A3_over_floor_above_ratio_1") - 1.0).abs() < 1e-6);
+    // the maxima sit where the closed form puts them (dense closed-form curves here)
+    let closed = |r: f64| ClippedShear {
+        amplitude: 1.0,
+        omega: 1.0,
+        z1: 1.0,
+        z2: 1.0,
+        limit: r,
+    };
+    let argmax = |g: &dyn Fn(&ClippedShear) -> f64| {
+        (1..2000)
+            .map(|k| k as f64 / 2000.0)
+            .max_by(|a, b| g(&closed(*a)).total_cmp(&g(&closed(*b))))
+            .unwrap()
+    };
+    let r_a3 = argmax(&|p| p.transmitted_harmonic(3).abs());
+    let r_d = argmax(&|p| p.dissipation_per_cycle() / p.incident_energy_per_cycle());
+    assert!((value(&c, "shear_tr_A3_max_friction_ratio") - r_a3).abs() < 0.02);
+    assert!((value(&c, "shear_dissipation_fraction_max_friction_ratio") - r_d).abs() < 0.02);
+    let fmax = closed(r_d).dissipation_per_cycle() / closed(r_d).incident_energy_per_cycle();
+    assert!((value(&c, "shear_dissipation_fraction_max") / fmax - 1.0).abs() < 0.01);
+    // full RCCM: the normal and the shear burst together damage the adhesion where the
+    // shear burst alone does not; a large shear burst alone damages it too; once damaged,
+    // friction carries the shear stress (the adhesive spring's share is small)
+    assert!(value(&c, "shear_rccm_beta_end") < 0.1);
+    assert!(value(&c, "shear_rccm_beta_end_shear_only") > 0.99);
+    assert!(value(&c, "shear_rccm_beta_end_shear_only_8MPa") < 0.5);
+    assert!(value(&c, "shear_rccm_spring_share_end") < 0.05);
+    for f in &c.figures {
+        assert!(!f.caption.is_empty(), "{}", f.id);
+        assert!(
+            f.panels
+                .iter()
+                .all(|p| p.series.iter().any(|s| !s.points.is_empty())),
+            "{}",
+            f.id
+        );
+        f.svg().unwrap();
+    }
 }

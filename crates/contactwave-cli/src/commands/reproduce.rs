@@ -1,5 +1,6 @@
 //! `contactwave reproduce [WHICH] --out DIR`: run the studies of thesis chapters 3, 4 and 5
-//! from scenarios embedded in the library (no input file), with a progress bar per study
+//! and the shear chapter beyond the thesis from scenarios embedded in the library (no
+//! input file), with a progress bar per study
 //! on a terminal, and write DIR/report.html (self-contained, inline SVG),
 //! DIR/findings.json and DIR/figures/<id>.svg + <id>.csv. Prints each chapter's figure
 //! and simulation counts and its findings.
@@ -9,14 +10,14 @@ use contactwave::reproduce::{run_chapter, write_report, Chapter};
 use std::path::PathBuf;
 use std::time::Instant;
 
-/// Reproduce the studies of thesis chapters 3, 4 and 5 from embedded scenarios (no
-/// input file): DIR/report.html (self-contained, inline SVG), DIR/findings.json and
+/// Reproduce the studies of thesis chapters 3, 4 and 5 and the shear chapter beyond the
+/// thesis from embedded scenarios (no input file): DIR/report.html (self-contained, inline SVG), DIR/findings.json and
 /// DIR/figures/<id>.svg + <id>.csv.
 #[derive(clap::Args)]
 pub struct Args {
     /// Which studies.
     #[arg(default_value = "all",
-          value_parser = ["chapter3", "chapter4", "chapter5", "all"])]
+          value_parser = ["chapter3", "chapter4", "chapter5", "shear", "all"])]
     which: String,
     /// Output folder (created if needed; files in it are replaced).
     #[arg(long, value_name = "DIR")]

@@ -1,9 +1,10 @@
-//! `contactwave reproduce`: the studies of thesis chapters 3, 4 and 5 from embedded
-//! scenarios, as figures (SVG + CSV), measured findings set beside the thesis' values, and
-//! a self-contained HTML report.
+//! `contactwave reproduce`: the studies of thesis chapters 3, 4 and 5, and a chapter beyond
+//! the thesis on shear waves and friction, from embedded scenarios, as figures (SVG + CSV),
+//! measured findings set beside the thesis' values, and a self-contained HTML report.
 //!
-//! Each chapter is one module (`chapter3.rs`, `chapter4.rs`, `chapter5/`) that turns the
-//! embedded base scenarios (`examples/thesis/*.toml`, compiled into the binary) into a
+//! Each chapter is one module (`chapter3.rs`, `chapter4.rs`, `chapter5/`, `shear.rs`) that
+//! turns the embedded base scenarios (`examples/thesis/*.toml`, `examples/shear/*.toml`,
+//! compiled into the binary) into a
 //! [`ChapterResult`]: figures whose data are [`Panel`]s of curves, and [`Finding`]s with
 //! stable keys (written to `findings.json`). Runs go through the same engine as
 //! `contactwave run` and `sweep` ([`crate::simulate`], [`crate::simulate_summary`],
@@ -19,6 +20,7 @@ mod chapter3;
 mod chapter4;
 mod chapter5;
 mod report;
+mod shear;
 
 pub use report::{findings_json, report_html, write_report};
 
@@ -54,6 +56,14 @@ pub const SCENARIOS: &[(&str, &str)] = &[
         "ch5_modified_pl.toml",
         include_str!("../../../../examples/thesis/ch5_modified_pl.toml"),
     ),
+    (
+        "shear_clipping.toml",
+        include_str!("../../../../examples/shear/clipping.toml"),
+    ),
+    (
+        "shear_rccm.toml",
+        include_str!("../../../../examples/shear/rccm_shear.toml"),
+    ),
 ];
 
 /// Thesis Table 2 (Al-Al contact stiffness against pressure), embedded.
@@ -69,33 +79,38 @@ pub enum Chapter {
     Four,
     /// Nonlinear compression with adhesion at 5 kHz in PMMA (both solvers, analytic).
     Five,
+    /// Beyond the thesis: shear waves at frictional and full RCCM interfaces (aluminium,
+    /// 1 MHz, exact coupled solver, closed forms of the clipping problem).
+    Shear,
 }
 
 impl Chapter {
     /// All chapters, in order.
-    pub const ALL: [Chapter; 3] = [Chapter::Three, Chapter::Four, Chapter::Five];
+    pub const ALL: [Chapter; 4] = [Chapter::Three, Chapter::Four, Chapter::Five, Chapter::Shear];
 
-    /// `chapter3`, `chapter4`, `chapter5`.
+    /// `chapter3`, `chapter4`, `chapter5`, `shear`.
     pub fn name(self) -> &'static str {
         match self {
             Chapter::Three => "chapter3",
             Chapter::Four => "chapter4",
             Chapter::Five => "chapter5",
+            Chapter::Shear => "shear",
         }
     }
 
-    /// Parse `chapter3` | `chapter4` | `chapter5` | `all`.
+    /// Parse `chapter3` | `chapter4` | `chapter5` | `shear` | `all`.
     pub fn parse_list(s: &str) -> Result<Vec<Chapter>> {
         match s {
             "all" => Ok(Chapter::ALL.to_vec()),
             "chapter3" => Ok(vec![Chapter::Three]),
             "chapter4" => Ok(vec![Chapter::Four]),
             "chapter5" => Ok(vec![Chapter::Five]),
+            "shear" => Ok(vec![Chapter::Shear]),
             other => Err(Error::invalid(
                 "<command line>",
                 "chapter",
                 other,
-                "chapter3, chapter4, chapter5 or all",
+                "chapter3, chapter4, chapter5, shear or all",
             )),
         }
     }
@@ -250,6 +265,7 @@ pub fn run_chapter(chapter: Chapter, progress: Progress) -> Result<ChapterResult
         Chapter::Three => chapter3::run(&ctx)?,
         Chapter::Four => chapter4::run(&ctx)?,
         Chapter::Five => chapter5::run(&ctx)?,
+        Chapter::Shear => shear::run(&ctx)?,
     };
     r.seconds = t0.elapsed().as_secs_f64();
     r.runs = ctx.runs.load(Ordering::SeqCst);
