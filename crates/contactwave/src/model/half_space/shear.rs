@@ -122,7 +122,12 @@ pub fn set_summary(s: &mut Summary, scenario: &Scenario, shear: &ShearSetup, r: 
     s.set("shear_frequency", shear.incident.fundamental());
     s.set("shear_A_inc", r.a_inc);
     let put = |s: &mut Summary, prefix: &str, b: &BandAmplitudes| {
-        let a = &b.harmonic;
+        // a wave that is not there (e.g. nothing reflected by a sticking interface between
+        // identical media) has ratios 0, not noise over noise
+        let mut a = b.harmonic;
+        if a[1] <= 1e-9 * r.a_inc {
+            a = [0.0; 6];
+        }
         for n in 1..=5 {
             s.set(&format!("{prefix}A{n}_over_Ainc"), ratio(a[n], r.a_inc));
         }
