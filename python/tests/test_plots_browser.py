@@ -36,7 +36,7 @@ linspace = [0.05, 1.0, 22]
 # text boxes of every <text> of the page's SVG, in CSS pixels
 TEXTS_JS = """() => Array.from(document.querySelectorAll('text')).map(t => {
     const r = t.getBoundingClientRect();
-    return {s: t.textContent, x0: r.left, y0: r.top, x1: r.right, y1: r.bottom};
+    return {s: t.textContent.trim(), x0: r.left, y0: r.top, x1: r.right, y1: r.bottom};
 })"""
 
 
@@ -91,13 +91,17 @@ def test_plots_read_in_chromium(outputs):
             page = browser.new_page(viewport={"width": 1300, "height": 900})
             for name, svg in outputs.items():
                 assert svg.is_file(), svg
-                page.goto(svg.resolve().as_uri(), wait_until="load")
-                size = page.evaluate(
-                    "() => { const r = document.documentElement.getBoundingClientRect();"
-                    " return [r.width, r.height]; }"
+                # inlined in a page, as report.html holds its figures
+                page.set_content(
+                    "<!DOCTYPE html><html><body style='margin:0'>"
+                    + svg.read_text(encoding="utf-8")
+                    + "</body></html>"
                 )
+                fig = page.locator("svg").first
+                box = fig.bounding_box()
+                size = (box["width"], box["height"]) if box else (0, 0)
                 seen[name] = (size, page.evaluate(TEXTS_JS))
-                page.screenshot(path=str(shots / f"{name}.png"), full_page=True)
+                fig.screenshot(path=str(shots / f"{name}.png"))
         finally:
             browser.close()
 
