@@ -53,7 +53,8 @@ cargo test --doc -p contactwave --release
 # into a virtual environment at .venv (ignored by git), then its pytest suite
 # (python/tests: API against the CLI's files, Dask LocalCluster, shards and merge, and
 # report.html of `contactwave reproduce all` in headless Chromium: screenshot of the first
-# screen kept at target/report-screenshot.png).
+# screen kept at target/report-screenshot.png; test_plots_browser.py: a run's spectrum, a
+# 22-curve sweep, frf.svg and shear_loop.svg as PNG under target/screenshots/).
 # ---------------------------------------------------------------------------------------
 PYTHON=${PYTHON:-python3}
 # playwright: drives the system Chromium for the report test (no browser download)

@@ -1,9 +1,9 @@
 //! `contactwave`: command-line interface of the contactwave library.
 //!
-//! Exit codes: 0 success; 1 `validate` found a case outside its tolerance, or a sweep
-//! finished with failed points; 2 invalid input (scenario or sweep file, missing file,
-//! output path, I/O, beyond the memory budget); 3 numerical failure of a simulation; 130
-//! interrupted (Ctrl-C or SIGTERM). Every error is one line on stderr starting with
+//! Exit codes: 0 success; 1 a failed computation (`validate` found a case outside its
+//! tolerance, a sweep finished with failed points, or a simulation failed numerically); 2
+//! invalid input (scenario or sweep file, missing file, output path, I/O, beyond the memory
+//! budget); 130 interrupted (Ctrl-C or SIGTERM). Every error is one line on stderr starting with
 //! `error: `, and no output folder is created or modified when an input is invalid or the
 //! simulation fails.
 //!
@@ -15,8 +15,8 @@ mod commands;
 
 use clap::{Parser, Subcommand};
 use commands::{
-    bench, convergence, fit, identify, law, merge, reproduce, run, sweep, validate,
-    EXIT_INTERRUPTED, EXIT_INVALID_INPUT, EXIT_NUMERICAL,
+    bench, convergence, fit, identify, law, merge, reproduce, run, sweep, validate, EXIT_FAILED,
+    EXIT_INTERRUPTED, EXIT_INVALID_INPUT,
 };
 use contactwave::Error;
 use std::process::ExitCode;
@@ -30,9 +30,9 @@ Memory: every command refuses work beyond the memory budget before allocating it
 (CONTACTWAVE_MEMORY_BUDGET, bytes with an optional k/M/G/T suffix; default half the
 available memory).
 
-Exit codes: 0 success, 1 validation case outside tolerance or failed sweep points, 2
-invalid input, I/O error or beyond the memory budget, 3 numerical failure, 130 interrupted
-(Ctrl-C or SIGTERM).";
+Exit codes: 0 success, 1 failed computation (validation case outside tolerance, failed
+sweep points or numerical failure of a simulation), 2 invalid input, I/O error or beyond
+the memory budget, 130 interrupted (Ctrl-C or SIGTERM). No other code is used.";
 
 #[derive(Parser)]
 #[command(
@@ -65,11 +65,33 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     commands::install_interrupt_handler();
-    match dispatch(cli.command) {
+    // a panic is a bug: one line on stderr (not the default multi-line report), and the
+    // command ends with exit code 1 like any failed computation (never 101)
+    std::panic::set_hook(Box::new(|info| {
+        let msg = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown panic".into());
+        let at = info
+            .location()
+            .map(|l| format!(" at {}:{}", l.file(), l.line()))
+            .unwrap_or_default();
+        let msg = msg.replace(['\n', '\r'], " ");
+        eprintln!("error: internal error (panic{at}): {msg}");
+    }));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| dispatch(cli.command)))
+        .unwrap_or_else(|_| {
+            Err(Error::Internal {
+                message: "the command stopped on a bug (see the line above)".into(),
+            })
+        });
+    match result {
         Ok(code) => ExitCode::from(code),
         Err(e) => {
             let code = match e {
-                Error::Numerical { .. } => EXIT_NUMERICAL,
+                Error::Numerical { .. } | Error::Internal { .. } => EXIT_FAILED,
                 Error::Interrupted => EXIT_INTERRUPTED,
                 _ => EXIT_INVALID_INPUT,
             };

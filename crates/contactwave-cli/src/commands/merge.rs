@@ -1,14 +1,16 @@
 //! `contactwave merge OUT SHARD.csv... [--sweep FILE]`: combine the sweep.csv files of the
 //! shards of one sweep (`sweep --shard K/N`) into OUT, rows sorted by point, and OUT.hash,
-//! after checking that the shards agree (same hash file, no point missing or duplicated).
+//! after checking that the shards agree (same hash file, no point missing or duplicated),
+//! and the merged sweep's plot OUT.svg (`sweep.svg` beside `sweep.csv`).
 
 use super::EXIT_OK;
+use contactwave::output;
 use contactwave::study::{self, Sweep};
 use contactwave::Error;
 use std::path::PathBuf;
 
 /// Merge the sweep.csv files of the shards of one sweep (`sweep --shard K/N`) into OUT
-/// (rows sorted by point) and OUT.hash, after checking that the shards have the same
+/// (rows sorted by point), OUT.hash and the plot OUT.svg (OUT with the extension .svg), after checking that the shards have the same
 /// hash file and that no point is missing or duplicated.
 #[derive(clap::Args)]
 pub struct Args {
@@ -39,5 +41,18 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     );
     println!("wrote {}", report.csv.display());
     println!("wrote {}", report.hash_file.display());
+    // the merged sweep's plot beside it (OUT with the extension .svg)
+    if let Some(svg) = output::merged_sweep_svg(sweep.as_ref(), &report.csv)? {
+        let svg_path = report.csv.with_extension("svg");
+        let dir = svg_path
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(std::path::Path::new("."));
+        let name = svg_path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "sweep.svg".into());
+        super::write_and_list(dir, &[super::output_file(&name, svg)])?;
+    }
     Ok(EXIT_OK)
 }

@@ -24,13 +24,13 @@ use std::sync::atomic::{AtomicBool, Ordering};
 pub const EXIT_OK: u8 = 0;
 /// Exit code: `validate` found a case outside its tolerance.
 pub const EXIT_VALIDATION_FAILED: u8 = 1;
-/// Exit code: the work finished but some of its points failed (a sweep without
-/// `--tolerate-failures`); the same code as [`EXIT_VALIDATION_FAILED`].
+/// Exit code: a failed computation: the work finished but some of its points failed (a
+/// sweep without `--tolerate-failures`), or a simulation failed numerically (or on a bug);
+/// the same code as [`EXIT_VALIDATION_FAILED`]. No command exits with a code other than
+/// 0, 1, 2 or 130.
 pub const EXIT_FAILED: u8 = 1;
 /// Exit code: invalid input (scenario or sweep file, missing file, output path, I/O).
 pub const EXIT_INVALID_INPUT: u8 = 2;
-/// Exit code: numerical failure of a simulation.
-pub const EXIT_NUMERICAL: u8 = 3;
 /// Exit code: interrupted (Ctrl-C).
 pub const EXIT_INTERRUPTED: u8 = 130;
 

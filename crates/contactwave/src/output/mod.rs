@@ -22,6 +22,7 @@
 
 #[cfg(feature = "identify")]
 pub mod identify;
+pub mod labels;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod recording;
@@ -132,6 +133,20 @@ pub fn sweep_svg(sweep: &crate::study::Sweep, csv: &Path) -> Result<Option<Strin
         return Ok(None);
     }
     plot::sweep(sweep, &table).map(Some)
+}
+
+/// Plot of a merged sweep CSV (`merge`): as [`sweep_svg`] with the sweep file's axes when
+/// given, else the axes read from the CSV header (the dotted-key columns after `point`).
+#[cfg(feature = "plot")]
+pub fn merged_sweep_svg(sweep: Option<&crate::study::Sweep>, csv: &Path) -> Result<Option<String>> {
+    let table = crate::study::read_sweep_csv(csv)?;
+    if table.rows.is_empty() {
+        return Ok(None);
+    }
+    match sweep {
+        Some(sw) => plot::sweep(sw, &table).map(Some),
+        None => plot::sweep_table(&plot::axes_of_table(&table), &table).map(Some),
+    }
 }
 
 /// Create `dir` (and its parents) and write the files into it, each through a temporary

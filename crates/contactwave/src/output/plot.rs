@@ -71,36 +71,84 @@ pub fn tangential_law_curve(
 }
 
 /// `sweep.svg`: the results against the first axis, one curve per combination of the other
-/// axes (at most 12 curves are labelled): `A1_over_Ainc` and `A2_over_Ainc` for half-space
-/// sweeps; `first_mode_hz`, `A1`, `A2_over_A1`, the mean contact stiffness and the minimum
-/// contact pressure for bar-stack sweeps.
+/// axes: `A1_over_Ainc` and `A2_over_Ainc` for half-space sweeps; `first_mode_hz`, `A1`,
+/// `A2_over_A1`, the mean contact stiffness and the minimum contact pressure for bar-stack
+/// sweeps. Axes are labelled with names and units ([`crate::output::labels`]).
 pub fn sweep(sw: &Sweep, table: &SweepTable) -> Result<String> {
+    let axes: Vec<(String, bool)> = sw
+        .axes
+        .iter()
+        .map(|a| {
+            (
+                a.parameter.clone(),
+                matches!(a.spec, AxisSpec::Logspace { .. }),
+            )
+        })
+        .collect();
+    sweep_table(&axes, table)
+}
+
+/// The axes of a sweep CSV without its sweep file: the dotted-key columns after `point`
+/// (sweep parameters are dotted scenario keys), none logspace.
+pub fn axes_of_table(table: &SweepTable) -> Vec<(String, bool)> {
+    table
+        .header
+        .iter()
+        .skip_while(|h| h.as_str() == "point")
+        .take_while(|h| h.contains('.'))
+        .map(|h| (h.clone(), false))
+        .collect()
+}
+
+/// A value with its unit for a legend: `1.5 MPa`, `0.35` (dimensionless).
+fn with_unit(v: f64, unit: &str) -> String {
+    let (k, p) = if v == 0.0
+        || (1.0..1e3).contains(&v.abs())
+        || (unit.is_empty() && v.abs() >= 1e-3 && v.abs() < 1e4)
+    {
+        (1.0, "")
+    } else {
+        crate::render::svg::prefix(v.abs())
+    };
+    let n = short(v * k);
+    if unit.is_empty() && p.is_empty() {
+        n
+    } else {
+        format!("{n} {p}{unit}")
+    }
+}
+
+/// `sweep.svg` from a sweep table and its axes (`(parameter, logspace)`, first axis on x).
+pub fn sweep_table(axes: &[(String, bool)], table: &SweepTable) -> Result<String> {
+    use crate::output::labels::{axis_label, quantity};
+    use crate::render::svg::{panel_with, prefix, PanelOpts};
     let name = "sweep.svg";
-    let Some(first) = sw.axes.first() else {
+    let Some((first, first_log)) = axes.first() else {
         return Err(plot_error(name, "the sweep has no axis".into()));
     };
     let xcol = table
-        .column(&first.parameter)
-        .ok_or_else(|| plot_error(name, format!("no column `{}`", first.parameter).into()))?;
-    let positive = first.values.iter().all(|v| *v > 0.0);
-    let (lo, hi) = first
-        .values
+        .column(first)
+        .ok_or_else(|| plot_error(name, format!("no column `{first}`").into()))?;
+    let xs: Vec<f64> = table.rows.iter().map(|r| r[xcol]).collect();
+    let positive = xs.iter().all(|v| *v > 0.0);
+    let (lo, hi) = xs
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(l, h), &v| (l.min(v), h.max(v)));
-    let log_x = positive
-        && (matches!(first.spec, AxisSpec::Logspace { .. }) || (lo > 0.0 && hi / lo >= 1e3));
-    let xlabel = if log_x {
-        format!("log10({})", first.parameter)
+    let log_x = positive && (*first_log || (lo > 0.0 && hi / lo >= 1e3));
+    // linear axis: values in a scaled unit (MPa); log axis: ticks carry the SI prefix
+    let (xk, xp) = if log_x {
+        (1.0, "")
     } else {
-        first.parameter.clone()
+        prefix(crate::render::svg::max_abs(&xs))
     };
-    let others: Vec<(usize, &str)> = sw.axes[1..]
+    let xlabel = if log_x {
+        format!("{} (log scale)", axis_label(first, ""))
+    } else {
+        axis_label(first, xp)
+    };
+    let others: Vec<(usize, &str)> = axes[1..]
         .iter()
-        .filter_map(|a| {
-            table
-                .column(&a.parameter)
-                .map(|c| (c, a.parameter.as_str()))
-        })
+        .filter_map(|(a, _)| table.column(a).map(|c| (c, a.as_str())))
         .collect();
     // group rows by the values of the other axes, in order of first appearance in grid order
     let mut rows: Vec<&Vec<f64>> = table.rows.iter().collect();
@@ -113,8 +161,7 @@ pub fn sweep(sw: &Sweep, table: &SweepTable) -> Result<String> {
             None => groups.push((key, vec![r])),
         }
     }
-    let curves_of = |col: Option<usize>| -> Vec<Curve> {
-        let Some(col) = col else { return vec![] };
+    let curves_of = |col: usize, yk: f64| -> Vec<Curve> {
         groups
             .iter()
             .enumerate()
@@ -123,21 +170,22 @@ pub fn sweep(sw: &Sweep, table: &SweepTable) -> Result<String> {
                     .iter()
                     .map(|r| {
                         let x = r[xcol];
-                        (if log_x { x.log10() } else { x }, r[col])
+                        (if log_x { x.log10() } else { x * xk }, r[col] * yk)
                     })
                     .filter(|p| p.0.is_finite() && p.1.is_finite())
                     .collect();
                 pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                let label = if others.is_empty() || i >= 12 {
-                    String::new()
-                } else {
-                    others
-                        .iter()
-                        .zip(key)
-                        .map(|((_, n), v)| format!("{n} = {}", short(*v)))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                };
+                let label = others
+                    .iter()
+                    .zip(key)
+                    .map(|((_, n), v)| {
+                        let (q, unit) = quantity(n);
+                        // the symbol (last word, e.g. `p0`) when the name ends with one
+                        let sym = q.rsplit(' ').next().filter(|w| w.len() <= 4).unwrap_or(&q);
+                        format!("{sym} = {}", with_unit(*v, unit))
+                    })
+                    .collect::<Vec<_>>()
+                    .join(", ");
                 Curve {
                     label,
                     points: pts,
@@ -149,70 +197,76 @@ pub fn sweep(sw: &Sweep, table: &SweepTable) -> Result<String> {
     // half-space sweeps: the reflected harmonics; bar-stack sweeps: the resonance study
     // of thesis chapter 4 (first mode, A1, A2/A1, mean contact stiffness, min pressure)
     // (shear sweeps: the third harmonic and the friction dissipation)
-    let panels: Vec<(&str, &str, &str)> =
+    let panels: Vec<(&str, &str)> =
         if table.column("A1_over_Ainc").is_some() || table.column("shear_A1_over_Ainc").is_some() {
             vec![
-                (
-                    "A1_over_Ainc",
-                    "Fundamental of the reflected wave",
-                    "A1 / A_inc",
-                ),
-                (
-                    "A2_over_Ainc",
-                    "Second harmonic of the reflected wave",
-                    "A2 / A_inc",
-                ),
+                ("A1_over_Ainc", "Fundamental of the reflected wave"),
+                ("A2_over_Ainc", "Second harmonic of the reflected wave"),
                 (
                     "shear_A3_over_A1",
                     "Third harmonic of the reflected shear wave",
-                    "A3 / A1 (shear, reflected)",
                 ),
                 (
                     "shear_tr_A3_over_A1",
                     "Third harmonic of the transmitted shear wave",
-                    "A3 / A1 (shear, transmitted)",
                 ),
                 (
                     "friction_dissipation_fraction",
                     "Energy dissipated by friction",
-                    "fraction of the incident energy",
                 ),
             ]
-            .into_iter()
-            .filter(|(c, _, _)| table.column(c).is_some())
-            .collect()
         } else {
             vec![
-                ("first_mode_hz", "First mode", "f1, Hz"),
-                ("A1", "Response at the first mode", "A1, m/s^2"),
-                ("A2_over_A1", "Second harmonic", "A2 / A1"),
-                (
-                    "mean_contact_stiffness_0",
-                    "Mean contact stiffness, interface 1 (eq. 4.2)",
-                    "K, Pa/m",
-                ),
-                (
-                    "min_contact_pressure",
-                    "Minimum contact pressure",
-                    "p_min, Pa",
-                ),
-            ]
-            .into_iter()
-            .filter(|(c, _, _)| table.column(c).is_some())
-            .collect()
-        };
+            ("first_mode_hz", "First mode"),
+            ("A1", "Response at the first mode"),
+            ("A2_over_A1", "Second harmonic"),
+            (
+                "mean_contact_stiffness_0",
+                "Mean contact stiffness, interface 1 (column mean_contact_stiffness_0, eq. 4.2)",
+            ),
+            (
+                "min_contact_pressure",
+                "Minimum contact pressure, all interfaces",
+            ),
+        ]
+        }
+        .into_iter()
+        .filter(|(c, _)| table.column(c).is_some())
+        .collect();
     if panels.is_empty() {
         return Err(plot_error(name, "no known result column to plot".into()));
     }
-    let data: Vec<Vec<Curve>> = panels
+    let data: Vec<(String, Vec<Curve>)> = panels
         .iter()
-        .map(|(c, _, _)| curves_of(table.column(c)))
+        .filter_map(|(c, _)| {
+            let col = table.column(c)?;
+            let ys: Vec<f64> = table.rows.iter().map(|r| r[col]).collect();
+            let (_, unit) = quantity(c);
+            let (yk, yp) = if unit.is_empty() {
+                (1.0, "")
+            } else {
+                prefix(crate::render::svg::max_abs(&ys))
+            };
+            Some((axis_label(c, yp), curves_of(col, yk)))
+        })
         .collect();
     let height = 400 * panels.len() as u32;
-    render(name, (900, height), |root| {
+    let legend = !others.is_empty();
+    render(name, (if legend { 1150 } else { 900 }, height), |root| {
         let areas = root.split_evenly((panels.len(), 1));
-        for ((area, (_, title, ylabel)), curves) in areas.iter().zip(&panels).zip(&data) {
-            panel(area, title, &xlabel, ylabel, curves, &[], None)?;
+        for ((area, (_, title)), (ylabel, curves)) in areas.iter().zip(&panels).zip(&data) {
+            panel_with(
+                area,
+                title,
+                &xlabel,
+                ylabel,
+                curves,
+                &[],
+                PanelOpts {
+                    log_x,
+                    ..Default::default()
+                },
+            )?;
         }
         Ok(())
     })

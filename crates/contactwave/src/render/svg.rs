@@ -23,6 +23,7 @@ pub(crate) fn plot_error(name: &str, e: Box<dyn std::error::Error>) -> Error {
 /// An SI prefix for values up to `max_abs`: (multiplier, prefix).
 pub(crate) fn prefix(max_abs: f64) -> (f64, &'static str) {
     let table = [
+        (1e12, "T"),
         (1e9, "G"),
         (1e6, "M"),
         (1e3, "k"),
@@ -158,9 +159,10 @@ pub(crate) struct Curve {
     pub color: RGBColor,
 }
 
-/// The i-th colour of the palette shared by every plot.
+/// The i-th colour of the palette shared by every plot (10 colours; curves 10 and beyond
+/// reuse them with another line style, see [`dash`]).
 pub(crate) fn color(i: usize) -> RGBColor {
-    const C: [RGBColor; 8] = [
+    const C: [RGBColor; 10] = [
         RGBColor(31, 119, 180),
         RGBColor(214, 39, 40),
         RGBColor(44, 160, 44),
@@ -168,9 +170,94 @@ pub(crate) fn color(i: usize) -> RGBColor {
         RGBColor(148, 103, 189),
         RGBColor(140, 86, 75),
         RGBColor(227, 119, 194),
+        RGBColor(127, 127, 127),
+        RGBColor(188, 189, 34),
         RGBColor(23, 190, 207),
     ];
     C[i % C.len()]
+}
+
+/// Line style of the i-th curve of a panel: `None` solid (curves 0 to 9), else (dash,
+/// gap) in pixels: dashed (10 to 19), dotted (20 to 29), long dashes (30 to 39), ...
+pub(crate) fn dash(i: usize) -> Option<(u32, u32)> {
+    match (i / 10) % 4 {
+        0 => None,
+        1 => Some((8, 4)),
+        2 => Some((2, 3)),
+        _ => Some((14, 4)),
+    }
+}
+
+/// Tick labels of an axis over `r` with about `n` ticks: engineering notation that stays
+/// short (at most about 7 characters): plain decimals with as many digits as the tick
+/// step needs between 0.01 and 10^4, else an SI prefix on every tick (`940G`, `12.5µ`).
+/// On a log10 axis (`log`) the tick at `v` is labelled with `10^v` (3 significant digits).
+pub(crate) fn tick_label(r: &std::ops::Range<f64>, n: usize, log: bool) -> impl Fn(&f64) -> String {
+    let span = (r.end - r.start).abs();
+    let m = r.start.abs().max(r.end.abs());
+    let (k, p) = if m.is_finite() && (m >= 1e4 || (m > 0.0 && m < 1e-2)) {
+        prefix(m)
+    } else {
+        (1.0, "")
+    };
+    let step = span * k / n.max(1) as f64;
+    let decimals = if step.is_finite() && step > 0.0 {
+        (-step.log10()).ceil().clamp(0.0, 6.0) as usize
+    } else {
+        2
+    };
+    move |v: &f64| {
+        if log {
+            return eng(10f64.powf(*v));
+        }
+        let s = format!("{:.*}", decimals, v * k);
+        let s = if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        };
+        let s = if s == "-0" { "0".to_string() } else { s };
+        format!("{s}{p}")
+    }
+}
+
+/// A value with 3 significant digits and an SI prefix from f to P (`1.5M`, `250µ`, `0`);
+/// beyond, scientific notation (`1e18`).
+pub(crate) fn eng(v: f64) -> String {
+    if !v.is_finite() || v == 0.0 {
+        return if v == 0.0 { "0".into() } else { format!("{v}") };
+    }
+    const P: [&str; 11] = ["f", "p", "n", "µ", "m", "", "k", "M", "G", "T", "P"];
+    let e3 = (v.abs().log10() / 3.0).floor() as i32;
+    if !(-5..=5).contains(&e3) {
+        return short(v);
+    }
+    let x = v / 10f64.powi(3 * e3);
+    let d = if x.abs() >= 99.95 {
+        0
+    } else if x.abs() >= 9.995 {
+        1
+    } else {
+        2
+    };
+    let s = format!("{x:.d$}");
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    };
+    format!("{s}{}", P[(e3 + 5) as usize])
+}
+
+/// Options of a [`panel_with`].
+#[derive(Default)]
+pub(crate) struct PanelOpts<'a> {
+    /// The x values are log10 of the quantity: ticks are labelled with the quantity.
+    pub log_x: bool,
+    /// Labels of the vertical markers (same order; missing ones unlabelled).
+    pub marker_labels: &'a [String],
+    /// Fixed y range (default: the curves' padded range).
+    pub fixed_y: Option<std::ops::Range<f64>>,
 }
 
 /// One panel: curves, optional vertical marker lines, labels, legend when labelled.
@@ -183,10 +270,64 @@ pub(crate) fn panel(
     markers: &[f64],
     fixed_y: Option<std::ops::Range<f64>>,
 ) -> PlotResult<()> {
+    panel_with(
+        area,
+        title,
+        xlabel,
+        ylabel,
+        curves,
+        markers,
+        PanelOpts {
+            fixed_y,
+            ..Default::default()
+        },
+    )
+}
+
+/// Largest number of legend entries drawn (the others are counted in a last line).
+const MAX_LEGEND: usize = 40;
+
+/// One panel with options: the data area on the left, the legend (when a curve is
+/// labelled) in a column on its right, outside the data; curves beyond the 10th change
+/// line style ([`dash`]); dashed grey markers with their labels at the top.
+pub(crate) fn panel_with(
+    area: &Area,
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    curves: &[Curve],
+    markers: &[f64],
+    opts: PanelOpts,
+) -> PlotResult<()> {
     let xr = range(curves.iter().flat_map(|c| c.points.iter().map(|p| &p.0)));
-    let yr =
-        fixed_y.unwrap_or_else(|| range(curves.iter().flat_map(|c| c.points.iter().map(|p| &p.1))));
-    let mut chart = ChartBuilder::on(area)
+    let yr = opts
+        .fixed_y
+        .clone()
+        .unwrap_or_else(|| range(curves.iter().flat_map(|c| c.points.iter().map(|p| &p.1))));
+    let labelled: Vec<(usize, &Curve)> = curves
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| !c.label.is_empty())
+        .collect();
+    let (w, _) = area.dim_in_pixel();
+    let (chart_area, legend_area) = if labelled.is_empty() {
+        (area.clone(), None)
+    } else {
+        let chars = labelled
+            .iter()
+            .map(|(_, c)| c.label.chars().count())
+            .max()
+            .unwrap_or(0);
+        let lw = (chars as u32 * 7 + 45).clamp(90, w * 2 / 5);
+        let (a, b) = area.split_horizontally(w.saturating_sub(lw));
+        (a, Some(b))
+    };
+    let (cw, _) = chart_area.dim_in_pixel();
+    let nx = ((cw.saturating_sub(90)) / 90).clamp(3, 8) as usize;
+    let ny = 6;
+    let xfmt = tick_label(&xr, nx, opts.log_x);
+    let yfmt = tick_label(&yr, ny, false);
+    let mut chart = ChartBuilder::on(&chart_area)
         .caption(title, ("sans-serif", 22))
         .margin(10)
         .x_label_area_size(50)
@@ -196,43 +337,78 @@ pub(crate) fn panel(
         .configure_mesh()
         .x_desc(xlabel)
         .y_desc(ylabel)
-        .x_labels(8)
-        .y_labels(6)
+        .x_labels(nx)
+        .y_labels(ny)
         .label_style(("sans-serif", 15))
         .axis_desc_style(("sans-serif", 17))
-        .x_label_formatter(&|v| format!("{}", (v * 1e4).round() / 1e4))
-        .y_label_formatter(&|v| format!("{}", (v * 1e4).round() / 1e4))
+        .x_label_formatter(&xfmt)
+        .y_label_formatter(&yfmt)
         .draw()?;
-    for &m in markers {
+    let marker_style = RGBColor(90, 90, 90).stroke_width(1);
+    for (i, &m) in markers.iter().enumerate() {
         if m >= xr.start && m <= xr.end {
-            chart.draw_series(LineSeries::new(
+            chart.draw_series(DashedLineSeries::new(
                 [(m, yr.start), (m, yr.end)],
-                RGBColor(180, 180, 180).stroke_width(1),
+                6,
+                4,
+                marker_style,
+            ))?;
+            if let Some(l) = opts.marker_labels.get(i) {
+                let top = yr.end - 0.02 * (yr.end - yr.start);
+                chart.draw_series(std::iter::once(Text::new(
+                    l.clone(),
+                    (m, top),
+                    ("sans-serif", 13).into_font().color(&RGBColor(60, 60, 60)),
+                )))?;
+            }
+        }
+    }
+    for (i, c) in curves.iter().enumerate() {
+        let style = c.color.stroke_width(2);
+        match dash(i) {
+            None => {
+                chart.draw_series(LineSeries::new(c.points.iter().copied(), style))?;
+            }
+            Some((d, g)) => {
+                chart.draw_series(DashedLineSeries::new(c.points.iter().copied(), d, g, style))?;
+            }
+        }
+    }
+    if let Some(la) = legend_area {
+        let (_, lh) = la.dim_in_pixel();
+        let shown = labelled.len().min(MAX_LEGEND);
+        let more = labelled.len() - shown;
+        let lines = shown + usize::from(more > 0);
+        let top = 40i32;
+        let room = lh.saturating_sub(top as u32 + 50).max(40) as i32;
+        let pitch = (room / lines.max(1) as i32).clamp(9, 20);
+        let font = (pitch - 2).clamp(8, 14);
+        for (row, (i, c)) in labelled.iter().take(shown).enumerate() {
+            let y = top + row as i32 * pitch + pitch / 2;
+            let style = c.color.stroke_width(2);
+            match dash(*i) {
+                None => la.draw(&PathElement::new(vec![(4, y), (34, y)], style))?,
+                Some((d, g)) => la.draw(&plotters::element::DashedPathElement::new(
+                    vec![(4, y), (34, y)],
+                    d,
+                    g,
+                    style,
+                ))?,
+            }
+            la.draw(&Text::new(
+                c.label.clone(),
+                (40, y - font / 2),
+                ("sans-serif", font),
             ))?;
         }
-    }
-    let mut labelled = false;
-    for c in curves {
-        let col = c.color;
-        let s = chart.draw_series(LineSeries::new(
-            c.points.iter().copied(),
-            col.stroke_width(2),
-        ))?;
-        if !c.label.is_empty() {
-            labelled = true;
-            s.label(c.label.clone()).legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], col.stroke_width(2))
-            });
+        if more > 0 {
+            let y = top + shown as i32 * pitch;
+            la.draw(&Text::new(
+                format!("... and {more} more"),
+                (40, y),
+                ("sans-serif", font),
+            ))?;
         }
-    }
-    if labelled {
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 14))
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()?;
     }
     Ok(())
 }

@@ -97,6 +97,11 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
             name: "frf.csv".into(),
             contents: frf,
         });
+        #[cfg(feature = "plot")]
+        files.push(OutputFile {
+            name: "frf.svg".into(),
+            contents: frf_svg(r)?,
+        });
     }
     files.push(OutputFile {
         name: "timeseries.csv".into(),
@@ -104,4 +109,69 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
     });
     files.extend(extra);
     Ok(files)
+}
+
+/// `frf.svg`: the accelerance `|A/F|` in dB re 1 (m/s^2)/N and the receptance `|X/F|` in
+/// dB re 1 m/N against frequency (the phase, which wraps at every bin, is in frf.csv), a dashed marker at the first mode `f1` (`first_mode_hz`).
+#[cfg(feature = "plot")]
+pub fn frf_svg(r: &BarStackResult) -> Result<String> {
+    use crate::render::svg::{color, decimate, panel_with, render, scaled, Curve, PanelOpts};
+    let f = &r.frf;
+    let (fs, fu) = scaled(&f.frequency, "Hz");
+    let k = match (f.frequency.last(), fs.last()) {
+        (Some(a), Some(b)) if *a > 0.0 => b / a,
+        _ => 1.0,
+    };
+    let db: Vec<f64> = f
+        .accelerance
+        .iter()
+        .map(|a| if *a > 0.0 { 20.0 * a.log10() } else { f64::NAN })
+        .collect();
+    let rec: Vec<f64> = f
+        .receptance
+        .iter()
+        .map(|a| if *a > 0.0 { 20.0 * a.log10() } else { f64::NAN })
+        .collect();
+    let f1 = r
+        .summary
+        .iter()
+        .find(|(key, _)| *key == "first_mode_hz")
+        .map(|(_, v)| v)
+        .filter(|v| v.is_finite() && *v > 0.0);
+    let markers: Vec<f64> = f1.map(|v| v * k).into_iter().collect();
+    let labels = vec!["f1".to_string()];
+    let one = |y: &[f64]| {
+        vec![Curve {
+            label: String::new(),
+            points: decimate(&fs, y),
+            color: color(0),
+        }]
+    };
+    render("frf.svg", (900, 800), |root| {
+        let areas = root.split_evenly((2, 1));
+        panel_with(
+            &areas[0],
+            "Frequency response at the excited end (accelerance)",
+            &format!("frequency, {fu}"),
+            "|A/F|, dB re 1 (m/s^2)/N",
+            &one(&db),
+            &markers,
+            PanelOpts {
+                marker_labels: &labels,
+                ..Default::default()
+            },
+        )?;
+        panel_with(
+            &areas[1],
+            "Receptance at the excited end",
+            &format!("frequency, {fu}"),
+            "|X/F|, dB re 1 m/N",
+            &one(&rec),
+            &markers,
+            PanelOpts {
+                marker_labels: &labels,
+                ..Default::default()
+            },
+        )
+    })
 }

@@ -238,10 +238,19 @@ pub fn spectrum(r: &RunResult, f0: f64) -> Result<String> {
     };
     let k = if k.is_finite() && k > 0.0 { k } else { 1.0 };
     let markers: Vec<f64> = (1..=6).map(|n| n as f64 * f0 * k).collect();
+    let labels: Vec<String> = (1..=6)
+        .map(|n| {
+            if n == 1 {
+                "f0".into()
+            } else {
+                format!("{n}f0")
+            }
+        })
+        .collect();
     render("spectrum.svg", (900, 450), |root| {
-        panel(
+        crate::render::svg::panel_with(
             root,
-            "Velocity spectra (markers: harmonics n f0)",
+            "Velocity spectra (dashed: harmonics n f0)",
             &format!("frequency, {fu}"),
             "magnitude, dB re. incident peak",
             &[
@@ -257,7 +266,10 @@ pub fn spectrum(r: &RunResult, f0: f64) -> Result<String> {
                 },
             ],
             &markers,
-            None,
+            crate::render::svg::PanelOpts {
+                marker_labels: &labels,
+                ..Default::default()
+            },
         )
     })
 }

@@ -1,0 +1,153 @@
+//! Axis labels a person reads: the name and SI unit of a sweep parameter (a dotted scenario
+//! key such as `interface.static_pressure`) or of a summary key (`A2_over_Ainc`), as in
+//! docs/scenario.md, e.g. `static pressure p0` in `Pa`.
+
+/// (name, SI unit) of a dotted scenario key or a summary/CSV key; unknown keys get their
+/// words (`segment.0.mass` -> `segment 1 mass`) and a unit guessed from the last word
+/// (empty when none is known). Interfaces and segments are numbered from 1 in names.
+pub fn quantity(key: &str) -> (String, &'static str) {
+    if let Some((name, unit)) = known(key) {
+        return (name.to_string(), unit);
+    }
+    // per-interface summary keys: `mean_contact_stiffness_0` -> interface 1
+    if let Some((base, i)) = key.rsplit_once('_') {
+        if let Ok(i) = i.parse::<usize>() {
+            let (name, unit) = quantity(base);
+            return (format!("{name}, interface {}", i + 1), unit);
+        }
+    }
+    let last = key.rsplit('.').next().unwrap_or(key);
+    let words: Vec<String> = key
+        .split(['.', '_'])
+        .map(|w| match w.parse::<usize>() {
+            Ok(i) => (i + 1).to_string(),
+            Err(_) => w.to_string(),
+        })
+        .collect();
+    (words.join(" "), guess_unit(last))
+}
+
+/// An axis label `name, unit` (`name` alone for a dimensionless quantity); `prefix` is the
+/// SI prefix the values were scaled by (e.g. `M` for MPa).
+pub fn axis_label(key: &str, prefix: &str) -> String {
+    let (name, unit) = quantity(key);
+    if unit.is_empty() {
+        name
+    } else {
+        format!("{name}, {prefix}{unit}")
+    }
+}
+
+fn known(key: &str) -> Option<(&'static str, &'static str)> {
+    // parameters (dotted scenario keys) first, then summary keys
+    let k = key
+        .strip_prefix("interface.")
+        .map(|r| ("interface", r))
+        .or_else(|| key.strip_prefix("incident.").map(|r| ("incident", r)));
+    let v = match (k, key) {
+        (Some(("interface", "static_pressure")), _) => ("static pressure p0", "Pa"),
+        (Some(("interface", "static_shear")), _) => ("static shear q0", "Pa"),
+        (Some(("interface", "traction.stiffness")), _) => ("traction stiffness C_N", "Pa/m"),
+        (Some(("interface", "traction.energy")), _) => ("decohesion energy w", "J/m^2"),
+        (Some(("interface", "traction.viscosity")), _) => ("viscosity b", "J s/m^2"),
+        (Some(("interface", "compression.stiffness")), _) => ("compression stiffness K", "Pa/m"),
+        (Some(("interface", "compression.c")), _) => ("power-law coefficient C", "Pa^(1-m)/m"),
+        (Some(("interface", "compression.m")), _) => ("power-law exponent m", ""),
+        (Some(("interface", "tangential.friction")), _) => ("friction coefficient mu", ""),
+        (Some(("interface", "tangential.stiffness")), _) => ("tangential stiffness", "Pa/m"),
+        (Some(("incident", "xi")), _) | (_, "xi") => ("load ratio xi", ""),
+        (Some(("incident", "amplitude")), _) => ("incident amplitude", "Pa"),
+        (Some(("incident", "frequency")), _) => ("frequency f0", "Hz"),
+        (Some(("incident", "frequency2")), _) => ("frequency f2", "Hz"),
+        (Some(("incident", "cycles")), _) => ("burst cycles", ""),
+        (Some(("incident", "shear_amplitude")), _) => ("shear amplitude", "Pa"),
+        (_, "excitation.peak") => ("peak force", "N"),
+        (_, "excitation.duration") => ("pulse duration", "s"),
+        (_, "solver.samples_per_period") => ("samples per period", ""),
+        (_, "model.cell_size") => ("cell size", "m"),
+        (_, "model.time_step") => ("time step", "s"),
+        (_, "model.duration") => ("duration", "s"),
+        (_, "amplitude") => ("incident amplitude", "Pa"),
+        (_, "static_pressure") => ("static pressure p0", "Pa"),
+        (_, "frequency") => ("frequency f0", "Hz"),
+        (_, "A_inc") => ("incident velocity A_inc", "m/s"),
+        (_, "A2_over_A1") => ("A2 / A1", ""),
+        (_, "beta_star") => ("nonlinearity parameter A2 / A1^2", "s/m"),
+        (_, "beta_end") => ("adhesion beta at the end", ""),
+        (_, "max_gap") => ("largest gap", "m"),
+        (_, "first_mode_hz") => ("first mode f1", "Hz"),
+        (_, "second_harmonic_hz") => ("second harmonic 2 f1", "Hz"),
+        (_, "guide_mode_hz") => ("guide mode", "Hz"),
+        (_, "A1") => ("response at the first mode A1", "m/s^2"),
+        (_, "peak_force") => ("peak force", "N"),
+        (_, "mean_contact_stiffness") => ("mean contact stiffness K", "Pa/m"),
+        (_, "min_contact_pressure") => ("minimum contact pressure", "Pa"),
+        (_, "static_interface_pressure") => ("static interface pressure", "Pa"),
+        (_, "static_interface_closure") => ("static interface closure", "m"),
+        (_, "friction_coefficient") => ("friction coefficient mu", ""),
+        (_, "friction_ratio") => ("friction ratio", ""),
+        (_, "friction_dissipation_fraction") => ("friction dissipation / incident energy", ""),
+        _ => return harmonic(key),
+    };
+    Some(v)
+}
+
+/// `A2_over_Ainc`, `shear_A3_over_A1`, `shear_tr_A3_over_A1`: harmonic ratios.
+fn harmonic(key: &str) -> Option<(&'static str, &'static str)> {
+    Some(match key {
+        "A1_over_Ainc" => ("A1 / A_inc", ""),
+        "A2_over_Ainc" => ("A2 / A_inc", ""),
+        "A3_over_Ainc" => ("A3 / A_inc", ""),
+        "shear_A3_over_A1" => ("A3 / A1 (shear, reflected)", ""),
+        "shear_tr_A3_over_A1" => ("A3 / A1 (shear, transmitted)", ""),
+        _ => return None,
+    })
+}
+
+fn guess_unit(last: &str) -> &'static str {
+    let l = last.to_ascii_lowercase();
+    if l.contains("pressure") || l.contains("amplitude") || l.contains("modulus") {
+        "Pa"
+    } else if l.contains("stiffness") {
+        "Pa/m"
+    } else if l.contains("frequency") || l.ends_with("_hz") {
+        "Hz"
+    } else if l.contains("energy") {
+        "J/m^2"
+    } else if l == "mass" {
+        "kg"
+    } else if l == "length" || l.contains("gap") || l == "x" {
+        "m"
+    } else if l == "density" {
+        "kg/m^3"
+    } else if l == "damping" {
+        "1/s"
+    } else if l.contains("duration") || l.contains("time") {
+        "s"
+    } else {
+        ""
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_and_units_of_keys() {
+        assert_eq!(
+            axis_label("interface.static_pressure", "M"),
+            "static pressure p0, MPa"
+        );
+        assert_eq!(axis_label("incident.xi", ""), "load ratio xi");
+        assert_eq!(
+            axis_label("mean_contact_stiffness_0", "T"),
+            "mean contact stiffness K, interface 1, TPa/m"
+        );
+        assert_eq!(axis_label("segment.0.mass", ""), "segment 1 mass, kg");
+        assert_eq!(
+            axis_label("solver.unknown_thing", ""),
+            "solver unknown thing"
+        );
+    }
+}
