@@ -406,6 +406,35 @@ pub(crate) fn argmax_refined(x: &[f64], y: &[f64]) -> f64 {
     (-b / (2.0 * a)).clamp(x0.min(x2), x0.max(x2))
 }
 
+/// A finding without a note: `key`, measured `value` (in `unit`), the thesis' statement and
+/// whether they agree (`None`: no statement to compare with).
+fn finding(key: &str, value: f64, unit: &str, thesis: &str, agrees: Option<bool>) -> Finding {
+    Finding {
+        key: key.into(),
+        value,
+        unit: unit.into(),
+        thesis: thesis.into(),
+        agrees,
+        note: String::new(),
+    }
+}
+
+/// A figure panel without markers.
+fn panel(
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: Vec<crate::output::plot::Series>,
+) -> crate::output::plot::Panel {
+    crate::output::plot::Panel {
+        title: title.into(),
+        xlabel: xlabel.into(),
+        ylabel: ylabel.into(),
+        series,
+        markers: Vec::new(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

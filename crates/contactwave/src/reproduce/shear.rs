@@ -17,14 +17,14 @@
 //!    amplitude, with a shear-only series and the Coulomb limit (no adhesion).
 
 use super::{
-    argmax_refined, column, f, fmt_value, lin, tv, Chapter, ChapterResult, Ctx, Edits, Figure,
-    Finding,
+    argmax_refined, column, f, finding, fmt_value, lin, panel, tv, Chapter, ChapterResult, Ctx,
+    Edits, Figure, Finding,
 };
 use crate::analysis::projection::period_harmonics;
 use crate::analysis::{velocity_bands, Summary};
 use crate::analytic::friction::ClippedShear;
 use crate::error::{Error, Result};
-use crate::output::plot::{Panel, Series};
+use crate::output::plot::Series;
 use std::f64::consts::PI;
 
 /// Friction coefficient of the clipping study (`clipping.toml`).
@@ -57,27 +57,6 @@ const RCCM_CASE_AMP: f64 = 2e6;
 /// The friction-ratio grid: 0.05 to 1.5 by 0.05.
 fn ratios() -> Vec<f64> {
     (1..=30).map(|k| k as f64 * 0.05).collect()
-}
-
-fn finding(key: &str, value: f64, unit: &str, thesis: &str, agrees: Option<bool>) -> Finding {
-    Finding {
-        key: key.into(),
-        value,
-        unit: unit.into(),
-        thesis: thesis.into(),
-        agrees,
-        note: String::new(),
-    }
-}
-
-fn panel(title: &str, xlabel: &str, ylabel: &str, series: Vec<Series>) -> Panel {
-    Panel {
-        title: title.into(),
-        xlabel: xlabel.into(),
-        ylabel: ylabel.into(),
-        series,
-        markers: Vec::new(),
-    }
 }
 
 /// The closed form at friction ratio `r` (identical aluminium half-spaces of shear

@@ -250,19 +250,9 @@ fn solve(p: &CoupledHalfSpace, settings: &FdCoupledSolver) -> Result<CoupledOutp
             "Z1T must be finite and > 0, Z2T > 0 (inf: rigid wall)",
         ));
     }
-    let (sn, st) = (hs.incident.peak(), p.shear_incident.peak());
-    let primary: &dyn Excitation = if sn > 0.0 || st == 0.0 {
-        &*hs.incident
-    } else {
-        &*p.shear_incident
-    };
-    let f0 = primary.fundamental();
-    let fmax = hs
-        .incident
-        .highest_frequency()
-        .max(p.shear_incident.highest_frequency());
-    let dt = 1.0 / (settings.samples_per_period.max(1) as f64 * fmax);
-    let duration = hs.incident.duration().max(p.shear_incident.duration());
+    let f0 = p.fundamental();
+    let dt = 1.0 / (settings.samples_per_period.max(1) as f64 * p.highest_frequency());
+    let duration = p.duration();
     let tail = settings.tail_periods.unwrap_or(100.0) / f0;
     // interface levels k = 0..=n_out (t = k dt), plus CELLS steps to reach the interface
     // and CELLS for the outgoing waves to leave the bars

@@ -21,7 +21,7 @@ mod linear;
 mod modified_pl;
 mod weak;
 
-use super::{column, f, tv, Chapter, ChapterResult, Ctx, Edits, Figure, Finding};
+use super::{column, f, finding, panel, tv, Chapter, ChapterResult, Ctx, Edits, Figure, Finding};
 use crate::analysis::Summary;
 use crate::analytic::Bilinear;
 use crate::error::{Error, Result};
@@ -94,27 +94,6 @@ fn at(xs: &[f64], ys: &[f64], x: f64) -> f64 {
         .min_by(|a, b| (a.1 - x).abs().total_cmp(&(b.1 - x).abs()))
         .and_then(|(i, _)| ys.get(i).copied())
         .unwrap_or(f64::NAN)
-}
-
-fn finding(key: &str, value: f64, unit: &str, thesis: &str, agrees: Option<bool>) -> Finding {
-    Finding {
-        key: key.into(),
-        value,
-        unit: unit.into(),
-        thesis: thesis.into(),
-        agrees,
-        note: String::new(),
-    }
-}
-
-fn panel(title: &str, xlabel: &str, ylabel: &str, series: Vec<Series>) -> Panel {
-    Panel {
-        title: title.into(),
-        xlabel: xlabel.into(),
-        ylabel: ylabel.into(),
-        series,
-        markers: Vec::new(),
-    }
 }
 
 /// Interface histories of one run: time (s), gap (m), stress (Pa), cut after `t_end`.

@@ -51,6 +51,35 @@ pub struct CoupledHalfSpace {
     pub shear_incident: Arc<dyn Excitation>,
 }
 
+impl CoupledHalfSpace {
+    /// Fundamental f0 of the analysis and of the tail, Hz: the longitudinal wave's, or the
+    /// shear wave's when it is the only one.
+    pub fn fundamental(&self) -> f64 {
+        let (n, s) = (&self.normal.incident, &self.shear_incident);
+        if n.peak() > 0.0 || s.peak() == 0.0 {
+            n.fundamental()
+        } else {
+            s.fundamental()
+        }
+    }
+
+    /// Highest frequency of either wave (sets the time step), Hz.
+    pub fn highest_frequency(&self) -> f64 {
+        self.normal
+            .incident
+            .highest_frequency()
+            .max(self.shear_incident.highest_frequency())
+    }
+
+    /// Duration of the longer wave (delay included), s.
+    pub fn duration(&self) -> f64 {
+        self.normal
+            .incident
+            .duration()
+            .max(self.shear_incident.duration())
+    }
+}
+
 /// Histories of a coupled run.
 #[derive(Debug, Clone, Default)]
 pub struct CoupledOutput {
@@ -155,18 +184,9 @@ impl<'a> Runner<'a> {
         let law = &*hs.law;
         let tl = &*p.tangential;
         let (sn, st) = (hs.incident.peak(), p.shear_incident.peak());
-        let primary: &dyn Excitation = if sn > 0.0 || st == 0.0 {
-            &*hs.incident
-        } else {
-            &*p.shear_incident
-        };
-        let f0 = primary.fundamental();
-        let fmax = hs
-            .incident
-            .highest_frequency()
-            .max(p.shear_incident.highest_frequency());
-        let h = 1.0 / (settings.samples_per_period.max(1) as f64 * fmax);
-        let duration = hs.incident.duration().max(p.shear_incident.duration());
+        let f0 = p.fundamental();
+        let h = 1.0 / (settings.samples_per_period.max(1) as f64 * p.highest_frequency());
+        let duration = p.duration();
         let mut breaks: Vec<f64> = hs
             .incident
             .breakpoints()
