@@ -148,21 +148,7 @@ impl Executor {
         observer.start(total);
         observer.progress(0, total);
         let done = AtomicUsize::new(0);
-        let one = |(i, item): (usize, &I)| -> Result<Option<Result<T>>> {
-            if observer.cancelled() || crate::interrupt::requested() {
-                return Ok(None);
-            }
-            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(item)))
-                .unwrap_or_else(|p| {
-                    Err(Error::Internal {
-                        message: panic_message(p),
-                    })
-                });
-            observer.point(i, &r)?;
-            let d = done.fetch_add(1, Ordering::SeqCst) + 1;
-            observer.progress(d, total);
-            Ok(Some(r))
-        };
+        let one = |(i, item): (usize, &I)| run_point(i, item, &f, observer, &done, total);
         let run = || {
             items
                 .par_iter()
@@ -193,21 +179,8 @@ impl Executor {
         observer.start(total);
         observer.progress(0, total);
         let done = AtomicUsize::new(0);
-        let one = |(i, item): (usize, &I)| -> Result<()> {
-            if observer.cancelled() || crate::interrupt::requested() {
-                return Ok(());
-            }
-            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(item)))
-                .unwrap_or_else(|p| {
-                    Err(Error::Internal {
-                        message: panic_message(p),
-                    })
-                });
-            observer.point(i, &r)?;
-            let d = done.fetch_add(1, Ordering::SeqCst) + 1;
-            observer.progress(d, total);
-            Ok(())
-        };
+        let one =
+            |(i, item): (usize, &I)| run_point(i, item, &f, observer, &done, total).map(|_| ());
         let run = || {
             items
                 .par_iter()
@@ -246,6 +219,32 @@ impl Executor {
             .map(|r| r.unwrap_or(Err(Error::Interrupted)))
             .collect()
     }
+}
+
+/// One point of a map: skipped (`None`) once the observer cancelled or an interruption was
+/// requested; otherwise `f(item)` with a panic caught as [`Error::Internal`], reported to
+/// the observer (`point`, then `progress` with the count `done` of finished points).
+fn run_point<I, T>(
+    i: usize,
+    item: &I,
+    f: &impl Fn(&I) -> Result<T>,
+    observer: &dyn Observer<T>,
+    done: &AtomicUsize,
+    total: usize,
+) -> Result<Option<Result<T>>> {
+    if observer.cancelled() || crate::interrupt::requested() {
+        return Ok(None);
+    }
+    let r =
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(item))).unwrap_or_else(|p| {
+            Err(Error::Internal {
+                message: panic_message(p),
+            })
+        });
+    observer.point(i, &r)?;
+    let d = done.fetch_add(1, Ordering::SeqCst) + 1;
+    observer.progress(d, total);
+    Ok(Some(r))
 }
 
 #[cfg(test)]
