@@ -44,6 +44,7 @@ fn half_space(c: &mut Criterion) {
                 ramp_fraction: 0.25,
             },
         ))),
+        shear: None,
     };
     let steps = 5000;
     let run = FdRun {

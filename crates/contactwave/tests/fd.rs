@@ -30,6 +30,7 @@ fn courant_one_pulse_crosses_unchanged() {
         left: End::Transparent,
         right: End::Transparent,
         incident: Some(burst),
+        shear: None,
     };
     let mesh = stack.mesh(dt);
     assert_eq!(mesh.cells[0], 400);

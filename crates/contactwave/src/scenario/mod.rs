@@ -219,20 +219,11 @@ impl Scenario {
             z2,
             pressure_key: "interface.static_pressure",
         };
-        let shear_wave = match &spec.shear_incident {
-            Some(inc) => {
-                if let Some(x) = inc.xi {
-                    return Err(Error::invalid(
-                        file,
-                        "shear_incident.xi",
-                        x,
-                        "a shear wave takes `amplitude` (Pa), not xi",
-                    ));
-                }
-                Some(build_wave(inc, "shear_incident", file, base_dir, None, cache)?.0)
-            }
-            None => None,
-        };
+        let shear_wave = spec
+            .shear_incident
+            .as_ref()
+            .map(|inc| build_shear_wave(inc, file, base_dir, cache))
+            .transpose()?;
         let (incident, xi) = match &shear_wave {
             Some(w) if spec.incident.is_absent() => (silent(w.fundamental()), 0.0),
             _ => build_incident_cached(&spec.incident, file, base_dir, Some(&xi_ref), cache)?,
@@ -496,6 +487,25 @@ pub(crate) fn build_incident_cached(
     cache: &BuildCache,
 ) -> Result<(Arc<dyn Excitation>, f64)> {
     build_wave(inc, "incident", file, base_dir, xi_ref, cache)
+}
+
+/// The incident shear wave of a `[shear_incident]` table (amplitude in Pa: a shear wave
+/// has no load ratio xi), reading a waveform file through `cache`.
+pub(crate) fn build_shear_wave(
+    inc: &IncidentSpec,
+    file: &str,
+    base_dir: &Path,
+    cache: &BuildCache,
+) -> Result<Arc<dyn Excitation>> {
+    if let Some(x) = inc.xi {
+        return Err(Error::invalid(
+            file,
+            "shear_incident.xi",
+            x,
+            "a shear wave takes `amplitude` (Pa), not xi",
+        ));
+    }
+    Ok(build_wave(inc, "shear_incident", file, base_dir, None, cache)?.0)
 }
 
 /// [`build_incident_cached`] for the table at `prefix` (`incident`, `shear_incident`),

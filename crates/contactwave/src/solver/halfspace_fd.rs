@@ -72,6 +72,7 @@ fn solve(problem: &HalfSpace, settings: &FdSolver) -> Result<HalfSpaceOutput> {
         left: End::Transparent,
         right,
         incident: Some(inc.clone()),
+        shear: None,
     };
     let period = 1.0 / inc.fundamental();
     let tail = settings.tail_periods.unwrap_or(100.0) * period;
@@ -90,6 +91,7 @@ fn solve(problem: &HalfSpace, settings: &FdSolver) -> Result<HalfSpaceOutput> {
         imposed: None,
         progress: None,
         interface_scheme: settings.interface_scheme,
+        shear_probes: vec![],
     };
     let fd = stack.run(&run)?;
     // back to interface time: the left end sees the reflection len1/c1 later

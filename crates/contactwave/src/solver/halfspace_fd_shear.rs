@@ -262,22 +262,10 @@ fn solve(p: &CoupledHalfSpace, settings: &FdCoupledSolver) -> Result<CoupledOutp
     let mut normal = Line::new(hs.z1, hs.z2, &*hs.incident, dt);
     let mut shear = Line::new(p.z1t, p.z2t, &*p.shear_incident, dt);
     let p0 = law.static_pressure;
-    let q0 = tl.static_shear;
-    let mu = tl.branch.friction();
     let mut rec = Rec::with_capacity(steps + 1);
     let mut beta = 1.0;
-    let sticking = mu > 0.0 && p0 > 0.0;
     let kt = tl.branch.stick_stiffness();
-    let mut sh = ShearState {
-        slider: if sticking { q0 } else { 0.0 },
-        state: if sticking { 0.0 } else { f64::NAN },
-        slip: if kt.is_finite() && !sticking {
-            q0 / kt
-        } else {
-            0.0
-        },
-        ..ShearState::default()
-    };
+    let mut sh = ShearState::at_rest(tl, p0);
     let (mut s_prev, mut s_cur) = (0.0, 0.0);
     let (mut t_prev, mut t_cur) = (0.0, 0.0);
     rec.push(

@@ -191,6 +191,27 @@ pub struct ShearState {
     pub state: f64,
 }
 
+impl ShearState {
+    /// At rest under the static shear of `law` and the normal pre-load `p0` (Pa): with
+    /// friction and `p0 > 0` the slider sticks and carries `q0`; otherwise it is free and
+    /// an elastic stick spring carries `q0` through its slip.
+    pub fn at_rest(law: &TangentialLaw, p0: f64) -> Self {
+        let q0 = law.static_shear;
+        let sticking = law.branch.friction() > 0.0 && p0 > 0.0;
+        let kt = law.branch.stick_stiffness();
+        ShearState {
+            slider: if sticking { q0 } else { 0.0 },
+            state: if sticking { 0.0 } else { f64::NAN },
+            slip: if kt.is_finite() && !sticking {
+                q0 / kt
+            } else {
+                0.0
+            },
+            ..ShearState::default()
+        }
+    }
+}
+
 /// Result of one tangential update.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShearUpdate {

@@ -78,6 +78,54 @@ pub struct FdOutput {
     pub stress: Vec<Vec<f64>>,
     /// Adhesion beta of each interface.
     pub beta: Vec<Vec<f64>>,
-    /// Node updates performed.
+    /// Node updates performed (of both fields with a shear field).
     pub node_updates: u64,
+    /// The transverse field's records, when the stack has one.
+    pub shear: Option<FdShearOutput>,
+}
+
+impl FdOutput {
+    /// Empty records reserved for `n` levels of `probes` probes and `interfaces`
+    /// interfaces, with `shear_probes` transverse probes when there is a shear field.
+    pub fn with_capacity(
+        n: usize,
+        probes: usize,
+        interfaces: usize,
+        shear_probes: Option<usize>,
+    ) -> Self {
+        let v = |k: usize| vec![Vec::with_capacity(n); k];
+        FdOutput {
+            t: Vec::with_capacity(n),
+            displacement: v(probes),
+            gap: v(interfaces),
+            stress: v(interfaces),
+            beta: v(interfaces),
+            node_updates: 0,
+            shear: shear_probes.map(|p| FdShearOutput {
+                displacement: v(p),
+                gap: v(interfaces),
+                stress: v(interfaces),
+                slip: v(interfaces),
+                state: v(interfaces),
+                friction_dissipation: vec![0.0; interfaces],
+            }),
+        }
+    }
+}
+
+/// What a bar-stack run with a shear field records of it, at the levels of [`FdOutput`].
+#[derive(Debug, Clone, Default)]
+pub struct FdShearOutput {
+    /// Transverse displacement at each shear probe node, m.
+    pub displacement: Vec<Vec<f64>>,
+    /// Tangential gap `[u]_T` of each interface (obstacles last), m.
+    pub gap: Vec<Vec<f64>>,
+    /// Contact shear stress tau = T + q0 of each interface, Pa.
+    pub stress: Vec<Vec<f64>>,
+    /// Accumulated slip of each interface's slider, m.
+    pub slip: Vec<Vec<f64>>,
+    /// Slider state of each interface: 0 stick, +1 / -1 slipping, NaN free.
+    pub state: Vec<Vec<f64>>,
+    /// Frictional dissipation of each interface over the run, `sum tau_f Delta s`, J/m^2.
+    pub friction_dissipation: Vec<f64>,
 }

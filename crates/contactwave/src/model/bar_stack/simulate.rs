@@ -122,6 +122,7 @@ pub fn simulate_bar_stack_with_progress(
         imposed: s.imposed_displacement.then(|| s.force.clone()),
         progress,
         interface_scheme: s.interface_scheme,
+        shear_probes: vec![],
     };
     let out = s.stack.run(&run)?;
     let probes = probe_histories(s, &out);
@@ -381,6 +382,7 @@ fn simulate_incident(
         imposed: None,
         progress,
         interface_scheme: s.interface_scheme,
+        shear_probes: vec![],
     };
     let out = s.stack.run(&run)?;
     let probes = probe_histories(s, &out);

@@ -15,7 +15,7 @@ mod source;
 mod spec;
 mod stack;
 
-pub use probes::BarProbe;
+pub use probes::{BarProbe, ShearProbe};
 pub use source::{ForceFile, HalfSine};
 pub use spec::{
     AnalysisSpec, BarStackSpec, ForceSpec, InterfaceSpec, ModelSpec, ProbeSpec, SegmentSpec,
@@ -51,6 +51,9 @@ pub struct BarStackScenario {
     pub pulse_duration: f64,
     /// The incident wave at x = 0 (front at t = 0), when the source is `[incident]`.
     pub incident: Option<Arc<dyn Excitation>>,
+    /// The incident shear wave at x = 0 (front at t = its delay), when the source has a
+    /// `[shear_incident]`.
+    pub shear_incident: Option<Arc<dyn Excitation>>,
     /// Load ratio xi of the incident wave at the first interface (0 without one).
     pub xi: f64,
     /// Simulated time, s.
@@ -121,17 +124,29 @@ impl BarStackScenario {
             left,
             right,
             incident: None,
+            shear: None,
         };
         let (force, pulse_duration) = source::force_source(&spec, file, dir, cache)?;
         let incident = source::incident_wave(&spec, &stack, &static_pressure, file, dir, cache)?;
+        let shear_incident = source::shear_wave(&spec, file, dir, cache)?;
+        stack.shear = laws.shear_stack(&spec, &stack.right, shear_incident.clone(), file)?;
+        if stack.shear.is_some() {
+            stack::require_shear_moduli(&stack.segments, file)?;
+        }
         let wave = incident.as_ref().map(|(exc, _)| exc);
-        let dt = settings::time_step(m, &stack.segments, wave, file)?;
-        let duration = settings::duration(m, &stack.segments, wave, dt, file)?;
+        let waves: Vec<&Arc<dyn Excitation>> = wave.into_iter().chain(&shear_incident).collect();
+        let dt = settings::time_step(m, &stack.segments, &waves, file)?;
+        let duration =
+            settings::duration(m, &stack.segments, &waves, stack.shear.is_some(), dt, file)?;
         settings::validate_analysis(&spec.analysis, file)?;
         check_size(&spec, &stack, dt, duration, file)?;
         let probes = probes::resolve_probes(&spec.probes, &stack, dt, file)?;
         let imposed_displacement = source::imposed_displacement(&spec, file)?;
         stack.incident = source::incident_at_first_interface(wave, &stack.segments);
+        if let Some(sh) = stack.shear.as_mut() {
+            sh.incident =
+                source::shear_at_first_interface(shear_incident.as_ref(), &stack.segments);
+        }
         Ok(BarStackScenario {
             imposed_displacement,
             probes,
@@ -141,6 +156,7 @@ impl BarStackScenario {
             pulse_duration,
             xi: incident.as_ref().map_or(0.0, |(_, xi)| *xi),
             incident: incident.map(|(exc, _)| exc),
+            shear_incident,
             duration,
             dt,
             interface_scheme: m.interface_update.into(),
@@ -159,11 +175,19 @@ fn check_size(
     duration: f64,
     file: &str,
 ) -> Result<()> {
-    let nodes: f64 = stack
+    let cells = |c: f64, l: f64| (l / (c * dt)).max(1.0) + 1.0;
+    let mut nodes: f64 = stack
         .segments
         .iter()
-        .map(|s| (s.length / (s.material.wave_speed() * dt)).max(1.0) + 1.0)
+        .map(|s| cells(s.material.wave_speed(), s.length))
         .sum();
+    if stack.shear.is_some() {
+        nodes += stack
+            .segments
+            .iter()
+            .filter_map(|s| Some(cells(s.material.shear_wave_speed()?, s.length)))
+            .sum::<f64>();
+    }
     let cmax = stack
         .segments
         .iter()
@@ -173,7 +197,11 @@ fn check_size(
         Some(ts) => ("model.time_step", ts),
         None => ("model.cell_size", cmax * dt),
     };
-    let series = (3 + 5 * spec.probes.len() + 3 * (stack.interfaces.len() + 2)) as f64;
+    let mut series = (3 + 5 * spec.probes.len() + 3 * (stack.interfaces.len() + 2)) as f64;
+    if stack.shear.is_some() {
+        // transverse ends, probes and per-interface gap, stress, slip and state
+        series += (2 + 3 * spec.probes.len() + 4 * (stack.interfaces.len() + 1)) as f64;
+    }
     crate::scenario::budget::check_bar_stack(
         file,
         nodes,

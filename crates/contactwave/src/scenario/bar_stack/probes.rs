@@ -3,7 +3,7 @@
 use super::inv;
 use super::spec::ProbeSpec;
 use crate::error::Result;
-use crate::solver::barstack::BarStack;
+use crate::solver::barstack::{BarStack, Mesh};
 
 /// A probe resolved to the mesh.
 #[derive(Debug, Clone)]
@@ -21,6 +21,34 @@ pub struct BarProbe {
     pub distance: f64,
     /// Young's modulus of the probe's segment, Pa.
     pub youngs_modulus: f64,
+    /// The probe on the transverse field's mesh, when the stack has one.
+    pub shear: Option<ShearProbe>,
+}
+
+/// A probe on the transverse field's mesh: `shear stress = G (u[other] - u[node]) /
+/// distance`.
+#[derive(Debug, Clone, Copy)]
+pub struct ShearProbe {
+    /// Global node recorded (of [`BarStack::shear_mesh`]).
+    pub node: usize,
+    /// Neighbouring node of the same segment.
+    pub other: usize,
+    /// Signed distance from `node` to `other`, m.
+    pub distance: f64,
+    /// Shear modulus of the probe's segment, Pa.
+    pub shear_modulus: f64,
+}
+
+/// The node nearest `x` (m from the start of segment `seg`) on `mesh` and its neighbour in
+/// the same segment with the signed distance to it, m.
+fn nodes_at(stack: &BarStack, mesh: &Mesh, seg: usize, x: f64) -> (usize, usize, f64) {
+    let node = stack.node_at(mesh, seg, x);
+    let last = mesh.offset[seg] + mesh.cells[seg];
+    if node < last {
+        (node, node + 1, mesh.dx[seg])
+    } else {
+        (node, node - 1, -mesh.dx[seg])
+    }
 }
 
 /// Resolve the probes to the mesh of `stack` at time step `dt`: each needs a unique name
@@ -35,6 +63,7 @@ pub(super) fn resolve_probes(
 ) -> Result<Vec<BarProbe>> {
     let segments = &stack.segments;
     let mesh = stack.mesh(dt);
+    let shear_mesh = stack.shear_mesh(dt);
     let total: f64 = segments.iter().map(|s| s.length).sum();
     let mut probes = Vec::with_capacity(specs.len());
     for (k, p) in specs.iter().enumerate() {
@@ -67,14 +96,18 @@ pub(super) fn resolve_probes(
             }
             start += sg.length;
         }
-        let node = stack.node_at(&mesh, seg, p.x - start);
-        let last = mesh.offset[seg] + mesh.cells[seg];
-        let (other, distance) = if node < last {
-            (node + 1, mesh.dx[seg])
-        } else {
-            (node - 1, -mesh.dx[seg])
-        };
+        let (node, other, distance) = nodes_at(stack, &mesh, seg, p.x - start);
+        let shear = shear_mesh.as_ref().map(|sm| {
+            let (node, other, distance) = nodes_at(stack, sm, seg, p.x - start);
+            ShearProbe {
+                node,
+                other,
+                distance,
+                shear_modulus: segments[seg].material.shear_modulus.unwrap_or(f64::NAN),
+            }
+        });
         probes.push(BarProbe {
+            shear,
             name: p.name.clone(),
             x: p.x,
             node,

@@ -9,13 +9,14 @@ use crate::solver::barstack::Segment;
 use std::sync::Arc;
 
 /// The time step, s: `model.cell_size` (default: the shortest segment / 4) over the
-/// largest wave speed; with an incident wave at most a period of its highest frequency
-/// over `model.samples_per_period`, adjusted so that the first segment is meshed at
-/// Courant number 1; `model.time_step` overrides it within the stability limit.
+/// largest wave speed; with incident waves (longitudinal, shear or both) at most a period
+/// of their highest frequency over `model.samples_per_period`, adjusted so that the first
+/// segment is meshed at Courant number 1; `model.time_step` overrides it within the
+/// stability limit.
 pub(super) fn time_step(
     m: &ModelSpec,
     segments: &[Segment],
-    incident: Option<&Arc<dyn Excitation>>,
+    waves: &[&Arc<dyn Excitation>],
     file: &str,
 ) -> Result<f64> {
     let shortest = segments
@@ -29,7 +30,11 @@ pub(super) fn time_step(
         .map(|s| s.material.wave_speed())
         .fold(0.0, f64::max);
     let mut dt = dx / cmax;
-    if let Some(exc) = incident {
+    let highest = waves
+        .iter()
+        .map(|w| w.highest_frequency())
+        .fold(None, |m: Option<f64>, f| Some(m.map_or(f, |m| m.max(f))));
+    if let Some(highest) = highest {
         let spp = m.samples_per_period.unwrap_or(DEFAULT_INCIDENT_SPP);
         if !(16..=100_000).contains(&spp) {
             return Err(inv(
@@ -39,7 +44,7 @@ pub(super) fn time_step(
                 "must lie in [16, 100000]",
             ));
         }
-        let d = dt.min(1.0 / (exc.highest_frequency() * spp as f64));
+        let d = dt.min(1.0 / (highest * spp as f64));
         // the first segment at Courant number 1: its transparent end then absorbs the
         // outgoing wave exactly
         let c0 = segments[0].material.wave_speed();
@@ -70,26 +75,41 @@ pub(super) fn time_step(
     Ok(dt)
 }
 
-/// The simulated time, s: `model.duration`, or by default the burst, four travel times of
-/// the stack and 100 periods of the fundamental with an incident wave, and
+/// The simulated time, s: `model.duration`, or by default, with incident waves, the
+/// longest burst, four travel times of the stack (at the shear wave speeds with a
+/// transverse field, `shear`) and 100 periods of the lowest fundamental, and
 /// [`DEFAULT_HAMMER_DURATION`] otherwise; at most 5e8 time steps of `dt`.
 pub(super) fn duration(
     m: &ModelSpec,
     segments: &[Segment],
-    incident: Option<&Arc<dyn Excitation>>,
+    waves: &[&Arc<dyn Excitation>],
+    shear: bool,
     dt: f64,
     file: &str,
 ) -> Result<f64> {
     let travel: f64 = segments
         .iter()
-        .map(|s| s.length / s.material.wave_speed())
+        .map(|s| {
+            let c = match s.material.shear_wave_speed() {
+                Some(ct) if shear => ct,
+                _ => s.material.wave_speed(),
+            };
+            s.length / c
+        })
         .sum();
-    let duration = match (m.duration, incident) {
+    let duration = match (m.duration, waves.first()) {
         (Some(d), _) => {
             pos(file, "model.duration", d)?;
             d
         }
-        (None, Some(exc)) => exc.duration() + 4.0 * travel + 100.0 / exc.fundamental(),
+        (None, Some(_)) => {
+            let burst = waves.iter().map(|w| w.duration()).fold(0.0, f64::max);
+            let f0 = waves
+                .iter()
+                .map(|w| w.fundamental())
+                .fold(f64::INFINITY, f64::min);
+            burst + 4.0 * travel + 100.0 / f0
+        }
         (None, None) => DEFAULT_HAMMER_DURATION,
     };
     let steps = duration / dt;

@@ -63,9 +63,19 @@ pub(super) fn force_source(
     dir: &Path,
     cache: &BuildCache,
 ) -> Result<(Arc<dyn Signal>, f64)> {
+    if spec.excitation.is_some() && spec.shear_incident.is_some() {
+        return Err(inv(
+            file,
+            "shear_incident",
+            "[shear_incident] and [excitation]",
+            "a shear wave enters through a transparent first end: give [shear_incident] \
+             (and [incident]) without [excitation]",
+        ));
+    }
     match (&spec.excitation, &spec.incident) {
         (Some(ex), None) => hammer(ex, spec.model.duration, file, dir, cache),
         (None, Some(_)) => Ok((Arc::new(NoForce), 0.0)),
+        (None, None) if spec.shear_incident.is_some() => Ok((Arc::new(NoForce), 0.0)),
         (Some(_), Some(_)) => Err(inv(
             file,
             "incident",
@@ -213,6 +223,28 @@ pub(super) fn incident_wave(
     }
 }
 
+/// The incident shear wave of `[shear_incident]`, which enters through the transparent
+/// first end like `[incident]`.
+pub(super) fn shear_wave(
+    spec: &BarStackSpec,
+    file: &str,
+    dir: &Path,
+    cache: &BuildCache,
+) -> Result<Option<Arc<dyn Excitation>>> {
+    let Some(inc) = &spec.shear_incident else {
+        return Ok(None);
+    };
+    if spec.model.first_end != "transparent" {
+        return Err(inv(
+            file,
+            "model.first_end",
+            &spec.model.first_end,
+            "\"transparent\": a [shear_incident] wave enters through the first end",
+        ));
+    }
+    crate::scenario::build_shear_wave(inc, file, dir, cache).map(Some)
+}
+
 /// The incident wave as the solver takes it: its stress where it meets the first
 /// interface, one travel time of the first segment after it enters at x = 0.
 pub(super) fn incident_at_first_interface(
@@ -222,6 +254,18 @@ pub(super) fn incident_at_first_interface(
     incident.map(|exc| -> Arc<dyn Excitation> {
         let c0 = segments[0].material.wave_speed();
         Arc::new(Delayed::new(exc.clone(), segments[0].length / c0))
+    })
+}
+
+/// [`incident_at_first_interface`] for the shear wave, which crosses the first segment at
+/// its shear wave speed.
+pub(super) fn shear_at_first_interface(
+    incident: Option<&Arc<dyn Excitation>>,
+    segments: &[Segment],
+) -> Option<Arc<dyn Excitation>> {
+    incident.map(|exc| -> Arc<dyn Excitation> {
+        let ct = segments[0].material.shear_wave_speed().unwrap_or(f64::NAN);
+        Arc::new(Delayed::new(exc.clone(), segments[0].length / ct))
     })
 }
 

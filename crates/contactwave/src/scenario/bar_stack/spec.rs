@@ -1,7 +1,9 @@
 //! The serde-level form of a bar-stack file: the TOML tables as written, before
 //! validation, and the defaults they fall back on.
 
-use crate::scenario::spec::{CompressionSpec, IncidentSpec, InterfaceUpdate, TractionSpec};
+use crate::scenario::spec::{
+    CompressionSpec, IncidentSpec, InterfaceUpdate, TangentialSpec, TractionSpec,
+};
 use serde::{Deserialize, Serialize};
 
 /// Default hammer pulse duration, s: with the Tribobrake example at 32 N both interfaces
@@ -28,6 +30,12 @@ pub struct BarStackSpec {
     /// file; `amplitude` in Pa or `xi` relative to the first interface). `s_inc(t)` is its
     /// stress at x = 0, where its front arrives at t = 0.
     pub incident: Option<IncidentSpec>,
+    /// An incident shear wave entering through the transparent first end (model.md
+    /// sections 5 and 13), alone or with `[incident]`: the keys of the half-space
+    /// `[shear_incident]` (`amplitude` in Pa, no xi; `delay` in s). `tau_inc(t)` is its
+    /// shear stress at x = 0, where its front arrives at t = `delay`. It gives the stack a
+    /// transverse field: every segment then needs a shear modulus.
+    pub shear_incident: Option<IncidentSpec>,
     /// Analysis settings.
     #[serde(default)]
     pub analysis: AnalysisSpec,
@@ -62,6 +70,12 @@ pub struct ModelSpec {
     /// Static force on the first node along +x, N (default 0).
     #[serde(default)]
     pub static_force: f64,
+    /// Static transverse force on the first node, N (default 0): every interface then
+    /// carries the static shear stress `q0 = static_shear_force / area`, balanced by the
+    /// obstacle's friction or a fixed far end (`|q0| <= mu p0` at each frictional
+    /// interface). Gives the stack a transverse field.
+    #[serde(default)]
+    pub static_shear_force: f64,
     /// End condition at x = 0: `free` (default), `fixed`, `transparent`.
     #[serde(default = "free")]
     pub first_end: String,
@@ -113,8 +127,15 @@ pub struct SegmentSpec {
     pub youngs_modulus: Option<f64>,
     /// Density, kg/m^3.
     pub density: Option<f64>,
+    /// Poisson's ratio nu in (-1, 0.5): shear modulus `E / (2 (1 + nu))` (needed with a
+    /// transverse field unless the preset gives it).
+    pub poisson_ratio: Option<f64>,
+    /// Shear modulus G, Pa (instead of `poisson_ratio` or `ct`).
+    pub shear_modulus: Option<f64>,
+    /// Shear wave speed, m/s: sets `G = rho ct^2`.
+    pub ct: Option<f64>,
     /// Mass, kg: sets an equivalent density `mass / (area length)` at the common
-    /// cross-section, with E scaled by the same factor (the wave speed is kept).
+    /// cross-section, with E and G scaled by the same factor (the wave speeds are kept).
     pub mass: Option<f64>,
     /// Viscous damping h of eq. 2.2, 1/s (default 0).
     #[serde(default)]
@@ -133,6 +154,11 @@ pub struct InterfaceSpec {
     /// Traction branch.
     #[serde(default)]
     pub traction: TractionSpec,
+    /// Tangential branch (model.md section 13): `free` (default), `linear`, `coulomb` or
+    /// `rccm`, as the half-space `interface.tangential`. Any other than `free` gives the
+    /// stack a transverse field.
+    #[serde(default)]
+    pub tangential: TangentialSpec,
 }
 
 /// `[excitation]`: a half-sine force pulse or a force file, at the first node.

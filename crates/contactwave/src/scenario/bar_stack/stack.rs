@@ -5,10 +5,12 @@
 use super::spec::{BarStackSpec, ModelSpec, SegmentSpec};
 use super::{inv, pos};
 use crate::error::Result;
+use crate::excitation::Excitation;
+use crate::law::registry::build_tangential;
 use crate::law::ContactLaw;
-use crate::scenario::spec::MaterialSpec;
+use crate::scenario::spec::{MaterialSpec, TangentialSpec};
 use crate::scenario::BuildCache;
-use crate::solver::barstack::{End, Segment};
+use crate::solver::barstack::{End, Segment, ShearStack};
 use std::sync::Arc;
 
 /// Validate the model keys read before the segments: the cross-section, gravity and the
@@ -21,6 +23,14 @@ pub(super) fn validate_model(m: &ModelSpec, file: &str) -> Result<()> {
             "model.gravity",
             m.gravity,
             "must be finite (m/s^2)",
+        ));
+    }
+    if !m.static_shear_force.is_finite() {
+        return Err(inv(
+            file,
+            "model.static_shear_force",
+            m.static_shear_force,
+            "must be finite (N)",
         ));
     }
     if !m.static_force.is_finite() {
@@ -50,6 +60,9 @@ pub(super) fn build_segments(specs: &[SegmentSpec], area: f64, file: &str) -> Re
                 material: s.material.clone(),
                 youngs_modulus: s.youngs_modulus,
                 density: s.density,
+                poisson_ratio: s.poisson_ratio,
+                shear_modulus: s.shear_modulus,
+                ct: s.ct,
                 ..Default::default()
             },
             file,
@@ -86,6 +99,24 @@ pub(super) fn build_segments(specs: &[SegmentSpec], area: f64, file: &str) -> Re
     Ok(segments)
 }
 
+/// A transverse field needs the shear modulus of every segment.
+pub(super) fn require_shear_moduli(segments: &[Segment], file: &str) -> Result<()> {
+    match segments
+        .iter()
+        .position(|s| s.material.shear_modulus.is_none())
+    {
+        None => Ok(()),
+        Some(i) => Err(inv(
+            file,
+            format!("segment[{i}].poisson_ratio"),
+            "(missing)",
+            "a transverse field ([shear_incident], a tangential law or a static shear force) \
+             needs the shear modulus of every segment: give `poisson_ratio` in (-1, 0.5), \
+             `shear_modulus` (Pa) or `ct` (m/s), or a preset `material`",
+        )),
+    }
+}
+
 /// The static equilibrium step: the pressure at the interface below segment `k` (Pa) is
 /// the static force plus the weight of segments `0..=k`, over the cross-section.
 fn static_pressure_at(m: &ModelSpec, segments: &[Segment], k: usize) -> f64 {
@@ -102,6 +133,8 @@ fn static_pressure_at(m: &ModelSpec, segments: &[Segment], k: usize) -> f64 {
 pub(super) struct InterfaceLaws {
     /// The law of each slot, built at its static pressure.
     laws: Vec<Option<Arc<ContactLaw>>>,
+    /// The `[[interface]]` (its index in the file) of each slot.
+    index: Vec<Option<usize>>,
     /// The static pressure of each slot, Pa (0 where there is no interface).
     pressures: Vec<f64>,
 }
@@ -119,6 +152,7 @@ pub(super) fn build_interface_laws(
     let m = &spec.model;
     let n = segments.len();
     let mut laws: Vec<Option<Arc<ContactLaw>>> = vec![None; n];
+    let mut index = vec![None; n];
     let mut pressures = vec![0.0; n];
     for (j, itf) in spec.interfaces.iter().enumerate() {
         let [a, b] = &itf.between;
@@ -165,8 +199,13 @@ pub(super) fn build_interface_laws(
         )?;
         pressures[ia] = p;
         laws[ia] = Some(law);
+        index[ia] = Some(j);
     }
-    Ok(InterfaceLaws { laws, pressures })
+    Ok(InterfaceLaws {
+        laws,
+        index,
+        pressures,
+    })
 }
 
 impl InterfaceLaws {
@@ -221,6 +260,72 @@ impl InterfaceLaws {
             static_pressure.push(self.pressures[n - 1]);
         }
         static_pressure
+    }
+
+    /// The tangential laws of a stack with a transverse field (model.md section 13): one
+    /// per interface between segments and one for the obstacle (when there is one), each
+    /// carrying the static shear `q0 = model.static_shear_force / area`; `None` when the
+    /// stack has no transverse field (no `[shear_incident]`, every tangential branch
+    /// `free` and no static shear force).
+    pub(super) fn shear_stack(
+        &self,
+        spec: &BarStackSpec,
+        right: &End,
+        incident: Option<Arc<dyn Excitation>>,
+        file: &str,
+    ) -> Result<Option<ShearStack>> {
+        let m = &spec.model;
+        let active = incident.is_some()
+            || m.static_shear_force != 0.0
+            || spec
+                .interfaces
+                .iter()
+                .any(|i| i.tangential != TangentialSpec::Free);
+        if !active {
+            return Ok(None);
+        }
+        let q0 = m.static_shear_force / m.area;
+        if q0 != 0.0 && !matches!(right, End::Obstacle(_) | End::Fixed) {
+            return Err(inv(
+                file,
+                "model.static_shear_force",
+                m.static_shear_force,
+                "a static transverse force needs a far end that holds it: model.last_end = \
+                 \"obstacle\" (friction) or \"fixed\"",
+            ));
+        }
+        let mut laws = Vec::with_capacity(self.laws.len());
+        for (law, j) in self.laws.iter().zip(&self.index) {
+            let (Some(law), Some(j)) = (law, j) else {
+                laws.push(None);
+                continue;
+            };
+            let prefix = format!("interface[{j}]");
+            let tl = build_tangential(&spec.interfaces[*j].tangential, q0, law, file, &prefix)
+                .map_err(|e| match e {
+                    // the static shear comes from the model's transverse force
+                    crate::error::Error::Invalid { field, allowed, .. }
+                        if field.ends_with(".static_shear") =>
+                    {
+                        inv(
+                            file,
+                            "model.static_shear_force",
+                            m.static_shear_force,
+                            &format!("at {prefix}: {allowed}"),
+                        )
+                    }
+                    e => e,
+                })?;
+            laws.push(Some(Arc::new(tl)));
+        }
+        let n = laws.len();
+        let obstacle = laws[n - 1].take();
+        let interfaces = laws[..n - 1].iter().flatten().cloned().collect();
+        Ok(Some(ShearStack {
+            interfaces,
+            obstacle,
+            incident,
+        }))
     }
 
     /// The law of the obstacle slot, if an `[[interface]]` names the obstacle.

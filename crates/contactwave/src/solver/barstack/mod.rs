@@ -1,0 +1,644 @@
+//! Explicit finite-difference solver of a stack of elastic bars separated by contact
+//! interfaces (model.md section 5; thesis sections 2.3.1-2.3.5, eqs. 2.2, 2.18-2.37).
+//!
+//! Each segment is meshed with `n_i = floor(L_i / (c_i dt))` cells, so its Courant number
+//! `r_i = c_i dt / dx_i <= 1` and equals 1 (dispersion-free in 1D) when the length is a
+//! multiple of `c_i dt`. The scheme is the lumped-mass form of the thesis' centred scheme:
+//! interior nodes `u+ = 2u - u- + r^2 (u_{j+1} - 2u_j + u_{j-1})` (eq. 2.18 at the
+//! Courant number r), end nodes with half mass, viscous damping `h` (eq. 2.2) centred in
+//! time. Displacements are relative to the pre-loaded static equilibrium (gravity and
+//! static forces are balanced by the static stress field, reported by the static step),
+//! so an interface transmits the dynamic stress `S = sigma(gap) + p0`. Interfaces are
+//! updated implicitly each step ([`super::interface::update`]): the law holds exactly.
+//! Ends: free, fixed, transparent (first-order absorbing, exact at Courant 1) with an
+//! optional injected incident wave, or a rigid obstacle through an interface.
+//! The time loop allocates nothing; state lives in flat `Vec<f64>`s.
+
+mod field;
+mod joint;
+
+pub use super::output::{FdOutput, FdShearOutput};
+use super::Solver;
+use crate::error::{Error, Result};
+use crate::excitation::Excitation;
+use crate::law::{ContactLaw, TangentialLaw};
+use crate::material::Material;
+use field::Field;
+use joint::{Joint, JointState, StepContext};
+use std::sync::Arc;
+
+/// An elastic bar segment.
+#[derive(Debug, Clone)]
+pub struct Segment {
+    /// Name (for reports).
+    pub name: String,
+    /// Length, m.
+    pub length: f64,
+    /// Material (E, rho) at the common cross-section.
+    pub material: Material,
+    /// Viscous damping h of eq. 2.2, 1/s.
+    pub damping: f64,
+}
+
+/// Condition at an end of the stack.
+#[derive(Debug, Clone)]
+pub enum End {
+    /// Traction-free end.
+    Free,
+    /// Fixed end (u = 0).
+    Fixed,
+    /// Transparent (absorbing) end; at the left end an incident wave may be injected.
+    Transparent,
+    /// Rigid obstacle in contact through an interface law.
+    Obstacle(Arc<ContactLaw>),
+}
+
+/// A time signal (force, N, or incident stress, Pa).
+pub trait Signal: Send + Sync + std::fmt::Debug {
+    /// Value at time t.
+    fn value(&self, t: f64) -> f64;
+}
+
+impl<T: crate::excitation::Excitation + ?Sized> Signal for T {
+    fn value(&self, t: f64) -> f64 {
+        self.stress(t)
+    }
+}
+
+/// A force applied at a node, N (positive along +x).
+#[derive(Debug, Clone)]
+pub struct ForceSource {
+    /// Global node index.
+    pub node: usize,
+    /// Force signal, N.
+    pub signal: Arc<dyn Signal>,
+}
+
+/// The bar stack.
+#[derive(Debug, Clone)]
+pub struct BarStack {
+    /// Common cross-section, m^2.
+    pub area: f64,
+    /// Segments from left (x = 0) to right.
+    pub segments: Vec<Segment>,
+    /// Interfaces between consecutive segments (`segments.len() - 1` of them).
+    pub interfaces: Vec<Arc<ContactLaw>>,
+    /// Left end.
+    pub left: End,
+    /// Right end.
+    pub right: End,
+    /// Incident stress wave injected at a transparent left end: `s_inc(t)` is its stress
+    /// at the right end of the first segment (the wave front arrives there at t = 0).
+    pub incident: Option<Arc<dyn crate::excitation::Excitation>>,
+    /// The transverse (shear) field, when the stack carries one.
+    pub shear: Option<ShearStack>,
+}
+
+/// The transverse field of a stack (model.md sections 5 and 13): plane shear waves along
+/// the stack, every segment at its shear wave speed `c_T = sqrt(G / rho)`, the interfaces
+/// updated by the coupled normal/tangential law each step. The ends are those of the
+/// longitudinal field: free, fixed, transparent (injecting `incident`) or the obstacle
+/// contact through `obstacle`.
+#[derive(Debug, Clone)]
+pub struct ShearStack {
+    /// Tangential law of each interface between segments, in order.
+    pub interfaces: Vec<Arc<TangentialLaw>>,
+    /// Tangential law of the obstacle contact (needed with an obstacle end).
+    pub obstacle: Option<Arc<TangentialLaw>>,
+    /// Incident shear wave through a transparent left end: `tau_inc(t)` is its shear
+    /// stress at the right end of the first segment (front there at t = 0), Pa.
+    pub incident: Option<Arc<dyn crate::excitation::Excitation>>,
+}
+
+/// The mesh of a stack for a time step.
+#[derive(Debug, Clone)]
+pub struct Mesh {
+    /// Time step, s.
+    pub dt: f64,
+    /// First global node of each segment.
+    pub offset: Vec<usize>,
+    /// Cells per segment.
+    pub cells: Vec<usize>,
+    /// Cell size per segment, m.
+    pub dx: Vec<f64>,
+    /// Courant number per segment.
+    pub courant: Vec<f64>,
+    /// Total number of nodes.
+    pub nodes: usize,
+}
+
+impl BarStack {
+    /// Mesh every segment at Courant number <= 1 for time step `dt` (s), at its
+    /// longitudinal wave speed.
+    pub fn mesh(&self, dt: f64) -> Mesh {
+        let speeds: Vec<f64> = self
+            .segments
+            .iter()
+            .map(|s| s.material.wave_speed())
+            .collect();
+        mesh_with(&self.segments, &speeds, dt, |_| false)
+    }
+
+    /// The mesh of the transverse field at time step `dt` (s), when the stack has one
+    /// (see [`BarStack::run`]): `None` without a shear field or a shear modulus.
+    pub fn shear_mesh(&self, dt: f64) -> Option<Mesh> {
+        self.shear.as_ref()?;
+        let speeds: Option<Vec<f64>> = self
+            .segments
+            .iter()
+            .map(|s| s.material.shear_wave_speed())
+            .collect();
+        let n = self.segments.len();
+        Some(mesh_with(&self.segments, &speeds?, dt, |i| {
+            (i == 0 && matches!(self.left, End::Transparent))
+                || (i + 1 == n && matches!(self.right, End::Transparent))
+        }))
+    }
+
+    /// Global node index at position `x` (m, from the left end of `segment`).
+    pub fn node_at(&self, mesh: &Mesh, segment: usize, x: f64) -> usize {
+        let k = (x / mesh.dx[segment])
+            .round()
+            .clamp(0.0, mesh.cells[segment] as f64) as usize;
+        mesh.offset[segment] + k
+    }
+}
+
+/// How the interface force enters the step (the law itself holds exactly at the new time
+/// level in both).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum InterfaceScheme {
+    /// The interface stress of the new time level acts over the whole step (backward,
+    /// as thesis eqs. 2.27-2.31): first order, and it dissipates energy (a linear spring
+    /// interface loses a fraction of order `K chi` of its vibration energy per step).
+    Backward,
+    /// The mean of the interface stresses at the new and the previous-but-one level
+    /// replaces the stress at the current level in the centred scheme (trapezoidal /
+    /// average acceleration): second order, no numerical dissipation for a linear spring,
+    /// unconditionally stable. Rigid (Signorini, bonded) branches keep the backward
+    /// projection, which enforces the constraint at the new level.
+    #[default]
+    Average,
+}
+
+/// Settings of a run.
+#[derive(Debug, Clone, Default)]
+pub struct FdRun {
+    /// Time step, s.
+    pub dt: f64,
+    /// Start time, s.
+    pub t0: f64,
+    /// Number of steps.
+    pub steps: usize,
+    /// Record every n-th step.
+    pub record_every: usize,
+    /// Probe nodes (global indices).
+    pub probes: Vec<usize>,
+    /// Probe nodes of the transverse field (global indices of [`BarStack::shear_mesh`];
+    /// recorded only when the stack has a shear field).
+    pub shear_probes: Vec<usize>,
+    /// Force sources.
+    pub forces: Vec<ForceSource>,
+    /// Imposed displacement of node 0 (from the static equilibrium), m: thesis eq. 2.39,
+    /// `u_1^{m+1} = f((m + 1) dt)`; the left end must then be `Free`.
+    pub imposed: Option<Arc<dyn Signal>>,
+    /// Called with (steps done, steps) every 4096 steps (long runs report progress).
+    pub progress: Option<StepProgress>,
+    /// Interface time discretisation.
+    pub interface_scheme: InterfaceScheme,
+}
+
+/// A progress callback of a run: `(steps done, total steps)`.
+#[derive(Clone)]
+pub struct StepProgress(pub Arc<dyn Fn(usize, usize) + Send + Sync>);
+
+impl std::fmt::Debug for StepProgress {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("StepProgress")
+    }
+}
+
+/// Largest time step that keeps every interface update well-conditioned and every segment
+/// at Courant <= 1 is not a constraint of this implicit interface update; the bulk
+/// stability limit is Courant <= 1, which the mesh guarantees by construction.
+pub fn check_stability(mesh: &Mesh) -> Result<()> {
+    for (i, r) in mesh.courant.iter().enumerate() {
+        if !(*r <= 1.0 + 1e-9) {
+            return Err(Error::invalid(
+                "<mesh>",
+                format!("segment[{i}]"),
+                r,
+                "Courant number c dt / dx must be <= 1",
+            ));
+        }
+    }
+    Ok(())
+}
+
+impl BarStack {
+    /// Run the explicit scheme.
+    pub fn run(&self, run: &FdRun) -> Result<FdOutput> {
+        let mesh = self.mesh(run.dt);
+        check_stability(&mesh)?;
+        let dt = run.dt;
+        let nseg = self.segments.len();
+        if self.interfaces.len() + 1 != nseg {
+            return Err(Error::invalid(
+                "<model>",
+                "interfaces",
+                self.interfaces.len(),
+                format!(
+                    "a stack of {nseg} segments needs {} interfaces",
+                    nseg.saturating_sub(1)
+                ),
+            ));
+        }
+        let tau_max = run.t0 + (run.steps + 2) as f64 * dt;
+        let incident = self.incident_wave(self.incident.as_deref(), |m| m.impedance())?;
+        let seg0 = &self.segments[0];
+        let mut normal = Field::new(
+            self,
+            mesh,
+            (seg0.material.wave_speed(), seg0.length),
+            incident,
+            tau_max,
+        );
+        let mut shear = self.shear_field(dt, tau_max)?;
+        let n = normal.nodes();
+        let mut force = vec![0.0; run.forces.len()];
+        let forced: Vec<usize> = run.forces.iter().map(|f| f.node.min(n - 1)).collect();
+        // interfaces between segments, then the obstacle(s): right, left
+        let laws = self.contact_laws();
+        let tangential = self.tangential_laws()?;
+        let mut state: Vec<JointState> = laws
+            .iter()
+            .enumerate()
+            .map(|(i, l)| JointState::at_rest(l, tangential.get(i).map(|t| &**t)))
+            .collect();
+        let joints = self.joints(&normal.mesh);
+        let shear_joints = shear
+            .as_ref()
+            .map_or_else(Vec::new, |f| self.joints(&f.mesh));
+        let n_rec = run.steps / run.record_every.max(1) + 1;
+        let mut out = FdOutput::with_capacity(
+            n_rec,
+            run.probes.len(),
+            laws.len(),
+            shear.as_ref().map(|_| run.shear_probes.len()),
+        );
+        let record = |out: &mut FdOutput,
+                      t: f64,
+                      normal: &[f64],
+                      shear: Option<&[f64]>,
+                      state: &[JointState]| {
+            record_level(out, run, t, (normal, shear), state, &tangential);
+        };
+        record(
+            &mut out,
+            run.t0,
+            &normal.u,
+            shear.as_ref().map(|f| &f.u[..]),
+            &state,
+        );
+        for step in 0..run.steps {
+            if step % 4096 == 0 {
+                crate::interrupt::check()?;
+                if let Some(p) = &run.progress {
+                    (p.0)(step, run.steps);
+                }
+            }
+            let t = run.t0 + step as f64 * dt;
+            let t1 = t + dt;
+            let ctx = StepContext {
+                scheme: run.interface_scheme,
+                dt,
+                t: t1,
+            };
+            for (f, src) in force.iter_mut().zip(&run.forces) {
+                *f = src.signal.value(t);
+            }
+            normal.bulk();
+            // external forces (few nodes)
+            for (node, f) in forced.iter().zip(force.iter()) {
+                normal.u_next[*node] += normal.force_gain(*node) * f;
+            }
+            out.node_updates += n as u64;
+            if let Some(sf) = shear.as_mut() {
+                sf.bulk();
+                out.node_updates += sf.nodes() as u64;
+            }
+            // first end
+            match &self.left {
+                End::Free => {}
+                End::Fixed => {
+                    normal.u_next[0] = 0.0;
+                    if let Some(sf) = shear.as_mut() {
+                        sf.u_next[0] = 0.0;
+                    }
+                }
+                End::Transparent => {
+                    normal.transparent_first(t, t1);
+                    if let Some(sf) = shear.as_mut() {
+                        sf.transparent_first(t, t1);
+                    }
+                }
+                End::Obstacle(law) => {
+                    let i = laws.len() - 1;
+                    let (joint, st) = (joints[i], &mut state[i]);
+                    joint::update(
+                        ctx,
+                        law,
+                        joint,
+                        st,
+                        &mut normal,
+                        shear_side(shear.as_mut(), &shear_joints, &tangential, i),
+                    )?;
+                }
+            }
+            if let Some(d) = &run.imposed {
+                normal.u_next[0] = d.value(t1);
+            }
+            match &self.right {
+                End::Free => {}
+                End::Fixed => {
+                    normal.u_next[n - 1] = 0.0;
+                    if let Some(sf) = shear.as_mut() {
+                        let last = sf.nodes() - 1;
+                        sf.u_next[last] = 0.0;
+                    }
+                }
+                End::Transparent => {
+                    normal.transparent_last();
+                    if let Some(sf) = shear.as_mut() {
+                        sf.transparent_last();
+                    }
+                }
+                End::Obstacle(law) => {
+                    let i = self.interfaces.len();
+                    let (joint, st) = (joints[i], &mut state[i]);
+                    joint::update(
+                        ctx,
+                        law,
+                        joint,
+                        st,
+                        &mut normal,
+                        shear_side(shear.as_mut(), &shear_joints, &tangential, i),
+                    )?;
+                }
+            }
+            for (i, law) in self.interfaces.iter().enumerate() {
+                let (joint, st) = (joints[i], &mut state[i]);
+                joint::update(
+                    ctx,
+                    law,
+                    joint,
+                    st,
+                    &mut normal,
+                    shear_side(shear.as_mut(), &shear_joints, &tangential, i),
+                )?;
+            }
+            if (step % 4096 == 4095 || step + 1 == run.steps)
+                && !(normal.finite() && shear.as_ref().is_none_or(|f| f.finite()))
+            {
+                let gaps: Vec<f64> = state.iter().map(|s| s.gap).collect();
+                return Err(Error::numerical(
+                    t1,
+                    "non-finite displacement",
+                    format!("gaps = {gaps:?}"),
+                ));
+            }
+            if (step + 1) % run.record_every.max(1) == 0 {
+                record(
+                    &mut out,
+                    t1,
+                    &normal.u_next,
+                    shear.as_ref().map(|f| &f.u_next[..]),
+                    &state,
+                );
+            }
+            normal.rotate();
+            if let Some(sf) = shear.as_mut() {
+                sf.rotate();
+            }
+        }
+        if let Some(sh) = out.shear.as_mut() {
+            sh.friction_dissipation = state.iter().map(|s| s.friction).collect();
+        }
+        Ok(out)
+    }
+
+    /// The incident wave of a transparent first end and the first segment's impedance
+    /// for its wave type (`z` of a material, Pa s/m); an error with another first end.
+    fn incident_wave<'a>(
+        &self,
+        incident: Option<&'a dyn Excitation>,
+        z: impl Fn(&Material) -> f64,
+    ) -> Result<Option<(&'a dyn Excitation, f64)>> {
+        let Some(inc) = incident else {
+            return Ok(None);
+        };
+        if !matches!(self.left, End::Transparent) {
+            return Err(Error::invalid(
+                "<model>",
+                "left",
+                "not transparent",
+                "an incident wave enters through a transparent left end",
+            ));
+        }
+        Ok(Some((inc, z(&self.segments[0].material))))
+    }
+
+    /// The contact laws in the order of the interface state: between segments, then the
+    /// obstacle of the last end, then that of the first end.
+    fn contact_laws(&self) -> Vec<Arc<ContactLaw>> {
+        let mut laws = self.interfaces.clone();
+        for end in [&self.right, &self.left] {
+            if let End::Obstacle(l) = end {
+                laws.push(l.clone());
+            }
+        }
+        laws
+    }
+
+    /// The tangential laws in the order of [`BarStack::contact_laws`] (empty without a
+    /// shear field).
+    fn tangential_laws(&self) -> Result<Vec<Arc<TangentialLaw>>> {
+        let Some(sh) = &self.shear else {
+            return Ok(Vec::new());
+        };
+        if sh.interfaces.len() != self.interfaces.len() {
+            return Err(Error::invalid(
+                "<model>",
+                "shear.interfaces",
+                sh.interfaces.len(),
+                format!(
+                    "one tangential law per interface ({})",
+                    self.interfaces.len()
+                ),
+            ));
+        }
+        let mut laws = sh.interfaces.clone();
+        for end in [&self.right, &self.left] {
+            if let End::Obstacle(_) = end {
+                laws.push(sh.obstacle.clone().ok_or_else(|| {
+                    Error::invalid(
+                        "<model>",
+                        "shear.obstacle",
+                        "(missing)",
+                        "an obstacle end of a stack with a shear field needs a tangential law",
+                    )
+                })?);
+            }
+        }
+        Ok(laws)
+    }
+
+    /// The transverse field of a stack with a shear field: every segment at its shear
+    /// wave speed; a segment that ends in a transparent end is a buffer whose length only
+    /// delays the waves, and is meshed at Courant number 1 (`dx = c_T dt`, the nearest
+    /// whole number of cells) so that the end absorbs exactly.
+    fn shear_field(&self, dt: f64, tau_max: f64) -> Result<Option<Field>> {
+        let Some(sh) = &self.shear else {
+            return Ok(None);
+        };
+        let missing = |i: usize| {
+            Error::invalid(
+                "<model>",
+                format!("segment[{i}].shear_modulus"),
+                "(missing)",
+                "a stack with a shear field needs the shear modulus of every segment",
+            )
+        };
+        if let Some(i) = self.segments.iter().position(|s| {
+            !s.material
+                .shear_wave_speed()
+                .is_some_and(|c| c.is_finite() && c > 0.0)
+        }) {
+            return Err(missing(i));
+        }
+        let mesh = self.shear_mesh(dt).ok_or_else(|| missing(0))?;
+        check_stability(&mesh)?;
+        let incident = self.incident_wave(sh.incident.as_deref(), |m| {
+            m.shear_impedance().unwrap_or(f64::NAN)
+        })?;
+        let len0 = self.segments[0].length;
+        Ok(Some(Field::new(
+            self,
+            mesh,
+            (
+                self.segments[0]
+                    .material
+                    .shear_wave_speed()
+                    .unwrap_or(f64::NAN),
+                len0,
+            ),
+            incident,
+            tau_max,
+        )))
+    }
+
+    /// The nodes each contact joins on `mesh`, in the order of [`BarStack::contact_laws`].
+    fn joints(&self, mesh: &Mesh) -> Vec<Joint> {
+        let last = mesh.nodes - 1;
+        let mut joints: Vec<Joint> = (0..self.interfaces.len())
+            .map(|i| Joint {
+                a: Some(mesh.offset[i] + mesh.cells[i]),
+                b: Some(mesh.offset[i + 1]),
+            })
+            .collect();
+        if matches!(self.right, End::Obstacle(_)) {
+            joints.push(Joint {
+                a: Some(last),
+                b: None,
+            });
+        }
+        if matches!(self.left, End::Obstacle(_)) {
+            joints.push(Joint {
+                a: None,
+                b: Some(0),
+            });
+        }
+        joints
+    }
+}
+
+/// The shear field's side of contact `i` for [`joint::update`], with a shear field.
+fn shear_side<'a>(
+    field: Option<&'a mut Field>,
+    joints: &[Joint],
+    laws: &'a [Arc<TangentialLaw>],
+    i: usize,
+) -> Option<(&'a mut Field, Joint, &'a TangentialLaw)> {
+    field.map(|f| (f, joints[i], &*laws[i]))
+}
+
+/// Record one level: the probes' displacements and every interface's state (and the
+/// shear field's, when there is one).
+fn record_level(
+    out: &mut FdOutput,
+    run: &FdRun,
+    t: f64,
+    (normal, shear): (&[f64], Option<&[f64]>),
+    state: &[JointState],
+    tangential: &[Arc<TangentialLaw>],
+) {
+    out.t.push(t);
+    for (p, &node) in run.probes.iter().enumerate() {
+        out.displacement[p].push(normal[node]);
+    }
+    for (i, st) in state.iter().enumerate() {
+        out.gap[i].push(st.gap);
+        out.stress[i].push(st.stress);
+        out.beta[i].push(st.beta);
+    }
+    if let (Some(sh), Some(u)) = (out.shear.as_mut(), shear) {
+        for (p, &node) in run.shear_probes.iter().enumerate() {
+            sh.displacement[p].push(u[node.min(u.len() - 1)]);
+        }
+        for (i, (st, tl)) in state.iter().zip(tangential).enumerate() {
+            sh.gap[i].push(st.shear.gap);
+            sh.stress[i].push(st.shear_stress(tl));
+            sh.slip[i].push(st.shear.slip);
+            sh.state[i].push(st.shear.state);
+        }
+    }
+}
+
+/// Mesh segments of wave speeds `speed` (m/s) at Courant number <= 1 for time step `dt`
+/// (s); a segment `i` with `exact(i)` is meshed at Courant 1 with the nearest whole number
+/// of cells of size `speed dt` (its meshed length then differs from its length by less than
+/// half a cell).
+fn mesh_with(segments: &[Segment], speed: &[f64], dt: f64, exact: impl Fn(usize) -> bool) -> Mesh {
+    let mut m = Mesh {
+        dt,
+        offset: Vec::new(),
+        cells: Vec::new(),
+        dx: Vec::new(),
+        courant: Vec::new(),
+        nodes: 0,
+    };
+    for (i, (s, &c)) in segments.iter().zip(speed).enumerate() {
+        let (k, dx, r) = if exact(i) {
+            let k = (s.length / (c * dt)).round().max(1.0) as usize;
+            (k, c * dt, 1.0)
+        } else {
+            let k = ((s.length / (c * dt)) * (1.0 + 1e-12)).floor().max(1.0) as usize;
+            let dx = s.length / k as f64;
+            (k, dx, c * dt / dx)
+        };
+        m.offset.push(m.nodes);
+        m.cells.push(k);
+        m.dx.push(dx);
+        m.courant.push(r);
+        m.nodes += k + 1;
+    }
+    m
+}
+
+impl Solver for FdRun {
+    type Problem = BarStack;
+    type Output = FdOutput;
+    fn solve(&self, problem: &BarStack) -> Result<FdOutput> {
+        problem.run(self)
+    }
+}
