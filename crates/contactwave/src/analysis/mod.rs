@@ -20,4 +20,6 @@ pub use methods::AnalysisMethod;
 pub use spectrum::{
     cell_velocity, spectral_peak, velocity_bands, with_analyzer, Analyzer, BandAmplitudes, Spectrum,
 };
-pub use summary::{harmonics_near_floor, set_analysis_keys, set_reflected_harmonics, Summary};
+pub use summary::{
+    harmonics_near_floor, set_analysis_keys, set_reflected_harmonics, set_shear_harmonics, Summary,
+};

@@ -50,6 +50,34 @@ impl Serialize for Summary {
     }
 }
 
+/// The harmonic keys of a shear wave (model.md section 13), `{prefix}A1_over_Ainc` ...
+/// `{prefix}A5_over_Ainc`, `{prefix}A2_over_A1`, `{prefix}A3_over_A1` and
+/// `{prefix}A3_over_A1_cubed` (s^2/m^2), from its velocity bands (m/s) and the incident
+/// velocity amplitude `a_inc` (m/s). A wave that is not there (its A1 below `1e-9 a_inc`,
+/// e.g. nothing reflected by a sticking interface between identical media) has ratios 0,
+/// not noise over noise.
+pub fn set_shear_harmonics(
+    s: &mut Summary,
+    prefix: &str,
+    bands: &super::BandAmplitudes,
+    a_inc: f64,
+) {
+    let ratio = |a: f64, b: f64| if b > 0.0 { a / b } else { 0.0 };
+    let mut a = bands.harmonic;
+    if a[1] <= 1e-9 * a_inc {
+        a = [0.0; 6];
+    }
+    for n in 1..=5 {
+        s.set(&format!("{prefix}A{n}_over_Ainc"), ratio(a[n], a_inc));
+    }
+    s.set(&format!("{prefix}A2_over_A1"), ratio(a[2], a[1]));
+    s.set(&format!("{prefix}A3_over_A1"), ratio(a[3], a[1]));
+    s.set(
+        &format!("{prefix}A3_over_A1_cubed"),
+        ratio(a[3], a[1].powi(3)),
+    );
+}
+
 /// The reflected wave's summary keys: `A1_over_Ainc` ... `A5_over_Ainc`, `Asub_over_Ainc`,
 /// `A2_over_A1`, `beta_star`, the incident burst's own `incident_A*_over_Ainc` (when its
 /// bands are given) and, for a two-tone burst, `Af2_over_Ainc`, `Asum_over_Ainc`,

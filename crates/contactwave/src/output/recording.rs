@@ -1,5 +1,6 @@
 //! Which recorded series a run writes (`contactwave run --record`, `--record-step`): the
-//! time-series files (`timeseries.csv`, `probe.csv`, `probes.csv`, `waves.csv`) in full,
+//! time-series files (`timeseries.csv`, `probe.csv`, `probes.csv`, `waves.csv`,
+//! `shear.csv`) in full,
 //! decimated to a size a person can open (the default: at most [`DEFAULT_MAX_ROWS`]
 //! rows), sampled every given step, or not at all. Summaries, spectra, FRFs and plots are
 //! computed from the full series and do not change.
@@ -23,7 +24,13 @@ use crate::error::{Error, Result};
 use crate::render::OutputFile;
 
 /// Files that hold recorded series, one row per time sample.
-pub const TIME_SERIES_FILES: [&str; 4] = ["timeseries.csv", "probe.csv", "probes.csv", "waves.csv"];
+pub const TIME_SERIES_FILES: [&str; 5] = [
+    "timeseries.csv",
+    "probe.csv",
+    "probes.csv",
+    "waves.csv",
+    "shear.csv",
+];
 
 /// Rows a decimated time-series file keeps at most, by default (a Tribobrake run:
 /// about 4 MB instead of 52 MB).

@@ -108,6 +108,7 @@ impl FdOutput {
                 slip: v(interfaces),
                 state: v(interfaces),
                 friction_dissipation: vec![0.0; interfaces],
+                damage_dissipation: vec![0.0; interfaces],
             }),
         }
     }
@@ -128,4 +129,6 @@ pub struct FdShearOutput {
     pub state: Vec<Vec<f64>>,
     /// Frictional dissipation of each interface over the run, `sum tau_f Delta s`, J/m^2.
     pub friction_dissipation: Vec<f64>,
+    /// Energy released by damage at each interface over the run, J/m^2.
+    pub damage_dissipation: Vec<f64>,
 }

@@ -68,6 +68,12 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
             contents: csv_columns(&header, &cols),
         });
     }
+    if let Some(sh) = &r.shear {
+        extra.push(OutputFile {
+            name: "shear.csv".into(),
+            contents: shear_csv(r, sh),
+        });
+    }
     if !r.probes.is_empty() {
         let mut header = String::from("t");
         let mut cols: Vec<&[f64]> = vec![&r.t];
@@ -82,6 +88,12 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
                 &p.acceleration[..],
                 &p.stress[..],
             ]);
+            if let Some(q) = &p.shear {
+                header.push_str(&format!(
+                    ",{n}_shear_displacement,{n}_shear_velocity,{n}_shear_stress"
+                ));
+                cols.extend([&q.displacement[..], &q.velocity[..], &q.stress[..]]);
+            }
         }
         extra.push(OutputFile {
             name: "probes.csv".into(),
@@ -109,6 +121,35 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
     });
     files.extend(extra);
     Ok(files)
+}
+
+/// `shear.csv`: the shear waves at the ends (with a `[shear_incident]`) and, per
+/// interface `i`, the tangential gap `shear_gap_i` (m), the contact shear stress
+/// `shear_stress_i` (Pa), the slip `slip_i` (m) and the slider state `slip_state_i` (0
+/// stick, +1 / -1 slipping, empty when free).
+fn shear_csv(r: &BarStackResult, sh: &super::BarShear) -> String {
+    let mut header = String::from("t");
+    let mut cols: Vec<&[f64]> = vec![&r.t];
+    if let Some(w) = &sh.waves {
+        header.push_str(",shear_incident_displacement,shear_reflected_displacement");
+        cols.extend([&w.incident[..], &w.reflected[..]]);
+        if let Some(tr) = &w.transmitted {
+            header.push_str(",shear_transmitted_displacement");
+            cols.push(tr);
+        }
+    }
+    for i in 0..sh.gap.len() {
+        header.push_str(&format!(
+            ",shear_gap_{i},shear_stress_{i},slip_{i},slip_state_{i}"
+        ));
+        cols.extend([
+            &sh.gap[i][..],
+            &sh.stress[i][..],
+            &sh.slip[i][..],
+            &sh.state[i][..],
+        ]);
+    }
+    csv_columns(&header, &cols)
 }
 
 /// `frf.svg`: the accelerance `|A/F|` in dB re 1 (m/s^2)/N and the receptance `|X/F|` in

@@ -5,9 +5,11 @@
 
 mod fields;
 pub mod files;
+mod shear;
 mod simulate;
 
 pub use files::{bar_stack_files, FRF_HEADER};
+pub use shear::{BarShear, ShearProbeHistory};
 pub use simulate::{
     simulate_bar_stack, simulate_bar_stack_with_progress, BarStackResult, Frf, ProbeHistory,
     WaveHistories,
@@ -110,7 +112,11 @@ impl Outcome for BarStackResult {
 
     /// `t`, `force`, `displacement`, `acceleration` (arrays), `gap`, `pressure`, `beta`,
     /// `stiffness` (interfaces x samples), `frf` (arrays; empty for an incident-wave run),
-    /// `waves` (arrays or none), `probes` (name -> arrays), `static_pressure` (list, Pa),
+    /// `waves` (arrays or none), `shear` (the transverse field: `gap`, `stress`, `slip`,
+    /// `slip_state` (interfaces x samples), `friction_dissipation`, `damage_dissipation`
+    /// (J per interface), `waves`; or none), `probes` (name -> arrays, with
+    /// `shear_displacement`, `shear_velocity`, `shear_stress` with a transverse field),
+    /// `static_pressure` (list, Pa),
     /// `dt` (s), `summary`.
     fn record(&self) -> Record {
         let frf = Record::new()
@@ -118,31 +124,49 @@ impl Outcome for BarStackResult {
             .with("receptance", self.frf.receptance.clone().into())
             .with("receptance_phase", self.frf.phase.clone().into())
             .with("accelerance", self.frf.accelerance.clone().into());
-        let waves = match &self.waves {
-            Some(w) => {
-                let mut r = Record::new()
-                    .with("incident", w.incident.clone().into())
-                    .with("reflected", w.reflected.clone().into());
-                if let Some(tr) = &w.transmitted {
-                    r.push("transmitted", tr.clone().into());
-                }
-                r.into()
-            }
-            None => Value::None,
-        };
+
         let mut probes = Record::new();
         for p in &self.probes {
-            probes.push(
-                &p.name,
-                Record::new()
-                    .with("x", p.x.into())
-                    .with("displacement", p.displacement.clone().into())
-                    .with("velocity", p.velocity.clone().into())
-                    .with("acceleration", p.acceleration.clone().into())
-                    .with("stress", p.stress.clone().into())
-                    .into(),
-            );
+            let mut r = Record::new()
+                .with("x", p.x.into())
+                .with("displacement", p.displacement.clone().into())
+                .with("velocity", p.velocity.clone().into())
+                .with("acceleration", p.acceleration.clone().into())
+                .with("stress", p.stress.clone().into());
+            if let Some(q) = &p.shear {
+                r.push("shear_displacement", q.displacement.clone().into());
+                r.push("shear_velocity", q.velocity.clone().into());
+                r.push("shear_stress", q.stress.clone().into());
+            }
+            probes.push(&p.name, r.into());
         }
+        let waves_record = |w: &WaveHistories| -> Value {
+            let mut r = Record::new()
+                .with("incident", w.incident.clone().into())
+                .with("reflected", w.reflected.clone().into());
+            if let Some(tr) = &w.transmitted {
+                r.push("transmitted", tr.clone().into());
+            }
+            r.into()
+        };
+        let shear = match &self.shear {
+            Some(sh) => Record::new()
+                .with("gap", Value::Rows(sh.gap.clone()))
+                .with("stress", Value::Rows(sh.stress.clone()))
+                .with("slip", Value::Rows(sh.slip.clone()))
+                .with("slip_state", Value::Rows(sh.state.clone()))
+                .with(
+                    "friction_dissipation",
+                    Value::List(sh.friction_dissipation.clone()),
+                )
+                .with(
+                    "damage_dissipation",
+                    Value::List(sh.damage_dissipation.clone()),
+                )
+                .with("waves", sh.waves.as_ref().map_or(Value::None, waves_record))
+                .into(),
+            None => Value::None,
+        };
         Record::new()
             .with("kind", Value::Text(KIND.name().into()))
             .with("dt", self.dt.into())
@@ -152,7 +176,11 @@ impl Outcome for BarStackResult {
             .with("beta", Value::Rows(self.beta.clone()))
             .with("stiffness", Value::Rows(self.stiffness.clone()))
             .with("frf", frf.into())
-            .with("waves", waves)
+            .with(
+                "waves",
+                self.waves.as_ref().map_or(Value::None, waves_record),
+            )
+            .with("shear", shear)
             .with("probes", probes.into())
             .with(
                 "summary",
@@ -174,6 +202,7 @@ impl Outcome for BarStackResult {
                 "static pressure [{i}]    {p:.6e} Pa (closure {closure:.4e} m)"
             ));
         }
+        let shear_wave = self.shear.as_ref().is_some_and(|sh| sh.waves.is_some());
         if self.waves.is_some() {
             lines.push(format!("xi (first interface)   {:.6}", get("xi")));
             lines.push(format!(
@@ -199,7 +228,7 @@ impl Outcome for BarStackResult {
                 get("energy_reflected_fraction"),
                 s.get("energy_transmitted_fraction").unwrap_or(0.0)
             ));
-        } else {
+        } else if !shear_wave {
             lines.push(format!(
                 "first mode             {:.2} Hz",
                 get("first_mode_hz")
@@ -213,6 +242,20 @@ impl Outcome for BarStackResult {
                 "guide mode             {:.1} Hz",
                 get("guide_mode_hz")
             ));
+        }
+        if shear_wave {
+            for (label, key) in [
+                ("shear A1/Ainc (refl.)  ", "shear_A1_over_Ainc"),
+                ("shear A3/A1 (refl.)    ", "shear_A3_over_A1"),
+                ("shear A3/A1 (transm.)  ", "shear_tr_A3_over_A1"),
+                ("friction ratio         ", "friction_ratio"),
+                ("friction dissipation   ", "friction_dissipation"),
+                ("energy closure error   ", "energy_closure_error"),
+            ] {
+                if let Some(v) = s.get(key) {
+                    lines.push(format!("{label}{v:.6e}"));
+                }
+            }
         }
         lines.push(format!(
             "min contact pressure   {:.4e} Pa",

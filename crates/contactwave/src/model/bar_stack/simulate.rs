@@ -4,6 +4,7 @@
 //! pulse, the next (guide) mode from a small linear impulse, the mean contact stiffness
 //! over the response (eq. 4.2) and the contact pressures.
 
+use super::shear::{self, BarShear, ShearProbeHistory};
 use crate::analysis::{spectral_peak, with_analyzer, Summary};
 use crate::error::Result;
 use crate::excitation::Excitation;
@@ -40,6 +41,8 @@ pub struct ProbeHistory {
     pub acceleration: Vec<f64>,
     /// Dynamic axial stress E du/dx over the adjacent cell, Pa (tension positive).
     pub stress: Vec<f64>,
+    /// Transverse histories, when the stack has a shear field.
+    pub shear: Option<ShearProbeHistory>,
 }
 
 /// The waves of an `[incident]` run, displacements in m at the ends of the stack.
@@ -86,6 +89,8 @@ pub struct BarStackResult {
     pub frf: Frf,
     /// Incident, reflected and transmitted waves of an `[incident]` run.
     pub waves: Option<WaveHistories>,
+    /// The transverse field, when the stack has one (model.md section 13).
+    pub shear: Option<BarShear>,
     /// Summary scalars (per-interface values as `key_0`, `key_1`, ...).
     pub summary: Summary,
 }
@@ -100,8 +105,8 @@ pub fn simulate_bar_stack_with_progress(
     s: &BarStackScenario,
     progress: Option<StepProgress>,
 ) -> Result<BarStackResult> {
-    if let Some(inc) = &s.incident {
-        return simulate_incident(s, inc, progress);
+    if s.incident.is_some() || s.shear_incident.is_some() {
+        return simulate_incident(s, progress);
     }
     let dt = s.dt;
     let steps = (s.duration / dt).ceil() as usize;
@@ -122,7 +127,10 @@ pub fn simulate_bar_stack_with_progress(
         imposed: s.imposed_displacement.then(|| s.force.clone()),
         progress,
         interface_scheme: s.interface_scheme,
-        shear_probes: vec![],
+        shear_probes: s
+            .stack
+            .shear_mesh(dt)
+            .map_or_else(Vec::new, |m| shear::recorded_nodes(s, &m)),
     };
     let out = s.stack.run(&run)?;
     let probes = probe_histories(s, &out);
@@ -233,6 +241,7 @@ pub fn simulate_bar_stack_with_progress(
         probes,
         frf,
         waves: None,
+        shear: shear::analyse(s, &out, &mut summary),
         summary,
     })
 }
@@ -252,8 +261,9 @@ fn probe_histories(s: &BarStackScenario, out: &FdOutput) -> Vec<ProbeHistory> {
     let dt = s.dt;
     s.probes
         .iter()
+        .zip(shear::probe_histories(s, out))
         .enumerate()
-        .map(|(k, p)| {
+        .map(|(k, (p, shear))| {
             let (u, w) = (&out.displacement[1 + 2 * k], &out.displacement[2 + 2 * k]);
             let n = u.len();
             let mut vel = vec![0.0; n];
@@ -273,6 +283,7 @@ fn probe_histories(s: &BarStackScenario, out: &FdOutput) -> Vec<ProbeHistory> {
                     .zip(w)
                     .map(|(a, b)| p.youngs_modulus * (b - a) / p.distance)
                     .collect(),
+                shear,
             }
         })
         .collect()
@@ -357,21 +368,20 @@ fn interface_histories(
     (pressure, stiffness)
 }
 
-/// An `[incident]` run: the wave enters through the transparent first end, meets the
-/// interfaces, and the reflected wave leaves where it came in (and the transmitted one
-/// through a transparent far end). Harmonics of both as in the half-space analysis
-/// (velocity band amplitudes over the incident velocity amplitude `A_inc = peak / Z_0`),
-/// energy fractions, and the interface histories.
+/// An `[incident]` and/or `[shear_incident]` run: the waves enter through the transparent
+/// first end, meet the interfaces, and the reflected waves leave where they came in (and
+/// the transmitted ones through a transparent far end). Harmonics of both as in the
+/// half-space analysis (velocity band amplitudes over the incident velocity amplitude
+/// `A_inc = peak / Z_0`), energy fractions, and the interface histories.
 fn simulate_incident(
     s: &BarStackScenario,
-    inc: &Arc<dyn Excitation>,
     progress: Option<StepProgress>,
 ) -> Result<BarStackResult> {
     let dt = s.dt;
     let steps = (s.duration / dt).ceil() as usize;
     let mesh = s.stack.mesh(dt);
     let last = mesh.nodes - 1;
-    let transparent_end = matches!(s.stack.right, End::Transparent);
+    let shear_mesh = s.stack.shear_mesh(dt);
     let run = FdRun {
         dt,
         t0: 0.0,
@@ -382,58 +392,52 @@ fn simulate_incident(
         imposed: None,
         progress,
         interface_scheme: s.interface_scheme,
-        shear_probes: vec![],
+        shear_probes: shear_mesh
+            .as_ref()
+            .map_or_else(Vec::new, |m| shear::recorded_nodes(s, m)),
     };
     let out = s.stack.run(&run)?;
     let probes = probe_histories(s, &out);
     let u0 = &out.displacement[0];
     let n = u0.len();
-    // incident displacement at x = 0, F(t) = -(1/Z0) int_0^t s_inc (Gauss-Legendre per step)
-    let z0 = s.stack.segments[0].material.impedance();
-    let mut incident = Vec::with_capacity(n);
-    let mut acc = 0.0;
-    for (k, &t) in out.t.iter().enumerate() {
-        if k > 0 {
-            acc += gauss4(out.t[k - 1], t, |x| inc.stress(x));
-        }
-        incident.push(-acc / z0);
-    }
-    let reflected: Vec<f64> = u0.iter().zip(&incident).map(|(u, f)| u - f).collect();
-    let transmitted = transparent_end.then(|| out.displacement[out.displacement.len() - 1].clone());
-    let f0 = inc.fundamental();
-    let f2 = inc.second_frequency();
-    let a_inc = inc.peak() / z0;
     let mut summary = Summary::new();
     summary.set("xi", s.xi);
-    summary.set("amplitude", inc.peak());
-    summary.set("frequency", f0);
-    summary.set("A_inc", a_inc);
-    let refl = crate::analysis::velocity_bands(&reflected, dt, f0, f2);
-    crate::analysis::set_reflected_harmonics(&mut summary, &refl, a_inc, f2.is_some(), None);
-    // energies over the cross-section, J: incident S/Z0 int s_inc^2, reflected S Z0 int v^2,
-    // transmitted S Z_n int v^2 (v by differences of the recorded displacements)
-    let area = s.stack.area;
-    let e_inc = area / z0 * gauss_energy(inc, out.t.last().copied().unwrap_or(0.0));
-    let e_ref = area * z0 * velocity_energy(&reflected, dt);
-    summary.set("energy_incident", e_inc);
-    summary.set("energy_reflected_fraction", e_ref / e_inc);
-    if let Some(tr) = &transmitted {
-        let z_n = s.stack.segments[s.stack.segments.len() - 1]
-            .material
-            .impedance();
-        let bt = crate::analysis::velocity_bands(tr, dt, f0, f2);
-        for k in 1..=5 {
-            summary.set(
-                &format!("transmitted_A{k}_over_Ainc"),
-                bt.harmonic[k] / a_inc,
+    let waves = match &s.incident {
+        Some(inc) => {
+            let z0 = s.stack.segments[0].material.impedance();
+            let zn = s.stack.segments[s.stack.segments.len() - 1]
+                .material
+                .impedance();
+            let far = out.displacement[out.displacement.len() - 1].as_slice();
+            let w = wave_analysis(s, inc, (z0, zn), u0, far, &out.t);
+            summary.set("amplitude", inc.peak());
+            summary.set("frequency", inc.fundamental());
+            summary.set("A_inc", w.a_inc);
+            let f2 = inc.second_frequency();
+            crate::analysis::set_reflected_harmonics(
+                &mut summary,
+                &w.reflected_bands,
+                w.a_inc,
+                f2.is_some(),
+                None,
             );
+            summary.set("energy_incident", w.energy[0]);
+            summary.set("energy_reflected_fraction", w.energy[1] / w.energy[0]);
+            if let Some(bt) = &w.transmitted_bands {
+                for k in 1..=5 {
+                    summary.set(
+                        &format!("transmitted_A{k}_over_Ainc"),
+                        bt.harmonic[k] / w.a_inc,
+                    );
+                }
+                summary.set("energy_transmitted_fraction", w.energy[2] / w.energy[0]);
+            }
+            Some(w.histories)
         }
-        summary.set(
-            "energy_transmitted_fraction",
-            area * z_n * velocity_energy(tr, dt) / e_inc,
-        );
-    }
+        None => None,
+    };
     let (pressure, stiffness) = interface_histories(s, &out, &mut summary);
+    let shear = shear::analyse(s, &out, &mut summary);
     let mut accel = vec![0.0; n];
     for k in 1..n.saturating_sub(1) {
         accel[k] = (u0[k + 1] - 2.0 * u0[k] + u0[k - 1]) / (dt * dt);
@@ -452,13 +456,71 @@ fn simulate_incident(
         stiffness,
         probes,
         frf: Frf::default(),
-        waves: Some(WaveHistories {
+        waves,
+        shear,
+        summary,
+    })
+}
+
+/// The waves of one type at the ends of the stack and their analysis.
+pub(super) struct WaveAnalysis {
+    /// Incident, reflected and transmitted displacements, m.
+    pub histories: WaveHistories,
+    /// Incident velocity amplitude `peak / Z_0`, m/s.
+    pub a_inc: f64,
+    /// Velocity bands of the reflected wave.
+    pub reflected_bands: crate::analysis::BandAmplitudes,
+    /// Velocity bands of the transmitted wave (transparent far end).
+    pub transmitted_bands: Option<crate::analysis::BandAmplitudes>,
+    /// Incident, reflected and transmitted energies over the cross-section, J.
+    pub energy: [f64; 3],
+}
+
+/// Analyse the waves of incident wave `inc` (stress at x = 0, Pa) on the first end's
+/// displacement `u0` and the far end's `far` (m, at times `t`), with impedances `(Z_0,
+/// Z_n)` of the first and last segments for this wave type (Pa s/m): the incident
+/// displacement `F(t) = -(1/Z_0) int_0^t s_inc` (Gauss-Legendre per step), the reflected
+/// `u0 - F`, the transmitted `far` when the last end is transparent; energies `S/Z_0 int
+/// s_inc^2`, `S Z_0 int v^2`, `S Z_n int v^2` (v by differences of the displacements).
+pub(super) fn wave_analysis(
+    s: &BarStackScenario,
+    inc: &Arc<dyn Excitation>,
+    (z0, zn): (f64, f64),
+    u0: &[f64],
+    far: &[f64],
+    t: &[f64],
+) -> WaveAnalysis {
+    let dt = s.dt;
+    let mut incident = Vec::with_capacity(t.len());
+    let mut acc = 0.0;
+    for (k, &tk) in t.iter().enumerate() {
+        if k > 0 {
+            acc += gauss4(t[k - 1], tk, |x| inc.stress(x));
+        }
+        incident.push(-acc / z0);
+    }
+    let reflected: Vec<f64> = u0.iter().zip(&incident).map(|(u, f)| u - f).collect();
+    let transmitted = matches!(s.stack.right, End::Transparent).then(|| far.to_vec());
+    let (f0, f2) = (inc.fundamental(), inc.second_frequency());
+    let area = s.stack.area;
+    let e_inc = area / z0 * gauss_energy(inc, t.last().copied().unwrap_or(0.0));
+    let e_ref = area * z0 * velocity_energy(&reflected, dt);
+    let e_tr = transmitted
+        .as_ref()
+        .map_or(0.0, |tr| area * zn * velocity_energy(tr, dt));
+    WaveAnalysis {
+        a_inc: inc.peak() / z0,
+        reflected_bands: crate::analysis::velocity_bands(&reflected, dt, f0, f2),
+        transmitted_bands: transmitted
+            .as_ref()
+            .map(|tr| crate::analysis::velocity_bands(tr, dt, f0, f2)),
+        energy: [e_inc, e_ref, e_tr],
+        histories: WaveHistories {
             incident,
             reflected,
             transmitted,
-        }),
-        summary,
-    })
+        },
+    }
 }
 
 /// `int_0^t_end s_inc^2 dt` (Pa^2 s), Gauss-Legendre between the waveform's breakpoints

@@ -3,7 +3,7 @@
 //! a shear field, model.md section 9.6), the harmonics of the reflected and transmitted shear
 //! waves, friction dissipation and slip.
 
-use crate::analysis::{velocity_bands, BandAmplitudes, Summary};
+use crate::analysis::{set_shear_harmonics, velocity_bands, BandAmplitudes, Summary};
 use crate::error::Result;
 use crate::scenario::spec::Method;
 use crate::scenario::{Scenario, ShearSetup};
@@ -121,26 +121,9 @@ pub fn set_summary(s: &mut Summary, scenario: &Scenario, shear: &ShearSetup, r: 
     s.set("friction_ratio", ratio(mu * p0, amp));
     s.set("shear_frequency", shear.incident.fundamental());
     s.set("shear_A_inc", r.a_inc);
-    let put = |s: &mut Summary, prefix: &str, b: &BandAmplitudes| {
-        // a wave that is not there (e.g. nothing reflected by a sticking interface between
-        // identical media) has ratios 0, not noise over noise
-        let mut a = b.harmonic;
-        if a[1] <= 1e-9 * r.a_inc {
-            a = [0.0; 6];
-        }
-        for n in 1..=5 {
-            s.set(&format!("{prefix}A{n}_over_Ainc"), ratio(a[n], r.a_inc));
-        }
-        s.set(&format!("{prefix}A2_over_A1"), ratio(a[2], a[1]));
-        s.set(&format!("{prefix}A3_over_A1"), ratio(a[3], a[1]));
-        s.set(
-            &format!("{prefix}A3_over_A1_cubed"),
-            ratio(a[3], a[1].powi(3)),
-        );
-    };
-    put(s, "shear_", &r.reflected_bands);
+    set_shear_harmonics(s, "shear_", &r.reflected_bands, r.a_inc);
     if shear.z2t.is_finite() {
-        put(s, "shear_tr_", &r.transmitted_bands);
+        set_shear_harmonics(s, "shear_tr_", &r.transmitted_bands, r.a_inc);
     }
     let e = &r.interface.energy;
     let total = e.incident + s.get("energy_incident").unwrap_or(0.0);

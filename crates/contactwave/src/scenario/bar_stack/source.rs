@@ -178,12 +178,13 @@ pub(super) fn incident_wave(
     let segments = &stack.segments;
     match &spec.incident {
         None => {
-            if let Some(spp) = m.samples_per_period {
+            if let (Some(spp), None) = (m.samples_per_period, &spec.shear_incident) {
                 return Err(inv(
                     file,
                     "model.samples_per_period",
                     spp,
-                    "only with [incident] (time steps per period of the incident wave)",
+                    "only with [incident] or [shear_incident] (time steps per period of the \
+                     incident wave)",
                 ));
             }
             Ok(None)

@@ -78,8 +78,11 @@ pub(super) struct JointState {
     /// Tangential dynamic stress of the previous-but-one and the current level, Pa.
     pub t_prev: f64,
     pub t_cur: f64,
-    /// Frictional dissipation so far, `sum tau_f Delta s`, J/m^2.
+    /// Frictional dissipation so far, `sum tau_f Delta s`, J/m^2 (with a shear field).
     pub friction: f64,
+    /// Energy released by damage so far, `sum (dpsi/dbeta) (-Delta beta)`, J/m^2 (with a
+    /// shear field).
+    pub damage: f64,
 }
 
 impl JointState {
@@ -98,6 +101,7 @@ impl JointState {
             t_prev: 0.0,
             t_cur: 0.0,
             friction: 0.0,
+            damage: 0.0,
         }
     }
 
@@ -178,6 +182,13 @@ pub(super) fn update(
     joint_t.apply(&mut sf.u_next, chi_t, upd.shear.applied);
     let new = upd.shear.new;
     st.friction += new.slider * (new.slip - st.shear.slip);
+    let b = upd.normal.adhesion;
+    if b != st.beta {
+        let d = (upd.normal.gap - law.critical_gap()).max(0.0);
+        let psi_beta = law.traction.energy_d_adhesion(d, b)
+            + 0.5 * tl.branch.spring_stiffness_d_adhesion(b) * new.gap * new.gap;
+        st.damage += psi_beta * (st.beta - b);
+    }
     st.t_prev = st.t_cur;
     st.t_cur = new.dynamic_stress;
     st.shear = new;

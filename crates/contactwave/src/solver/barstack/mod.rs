@@ -423,6 +423,7 @@ impl BarStack {
         }
         if let Some(sh) = out.shear.as_mut() {
             sh.friction_dissipation = state.iter().map(|s| s.friction).collect();
+            sh.damage_dissipation = state.iter().map(|s| s.damage).collect();
         }
         Ok(out)
     }
