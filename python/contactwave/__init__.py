@@ -311,8 +311,14 @@ class BarStackResult:
     ``receptance`` (m/N), ``receptance_phase`` (rad), ``accelerance`` ((m/s^2)/N), empty
     arrays for an incident-wave run. ``waves``: for an incident-wave run a dict
     ``incident``, ``reflected`` and (transparent far end) ``transmitted`` displacements
-    (m), else ``None``. ``probes``: ``{name: {"x", "displacement", "velocity",
-    "acceleration", "stress"}}``. ``static_pressure``: list of ``p0`` per interface (Pa);
+    (m), else ``None``. ``shear``: for a stack with a transverse field (shear waves,
+    docs/model.md section 9.7) a dict ``gap``, ``stress``, ``slip``, ``slip_state`` (one
+    row per interface: m, Pa, m, -), ``friction_dissipation``, ``damage_dissipation``
+    (J per interface) and ``waves`` (shear ``incident``, ``reflected``, ``transmitted``
+    displacements, or ``None``), else ``None``. ``probes``: ``{name: {"x",
+    "displacement", "velocity", "acceleration", "stress"}}`` (and ``shear_displacement``,
+    ``shear_velocity``, ``shear_stress`` with a transverse field). ``static_pressure``:
+    list of ``p0`` per interface (Pa);
     ``dt`` (s); ``summary``: the keys of ``summary.json`` (per-interface values as
     ``key_0``, ``key_1``, ...).
     """
@@ -327,6 +333,7 @@ class BarStackResult:
     stiffness: np.ndarray
     frf: Dict[str, np.ndarray]
     waves: Optional[Dict[str, np.ndarray]]
+    shear: Optional[Dict[str, Any]]
     probes: Dict[str, Dict[str, Any]]
     static_pressure: List[float]
     dt: float
@@ -343,6 +350,7 @@ class BarStackResult:
         "stiffness",
         "frf",
         "waves",
+        "shear",
         "probes",
         "static_pressure",
         "dt",

@@ -121,3 +121,21 @@ def test_bar_stack_sweep_locally_and_on_an_executor():
         remote = cw.sweep(path, axes, ex, chunk_size=1, as_frame=False)
     assert np.array_equal(remote["first_mode_hz"], f)
     assert np.array_equal(remote["min_contact_pressure"], local["min_contact_pressure"])
+
+
+def test_shear_burst_through_a_frictional_stack():
+    """A shear burst through two aluminium bars pressed at 10 MPa with rigid-stick Coulomb
+    friction (mu p0 / tau_inc = 0.6): the transmitted shear stress is clipped at mu p0, so
+    the interface slips, dissipates, and its contact shear stress never exceeds mu p0."""
+    r = cw.run(os.path.join(EXAMPLES, "shear", "bar_stack_clipping.toml"))
+    sh = r.shear
+    assert sh is not None and sh["waves"] is not None
+    tau = np.asarray(sh["stress"])[0]
+    mu_p0 = 0.3 * 10e6
+    assert np.max(np.abs(tau)) <= mu_p0 * (1 + 1e-9)
+    assert np.max(np.abs(tau)) > 0.99 * mu_p0
+    assert sh["friction_dissipation"][0] > 0
+    assert r.summary["friction_dissipation"] == pytest.approx(sum(sh["friction_dissipation"]))
+    # the shear waves have the time grid of every other series
+    assert sh["waves"]["reflected"].shape == r.t.shape
+    assert r.summary["energy_closure_error"] < 1e-5

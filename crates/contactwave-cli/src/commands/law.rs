@@ -1,11 +1,16 @@
 //! `contactwave law SCENARIO --out DIR`: the contact law of a scenario, written as
 //! DIR/law_curve.csv (gap m, stress Pa) and DIR/law_curve.svg, and for a scenario with a
 //! tangential part DIR/law_tangential.csv (tangential gap m, shear stress Pa) and
-//! DIR/law_tangential.svg; prints `wrote PATH` per file.
+//! DIR/law_tangential.svg; prints `wrote PATH` per file. For a bar stack, the same files
+//! per interface with its number before the extension (`law_curve_0.csv`, ...; the
+//! obstacle contact last), each law at its interface's static pressure.
 
 use super::{check_out_dir, write_and_list, EXIT_OK};
 use contactwave::output;
+use contactwave::scenario::bar_stack::BarStackScenario;
+use contactwave::scenario::read_table;
 use contactwave::scenario::Scenario;
+use contactwave::solver::barstack::End;
 use std::path::PathBuf;
 
 /// Write the contact law of a scenario as law_curve.csv (gap m, stress Pa) and
@@ -20,10 +25,37 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
-    let scenario = Scenario::load(&args.scenario)?;
-    check_out_dir(&args.out)?;
-    let tangential = scenario.shear.as_ref().map(|s| &*s.tangential);
-    let files = output::law_files_with(&scenario.law, tangential)?;
+    let table = read_table(&args.scenario)?;
+    let files = if BarStackScenario::is_bar_stack(&table) {
+        let s = BarStackScenario::from_table(table, &args.scenario)?;
+        check_out_dir(&args.out)?;
+        let stack = &s.stack;
+        let laws = stack.interfaces.iter().chain(match &stack.right {
+            End::Obstacle(l) => Some(l),
+            _ => None,
+        });
+        let tangential: Vec<_> = match &stack.shear {
+            Some(sh) => sh.interfaces.iter().chain(&sh.obstacle).map(Some).collect(),
+            None => Vec::new(),
+        };
+        let mut files = Vec::new();
+        for (i, law) in laws.enumerate() {
+            let tl = tangential.get(i).copied().flatten().map(|t| &**t);
+            for mut f in output::law_files_with(law, tl)? {
+                f.name = match f.name.rsplit_once('.') {
+                    Some((stem, ext)) => format!("{stem}_{i}.{ext}"),
+                    None => format!("{}_{i}", f.name),
+                };
+                files.push(f);
+            }
+        }
+        files
+    } else {
+        let scenario = Scenario::from_table(table, &args.scenario)?;
+        check_out_dir(&args.out)?;
+        let tangential = scenario.shear.as_ref().map(|s| &*s.tangential);
+        output::law_files_with(&scenario.law, tangential)?
+    };
     write_and_list(&args.out, &files)?;
     Ok(EXIT_OK)
 }

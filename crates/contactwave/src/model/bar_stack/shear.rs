@@ -91,7 +91,8 @@ pub(super) fn probe_histories(
 /// with a `[shear_incident]` the shear harmonics (`shear_A*`, `shear_tr_A*`), the shear
 /// energies and the energy closure of both wave types; per interface `friction_dissipation_i`,
 /// `damage_dissipation_i` (J), `max_slip_i` (m), `max_shear_stress_i` (Pa); the friction
-/// ratio `mu p0 / tau_inc` of the first interface. `None` without a shear field.
+/// ratio `mu p0 / tau_inc` of the first interface with friction. `None` without a shear
+/// field.
 pub(super) fn analyse(
     s: &BarStackScenario,
     out: &FdOutput,
@@ -137,20 +138,23 @@ pub(super) fn analyse(
     summary.set("shear_amplitude", amp);
     summary.set("shear_frequency", inc.fundamental());
     summary.set("shear_A_inc", w.a_inc);
-    let first = sh_stack
+    // the first interface with friction (stack order, the obstacle last)
+    let frictional = sh_stack
         .interfaces
-        .first()
-        .or(sh_stack.obstacle.as_ref())
-        .map(|tl| (tl.branch.friction(), tl.static_shear));
-    let p0 = s.static_pressure.first().copied().unwrap_or(0.0);
-    if let Some((mu, q0)) = first {
-        summary.set("friction_coefficient", mu);
-        summary.set("static_shear", q0);
-        summary.set(
-            "friction_ratio",
-            if amp > 0.0 { mu * p0 / amp } else { 0.0 },
-        );
-    }
+        .iter()
+        .chain(&sh_stack.obstacle)
+        .enumerate()
+        .find(|(_, tl)| tl.branch.friction() > 0.0);
+    let (mu, q0, p0) = frictional.map_or((0.0, 0.0, 0.0), |(i, tl)| {
+        let p0 = s.static_pressure.get(i).copied().unwrap_or(0.0);
+        (tl.branch.friction(), tl.static_shear, p0)
+    });
+    summary.set("friction_coefficient", mu);
+    summary.set("static_shear", q0);
+    summary.set(
+        "friction_ratio",
+        if amp > 0.0 { mu * p0 / amp } else { 0.0 },
+    );
     set_shear_harmonics(summary, "shear_", &w.reflected_bands, w.a_inc);
     if let Some(bt) = &w.transmitted_bands {
         set_shear_harmonics(summary, "shear_tr_", bt, w.a_inc);

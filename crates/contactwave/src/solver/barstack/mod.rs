@@ -398,7 +398,7 @@ impl BarStack {
                 )?;
             }
             if (step % 4096 == 4095 || step + 1 == run.steps)
-                && !(normal.finite() && shear.as_ref().is_none_or(|f| f.finite()))
+                && !(normal.finite() && shear.as_ref().map_or(true, |f| f.finite()))
             {
                 let gaps: Vec<f64> = state.iter().map(|s| s.gap).collect();
                 return Err(Error::numerical(
