@@ -128,6 +128,8 @@ pub struct Geometry {
     pub incident_type: WaveType,
     /// Reflected P and SV (up, medium 1).
     pub reflected: [PlaneWave; 2],
+    /// Down-going P and SV of medium 1 (the pair whose compliance is `C1`).
+    pub down1: [PlaneWave; 2],
     /// Transmitted P and SV (down, medium 2); `None` for a rigid wall.
     pub transmitted: Option<[PlaneWave; 2]>,
 }
@@ -186,6 +188,7 @@ impl Geometry {
             incident: pw(m1, wave, true)?,
             incident_type: wave,
             reflected: [pw(m1, WaveType::P, false)?, pw(m1, WaveType::Sv, false)?],
+            down1: [pw(m1, WaveType::P, true)?, pw(m1, WaveType::Sv, true)?],
             transmitted: match m2 {
                 Some(m) => Some([pw(m, WaveType::P, true)?, pw(m, WaveType::Sv, true)?]),
                 None => None,

@@ -54,6 +54,7 @@ pub fn coupled_problem(scenario: &Scenario, shear: &ShearSetup) -> CoupledHalfSp
         z2t: shear.z2t,
         tangential: shear.tangential.clone(),
         shear_incident: shear.incident.clone(),
+        oblique: None,
     }
 }
 
