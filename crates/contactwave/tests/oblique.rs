@@ -161,3 +161,144 @@ fn spring_interface_matches_closed_form() {
         assert!((waves - comps).abs() < 1e-9 * comps, "{waves} {comps}");
     }
 }
+
+#[test]
+fn stiff_springs_give_the_zoeppritz_coefficients() {
+    // K >> omega Z: the welded limit, error O(omega Z / K)
+    let k = 1e20;
+    for (wave, deg) in [(WaveType::P, 22.5), (WaveType::P, 45.0), (WaveType::Sv, 20.0)] {
+        let (p, g, burst) = springs(wave, deg, Some(STEEL), k, k);
+        let out = run(&p, 200, 10.0);
+        let m = measured(&out, &g, &*burst);
+        let z = coefficients(&g, Bond::Welded, 2.0 * PI * F0);
+        let err = max_err(&m, &z);
+        eprintln!(
+            "{} {deg} deg welded: R_P {:.6} R_SV {:.6} T_P {:.6} T_SV {:.6}; max error {err:.2e}",
+            wave.name(),
+            z[0],
+            z[1],
+            z[2],
+            z[3]
+        );
+        assert!(err < 1e-4, "{err}");
+    }
+}
+
+/// The same interface at normal incidence through the normal-incidence path.
+fn normal_incidence(wave: WaveType) -> (CoupledHalfSpace, CoupledHalfSpace) {
+    let (oblique, _, burst) = springs(wave, 0.0, Some(STEEL), 2e14, 1e14);
+    let silent: Arc<dyn Excitation> = Arc::new(ToneBurst::new(0.0, F0, 1.0, Window::Rectangular));
+    let (n, s) = match wave {
+        WaveType::P => (burst, silent),
+        WaveType::Sv => (silent, burst),
+    };
+    let mut normal = oblique.clone();
+    normal.normal = contactwave::solver::halfspace::HalfSpace::new(
+        AL,
+        Some(STEEL),
+        normal.normal.law.clone(),
+        n,
+    );
+    normal.z1t = AL.shear_impedance().unwrap();
+    normal.z2t = STEEL.shear_impedance().unwrap();
+    normal.shear_incident = s;
+    normal.oblique = None;
+    (oblique, normal)
+}
+
+#[test]
+fn zero_angle_is_the_normal_incidence_solver() {
+    for wave in [WaveType::P, WaveType::Sv] {
+        let (o, n) = normal_incidence(wave);
+        let (a, b) = (run(&o, 200, 20.0), run(&n, 200, 20.0));
+        assert_eq!(a.normal.t.len(), b.normal.t.len());
+        let mut err: f64 = 0.0;
+        for (x, y) in [
+            (&a.normal.reflected_stress, &b.normal.reflected_stress),
+            (&a.shear.reflected_stress, &b.shear.reflected_stress),
+            (&a.normal.transmitted_stress, &b.normal.transmitted_stress),
+            (&a.shear.transmitted_stress, &b.shear.transmitted_stress),
+            (&a.normal.gap, &b.normal.gap),
+            (&a.shear.gap, &b.shear.gap),
+        ] {
+            let scale = y.iter().fold(1e-30f64, |m, v| m.max(v.abs()));
+            for (u, v) in x.iter().zip(y.iter()) {
+                err = err.max((u - v).abs() / scale);
+            }
+        }
+        eprintln!("{} at 0 deg vs normal incidence: {err:.1e}", wave.name());
+        assert!(err < 1e-12, "{err}");
+    }
+}
+
+/// Nonlinear interfaces at 30 degrees between aluminium and steel: clapping, stick-slip
+/// and damage with the coupled constraint stresses; the energy audit closes.
+#[test]
+fn energy_audit_closes_with_clapping_friction_and_damage() {
+    let cases: Vec<(&str, CompressionSpec, TractionSpec, TangentialSpec)> = vec![
+        (
+            "Signorini + Coulomb (rigid stick)",
+            CompressionSpec::Rigid,
+            TractionSpec::Free,
+            TangentialSpec::Coulomb {
+                friction: 0.3,
+                stiffness: None,
+            },
+        ),
+        (
+            "linear + Coulomb (elastic stick)",
+            CompressionSpec::Linear { stiffness: 5e14 },
+            TractionSpec::Free,
+            TangentialSpec::Coulomb {
+                friction: 0.3,
+                stiffness: Some(2e14),
+            },
+        ),
+        (
+            "Signorini + RCCM (damage, friction)",
+            CompressionSpec::Rigid,
+            TractionSpec::Rccm {
+                stiffness: 1e14,
+                energy: 0.02,
+                viscosity: 0.0,
+            },
+            TangentialSpec::Rccm {
+                stiffness: 5e13,
+                friction: 0.3,
+            },
+        ),
+    ];
+    for (name, comp, trac, tang) in cases {
+        for wave in [WaveType::P, WaveType::Sv] {
+            let p0 = 2e6;
+            let law = build_law(p0, &comp, &trac, "<test>", "interface").unwrap();
+            let tl = build_tangential(&tang, 0.0, &law, "<test>", "interface").unwrap();
+            let g = Geometry::new(
+                &elastic(&AL),
+                Some(&elastic(&STEEL)),
+                wave,
+                20f64.to_radians(),
+            )
+            .unwrap();
+            let burst: Arc<dyn Excitation> =
+                Arc::new(ToneBurst::new(3e6, F0, 6.0, Window::HannRamps { ramp_fraction: 0.25 }));
+            let p = CoupledHalfSpace::oblique(AL, Some(STEEL), Arc::new(law), Arc::new(tl), &g, burst);
+            let out = run(&p, 400, 10.0);
+            let err = out.closure_error();
+            eprintln!(
+                "{name}, {}: closure {err:.1e}, events {}, slip events {}, friction {:.3e} J/m^2, damage {:.3e}",
+                wave.name(),
+                out.normal.events,
+                out.slip_events,
+                out.friction_dissipation,
+                out.normal.energy.damage
+            );
+            assert!(out.normal.events > 0, "the interface must open");
+            assert!(out.slip_events > 0, "the interface must slip");
+            if name.contains("RCCM") {
+                assert!(out.normal.energy.damage > 0.0);
+            }
+            assert!(err < 1e-6, "{err}");
+        }
+    }
+}
