@@ -166,7 +166,11 @@ fn spring_interface_matches_closed_form() {
 fn stiff_springs_give_the_zoeppritz_coefficients() {
     // K >> omega Z: the welded limit, error O(omega Z / K)
     let k = 1e20;
-    for (wave, deg) in [(WaveType::P, 22.5), (WaveType::P, 45.0), (WaveType::Sv, 20.0)] {
+    for (wave, deg) in [
+        (WaveType::P, 22.5),
+        (WaveType::P, 45.0),
+        (WaveType::Sv, 20.0),
+    ] {
         let (p, g, burst) = springs(wave, deg, Some(STEEL), k, k);
         let out = run(&p, 200, 10.0);
         let m = measured(&out, &g, &*burst);
@@ -280,9 +284,16 @@ fn energy_audit_closes_with_clapping_friction_and_damage() {
                 20f64.to_radians(),
             )
             .unwrap();
-            let burst: Arc<dyn Excitation> =
-                Arc::new(ToneBurst::new(3e6, F0, 6.0, Window::HannRamps { ramp_fraction: 0.25 }));
-            let p = CoupledHalfSpace::oblique(AL, Some(STEEL), Arc::new(law), Arc::new(tl), &g, burst);
+            let burst: Arc<dyn Excitation> = Arc::new(ToneBurst::new(
+                3e6,
+                F0,
+                6.0,
+                Window::HannRamps {
+                    ramp_fraction: 0.25,
+                },
+            ));
+            let p =
+                CoupledHalfSpace::oblique(AL, Some(STEEL), Arc::new(law), Arc::new(tl), &g, burst);
             let out = run(&p, 400, 10.0);
             let err = out.closure_error();
             eprintln!(

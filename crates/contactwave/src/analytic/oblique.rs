@@ -178,11 +178,13 @@ impl Geometry {
         if let Some(c) = worst {
             return Err(c);
         }
-        let pw = |m: &Elastic, w, down| plane_wave(m, w, p, down).ok_or(Critical {
-            angle_deg: 90.0,
-            medium: 1,
-            wave: w,
-        });
+        let pw = |m: &Elastic, w, down| {
+            plane_wave(m, w, p, down).ok_or(Critical {
+                angle_deg: 90.0,
+                medium: 1,
+                wave: w,
+            })
+        };
         Ok(Geometry {
             slowness: p,
             incident: pw(m1, wave, true)?,
@@ -292,10 +294,7 @@ pub fn coefficients(g: &Geometry, bond: Bond, omega: f64) -> Coefficients {
                         ];
                         b[r] = c(-inc.polarisation[i]);
                     }
-                    Bond::Springs {
-                        normal,
-                        tangential,
-                    } => {
+                    Bond::Springs { normal, tangential } => {
                         // i omega sigma2 - K (v2 - v1) = 0
                         let k = c(if i == 0 { normal } else { tangential });
                         m[r] = [
@@ -321,10 +320,7 @@ pub fn coefficients(g: &Geometry, bond: Bond, omega: f64) -> Coefficients {
                         m[i] = [c(rp.polarisation[i]), c(rs.polarisation[i])];
                         b[i] = c(-inc.polarisation[i]);
                     }
-                    Bond::Springs {
-                        normal,
-                        tangential,
-                    } => {
+                    Bond::Springs { normal, tangential } => {
                         let k = if i == 0 { normal } else { tangential };
                         m[i] = [
                             io * rp.traction[i] + k * rp.polarisation[i],

@@ -40,7 +40,11 @@ pub(super) fn requested(spec: &ScenarioSpec, file: &str) -> Result<Option<Reques
     let shear = spec.shear_incident.as_ref();
     for (angle, wave, key) in [
         (spec.incident.angle, WaveType::P, "incident.angle"),
-        (shear.and_then(|s| s.angle), WaveType::Sv, "shear_incident.angle"),
+        (
+            shear.and_then(|s| s.angle),
+            WaveType::Sv,
+            "shear_incident.angle",
+        ),
     ] {
         let Some(a) = angle else { continue };
         if !(a.is_finite() && (0.0..90.0).contains(&a)) {

@@ -9,7 +9,12 @@ use crate::scenario::{ObliqueSetup, Scenario};
 use crate::solver::halfspace::HalfSpaceOutput;
 
 /// Names of the four outgoing waves, in the order of the solver's `wave_energy`.
-pub const WAVES: [&str; 4] = ["reflected_P", "reflected_SV", "transmitted_P", "transmitted_SV"];
+pub const WAVES: [&str; 4] = [
+    "reflected_P",
+    "reflected_SV",
+    "transmitted_P",
+    "transmitted_SV",
+];
 
 /// Displacement histories (m, along each wave's polarisation) of a pair of waves from the
 /// face displacement components `[normal, tangential]`.
@@ -104,4 +109,48 @@ pub fn set_summary(
         s.set(&format!("energy_{name}_fraction"), ratio(e, incident));
     }
     let _ = scenario;
+}
+
+/// Measured transfer coefficients at frequency `f` (Hz) of a run: the Fourier sums at `f`
+/// of the reflected P, SV and transmitted P, SV particle velocities (from the interface
+/// tractions at the grid points) over the incident wave's, `[R_P, R_SV, T_P, T_SV]`. For
+/// a linear interface and a run that ends at rest this is the interface's transfer
+/// function at `f`, to the integration error plus the aliasing of the burst's spectrum
+/// (the closed forms of `crate::analytic::oblique::coefficients`).
+pub fn transfer_at(
+    out: &crate::solver::coupled::CoupledOutput,
+    g: &crate::analytic::oblique::Geometry,
+    burst: &dyn crate::excitation::Excitation,
+    f: f64,
+) -> [rustfft::num_complex::Complex64; 4] {
+    use crate::analytic::oblique::Geometry;
+    use rustfft::num_complex::Complex64;
+    let w = 2.0 * std::f64::consts::PI * f;
+    let rw = Geometry::traction_to_waves(&g.reflected);
+    let tw = g.transmitted.map(|t| Geometry::traction_to_waves(&t));
+    let mut acc = [Complex64::new(0.0, 0.0); 5];
+    for (k, &t) in out.normal.t.iter().enumerate() {
+        let e = Complex64::from_polar(1.0, -w * t);
+        acc[4] += e * (-burst.stress(t) / g.incident.impedance);
+        let r = [
+            out.normal.reflected_stress[k],
+            out.shear.reflected_stress[k],
+        ];
+        let s = [
+            out.normal.transmitted_stress[k],
+            out.shear.transmitted_stress[k],
+        ];
+        for j in 0..2 {
+            acc[j] += e * (rw[j][0] * r[0] + rw[j][1] * r[1]);
+            if let Some(m) = &tw {
+                acc[2 + j] += e * (m[j][0] * s[0] + m[j][1] * s[1]);
+            }
+        }
+    }
+    [
+        acc[0] / acc[4],
+        acc[1] / acc[4],
+        acc[2] / acc[4],
+        acc[3] / acc[4],
+    ]
 }

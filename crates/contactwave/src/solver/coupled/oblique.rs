@@ -120,8 +120,12 @@ impl Interface<'_> {
                             let mut yy = *y;
                             yy[2] += dtt * s.ut_dot;
                             let tt = t + dtt;
-                            self.oblique_stresses(&yy, self.s_inc.stress(tt), self.tau_inc.stress(tt))
-                                .pressure
+                            self.oblique_stresses(
+                                &yy,
+                                self.s_inc.stress(tt),
+                                self.tau_inc.stress(tt),
+                            )
+                            .pressure
                         };
                         (at(h) - at(-h)) / (2.0 * h)
                     }
