@@ -32,7 +32,9 @@ pub(super) struct Request {
     key: &'static str,
 }
 
-/// The oblique incidence a spec asks for (`None` at normal incidence), with the checks
+/// The oblique incidence a spec asks for (`None` without an `angle` key; an angle of 0
+/// gives the plane-wave setup with diagonal matrices, so that a sweep over the angle has
+/// the same keys at every point), with the checks
 /// that need no material: the range of the angle, a single incident wave, an amplitude
 /// rather than xi, the exact solver.
 pub(super) fn requested(spec: &ScenarioSpec, file: &str) -> Result<Option<Request>> {
@@ -49,9 +51,6 @@ pub(super) fn requested(spec: &ScenarioSpec, file: &str) -> Result<Option<Reques
         let Some(a) = angle else { continue };
         if !(a.is_finite() && (0.0..90.0).contains(&a)) {
             return Err(Error::invalid(file, key, a, "must lie in [0, 90) degrees"));
-        }
-        if a == 0.0 {
-            continue;
         }
         let other = match wave {
             WaveType::P => shear.is_some(),
