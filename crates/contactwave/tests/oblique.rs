@@ -313,3 +313,29 @@ fn energy_audit_closes_with_clapping_friction_and_damage() {
         }
     }
 }
+
+#[test]
+fn scenario_refuses_angles_beyond_the_critical_one() {
+    use contactwave::scenario::Scenario;
+    let text = |deg: f64| {
+        format!(
+            "[medium]\nmaterial = \"aluminium\"\n[interface]\nstatic_pressure = 1e6\n\
+             [shear_incident]\nangle = {deg:?}\nfrequency = 1e6\ncycles = 5\namplitude = 1e6\n"
+        )
+    };
+    let crit = (AL.shear_wave_speed().unwrap() / AL.wave_speed())
+        .asin()
+        .to_degrees();
+    let ok = Scenario::from_toml_str(&text(crit - 0.1), "s.toml").unwrap();
+    assert!(ok.oblique.is_some());
+    let e = Scenario::from_toml_str(&text(crit + 0.1), "s.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("field `shear_incident.angle`"), "{e}");
+    assert!(e.contains(&format!("{crit:.6}")), "{e}");
+    assert!(e.contains("reflected P wave"), "{e}");
+    let e = Scenario::from_toml_str(&text(90.0), "s.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("[0, 90)"), "{e}");
+}
