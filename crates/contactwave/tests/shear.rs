@@ -30,6 +30,7 @@ fn problem(
         z2t: zt,
         tangential: Arc::new(tl),
         shear_incident: shear,
+        oblique: None,
     }
 }
 

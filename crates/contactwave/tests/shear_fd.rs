@@ -38,6 +38,7 @@ fn problem(
         z2t: if wall { f64::INFINITY } else { zt },
         tangential: Arc::new(tl),
         shear_incident: shear,
+        oblique: None,
     }
 }
 

@@ -178,7 +178,8 @@ impl Fields for IncidentSpec {
                              OptF64 "amplitude_ratio" => &mut self.amplitude_ratio,
                              OptF64 "cycles" => &mut self.cycles,
                              OptF64 "ramp_fraction" => &mut self.ramp_fraction,
-                             OptF64 "delay" => &mut self.delay),
+                             OptF64 "delay" => &mut self.delay,
+                             OptF64 "angle" => &mut self.angle),
         }
     }
 }

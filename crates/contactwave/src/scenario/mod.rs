@@ -5,10 +5,12 @@
 pub mod bar_stack;
 pub mod budget;
 mod cache;
+mod oblique;
 pub mod spec;
 mod value;
 
 pub use cache::{BuildCache, Columns};
+pub use oblique::ObliqueSetup;
 pub use value::{apply_set, parse_toml, read_table, set_dotted, table_to_spec};
 
 use crate::error::{Error, Result};
@@ -40,8 +42,13 @@ pub struct Scenario {
     /// Probe position x, m (< 0).
     pub probe_x: f64,
     /// The tangential degree of freedom (model.md section 13): present when the scenario
-    /// has a shear wave, a tangential law other than `free` or a static shear.
+    /// has a shear wave, a tangential law other than `free` or a static shear, and at
+    /// oblique incidence.
     pub shear: Option<ShearSetup>,
+    /// Oblique incidence (model.md section 14): `None` at normal incidence. When present,
+    /// `incident` and `shear.incident` are the incident wave's normal and tangential
+    /// tractions at the interface.
+    pub oblique: Option<ObliqueSetup>,
 }
 
 /// The tangential half of a scenario.
@@ -228,10 +235,12 @@ impl Scenario {
             Some(w) if spec.incident.is_absent() => (silent(w.fundamental()), 0.0),
             _ => build_incident_cached(&spec.incident, file, base_dir, Some(&xi_ref), cache)?,
         };
+        let request = oblique::requested(&spec, file)?;
         let i = &spec.interface;
         let shear = if shear_wave.is_some()
             || i.tangential != TangentialSpec::Free
             || i.static_shear != 0.0
+            || request.is_some()
         {
             let tangential = Arc::new(crate::law::registry::build_tangential(
                 &i.tangential,
@@ -269,6 +278,14 @@ impl Scenario {
         } else {
             None
         };
+        let (incident, shear, oblique) = match (request, shear) {
+            (Some(req), Some(sh)) => {
+                let (n, sh, o) =
+                    oblique::apply(req, &medium, counterpart.as_ref(), incident, sh, file)?;
+                (n, Some(sh), Some(o))
+            }
+            (_, shear) => (incident, shear, None),
+        };
         let scenario = Scenario {
             file: file.to_string(),
             medium,
@@ -278,6 +295,7 @@ impl Scenario {
             xi,
             probe_x,
             shear,
+            oblique,
             spec,
         };
         budget::check_half_space(&scenario)?;

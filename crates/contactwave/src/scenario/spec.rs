@@ -179,6 +179,10 @@ pub struct IncidentSpec {
     pub path: Option<String>,
     /// Arrival of the wave's front at the interface, s (default 0).
     pub delay: Option<f64>,
+    /// Angle of incidence from the interface normal, degrees, in [0, 90) (default 0): a P
+    /// wave for `[incident]`, an SV wave for `[shear_incident]` (model.md section 14).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub angle: Option<f64>,
 }
 
 impl IncidentSpec {

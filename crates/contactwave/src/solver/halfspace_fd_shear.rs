@@ -242,6 +242,14 @@ fn solve(p: &CoupledHalfSpace, settings: &FdCoupledSolver) -> Result<CoupledOutp
     let hs = &p.normal;
     let law = &*hs.law;
     let tl = &*p.tangential;
+    if p.oblique.is_some() {
+        return Err(Error::invalid(
+            "<problem>",
+            "solver.method",
+            "fd",
+            "oblique incidence runs on the exact solver only (`solver.method = \"exact\"`)",
+        ));
+    }
     if !(p.z1t.is_finite() && p.z1t > 0.0 && p.z2t > 0.0) {
         return Err(Error::invalid(
             "<problem>",

@@ -3,6 +3,7 @@
 //! exact identity, or a published finding (model.md section 7). The same cases are
 //! asserted, with more detail, by the test suite.
 
+pub mod oblique;
 pub mod shear;
 
 use crate::analysis::fit::fit_power_law;
@@ -440,6 +441,7 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
     v.extend(table2_fit());
     v.extend(weak_nonlinearity()?);
     v.extend(shear::run_all()?);
+    v.extend(oblique::run_all()?);
     Ok(v)
 }
 

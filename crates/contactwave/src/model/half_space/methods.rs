@@ -65,6 +65,12 @@ pub fn linearised(scenario: &Scenario) -> Option<Scenario> {
 pub fn inverted(scenario: &Scenario) -> Scenario {
     let mut s = scenario.clone();
     s.incident = Arc::new(Negated::new(scenario.incident.clone()));
+    // at oblique incidence the wave's tangential traction is inverted with it
+    if scenario.oblique.is_some() {
+        if let Some(sh) = &mut s.shear {
+            sh.incident = Arc::new(Negated::new(sh.incident.clone()));
+        }
+    }
     s
 }
 

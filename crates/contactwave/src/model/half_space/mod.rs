@@ -5,6 +5,7 @@
 
 pub mod files;
 pub mod methods;
+pub mod oblique;
 pub mod shear;
 mod simulate;
 

@@ -39,6 +39,9 @@ pub struct ShearResult {
     pub slip_time_in_burst: f64,
     /// Stick/slip switches.
     pub slip_events: usize,
+    /// At oblique incidence, the energies of the reflected P, SV and transmitted P, SV
+    /// waves, J/m^2 (zero at normal incidence).
+    pub wave_energy: [f64; 4],
 }
 
 /// The coupled problem of a scenario with a tangential part.
@@ -54,6 +57,10 @@ pub fn coupled_problem(scenario: &Scenario, shear: &ShearSetup) -> CoupledHalfSp
         z2t: shear.z2t,
         tangential: shear.tangential.clone(),
         shear_incident: shear.incident.clone(),
+        oblique: scenario
+            .oblique
+            .as_ref()
+            .map(|o| crate::solver::coupled::ObliqueCoupling::new(&o.geometry)),
     }
 }
 
@@ -94,6 +101,7 @@ pub fn solve(scenario: &Scenario, shear: &ShearSetup) -> Result<(HalfSpaceOutput
         closure_error,
         slip_time_in_burst: out.slip_time_in_burst,
         slip_events: out.slip_events,
+        wave_energy: out.wave_energy,
         slip: out.slip,
         friction_limit: out.friction_limit,
         slip_state: out.slip_state,

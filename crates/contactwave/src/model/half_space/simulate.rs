@@ -124,6 +124,9 @@ pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
         let analysis = analyse(scenario, &out)?;
         let mut s = summarise(scenario, &out, None, &analysis);
         super::shear::set_summary(&mut s, scenario, sh, &shear);
+        if let Some(o) = &scenario.oblique {
+            super::oblique::set_summary(&mut s, scenario, o, &out, &shear);
+        }
         return Ok(s);
     }
     let out = solve_with(scenario, true)?;
@@ -191,6 +194,9 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
     let mut summary = summarise(scenario, &out, Some(&inc), &analysis);
     if let (Some(sh), Some(r)) = (&scenario.shear, &shear) {
         super::shear::set_summary(&mut summary, scenario, sh, r);
+        if let Some(o) = &scenario.oblique {
+            super::oblique::set_summary(&mut summary, scenario, o, &out, r);
+        }
     }
     let f_max = 6.0 * scenario.incident.highest_frequency();
     let vr = cell_velocity(&out.reflected_displacement, out.dt);

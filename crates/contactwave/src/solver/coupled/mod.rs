@@ -20,6 +20,7 @@
 //! constraint stress. Energies (fluxes, stored, damage, friction) are integrated with the
 //! same quadrature, so the audit closes to the integration error.
 
+mod oblique;
 mod state;
 pub mod stepper;
 
@@ -49,6 +50,56 @@ pub struct CoupledHalfSpace {
     pub tangential: Arc<TangentialLaw>,
     /// Incident shear stress at the interface `tau_inc(t)`, Pa.
     pub shear_incident: Arc<dyn Excitation>,
+    /// Oblique incidence (model.md section 14): the plane-wave compliances that replace
+    /// the impedances above, and `normal.incident` / `shear_incident` are the normal and
+    /// tangential tractions of the incident wave at the interface. `None`: normal
+    /// incidence.
+    pub oblique: Option<ObliqueCoupling>,
+}
+
+/// The plane-wave coupling of the interface at oblique incidence (model.md section 14),
+/// matrices `[normal, tangential]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ObliqueCoupling {
+    /// Compliance of medium 1 (its down-going P/SV pair), m/(Pa s): the incident wave's
+    /// face velocity is `v_inc = -C1 sigma_inc`, the reflected waves' `v_ref = C1^T sigma_ref`.
+    pub c1: [[f64; 2]; 2],
+    /// Compliance of medium 2 (zero for a rigid wall), m/(Pa s): `v_tr = -C2 sigma_tr`.
+    pub c2: [[f64; 2]; 2],
+    /// Reflected P and SV particle velocities per unit reflected traction, m/(Pa s).
+    pub reflected_waves: [[f64; 2]; 2],
+    /// Energy flux of the reflected P and SV waves per unit squared particle velocity,
+    /// `rho c cos(angle)`, Pa s/m.
+    pub reflected_flux: [f64; 2],
+    /// Transmitted P and SV particle velocities per unit transmitted traction (zero for a
+    /// rigid wall), m/(Pa s).
+    pub transmitted_waves: [[f64; 2]; 2],
+    /// Energy flux of the transmitted P and SV waves per unit squared particle velocity,
+    /// Pa s/m.
+    pub transmitted_flux: [f64; 2],
+}
+
+impl ObliqueCoupling {
+    /// The coupling of a plane-wave geometry (`crate::analytic::oblique`).
+    pub fn new(g: &crate::analytic::oblique::Geometry) -> Self {
+        use crate::analytic::oblique::Geometry;
+        let (c2, tw, tf) = match &g.transmitted {
+            Some(t) => (
+                Geometry::compliance(t),
+                Geometry::traction_to_waves(t),
+                [t[0].flux, t[1].flux],
+            ),
+            None => ([[0.0; 2]; 2], [[0.0; 2]; 2], [0.0; 2]),
+        };
+        ObliqueCoupling {
+            c1: Geometry::compliance(&g.down1),
+            c2,
+            reflected_waves: Geometry::traction_to_waves(&g.reflected),
+            reflected_flux: [g.reflected[0].flux, g.reflected[1].flux],
+            transmitted_waves: tw,
+            transmitted_flux: tf,
+        }
+    }
 }
 
 impl CoupledHalfSpace {
@@ -105,6 +156,10 @@ pub struct CoupledOutput {
     pub slip_time_in_burst: f64,
     /// Number of stick/slip switches located.
     pub slip_events: usize,
+    /// At oblique incidence, the energy carried away by the reflected P, reflected SV,
+    /// transmitted P and transmitted SV waves (flux normal to the interface), J/m^2; zero
+    /// at normal incidence.
+    pub wave_energy: [f64; 4],
 }
 
 impl CoupledOutput {
@@ -154,6 +209,7 @@ struct Acc {
     friction: f64,
     open_in_burst: f64,
     slip_in_burst: f64,
+    wave_energy: [f64; 4],
 }
 
 struct Runner<'a> {
@@ -168,6 +224,9 @@ struct Runner<'a> {
     events: usize,
     slip_events: usize,
     max_gap: f64,
+    /// Impedances in effect: `(Z1, Z2, Z1T, Z2T)` at normal incidence, the inverses of the
+    /// compliances' diagonals at oblique incidence, Pa s/m.
+    z: [f64; 4],
 }
 
 fn inv(z: f64) -> f64 {
@@ -196,8 +255,22 @@ impl<'a> Runner<'a> {
             .collect();
         breaks.sort_by(f64::total_cmp);
         breaks.dedup();
-        let k_n = 1.0 / hs.z1 + inv(hs.z2);
-        let k_t = 1.0 / p.z1t + inv(p.z2t);
+        let z = match &p.oblique {
+            None => [hs.z1, hs.z2, p.z1t, p.z2t],
+            Some(o) => [
+                1.0 / o.c1[0][0],
+                inv(o.c2[0][0]),
+                1.0 / o.c1[1][1],
+                inv(o.c2[1][1]),
+            ],
+        };
+        let k_n = 1.0 / z[0] + inv(z[1]);
+        let k_t = 1.0 / z[2] + inv(z[3]);
+        // K = C1^T + C2: off-diagonal terms at oblique incidence
+        let (k_nt, k_tn) = match &p.oblique {
+            None => (0.0, 0.0),
+            Some(o) => (o.c1[1][0] + o.c2[0][1], o.c1[0][1] + o.c2[1][0]),
+        };
         let stress = sn
             .max(st)
             .max(law.static_pressure)
@@ -233,10 +306,12 @@ impl<'a> Runner<'a> {
             tangential: tl,
             s_inc: &*hs.incident,
             tau_inc: &*p.shear_incident,
-            two_over_z1: 2.0 / hs.z1,
+            two_over_z1: 2.0 / z[0],
             k_n,
-            two_over_z1t: 2.0 / p.z1t,
+            two_over_z1t: 2.0 / z[2],
             k_t,
+            k_nt,
+            k_tn,
             uc: law.critical_gap(),
             held_gap: 0.0,
             beta_frozen: 1.0,
@@ -256,6 +331,7 @@ impl<'a> Runner<'a> {
             events: 0,
             slip_events: 0,
             max_gap: 0.0,
+            z,
         }
     }
 
@@ -287,8 +363,7 @@ impl<'a> Runner<'a> {
 
     /// Integrals over a substep `[t, t + h]` from the stage values.
     fn accumulate(&self, acc: &mut Acc, t: f64, h: f64, step: &stepper::Step) {
-        let hs = &self.p.normal;
-        let (z1, z2, z1t, z2t) = (hs.z1, hs.z2, self.p.z1t, self.p.z2t);
+        let [z1, z2, z1t, z2t] = self.z;
         let p0 = self.iface.law.static_pressure;
         let q0 = self.iface.tangential.static_shear;
         for j in 0..3 {
@@ -304,12 +379,16 @@ impl<'a> Runner<'a> {
             acc.e_ref[1] += w * rt * rt / z1t;
             acc.e_tr[0] += w * sn * sn * inv(z2);
             acc.e_tr[1] += w * st * st * inv(z2t);
-            acc.disp_inc[0] -= w * e.s_inc / z1;
-            acc.disp_inc[1] -= w * e.tau_inc / z1t;
-            acc.disp_ref[0] += w * rn / z1;
-            acc.disp_ref[1] += w * rt / z1t;
-            acc.disp_tr[0] -= w * sn * inv(z2);
-            acc.disp_tr[1] -= w * st * inv(z2t);
+            if let Some(o) = &self.p.oblique {
+                oblique::accumulate(o, acc, w, [e.s_inc, e.tau_inc], [rn, rt], [sn, st]);
+            } else {
+                acc.disp_inc[0] -= w * e.s_inc / z1;
+                acc.disp_inc[1] -= w * e.tau_inc / z1t;
+                acc.disp_ref[0] += w * rn / z1;
+                acc.disp_ref[1] += w * rt / z1t;
+                acc.disp_tr[0] -= w * sn * inv(z2);
+                acc.disp_tr[1] -= w * st * inv(z2t);
+            }
             // friction: tau_f ds/dt (the slider's work; zero while sticking)
             let slip_rate = match self.iface.phase.tangential {
                 _ if self.iface.tangential.branch.friction() == 0.0 => 0.0,
@@ -659,6 +738,7 @@ impl<'a> Runner<'a> {
         out.shear.events = self.slip_events;
         out.slip_events = self.slip_events;
         out.slip_time_in_burst = acc.slip_in_burst;
+        out.wave_energy = acc.wave_energy;
         Ok(out)
     }
 }

@@ -90,6 +90,11 @@ pub struct Interface<'a> {
     pub two_over_z1t: f64,
     /// Tangential compliance k_T, m/(Pa s).
     pub k_t: f64,
+    /// Oblique incidence: coefficient of `tau - q0` in `d[u]_N/dt`, m/(Pa s) (0 at normal
+    /// incidence; model.md section 14).
+    pub k_nt: f64,
+    /// Oblique incidence: coefficient of `sigma + p0` in `d[u]_T/dt`, m/(Pa s).
+    pub k_tn: f64,
     /// Contact-loss gap, m.
     pub uc: f64,
     /// Held gap of a `Held` phase, m.
@@ -105,12 +110,12 @@ pub struct Interface<'a> {
 }
 
 impl Interface<'_> {
-    fn rate_independent(&self) -> bool {
+    pub(super) fn rate_independent(&self) -> bool {
         self.law.traction.damage_viscosity() == 0.0
     }
 
     /// Damage driving force at opening `d >= 0`, tangential gap and adhesion.
-    fn phi(&self, d: f64, ut: f64, beta: f64) -> f64 {
+    pub(super) fn phi(&self, d: f64, ut: f64, beta: f64) -> f64 {
         self.law.traction.damage_driving_force(d, beta)
             - 0.5 * self.tangential.branch.spring_stiffness_d_adhesion(beta) * ut * ut
     }
@@ -158,6 +163,9 @@ impl Interface<'_> {
 
     /// Evaluate at `(t, y)` with the incident stresses given.
     pub fn eval_forced(&self, t: f64, y: &[f64; N], s_inc: f64, tau_inc: f64) -> Eval {
+        if self.k_nt != 0.0 || self.k_tn != 0.0 {
+            return self.eval_oblique(t, y, s_inc, tau_inc);
+        }
         let p0 = self.law.static_pressure;
         let q0 = self.tangential.static_shear;
         let beta = self.beta(y);

@@ -1,0 +1,58 @@
+//! A waveform times a constant: the normal or tangential traction of an obliquely
+//! incident plane wave at the interface (model.md section 14).
+
+use super::Excitation;
+use std::sync::Arc;
+
+/// `factor * inner(t)`.
+#[derive(Debug, Clone)]
+pub struct Scaled {
+    inner: Arc<dyn Excitation>,
+    factor: f64,
+}
+
+impl Scaled {
+    /// `factor` (dimensionless) times `inner`.
+    pub fn new(inner: Arc<dyn Excitation>, factor: f64) -> Self {
+        Scaled { inner, factor }
+    }
+}
+
+impl Excitation for Scaled {
+    fn stress(&self, t: f64) -> f64 {
+        self.factor * self.inner.stress(t)
+    }
+    fn duration(&self) -> f64 {
+        self.inner.duration()
+    }
+    fn fundamental(&self) -> f64 {
+        self.inner.fundamental()
+    }
+    fn highest_frequency(&self) -> f64 {
+        self.inner.highest_frequency()
+    }
+    fn second_frequency(&self) -> Option<f64> {
+        self.inner.second_frequency()
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        self.inner.breakpoints()
+    }
+    fn peak(&self) -> f64 {
+        self.factor.abs() * self.inner.peak()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::excitation::{ToneBurst, Window};
+
+    #[test]
+    fn scales_stress_and_peak() {
+        let b: Arc<dyn Excitation> = Arc::new(ToneBurst::new(2.0, 1e6, 5.0, Window::Hann));
+        let s = Scaled::new(b.clone(), -0.5);
+        assert_eq!(s.stress(1.3e-6), -0.5 * b.stress(1.3e-6));
+        assert!((s.peak() - 1.0).abs() < 1e-12);
+        assert_eq!(s.duration(), b.duration());
+    }
+}

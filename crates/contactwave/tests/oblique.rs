@@ -1,0 +1,341 @@
+//! Oblique incidence (model.md section 14): the exact coupled solver with the plane-wave
+//! compliances against the closed-form coefficients of a spring interface and of a
+//! welded one (Zoeppritz), the normal-incidence solvers at theta = 0, and the energy audit.
+
+use contactwave::analytic::oblique::{coefficients, Bond, Elastic, Geometry, WaveType};
+use contactwave::excitation::{Excitation, ToneBurst, Window};
+use contactwave::law::registry::{build_law, build_tangential};
+use contactwave::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
+use contactwave::material::Material;
+use contactwave::solver::coupled::{CoupledHalfSpace, CoupledOutput, CoupledSolver};
+use contactwave::solver::halfspace::HalfSpaceSettings;
+use contactwave::solver::Solver;
+use rustfft::num_complex::Complex64;
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+const AL: Material = Material::ALUMINIUM;
+const STEEL: Material = Material::STEEL;
+const F0: f64 = 1e6;
+
+fn elastic(m: &Material) -> Elastic {
+    Elastic {
+        density: m.density,
+        cp: m.wave_speed(),
+        cs: m.shear_wave_speed().unwrap(),
+    }
+}
+
+/// Linear springs K_N (compression and traction alike: a linear interface) and K_T.
+fn springs(
+    wave: WaveType,
+    deg: f64,
+    counterpart: Option<Material>,
+    kn: f64,
+    kt: f64,
+) -> (CoupledHalfSpace, Geometry, Arc<dyn Excitation>) {
+    let p0 = 50e6;
+    let law = build_law(
+        p0,
+        &CompressionSpec::Linear { stiffness: kn },
+        &TractionSpec::Linear { stiffness: kn },
+        "<test>",
+        "interface",
+    )
+    .unwrap();
+    let tl = build_tangential(
+        &TangentialSpec::Linear { stiffness: kt },
+        0.0,
+        &law,
+        "<test>",
+        "interface",
+    )
+    .unwrap();
+    let e2 = counterpart.as_ref().map(elastic);
+    let g = Geometry::new(&elastic(&AL), e2.as_ref(), wave, deg.to_radians()).unwrap();
+    let burst: Arc<dyn Excitation> = Arc::new(ToneBurst::new(1e6, F0, 8.0, Window::Hann));
+    let p = CoupledHalfSpace::oblique(
+        AL,
+        counterpart,
+        Arc::new(law),
+        Arc::new(tl),
+        &g,
+        burst.clone(),
+    );
+    (p, g, burst)
+}
+
+fn run(p: &CoupledHalfSpace, spp: usize, tail: f64) -> CoupledOutput {
+    CoupledSolver {
+        settings: HalfSpaceSettings {
+            samples_per_period: spp,
+            tail_periods: Some(tail),
+            summary_only: false,
+        },
+    }
+    .solve(p)
+    .unwrap()
+}
+
+/// Fourier sums at f0 of the outgoing waves' particle velocities over the incident's:
+/// `[R_P, R_SV, T_P, T_SV]`.
+fn measured(out: &CoupledOutput, g: &Geometry, burst: &dyn Excitation) -> [Complex64; 4] {
+    let w = 2.0 * PI * F0;
+    let rw = Geometry::traction_to_waves(&g.reflected);
+    let tw = g.transmitted.map(|t| Geometry::traction_to_waves(&t));
+    let mut acc = [Complex64::new(0.0, 0.0); 5];
+    for (k, &t) in out.normal.t.iter().enumerate() {
+        let e = Complex64::from_polar(1.0, -w * t);
+        let winc = -burst.stress(t) / g.incident.impedance;
+        acc[4] += e * winc;
+        let r = [
+            out.normal.reflected_stress[k],
+            out.shear.reflected_stress[k],
+        ];
+        let s = [
+            out.normal.transmitted_stress[k],
+            out.shear.transmitted_stress[k],
+        ];
+        for j in 0..2 {
+            acc[j] += e * (rw[j][0] * r[0] + rw[j][1] * r[1]);
+            if let Some(m) = &tw {
+                acc[2 + j] += e * (m[j][0] * s[0] + m[j][1] * s[1]);
+            }
+        }
+    }
+    [
+        acc[0] / acc[4],
+        acc[1] / acc[4],
+        acc[2] / acc[4],
+        acc[3] / acc[4],
+    ]
+}
+
+fn max_err(a: &[Complex64; 4], b: &[Complex64; 4]) -> f64 {
+    (0..4).map(|k| (a[k] - b[k]).norm()).fold(0.0, f64::max)
+}
+
+#[test]
+fn spring_interface_matches_closed_form() {
+    // omega Z / K of order 1: strong, frequency-dependent mode conversion
+    let (kn, kt) = (2e14, 1e14);
+    for (wave, deg, cp) in [
+        (WaveType::P, 22.5, Some(STEEL)),
+        (WaveType::P, 45.0, Some(STEEL)),
+        (WaveType::Sv, 20.0, Some(STEEL)),
+        (WaveType::P, 30.0, None),
+        (WaveType::Sv, 25.0, None),
+    ] {
+        let (p, g, burst) = springs(wave, deg, cp, kn, kt);
+        let out = run(&p, 200, 40.0);
+        let m = measured(&out, &g, &*burst);
+        let c = coefficients(
+            &g,
+            Bond::Springs {
+                normal: kn,
+                tangential: kt,
+            },
+            2.0 * PI * F0,
+        );
+        let err = max_err(&m, &c);
+        eprintln!(
+            "{} {deg} deg {}: |R_P| {:.6} |R_SV| {:.6} |T_P| {:.6} |T_SV| {:.6}; max error {err:.2e}; closure {:.1e}",
+            wave.name(),
+            if cp.is_some() { "Al/steel" } else { "Al/wall" },
+            c[0].norm(),
+            c[1].norm(),
+            c[2].norm(),
+            c[3].norm(),
+            out.closure_error()
+        );
+        assert!(err < 1e-6, "{err}");
+        // mode conversion is there
+        assert!(c[1].norm() > 0.05 && c[0].norm() > 0.05);
+        // elastic interface: the energy audit closes, and the wave energies add up to
+        // the component fluxes (P and SV carry no cross flux)
+        assert!(out.closure_error() < 1e-9, "{}", out.closure_error());
+        let n = &out.normal.energy;
+        let s = &out.shear.energy;
+        let waves: f64 = out.wave_energy.iter().sum();
+        let comps = n.reflected + s.reflected + n.transmitted + s.transmitted;
+        assert!((waves - comps).abs() < 1e-9 * comps, "{waves} {comps}");
+    }
+}
+
+#[test]
+fn stiff_springs_give_the_zoeppritz_coefficients() {
+    // K >> omega Z: the welded limit, error O(omega Z / K)
+    let k = 1e20;
+    for (wave, deg) in [
+        (WaveType::P, 22.5),
+        (WaveType::P, 45.0),
+        (WaveType::Sv, 20.0),
+    ] {
+        let (p, g, burst) = springs(wave, deg, Some(STEEL), k, k);
+        let out = run(&p, 200, 10.0);
+        let m = measured(&out, &g, &*burst);
+        let z = coefficients(&g, Bond::Welded, 2.0 * PI * F0);
+        let err = max_err(&m, &z);
+        eprintln!(
+            "{} {deg} deg welded: R_P {:.6} R_SV {:.6} T_P {:.6} T_SV {:.6}; max error {err:.2e}",
+            wave.name(),
+            z[0],
+            z[1],
+            z[2],
+            z[3]
+        );
+        assert!(err < 1e-4, "{err}");
+    }
+}
+
+/// The same interface at normal incidence through the normal-incidence path.
+fn normal_incidence(wave: WaveType) -> (CoupledHalfSpace, CoupledHalfSpace) {
+    let (oblique, _, burst) = springs(wave, 0.0, Some(STEEL), 2e14, 1e14);
+    let silent: Arc<dyn Excitation> = Arc::new(ToneBurst::new(0.0, F0, 1.0, Window::Rectangular));
+    let (n, s) = match wave {
+        WaveType::P => (burst, silent),
+        WaveType::Sv => (silent, burst),
+    };
+    let mut normal = oblique.clone();
+    normal.normal = contactwave::solver::halfspace::HalfSpace::new(
+        AL,
+        Some(STEEL),
+        normal.normal.law.clone(),
+        n,
+    );
+    normal.z1t = AL.shear_impedance().unwrap();
+    normal.z2t = STEEL.shear_impedance().unwrap();
+    normal.shear_incident = s;
+    normal.oblique = None;
+    (oblique, normal)
+}
+
+#[test]
+fn zero_angle_is_the_normal_incidence_solver() {
+    for wave in [WaveType::P, WaveType::Sv] {
+        let (o, n) = normal_incidence(wave);
+        let (a, b) = (run(&o, 200, 20.0), run(&n, 200, 20.0));
+        assert_eq!(a.normal.t.len(), b.normal.t.len());
+        let mut err: f64 = 0.0;
+        for (x, y) in [
+            (&a.normal.reflected_stress, &b.normal.reflected_stress),
+            (&a.shear.reflected_stress, &b.shear.reflected_stress),
+            (&a.normal.transmitted_stress, &b.normal.transmitted_stress),
+            (&a.shear.transmitted_stress, &b.shear.transmitted_stress),
+            (&a.normal.gap, &b.normal.gap),
+            (&a.shear.gap, &b.shear.gap),
+        ] {
+            let scale = y.iter().fold(1e-30f64, |m, v| m.max(v.abs()));
+            for (u, v) in x.iter().zip(y.iter()) {
+                err = err.max((u - v).abs() / scale);
+            }
+        }
+        eprintln!("{} at 0 deg vs normal incidence: {err:.1e}", wave.name());
+        assert!(err < 1e-12, "{err}");
+    }
+}
+
+/// Nonlinear interfaces at 30 degrees between aluminium and steel: clapping, stick-slip
+/// and damage with the coupled constraint stresses; the energy audit closes.
+#[test]
+fn energy_audit_closes_with_clapping_friction_and_damage() {
+    let cases: Vec<(&str, CompressionSpec, TractionSpec, TangentialSpec)> = vec![
+        (
+            "Signorini + Coulomb (rigid stick)",
+            CompressionSpec::Rigid,
+            TractionSpec::Free,
+            TangentialSpec::Coulomb {
+                friction: 0.3,
+                stiffness: None,
+            },
+        ),
+        (
+            "linear + Coulomb (elastic stick)",
+            CompressionSpec::Linear { stiffness: 5e14 },
+            TractionSpec::Free,
+            TangentialSpec::Coulomb {
+                friction: 0.3,
+                stiffness: Some(2e14),
+            },
+        ),
+        (
+            "Signorini + RCCM (damage, friction)",
+            CompressionSpec::Rigid,
+            TractionSpec::Rccm {
+                stiffness: 1e14,
+                energy: 0.02,
+                viscosity: 0.0,
+            },
+            TangentialSpec::Rccm {
+                stiffness: 5e13,
+                friction: 0.3,
+            },
+        ),
+    ];
+    for (name, comp, trac, tang) in cases {
+        for wave in [WaveType::P, WaveType::Sv] {
+            let p0 = 2e6;
+            let law = build_law(p0, &comp, &trac, "<test>", "interface").unwrap();
+            let tl = build_tangential(&tang, 0.0, &law, "<test>", "interface").unwrap();
+            let g = Geometry::new(
+                &elastic(&AL),
+                Some(&elastic(&STEEL)),
+                wave,
+                20f64.to_radians(),
+            )
+            .unwrap();
+            let burst: Arc<dyn Excitation> = Arc::new(ToneBurst::new(
+                3e6,
+                F0,
+                6.0,
+                Window::HannRamps {
+                    ramp_fraction: 0.25,
+                },
+            ));
+            let p =
+                CoupledHalfSpace::oblique(AL, Some(STEEL), Arc::new(law), Arc::new(tl), &g, burst);
+            let out = run(&p, 400, 10.0);
+            let err = out.closure_error();
+            eprintln!(
+                "{name}, {}: closure {err:.1e}, events {}, slip events {}, friction {:.3e} J/m^2, damage {:.3e}",
+                wave.name(),
+                out.normal.events,
+                out.slip_events,
+                out.friction_dissipation,
+                out.normal.energy.damage
+            );
+            assert!(out.normal.events > 0, "the interface must open");
+            assert!(out.slip_events > 0, "the interface must slip");
+            if name.contains("RCCM") {
+                assert!(out.normal.energy.damage > 0.0);
+            }
+            assert!(err < 1e-6, "{err}");
+        }
+    }
+}
+
+#[test]
+fn scenario_refuses_angles_beyond_the_critical_one() {
+    use contactwave::scenario::Scenario;
+    let text = |deg: f64| {
+        format!(
+            "[medium]\nmaterial = \"aluminium\"\n[interface]\nstatic_pressure = 1e6\n\
+             [shear_incident]\nangle = {deg:?}\nfrequency = 1e6\ncycles = 5\namplitude = 1e6\n"
+        )
+    };
+    let crit = (AL.shear_wave_speed().unwrap() / AL.wave_speed())
+        .asin()
+        .to_degrees();
+    let ok = Scenario::from_toml_str(&text(crit - 0.1), "s.toml").unwrap();
+    assert!(ok.oblique.is_some());
+    let e = Scenario::from_toml_str(&text(crit + 0.1), "s.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("field `shear_incident.angle`"), "{e}");
+    assert!(e.contains(&format!("{crit:.6}")), "{e}");
+    assert!(e.contains("reflected P wave"), "{e}");
+    let e = Scenario::from_toml_str(&text(90.0), "s.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("[0, 90)"), "{e}");
+}
