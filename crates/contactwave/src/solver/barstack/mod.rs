@@ -269,16 +269,14 @@ impl BarStack {
         let forced: Vec<usize> = run.forces.iter().map(|f| f.node.min(n - 1)).collect();
         // interfaces between segments, then the obstacle(s): right, left
         let laws = self.contact_laws();
-        let tangential = self.tangential_laws()?;
-        let mut state: Vec<JointState> = laws
-            .iter()
-            .enumerate()
-            .map(|(i, l)| JointState::at_rest(l, tangential.get(i).map(|t| &**t)))
-            .collect();
-        let joints = self.joints(&normal.mesh);
-        let shear_joints = shear
-            .as_ref()
-            .map_or_else(Vec::new, |f| self.joints(&f.mesh));
+        let mut contacts = Contacts::new(
+            &laws,
+            self.tangential_laws()?,
+            self.joints(&normal.mesh),
+            shear
+                .as_ref()
+                .map_or_else(Vec::new, |f| self.joints(&f.mesh)),
+        );
         let n_rec = run.steps / run.record_every.max(1) + 1;
         let mut out = FdOutput::with_capacity(
             n_rec,
@@ -290,15 +288,15 @@ impl BarStack {
                       t: f64,
                       normal: &[f64],
                       shear: Option<&[f64]>,
-                      state: &[JointState]| {
-            record_level(out, run, t, (normal, shear), state, &tangential);
+                      contacts: &Contacts| {
+            record_level(out, run, t, (normal, shear), contacts);
         };
         record(
             &mut out,
             run.t0,
             &normal.u,
             shear.as_ref().map(|f| &f.u[..]),
-            &state,
+            &contacts,
         );
         for step in 0..run.steps {
             if step % 4096 == 0 {
@@ -344,15 +342,7 @@ impl BarStack {
                 }
                 End::Obstacle(law) => {
                     let i = laws.len() - 1;
-                    let (joint, st) = (joints[i], &mut state[i]);
-                    joint::update(
-                        ctx,
-                        law,
-                        joint,
-                        st,
-                        &mut normal,
-                        shear_side(shear.as_mut(), &shear_joints, &tangential, i),
-                    )?;
+                    contacts.update(i, ctx, law, &mut normal, shear.as_mut())?;
                 }
             }
             if let Some(d) = &run.imposed {
@@ -375,32 +365,16 @@ impl BarStack {
                 }
                 End::Obstacle(law) => {
                     let i = self.interfaces.len();
-                    let (joint, st) = (joints[i], &mut state[i]);
-                    joint::update(
-                        ctx,
-                        law,
-                        joint,
-                        st,
-                        &mut normal,
-                        shear_side(shear.as_mut(), &shear_joints, &tangential, i),
-                    )?;
+                    contacts.update(i, ctx, law, &mut normal, shear.as_mut())?;
                 }
             }
             for (i, law) in self.interfaces.iter().enumerate() {
-                let (joint, st) = (joints[i], &mut state[i]);
-                joint::update(
-                    ctx,
-                    law,
-                    joint,
-                    st,
-                    &mut normal,
-                    shear_side(shear.as_mut(), &shear_joints, &tangential, i),
-                )?;
+                contacts.update(i, ctx, law, &mut normal, shear.as_mut())?;
             }
             if (step % 4096 == 4095 || step + 1 == run.steps)
                 && !(normal.finite() && shear.as_ref().map_or(true, |f| f.finite()))
             {
-                let gaps: Vec<f64> = state.iter().map(|s| s.gap).collect();
+                let gaps: Vec<f64> = contacts.state.iter().map(|s| s.gap).collect();
                 return Err(Error::numerical(
                     t1,
                     "non-finite displacement",
@@ -413,7 +387,7 @@ impl BarStack {
                     t1,
                     &normal.u_next,
                     shear.as_ref().map(|f| &f.u_next[..]),
-                    &state,
+                    &contacts,
                 );
             }
             normal.rotate();
@@ -422,8 +396,8 @@ impl BarStack {
             }
         }
         if let Some(sh) = out.shear.as_mut() {
-            sh.friction_dissipation = state.iter().map(|s| s.friction).collect();
-            sh.damage_dissipation = state.iter().map(|s| s.damage).collect();
+            sh.friction_dissipation = contacts.state.iter().map(|s| s.friction).collect();
+            sh.damage_dissipation = contacts.state.iter().map(|s| s.damage).collect();
         }
         Ok(out)
     }
@@ -563,14 +537,49 @@ impl BarStack {
     }
 }
 
-/// The shear field's side of contact `i` for [`joint::update`], with a shear field.
-fn shear_side<'a>(
-    field: Option<&'a mut Field>,
-    joints: &[Joint],
-    laws: &'a [Arc<TangentialLaw>],
-    i: usize,
-) -> Option<(&'a mut Field, Joint, &'a TangentialLaw)> {
-    field.map(|f| (f, joints[i], &*laws[i]))
+/// Every contact of the stack (between segments, then the obstacles) as the time loop
+/// updates it: its nodes in each field, its tangential law with a shear field, its state.
+struct Contacts {
+    joints: Vec<Joint>,
+    shear_joints: Vec<Joint>,
+    tangential: Vec<Arc<TangentialLaw>>,
+    state: Vec<JointState>,
+}
+
+impl Contacts {
+    fn new(
+        laws: &[Arc<ContactLaw>],
+        tangential: Vec<Arc<TangentialLaw>>,
+        joints: Vec<Joint>,
+        shear_joints: Vec<Joint>,
+    ) -> Self {
+        let state = laws
+            .iter()
+            .enumerate()
+            .map(|(i, l)| JointState::at_rest(l, tangential.get(i).map(|t| &**t)))
+            .collect();
+        Contacts {
+            joints,
+            shear_joints,
+            tangential,
+            state,
+        }
+    }
+
+    /// Update contact `i` (law `law`) at the new level on the longitudinal field and, when
+    /// there is one, the shear field.
+    #[inline]
+    fn update(
+        &mut self,
+        i: usize,
+        ctx: StepContext,
+        law: &ContactLaw,
+        normal: &mut Field,
+        shear: Option<&mut Field>,
+    ) -> Result<()> {
+        let side = shear.map(|f| (f, self.shear_joints[i], &*self.tangential[i]));
+        joint::update(ctx, law, self.joints[i], &mut self.state[i], normal, side)
+    }
 }
 
 /// Record one level: the probes' displacements and every interface's state (and the
@@ -580,9 +589,9 @@ fn record_level(
     run: &FdRun,
     t: f64,
     (normal, shear): (&[f64], Option<&[f64]>),
-    state: &[JointState],
-    tangential: &[Arc<TangentialLaw>],
+    contacts: &Contacts,
 ) {
+    let (state, tangential) = (&contacts.state, &contacts.tangential);
     out.t.push(t);
     for (p, &node) in run.probes.iter().enumerate() {
         out.displacement[p].push(normal[node]);
