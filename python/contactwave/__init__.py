@@ -473,6 +473,8 @@ def identify(
     out: Optional[Union[str, "os.PathLike[str]"]] = None,
     design: bool = False,
     file: str = "<dict>",
+    *,
+    tolerate_failures: bool = False,
 ) -> Dict[str, Any]:
     """Identify interface parameters from a measured curve (``contactwave identify``; see
     docs/identify.md).
@@ -488,6 +490,12 @@ def identify(
     ``[design]`` candidates (``design.json``) instead. With ``out``, the output files are
     written into that folder. The GIL is released while it runs. Raises ``ValueError``
     naming the file, field, value and allowed range for invalid input.
+
+    Forward runs that fail (numerically, or with a non-finite observed value) get a
+    prohibitive cost and the fit goes on; the result then carries
+    ``failed_forward_runs`` and ``first_failure``, and, unless ``tolerate_failures``,
+    :class:`SimulationError` is raised (after the files are written), as the CLI exits 1
+    without ``--tolerate-failures``.
     """
     out_path = None if out is None else os.fspath(out)
     if isinstance(spec, Mapping):
@@ -495,7 +503,17 @@ def identify(
         res = _core.identify(text, file, out_path, design)
     else:
         res = _core.identify(None, os.fspath(spec), out_path, design)
-    return json.loads(res)
+    result = json.loads(res)
+    failed = result.get("failed_forward_runs", 0) if isinstance(result, dict) else 0
+    if failed:
+        msg = (
+            f"{failed} of {result.get('forward_runs')} forward runs failed (the fit gave "
+            f"them a prohibitive cost); first: {result.get('first_failure')}"
+        )
+        if not tolerate_failures:
+            raise SimulationError(msg + " (tolerate_failures=True to accept)")
+        warnings.warn(msg, RuntimeWarning, stacklevel=2)
+    return result
 
 
 # ---------------------------------------------------------------------------------------

@@ -103,3 +103,47 @@ def test_ctrl_c_stops_a_long_bar_stack_run_with_keyboard_interrupt(root, tmp_pat
     # the next run is not interrupted
     r = cw.run(with_(HALF_SPACE, "incident", cycles=5))
     assert r.summary["A_inc"] > 0
+
+
+def _failing_identification(tmp_path):
+    """An identification whose bounds reach linear stiffnesses the solver cannot integrate
+    (up to 1e300 Pa/m): some forward runs fail numerically."""
+    (tmp_path / "base.toml").write_text(
+        '[medium]\nmaterial = "pmma"\n[interface]\nstatic_pressure = 0.1e6\n'
+        'compression = { law = "linear", stiffness = 1e12 }\n'
+        "[incident]\nfrequency = 1e6\ncycles = 5\nxi = 0.5\n"
+        "[solver]\nsamples_per_period = 32\n"
+    )
+    return {
+        "base": "base.toml",
+        "observed": ["A2_over_A1"],
+        "data": {"incident.xi": [0.3, 0.5, 0.8], "A2_over_A1": [0.01, 0.02, 0.03]},
+        "parameter": [
+            {
+                "key": "interface.compression.stiffness",
+                "bounds": [1e10, 1e300],
+                "scale": "log",
+                "initial": 1e11,
+            }
+        ],
+        "fit": {
+            "particles": 4,
+            "iterations": 2,
+            "local_iterations": 10,
+            "local_starts": 1,
+            "bootstrap": 0,
+        },
+    }
+
+
+def test_identify_with_failed_forward_runs_raises_unless_tolerated(tmp_path):
+    spec = _failing_identification(tmp_path)
+    file = str(tmp_path / "id.toml")
+    with pytest.raises(cw.SimulationError, match=r"forward runs failed.*first: row \d+: numerical"):
+        cw.identify(spec, out=tmp_path / "out", file=file)
+    # the files are written, as the CLI writes them before exiting 1
+    assert (tmp_path / "out" / "identification.json").exists()
+    with pytest.warns(RuntimeWarning, match="forward runs failed"):
+        r = cw.identify(spec, file=file, tolerate_failures=True)
+    assert 0 < r["failed_forward_runs"] <= r["forward_runs"]
+    assert r["first_failure"].startswith("row ")

@@ -422,3 +422,73 @@ fn ctrl_c_and_sigterm_stop_run_and_sweep_with_130_and_no_partial_file() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// An identification whose bounds reach stiffnesses the solver cannot integrate (linear
+/// K up to 1e300 Pa/m: the gap equation's Newton iteration fails): the fit goes on, the
+/// files are written, and the exit code is 1 with the count and the first failure, or 0
+/// with a warning under --tolerate-failures.
+#[test]
+fn identify_with_failed_forward_runs_exits_1_unless_tolerated() {
+    let d = tmpdir("identify-failures");
+    std::fs::write(
+        d.join("base.toml"),
+        "[medium]\nmaterial = \"pmma\"\n[interface]\nstatic_pressure = 0.1e6\n\
+         compression = { law = \"linear\", stiffness = 1e12 }\n\
+         [incident]\nfrequency = 1e6\ncycles = 5\nxi = 0.5\n\
+         [solver]\nsamples_per_period = 32\n",
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("id.toml"),
+        "base = \"base.toml\"\nobserved = [\"A2_over_A1\"]\n\
+         [data]\n\"incident.xi\" = [0.3, 0.5, 0.8]\nA2_over_A1 = [0.01, 0.02, 0.03]\n\
+         [[parameter]]\nkey = \"interface.compression.stiffness\"\n\
+         bounds = [1e10, 1e300]\nscale = \"log\"\ninitial = 1e11\n\
+         [fit]\nparticles = 4\niterations = 2\nlocal_iterations = 10\n\
+         local_starts = 1\nbootstrap = 0\n",
+    )
+    .unwrap();
+    for tolerate in [false, true] {
+        let out = if tolerate { "tolerated" } else { "out" };
+        let mut c = bin();
+        c.current_dir(&d)
+            .args(["identify", "id.toml", "--out", out]);
+        if tolerate {
+            c.arg("--tolerate-failures");
+        }
+        let t0 = Instant::now();
+        let o = c.output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        let (code, word) = if tolerate {
+            (0, "warning")
+        } else {
+            (1, "error")
+        };
+        assert_eq!(o.status.code(), Some(code), "{err}");
+        let line = err.lines().last().unwrap_or("");
+        assert!(
+            line.starts_with(&format!("{word}: "))
+                && line.contains("forward runs failed")
+                && line.contains("first: row ")
+                && line.contains("numerical failure"),
+            "{err}"
+        );
+        // the count is a positive number not above the forward runs
+        let n: usize = line[word.len() + 2..]
+            .split(' ')
+            .next()
+            .and_then(|x| x.parse().ok())
+            .unwrap();
+        assert!(n > 0, "{line}");
+        let json = std::fs::read_to_string(d.join(out).join("identification.json")).unwrap();
+        assert!(
+            json.contains(&format!("\"failed_forward_runs\": {n}")),
+            "{json}"
+        );
+        println!(
+            "identify with {n} failed forward runs (tolerate: {tolerate}) | exit {code} in {:.1} ms",
+            t0.elapsed().as_secs_f64() * 1e3
+        );
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
