@@ -202,12 +202,14 @@ pub(super) fn incident_wave(
                 z2,
                 pressure_key: "model.static_force / model.gravity",
             });
-            Ok(Some(crate::scenario::build_incident_cached(
+            // an explicit model.duration bounds the read of a waveform file
+            Ok(Some(crate::scenario::build_incident_window(
                 inc,
                 file,
                 dir,
                 xi_ref.as_ref(),
                 cache,
+                m.duration,
             )?))
         }
     }
