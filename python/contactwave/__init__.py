@@ -632,7 +632,10 @@ def sweep(
     numpy arrays): ``point`` (grid index), one column per axis, then the summary keys of
     ``sweep.csv`` (``xi``, ``A1_over_Ainc``, ...). A point whose simulation fails has NaN
     values; a warning names the failed points, and the DataFrame's
-    ``attrs["errors"]`` maps them to their messages. ``attrs["hash"]`` is the sweep's
+    ``attrs["errors"]`` maps them to their messages. The summary columns are those of
+    the points that succeeded: when every point fails there are none (only ``point`` and
+    the axes). Locally the points run 4096 at a time: memory is the result table plus
+    one chunk, whatever the number of points. ``attrs["hash"]`` is the sweep's
     hash, the one ``contactwave sweep`` writes to ``sweep.csv.hash`` for the same base
     scenario and axis values.
     """

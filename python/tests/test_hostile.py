@@ -7,6 +7,9 @@ import os
 import signal
 import threading
 import time
+import warnings
+
+import numpy as np
 
 import pytest
 
@@ -147,3 +150,53 @@ def test_identify_with_failed_forward_runs_raises_unless_tolerated(tmp_path):
         r = cw.identify(spec, file=file, tolerate_failures=True)
     assert 0 < r["failed_forward_runs"] <= r["forward_runs"]
     assert r["first_failure"].startswith("row ")
+
+
+CHEAP = {
+    "medium": {"material": "pmma"},
+    "interface": {"static_pressure": 0.1e6, "compression": {"law": "linear", "stiffness": 1e12}},
+    "incident": {"frequency": 1e6, "cycles": 2, "xi": 0.5},
+    "solver": {"samples_per_period": 16},
+}
+
+
+def test_failed_sweep_points_are_nan_and_all_failed_leaves_only_the_axes():
+    # a linear stiffness of 1e300 Pa/m cannot be integrated (the gap equation fails)
+    with pytest.warns(RuntimeWarning, match="1 of 3 sweep points failed"):
+        df = cw.sweep(CHEAP, {"interface.compression.stiffness": [1e12, 1e300, 1e13]}, as_frame=False)
+    assert np.isnan(df["xi"][1]) and np.isfinite(df["xi"][[0, 2]]).all()
+    with pytest.warns(RuntimeWarning, match="2 of 2 sweep points failed"):
+        df = cw.sweep(CHEAP, {"interface.compression.stiffness": [1e299, 1e300]}, as_frame=False)
+    assert sorted(df) == ["interface.compression.stiffness", "point"]
+
+
+def test_a_sweep_over_one_chunk_matches_the_chunked_executor_run():
+    # 4100 points: the local sweep runs them 4096 at a time; an executor in 64-point tasks
+    from concurrent.futures import ThreadPoolExecutor
+
+    axes = {"incident.xi": np.linspace(0.1, 1.0, 4100)}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        local = cw.sweep(CHEAP, axes, as_frame=False)
+        with ThreadPoolExecutor(2) as ex:
+            remote = cw.sweep(CHEAP, axes, executor=ex, as_frame=False)
+    assert sorted(local) == sorted(remote)
+    for k in local:
+        np.testing.assert_array_equal(local[k], remote[k], err_msg=k)
+
+
+def test_ctrl_c_stops_a_million_point_sweep_promptly_with_flat_memory():
+    import resource
+
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    for after in (0.3, 3.0):  # during the validation; later, while it runs (or validates)
+        timer = threading.Timer(after, lambda: os.kill(os.getpid(), signal.SIGINT))
+        timer.start()
+        t0 = time.perf_counter()
+        with pytest.raises(KeyboardInterrupt):
+            cw.sweep(CHEAP, {"incident.xi": np.linspace(0.1, 1.0, 1_000_000)})
+        took = time.perf_counter() - t0
+        assert took < after + 1.0, f"stopped {took - after:.2f} s after the signal"
+    # the models of 10^6 points are never alive at once (kilobytes each: gigabytes)
+    grown_mb = (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before) / 1024
+    assert grown_mb < 600, f"peak memory grew by {grown_mb:.0f} MB"
