@@ -252,7 +252,7 @@ fn probe(scenario: &Scenario, out: &HalfSpaceOutput) -> ProbeSeries {
         .map_or(0.0, |sh| sh.incident.duration())
         .max(inc.duration());
     // probe times left out: (start, end) of the silence beyond half a burst at each side
-    let silent = (delay > w).then(|| (w - delay + 0.5 * w, delay - 0.5 * w));
+    let silent = (delay > w).then_some((w - delay + 0.5 * w, delay - 0.5 * w));
     let mut disp_inc = 0.0;
     let mut prev_t = None;
     for k in 0..(m + n) {
