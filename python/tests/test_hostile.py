@@ -140,16 +140,40 @@ def _failing_identification(tmp_path):
 
 
 def test_identify_with_failed_forward_runs_raises_unless_tolerated(tmp_path):
+    # in a child interpreter: the solver's failed Newton iterations leave per-thread state
+    # that changes later results in their last bits (a known issue; see the report), and
+    # test_sweep.py compares bit for bit with the CLI
+    import json
+    import subprocess
+    import sys
+
     spec = _failing_identification(tmp_path)
-    file = str(tmp_path / "id.toml")
-    with pytest.raises(cw.SimulationError, match=r"forward runs failed.*first: row \d+: numerical"):
-        cw.identify(spec, out=tmp_path / "out", file=file)
+    code = f"""
+import json, warnings, contactwave as cw
+spec = json.loads({json.dumps(json.dumps(spec))})
+file = {str(tmp_path / "id.toml")!r}
+try:
+    cw.identify(spec, out={str(tmp_path / "out")!r}, file=file)
+    raise SystemExit("no SimulationError")
+except cw.SimulationError as e:
+    msg = str(e)
+with warnings.catch_warnings(record=True) as w:
+    warnings.simplefilter("always")
+    r = cw.identify(spec, file=file, tolerate_failures=True)
+print(json.dumps({{"msg": msg, "warned": [str(x.message) for x in w],
+                   "failed": r["failed_forward_runs"], "runs": r["forward_runs"],
+                   "first": r["first_failure"]}}))
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    res = json.loads(out.stdout.strip().splitlines()[-1])
+    assert "forward runs failed" in res["msg"] and "first: row " in res["msg"]
+    assert "numerical" in res["msg"]
     # the files are written, as the CLI writes them before exiting 1
     assert (tmp_path / "out" / "identification.json").exists()
-    with pytest.warns(RuntimeWarning, match="forward runs failed"):
-        r = cw.identify(spec, file=file, tolerate_failures=True)
-    assert 0 < r["failed_forward_runs"] <= r["forward_runs"]
-    assert r["first_failure"].startswith("row ")
+    assert any("forward runs failed" in m for m in res["warned"])
+    assert 0 < res["failed"] <= res["runs"]
+    assert res["first"].startswith("row ")
 
 
 CHEAP = {
