@@ -481,6 +481,8 @@ def identify(
     out: Optional[Union[str, "os.PathLike[str]"]] = None,
     design: bool = False,
     file: str = "<dict>",
+    *,
+    tolerate_failures: bool = False,
 ) -> Dict[str, Any]:
     """Identify interface parameters from a measured curve (``contactwave identify``; see
     docs/identify.md).
@@ -496,6 +498,12 @@ def identify(
     ``[design]`` candidates (``design.json``) instead. With ``out``, the output files are
     written into that folder. The GIL is released while it runs. Raises ``ValueError``
     naming the file, field, value and allowed range for invalid input.
+
+    Forward runs that fail (numerically, or with a non-finite observed value) get a
+    prohibitive cost and the fit goes on; the result then carries
+    ``failed_forward_runs`` and ``first_failure``, and, unless ``tolerate_failures``,
+    :class:`SimulationError` is raised (after the files are written), as the CLI exits 1
+    without ``--tolerate-failures``.
     """
     out_path = None if out is None else os.fspath(out)
     if isinstance(spec, Mapping):
@@ -503,7 +511,17 @@ def identify(
         res = _core.identify(text, file, out_path, design)
     else:
         res = _core.identify(None, os.fspath(spec), out_path, design)
-    return json.loads(res)
+    result = json.loads(res)
+    failed = result.get("failed_forward_runs", 0) if isinstance(result, dict) else 0
+    if failed:
+        msg = (
+            f"{failed} of {result.get('forward_runs')} forward runs failed (the fit gave "
+            f"them a prohibitive cost); first: {result.get('first_failure')}"
+        )
+        if not tolerate_failures:
+            raise SimulationError(msg + " (tolerate_failures=True to accept)")
+        warnings.warn(msg, RuntimeWarning, stacklevel=2)
+    return result
 
 
 # ---------------------------------------------------------------------------------------
@@ -622,7 +640,10 @@ def sweep(
     numpy arrays): ``point`` (grid index), one column per axis, then the summary keys of
     ``sweep.csv`` (``xi``, ``A1_over_Ainc``, ...). A point whose simulation fails has NaN
     values; a warning names the failed points, and the DataFrame's
-    ``attrs["errors"]`` maps them to their messages. ``attrs["hash"]`` is the sweep's
+    ``attrs["errors"]`` maps them to their messages. The summary columns are those of
+    the points that succeeded: when every point fails there are none (only ``point`` and
+    the axes). Locally the points run 4096 at a time: memory is the result table plus
+    one chunk, whatever the number of points. ``attrs["hash"]`` is the sweep's
     hash, the one ``contactwave sweep`` writes to ``sweep.csv.hash`` for the same base
     scenario and axis values.
     """

@@ -7,6 +7,9 @@ import os
 import signal
 import threading
 import time
+import warnings
+
+import numpy as np
 
 import pytest
 
@@ -103,3 +106,121 @@ def test_ctrl_c_stops_a_long_bar_stack_run_with_keyboard_interrupt(root, tmp_pat
     # the next run is not interrupted
     r = cw.run(with_(HALF_SPACE, "incident", cycles=5))
     assert r.summary["A_inc"] > 0
+
+
+def _failing_identification(tmp_path):
+    """An identification whose bounds reach linear stiffnesses the solver cannot integrate
+    (up to 1e300 Pa/m): some forward runs fail numerically."""
+    (tmp_path / "base.toml").write_text(
+        '[medium]\nmaterial = "pmma"\n[interface]\nstatic_pressure = 0.1e6\n'
+        'compression = { law = "linear", stiffness = 1e12 }\n'
+        "[incident]\nfrequency = 1e6\ncycles = 5\nxi = 0.5\n"
+        "[solver]\nsamples_per_period = 32\n"
+    )
+    return {
+        "base": "base.toml",
+        "observed": ["A2_over_A1"],
+        "data": {"incident.xi": [0.3, 0.5, 0.8], "A2_over_A1": [0.01, 0.02, 0.03]},
+        "parameter": [
+            {
+                "key": "interface.compression.stiffness",
+                "bounds": [1e10, 1e300],
+                "scale": "log",
+                "initial": 1e11,
+            }
+        ],
+        "fit": {
+            "particles": 4,
+            "iterations": 2,
+            "local_iterations": 10,
+            "local_starts": 1,
+            "bootstrap": 0,
+        },
+    }
+
+
+def test_identify_with_failed_forward_runs_raises_unless_tolerated(tmp_path):
+    # in a child interpreter: the solver's failed Newton iterations leave per-thread state
+    # that changes later results in their last bits (a known issue; see the report), and
+    # test_sweep.py compares bit for bit with the CLI
+    import json
+    import subprocess
+    import sys
+
+    spec = _failing_identification(tmp_path)
+    code = f"""
+import json, warnings, contactwave as cw
+spec = json.loads({json.dumps(json.dumps(spec))})
+file = {str(tmp_path / "id.toml")!r}
+try:
+    cw.identify(spec, out={str(tmp_path / "out")!r}, file=file)
+    raise SystemExit("no SimulationError")
+except cw.SimulationError as e:
+    msg = str(e)
+with warnings.catch_warnings(record=True) as w:
+    warnings.simplefilter("always")
+    r = cw.identify(spec, file=file, tolerate_failures=True)
+print(json.dumps({{"msg": msg, "warned": [str(x.message) for x in w],
+                   "failed": r["failed_forward_runs"], "runs": r["forward_runs"],
+                   "first": r["first_failure"]}}))
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    res = json.loads(out.stdout.strip().splitlines()[-1])
+    assert "forward runs failed" in res["msg"] and "first: row " in res["msg"]
+    assert "numerical" in res["msg"]
+    # the files are written, as the CLI writes them before exiting 1
+    assert (tmp_path / "out" / "identification.json").exists()
+    assert any("forward runs failed" in m for m in res["warned"])
+    assert 0 < res["failed"] <= res["runs"]
+    assert res["first"].startswith("row ")
+
+
+CHEAP = {
+    "medium": {"material": "pmma"},
+    "interface": {"static_pressure": 0.1e6, "compression": {"law": "linear", "stiffness": 1e12}},
+    "incident": {"frequency": 1e6, "cycles": 2, "xi": 0.5},
+    "solver": {"samples_per_period": 16},
+}
+
+
+def test_failed_sweep_points_are_nan_and_all_failed_leaves_only_the_axes():
+    # a linear stiffness of 1e300 Pa/m cannot be integrated (the gap equation fails)
+    with pytest.warns(RuntimeWarning, match="1 of 3 sweep points failed"):
+        df = cw.sweep(CHEAP, {"interface.compression.stiffness": [1e12, 1e300, 1e13]}, as_frame=False)
+    assert np.isnan(df["xi"][1]) and np.isfinite(df["xi"][[0, 2]]).all()
+    with pytest.warns(RuntimeWarning, match="2 of 2 sweep points failed"):
+        df = cw.sweep(CHEAP, {"interface.compression.stiffness": [1e299, 1e300]}, as_frame=False)
+    assert sorted(df) == ["interface.compression.stiffness", "point"]
+
+
+def test_a_sweep_over_one_chunk_matches_the_chunked_executor_run():
+    # 4100 points: the local sweep runs them 4096 at a time; an executor in 64-point tasks
+    from concurrent.futures import ThreadPoolExecutor
+
+    axes = {"incident.xi": np.linspace(0.1, 1.0, 4100)}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        local = cw.sweep(CHEAP, axes, as_frame=False)
+        with ThreadPoolExecutor(2) as ex:
+            remote = cw.sweep(CHEAP, axes, executor=ex, as_frame=False)
+    assert sorted(local) == sorted(remote)
+    for k in local:
+        np.testing.assert_array_equal(local[k], remote[k], err_msg=k)
+
+
+def test_ctrl_c_stops_a_million_point_sweep_promptly_with_flat_memory():
+    import resource
+
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    for after in (0.3, 3.0):  # during the validation; later, while it runs (or validates)
+        timer = threading.Timer(after, lambda: os.kill(os.getpid(), signal.SIGINT))
+        timer.start()
+        t0 = time.perf_counter()
+        with pytest.raises(KeyboardInterrupt):
+            cw.sweep(CHEAP, {"incident.xi": np.linspace(0.1, 1.0, 1_000_000)})
+        took = time.perf_counter() - t0
+        assert took < after + 1.0, f"stopped {took - after:.2f} s after the signal"
+    # the models of 10^6 points are never alive at once (kilobytes each: gigabytes)
+    grown_mb = (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before) / 1024
+    assert grown_mb < 600, f"peak memory grew by {grown_mb:.0f} MB"

@@ -422,3 +422,144 @@ fn ctrl_c_and_sigterm_stop_run_and_sweep_with_130_and_no_partial_file() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// An identification whose bounds reach stiffnesses the solver cannot integrate (linear
+/// K up to 1e300 Pa/m: the gap equation's Newton iteration fails): the fit goes on, the
+/// files are written, and the exit code is 1 with the count and the first failure, or 0
+/// with a warning under --tolerate-failures.
+#[test]
+fn identify_with_failed_forward_runs_exits_1_unless_tolerated() {
+    let d = tmpdir("identify-failures");
+    std::fs::write(
+        d.join("base.toml"),
+        "[medium]\nmaterial = \"pmma\"\n[interface]\nstatic_pressure = 0.1e6\n\
+         compression = { law = \"linear\", stiffness = 1e12 }\n\
+         [incident]\nfrequency = 1e6\ncycles = 5\nxi = 0.5\n\
+         [solver]\nsamples_per_period = 32\n",
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("id.toml"),
+        "base = \"base.toml\"\nobserved = [\"A2_over_A1\"]\n\
+         [data]\n\"incident.xi\" = [0.3, 0.5, 0.8]\nA2_over_A1 = [0.01, 0.02, 0.03]\n\
+         [[parameter]]\nkey = \"interface.compression.stiffness\"\n\
+         bounds = [1e10, 1e300]\nscale = \"log\"\ninitial = 1e11\n\
+         [fit]\nparticles = 4\niterations = 2\nlocal_iterations = 10\n\
+         local_starts = 1\nbootstrap = 0\n",
+    )
+    .unwrap();
+    for tolerate in [false, true] {
+        let out = if tolerate { "tolerated" } else { "out" };
+        let mut c = bin();
+        c.current_dir(&d)
+            .args(["identify", "id.toml", "--out", out]);
+        if tolerate {
+            c.arg("--tolerate-failures");
+        }
+        let t0 = Instant::now();
+        let o = c.output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        let (code, word) = if tolerate {
+            (0, "warning")
+        } else {
+            (1, "error")
+        };
+        assert_eq!(o.status.code(), Some(code), "{err}");
+        let line = err.lines().last().unwrap_or("");
+        assert!(
+            line.starts_with(&format!("{word}: "))
+                && line.contains("forward runs failed")
+                && line.contains("first: row ")
+                && line.contains("numerical failure"),
+            "{err}"
+        );
+        // the count is a positive number not above the forward runs
+        let n: usize = line[word.len() + 2..]
+            .split(' ')
+            .next()
+            .and_then(|x| x.parse().ok())
+            .unwrap();
+        assert!(n > 0, "{line}");
+        let json = std::fs::read_to_string(d.join(out).join("identification.json")).unwrap();
+        assert!(
+            json.contains(&format!("\"failed_forward_runs\": {n}")),
+            "{json}"
+        );
+        println!(
+            "identify with {n} failed forward runs (tolerate: {tolerate}) | exit {code} in {:.1} ms",
+            t0.elapsed().as_secs_f64() * 1e3
+        );
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A bar-stack `[incident] kind = "file"` of 10^7 rows (170 MB, 10 ms of signal) under a
+/// budget of 100 MB: with `model.duration` only the simulated 50 us of it are read (the
+/// run succeeds quickly; reading it all would pass the budget: 10^7 rows need 640 MB);
+/// without, the whole file would set the run's length and is refused before it is read.
+#[test]
+fn a_bar_stack_incident_file_is_read_over_the_simulated_window_only() {
+    use std::io::Write;
+    let d = tmpdir("incident-file");
+    {
+        let mut w = std::io::BufWriter::new(std::fs::File::create(d.join("wave.csv")).unwrap());
+        writeln!(w, "t,s").unwrap();
+        for k in 0..10_000_000u64 {
+            // a 1 MHz sine (1 ns samples) ramped up over 3 periods
+            let s = (2.0 * std::f64::consts::PI * k as f64 / 1000.0).sin()
+                * (k as f64 / 3000.0).min(1.0);
+            writeln!(w, "{k}e-9,{s:.3}").unwrap();
+        }
+    }
+    let stack = |duration: &str| {
+        format!(
+            "[model]\nkind = \"bar_stack\"\narea = 1.0\nstatic_force = 0.082e6\n\
+             first_end = \"transparent\"\nlast_end = \"transparent\"\n{duration}\n\
+             [[segment]]\nname = \"upper\"\nlength = 0.005\nmaterial = \"pmma\"\n\
+             [[segment]]\nname = \"lower\"\nlength = 0.005\nmaterial = \"pmma\"\n\
+             [[interface]]\nbetween = [\"upper\", \"lower\"]\n\
+             compression = {{ law = \"rigid\" }}\n\
+             traction = {{ law = \"rccm\", stiffness = 2e13, energy = 0.1 }}\n\
+             [incident]\nkind = \"file\"\npath = \"wave.csv\"\nfrequency = 1e6\n\
+             amplitude = 2.5e6\n"
+        )
+    };
+    std::fs::write(d.join("window.toml"), stack("duration = 50e-6")).unwrap();
+    std::fs::write(d.join("whole.toml"), stack("")).unwrap();
+    let go = |name: &str, out: &str| {
+        let t0 = Instant::now();
+        let o = bin()
+            .current_dir(&d)
+            .env("CONTACTWAVE_MEMORY_BUDGET", "100M")
+            .args(["run", name, "--out", out])
+            .output()
+            .unwrap();
+        (o, t0.elapsed())
+    };
+    let (o, took) = go("window.toml", "out_window");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(d.join("out_window/summary.json").exists());
+    assert!(took < Duration::from_secs(10), "{took:?}");
+    println!(
+        "bar-stack incident file of 10^7 rows, model.duration = 50 us | exit 0 in {:.1} ms",
+        took.as_secs_f64() * 1e3
+    );
+    let (o, took) = go("whole.toml", "out_whole");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.starts_with("error: ")
+            && err.contains("wave.csv")
+            && err.contains("memory budget of 100 MB")
+            && err.contains("use a shorter file"),
+        "{err}"
+    );
+    assert!(!d.join("out_whole").exists());
+    assert!(took < Duration::from_secs(1), "{took:?}");
+    println!(
+        "bar-stack incident file of 10^7 rows, no model.duration | exit 2 in {:.1} ms",
+        took.as_secs_f64() * 1e3
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -454,8 +454,68 @@ fn sweep_plan<'py>(
     Ok((points_array(py, &sweep)?, sweep.hash))
 }
 
+/// Points a local sweep builds and runs at a time: the models and summaries of one chunk
+/// are alive at once, then folded into the result columns (memory: the result table plus
+/// one chunk, whatever the number of points).
+const SWEEP_CHUNK: usize = 4096;
+
+/// Result columns of a sweep, filled chunk by chunk: keys in order of first appearance,
+/// one column of `n` values per key (NaN where a point has no value).
+struct Columns {
+    n: usize,
+    keys: Vec<String>,
+    columns: Vec<Vec<f64>>,
+    errors: Vec<(usize, String)>,
+}
+
+impl Columns {
+    fn new(n: usize) -> Self {
+        Columns {
+            n,
+            keys: Vec::new(),
+            columns: Vec::new(),
+            errors: Vec::new(),
+        }
+    }
+
+    /// Fold the outcomes of points `start..start + outcomes.len()`.
+    fn fold(&mut self, start: usize, outcomes: Vec<Outcome>) {
+        for (j, o) in outcomes.into_iter().enumerate() {
+            match o {
+                Ok(s) => {
+                    for key in s.keys() {
+                        if !self.keys.iter().any(|k| k == key) {
+                            self.keys.push(key.to_string());
+                            self.columns.push(vec![f64::NAN; self.n]);
+                        }
+                    }
+                    for (k, key) in self.keys.iter().enumerate() {
+                        self.columns[k][start + j] = s.get(key).unwrap_or(f64::NAN);
+                    }
+                }
+                Err(e) => self.errors.push((start + j, e)),
+            }
+        }
+    }
+
+    fn into_table(self, py: Python<'_>) -> PyResult<Table<'_>> {
+        let k = self.keys.len();
+        let mut data = vec![f64::NAN; self.n * k];
+        for (c, col) in self.columns.iter().enumerate() {
+            for (i, v) in col.iter().enumerate() {
+                data[i * k + c] = *v;
+            }
+        }
+        let arr = Array2::from_shape_vec((self.n, k), data)
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        Ok((self.keys, arr.into_pyarray(py), self.errors))
+    }
+}
+
 /// Run a whole sweep on local cores (the executor; `threads=None`: all cores) with the GIL
 /// released; Ctrl-C cancels it (KeyboardInterrupt once the running points finish).
+/// Every point is validated first (flat memory), then the points are built and run in
+/// chunks of [`SWEEP_CHUNK`]: memory is the result table plus one chunk.
 /// Returns `(points[n, n_axes], hash, (keys, values[n_points, n_keys], errors[(point,
 /// message)]))` in grid order.
 #[pyfunction]
@@ -470,13 +530,6 @@ fn sweep_local<'py>(
 ) -> PyResult<(Bound<'py, numpy::PyArray2<f64>>, String, Table<'py>)> {
     let file = base_path.display().to_string();
     let table = table_from_json(base_json, &file).map_err(to_py)?;
-    let (sweep, models) = py
-        .detach(move || -> Result<_, Error> {
-            let sweep = Sweep::from_parts(Path::new("<sweep>"), base_path, table, axes)?;
-            let models = sweep.runnable()?;
-            Ok((sweep, models))
-        })
-        .map_err(to_py)?;
     if let Some(n) = threads {
         contactwave::run::check_threads(n).map_err(|_| {
             PyValueError::new_err(format!(
@@ -485,12 +538,40 @@ fn sweep_local<'py>(
             ))
         })?;
     }
-    let executor = Executor::new().threads(threads);
-    let outcomes = run_interruptibly(py, &models, executor, progress.as_ref())?;
+    contactwave::interrupt::clear();
+    let (sweep, plan) = detach_interruptibly(py, move || -> Result<_, Error> {
+        let sweep = Sweep::from_parts(Path::new("<sweep>"), base_path, table, axes)?;
+        let plan = sweep.validate()?;
+        Ok((sweep, plan))
+    })?;
+    let n = sweep.points.len();
+    let mut cols = Columns::new(n);
+    for start in (0..n).step_by(SWEEP_CHUNK) {
+        let end = (start + SWEEP_CHUNK).min(n);
+        let models = detach_interruptibly(py, || {
+            (start..end)
+                .map(|i| sweep.model(&plan, i))
+                .collect::<Result<Vec<_>, Error>>()
+        })?;
+        let outs = run_interruptibly(
+            py,
+            &models,
+            Executor::new().threads(threads),
+            progress.as_ref(),
+            (start, n),
+        )?;
+        drop(models);
+        cols.fold(start, outs);
+    }
+    if n == 0 {
+        if let Some(cb) = &progress {
+            cb.call1((0, 0))?;
+        }
+    }
     Ok((
         points_array(py, &sweep)?,
         sweep.hash.clone(),
-        outcomes_table(py, outcomes)?,
+        cols.into_table(py)?,
     ))
 }
 
@@ -501,9 +582,51 @@ fn points_array<'py>(py: Python<'py>, sweep: &Sweep) -> PyResult<Bound<'py, nump
     Ok(arr.into_pyarray(py))
 }
 
+/// Run `f` (library work that checks [`contactwave::interrupt`], e.g. the validation of
+/// a sweep's points) in a helper thread while this thread, GIL released between polls,
+/// checks for signals every [`SIGNAL_POLL`]; on a signal, request the interruption, wait
+/// for `f` and return the signal's exception (KeyboardInterrupt for Ctrl-C).
+fn detach_interruptibly<T: Send>(
+    py: Python<'_>,
+    f: impl FnOnce() -> Result<T, Error> + Send,
+) -> PyResult<T> {
+    let finished = (Mutex::new(false), Condvar::new());
+    std::thread::scope(|s| {
+        let worker = s.spawn(|| {
+            let out = f();
+            let (m, cv) = &finished;
+            *m.lock().unwrap_or_else(|p| p.into_inner()) = true;
+            cv.notify_all();
+            out
+        });
+        loop {
+            let finished_now = py.detach(|| {
+                let (m, cv) = &finished;
+                let g = m.lock().unwrap_or_else(|p| p.into_inner());
+                let (g, _) = cv
+                    .wait_timeout_while(g, SIGNAL_POLL, |d| !*d)
+                    .unwrap_or_else(|p| p.into_inner());
+                *g
+            });
+            if let Err(e) = py.check_signals() {
+                contactwave::interrupt::request();
+                let _ = py.detach(|| worker.join());
+                contactwave::interrupt::clear();
+                return Err(e);
+            }
+            if finished_now {
+                break;
+            }
+        }
+        py.detach(|| worker.join())
+            .map_err(|_| PyRuntimeError::new_err("worker thread panicked"))?
+            .map_err(to_py)
+    })
+}
+
 /// Run `models` on the executor in a helper thread while this thread (GIL released
 /// between polls) checks for signals every [`SIGNAL_POLL`] and calls the Python
-/// `progress(done, total)` callback when the count moved; on a signal (or an exception in
+/// `progress(offset + done, total)` callback when the count moved; on a signal (or an exception in
 /// the callback), cancel (the executor starts no new point), wait for the running points
 /// and return the exception.
 fn run_interruptibly(
@@ -511,16 +634,16 @@ fn run_interruptibly(
     models: &[Arc<dyn contactwave::model::Model>],
     executor: Executor,
     progress: Option<&Bound<'_, PyAny>>,
+    (offset, total): (usize, usize),
 ) -> PyResult<Vec<Outcome>> {
     contactwave::interrupt::clear();
     let cancel = AtomicBool::new(false);
-    let done = AtomicUsize::new(0);
-    let total = models.len();
+    let done = AtomicUsize::new(offset);
     let finished = (Mutex::new(false), Condvar::new());
     let mut reported = usize::MAX;
     std::thread::scope(|s| {
         let worker = s.spawn(|| {
-            let count = |d: usize, _total: usize| done.store(d, Ordering::SeqCst);
+            let count = |d: usize, _total: usize| done.store(offset + d, Ordering::SeqCst);
             let observer = Progress {
                 report: &count,
                 cancel: Some(&cancel),

@@ -125,6 +125,19 @@ pub fn check(
     bytes: f64,
     what: &str,
 ) -> Result<()> {
+    check_or(file, field, value, bytes, what, &format!("lower `{field}`"))
+}
+
+/// [`check`] naming `change` (e.g. `use a shorter file`) as the way out instead of
+/// `lower FIELD`.
+pub fn check_or(
+    file: &str,
+    field: &str,
+    value: impl std::fmt::Display,
+    bytes: f64,
+    what: &str,
+    change: &str,
+) -> Result<()> {
     let limit = limit()?;
     if bytes.is_finite() && bytes >= 0.0 && bytes <= limit {
         return Ok(());
@@ -134,7 +147,7 @@ pub fn check(
         field,
         value,
         format!(
-            "needs about {} of memory ({what}), above the memory budget of {} (lower `{field}`, or raise the budget with {ENV}=BYTES)",
+            "needs about {} of memory ({what}), above the memory budget of {} ({change}, or raise the budget with {ENV}=BYTES)",
             human(bytes),
             human(limit)
         ),
@@ -150,12 +163,13 @@ pub fn check_file(path: &Path, field: &str, factor: f64) -> Result<()> {
     };
     let len = meta.len() as f64;
     let shown = path.display().to_string();
-    check(
+    check_or(
         &shown,
         field,
         &shown,
         len * factor,
         &format!("a file of {} read into memory", human(len)),
+        "use a shorter file",
     )
 }
 

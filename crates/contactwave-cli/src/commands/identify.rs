@@ -10,7 +10,7 @@
 //!
 //! Everything is validated before the output folder is touched.
 
-use super::{check_out_dir, output_file, write_and_list, EXIT_OK};
+use super::{check_out_dir, output_file, write_and_list, EXIT_FAILED, EXIT_OK};
 use contactwave::inverse::{self, synthesize, IdentifySpec, Model};
 use contactwave::Error;
 use std::io::IsTerminal;
@@ -41,19 +41,35 @@ pub struct Args {
     /// Seed of the --synthesize noise.
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// Exit 0 even when forward runs fail (the fit gives their parameter points a
+    /// prohibitive cost and goes on); without it an identification with failed forward
+    /// runs exits 1 after writing its files.
+    #[arg(long)]
+    tolerate_failures: bool,
 }
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
     if args.synthesize.is_empty() {
-        identify(&args.spec, args.out.as_deref(), args.design)
+        identify(
+            &args.spec,
+            args.out.as_deref(),
+            args.design,
+            args.tolerate_failures,
+        )
     } else {
         synthesize_data(&args.spec, &args.synthesize, args.noise, args.seed)
     }
 }
 
 /// Estimate the unknowns of an identification file, or rank its design candidates
-/// (`design`).
-fn identify(path: &Path, out: Option<&Path>, design: bool) -> contactwave::Result<u8> {
+/// (`design`). Forward runs that failed: exit 1 (count and first message on stderr)
+/// unless `tolerate`.
+fn identify(
+    path: &Path,
+    out: Option<&Path>,
+    design: bool,
+    tolerate: bool,
+) -> contactwave::Result<u8> {
     let spec = IdentifySpec::load(path)?;
     if let Some(out) = out {
         check_out_dir(out)?;
@@ -133,6 +149,18 @@ fn identify(path: &Path, out: Option<&Path>, design: bool) -> contactwave::Resul
     );
     if let Some(out) = out {
         write_and_list(out, &files)?;
+    }
+    if result.failed_runs > 0 {
+        let what = if tolerate { "warning" } else { "error" };
+        eprintln!(
+            "{what}: {} of {} forward runs failed (the fit gave them a prohibitive cost; --tolerate-failures to accept); first: {}",
+            result.failed_runs,
+            result.forward_runs,
+            result.first_failure.as_deref().unwrap_or("(no message)")
+        );
+        if !tolerate {
+            return Ok(EXIT_FAILED);
+        }
     }
     Ok(EXIT_OK)
 }

@@ -15,9 +15,9 @@ use std::time::Instant;
 
 /// Simulate one scenario and write its files into DIR (SI units: s, m, Pa, m/s, Hz): for a
 /// half-space scenario summary.json, timeseries.csv, probe.csv, spectrum.csv and SVG plots;
-/// for a bar stack summary.json, timeseries.csv and frf.csv (hammer) or waves.csv and
-/// probes.csv (incident wave) (docs/scenario.md section 4). Ctrl-C stops it (exit 130,
-/// nothing written).
+/// for a bar stack summary.json, timeseries.csv, then frf.csv and frf.svg (hammer) or
+/// waves.csv (incident wave), and probes.csv with [[probe]] tables (docs/scenario.md
+/// section 4). Ctrl-C stops it (exit 130, nothing written).
 #[derive(clap::Args)]
 pub struct Args {
     /// Scenario file (TOML; see docs/scenario.md).

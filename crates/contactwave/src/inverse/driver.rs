@@ -82,6 +82,8 @@ pub fn identify(spec: &IdentifySpec, progress: &(dyn Fn(&str) + Sync)) -> Result
         measured: spec.measured.clone(),
         fitted,
         forward_runs: model.forward_runs(),
+        failed_runs: model.failed_runs(),
+        first_failure: model.first_failure(),
         wall_seconds: t0.elapsed().as_secs_f64(),
     })
 }

@@ -22,6 +22,10 @@ pub struct Model<'a> {
     /// The spec.
     pub spec: &'a IdentifySpec,
     runs: AtomicUsize,
+    /// Forward runs that failed numerically (or gave a non-finite observed value).
+    failures: AtomicUsize,
+    /// The first such failure: `row N: MESSAGE`.
+    first_failure: Mutex<Option<String>>,
     /// The base scenario, planned once: every forward run sets numbers on it.
     template: Arc<dyn Template>,
     /// Keys resolved to parameters of the template so far.
@@ -34,6 +38,8 @@ impl<'a> Model<'a> {
         Model {
             spec,
             runs: AtomicUsize::new(0),
+            failures: AtomicUsize::new(0),
+            first_failure: Mutex::new(None),
             template: model::plan(spec.base_table.clone(), &spec.base),
             params: Mutex::new(Vec::new()),
         }
@@ -53,6 +59,29 @@ impl<'a> Model<'a> {
     /// Forward runs so far.
     pub fn forward_runs(&self) -> usize {
         self.runs.load(Ordering::Relaxed)
+    }
+
+    /// Forward runs so far that failed numerically or gave a non-finite observed value
+    /// (the fit gives such a point a prohibitive cost and goes on).
+    pub fn failed_runs(&self) -> usize {
+        self.failures.load(Ordering::Relaxed)
+    }
+
+    /// The first failed forward run, `row N: MESSAGE` (`None` if none failed).
+    pub fn first_failure(&self) -> Option<String> {
+        self.first_failure
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .clone()
+    }
+
+    /// Count a failed forward run of row `i` (0-based) and keep the first message.
+    fn record_failure(&self, i: usize, message: impl std::fmt::Display) {
+        self.failures.fetch_add(1, Ordering::Relaxed);
+        let mut first = self.first_failure.lock().unwrap_or_else(|p| p.into_inner());
+        if first.is_none() {
+            *first = Some(format!("row {}: {message}", i + 1));
+        }
     }
 
     /// Scaled coordinates -> parameter values (clamped into the bounds).
@@ -131,7 +160,11 @@ impl<'a> Model<'a> {
     pub fn run_with(&self, i: usize, values: &[f64], extra: &[(String, f64)]) -> Result<Summary> {
         let s = self.build(i, values, extra)?;
         self.runs.fetch_add(1, Ordering::Relaxed);
-        s.summary()
+        let summary = s.summary();
+        if let Err(e @ Error::Numerical { .. }) = &summary {
+            self.record_failure(i, e);
+        }
+        summary
     }
 
     /// Model values `[row][observed]` at scaled coordinates `z`, for the given rows
@@ -140,13 +173,24 @@ impl<'a> Model<'a> {
         let values = self.values(z);
         Executor::new().try_map(rows, |&i| {
             let s = self.run_with(i, &values, &[])?;
-            Ok(self
+            let c: Vec<f64> = self
                 .spec
                 .measured
                 .observed
                 .iter()
                 .map(|o| s.get(&o.key).unwrap_or(f64::NAN))
-                .collect())
+                .collect();
+            if let Some((o, v)) = self
+                .spec
+                .measured
+                .observed
+                .iter()
+                .zip(&c)
+                .find(|(_, v)| !v.is_finite())
+            {
+                self.record_failure(i, format!("{} = {v} (not finite)", o.key));
+            }
+            Ok(c)
         })
     }
 

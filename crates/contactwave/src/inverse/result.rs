@@ -22,6 +22,11 @@ pub struct Identification {
     pub fitted: Vec<Vec<f64>>,
     /// Forward runs done.
     pub forward_runs: usize,
+    /// Forward runs that failed numerically or gave a non-finite observed value (the fit
+    /// gave those parameter points a prohibitive cost and went on).
+    pub failed_runs: usize,
+    /// The first failed forward run, `row N: MESSAGE`.
+    pub first_failure: Option<String>,
     /// Wall time, s.
     pub wall_seconds: f64,
 }
@@ -95,7 +100,7 @@ impl Identification {
                 json!([fin(id.bound_delta_chi2[j].0), fin(id.bound_delta_chi2[j].1)]),
             );
         }
-        json!({
+        let mut out = json!({
             "parameters": self.parameters.iter().map(|p| json!({
                 "key": p.key,
                 "bounds": [p.lower, p.upper],
@@ -129,7 +134,13 @@ impl Identification {
                 "condition_number": fin(id.condition_number),
                 "parameter_order": self.parameters.iter().map(|p| p.key.clone()).collect::<Vec<_>>(),
             },
-        })
+        });
+        // only when some forward run failed (the keys are absent otherwise)
+        if self.failed_runs > 0 {
+            out["failed_forward_runs"] = json!(self.failed_runs);
+            out["first_failure"] = json!(self.first_failure);
+        }
+        out
     }
 
     /// `fit.csv`: conditions, then measured, fitted and sigma per observed key.

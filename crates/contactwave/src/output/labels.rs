@@ -9,21 +9,17 @@ pub fn quantity(key: &str) -> (String, &'static str) {
     if let Some((name, unit)) = known(key) {
         return (name.to_string(), unit);
     }
-    // per-interface summary keys: `mean_contact_stiffness_0` -> interface 1
+    // per-interface summary keys: `mean_contact_stiffness_0` -> interface 0 (numbered from
+    // 0, as the keys `_0`, `_1` and `interface.0` are)
     if let Some((base, i)) = key.rsplit_once('_') {
         if let Ok(i) = i.parse::<usize>() {
             let (name, unit) = quantity(base);
-            return (format!("{name}, interface {}", i + 1), unit);
+            return (format!("{name}, interface {i}"), unit);
         }
     }
     let last = key.rsplit('.').next().unwrap_or(key);
-    let words: Vec<String> = key
-        .split(['.', '_'])
-        .map(|w| match w.parse::<usize>() {
-            Ok(i) => (i + 1).to_string(),
-            Err(_) => w.to_string(),
-        })
-        .collect();
+    // indices stay as the key writes them (0-based: `segment.0.mass` -> segment 0 mass)
+    let words: Vec<String> = key.split(['.', '_']).map(str::to_string).collect();
     (words.join(" "), guess_unit(last))
 }
 
@@ -142,9 +138,9 @@ mod tests {
         assert_eq!(axis_label("incident.xi", ""), "load ratio xi");
         assert_eq!(
             axis_label("mean_contact_stiffness_0", "T"),
-            "mean contact stiffness K, interface 1, TPa/m"
+            "mean contact stiffness K, interface 0, TPa/m"
         );
-        assert_eq!(axis_label("segment.0.mass", ""), "segment 1 mass, kg");
+        assert_eq!(axis_label("segment.0.mass", ""), "segment 0 mass, kg");
         assert_eq!(
             axis_label("solver.unknown_thing", ""),
             "solver unknown thing"

@@ -229,7 +229,7 @@ impl Scenario {
         let shear_wave = spec
             .shear_incident
             .as_ref()
-            .map(|inc| build_shear_wave(inc, file, base_dir, cache))
+            .map(|inc| build_shear_wave(inc, file, base_dir, cache, None))
             .transpose()?;
         let (incident, xi) = match &shear_wave {
             Some(w) if spec.incident.is_absent() => (silent(w.fundamental()), 0.0),
@@ -504,16 +504,18 @@ pub(crate) fn build_incident_cached(
     xi_ref: Option<&XiReference<'_>>,
     cache: &BuildCache,
 ) -> Result<(Arc<dyn Excitation>, f64)> {
-    build_wave(inc, "incident", file, base_dir, xi_ref, cache)
+    build_wave(inc, "incident", file, base_dir, xi_ref, cache, None)
 }
 
 /// The incident shear wave of a `[shear_incident]` table (amplitude in Pa: a shear wave
-/// has no load ratio xi), reading a waveform file through `cache`.
+/// has no load ratio xi), reading a waveform file through `cache` (over its first
+/// `window` seconds only, as [`build_incident_window`]).
 pub(crate) fn build_shear_wave(
     inc: &IncidentSpec,
     file: &str,
     base_dir: &Path,
     cache: &BuildCache,
+    window: Option<f64>,
 ) -> Result<Arc<dyn Excitation>> {
     if let Some(x) = inc.xi {
         return Err(Error::invalid(
@@ -523,10 +525,25 @@ pub(crate) fn build_shear_wave(
             "a shear wave takes `amplitude` (Pa), not xi",
         ));
     }
-    Ok(build_wave(inc, "shear_incident", file, base_dir, None, cache)?.0)
+    Ok(build_wave(inc, "shear_incident", file, base_dir, None, cache, window)?.0)
 }
 
-/// [`build_incident_cached`] for the table at `prefix` (`incident`, `shear_incident`),
+/// [`build_incident_cached`] of a run that simulates `window` seconds (`None`: as long as
+/// the wave): a `kind = "file"` waveform is then read over its first `window` seconds
+/// only (and one row beyond), however long the file; `amplitude` and `xi` refer to the
+/// peak within that window.
+pub(crate) fn build_incident_window(
+    inc: &IncidentSpec,
+    file: &str,
+    base_dir: &Path,
+    xi_ref: Option<&XiReference<'_>>,
+    cache: &BuildCache,
+    window: Option<f64>,
+) -> Result<(Arc<dyn Excitation>, f64)> {
+    build_wave(inc, "incident", file, base_dir, xi_ref, cache, window)
+}
+
+/// [`build_incident_window`] for the table at `prefix` (`incident`, `shear_incident`),
 /// applying its `delay`.
 pub(crate) fn build_wave(
     inc: &IncidentSpec,
@@ -535,6 +552,7 @@ pub(crate) fn build_wave(
     base_dir: &Path,
     xi_ref: Option<&XiReference<'_>>,
     cache: &BuildCache,
+    simulated: Option<f64>,
 ) -> Result<(Arc<dyn Excitation>, f64)> {
     let key = |k: &str| format!("{prefix}.{k}");
     let f0 = positive_opt(file, &key("frequency"), inc.frequency, None)?;
@@ -652,7 +670,14 @@ pub(crate) fn build_wave(
                 )
             })?;
             let p: PathBuf = base_dir.join(rel);
-            let cols = cache.columns(&p, &key("path"), FileWaveform::read)?;
+            // a finite simulated window: only its part of the file is read (the cache key
+            // holds the window); otherwise the whole file, within the memory budget
+            let cols = match simulated.filter(|w| w.is_finite() && *w > 0.0) {
+                Some(w) => cache.columns(&p, &format!("{}@{w:e}", key("path")), |p, _| {
+                    FileWaveform::read_window(p, &key("path"), Some(w))
+                })?,
+                None => cache.columns(&p, &key("path"), FileWaveform::read)?,
+            };
             let (t, s) = (&cols.0, &cols.1);
             Arc::new(
                 FileWaveform::new(t, s, f0, amplitude)

@@ -213,12 +213,14 @@ pub(super) fn incident_wave(
                 z2,
                 pressure_key: "model.static_force / model.gravity",
             });
-            Ok(Some(crate::scenario::build_incident_cached(
+            // an explicit model.duration bounds the read of a waveform file
+            Ok(Some(crate::scenario::build_incident_window(
                 inc,
                 file,
                 dir,
                 xi_ref.as_ref(),
                 cache,
+                m.duration,
             )?))
         }
     }
@@ -243,7 +245,8 @@ pub(super) fn shear_wave(
             "\"transparent\": a [shear_incident] wave enters through the first end",
         ));
     }
-    crate::scenario::build_shear_wave(inc, file, dir, cache).map(Some)
+    // an explicit model.duration bounds the read of a waveform file
+    crate::scenario::build_shear_wave(inc, file, dir, cache, spec.model.duration).map(Some)
 }
 
 /// The incident wave as the solver takes it: its stress where it meets the first

@@ -528,13 +528,16 @@ fn check_axes(file: &str, axes: &[Axis]) -> Result<()> {
             .collect::<Vec<_>>()
             .join(" x "),
         points * (BYTES_PER_POINT + 8.0 * axes.len() as f64),
-        &format!("{points:.3e} grid points: their values, validated models and summary rows"),
+        &format!("{points:.3e} grid points: their values and result rows"),
     )
 }
 
-/// Memory one grid point takes while a sweep runs (its validated model and its summary
-/// row), bytes: an upper estimate of what [`Sweep::runnable`] and the rows hold.
-const BYTES_PER_POINT: f64 = 4096.0;
+/// Memory one grid point takes while a sweep runs, bytes: an upper estimate of its axis
+/// values and its result row (the CLI streams its rows to `sweep.csv`; Python's local
+/// sweep builds and runs the points 4096 at a time and holds a table of 8-byte values,
+/// about 40 columns, twice while the table is assembled). The models are never all
+/// alive at once ([`Sweep::runnable`] is for small sweeps).
+const BYTES_PER_POINT: f64 = 1024.0;
 
 fn parse_axis(a: &toml::Value, i: usize, file: &str) -> Result<Axis> {
     let t = match a {
