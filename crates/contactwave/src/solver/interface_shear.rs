@@ -21,13 +21,12 @@
 //! normal and tangential halves are coupled only through beta (N does not depend on
 //! `g_T`); [`coupled_step`] iterates the two halves to a fixed point. Nothing allocates.
 //!
-//! As in [`super::barstack::InterfaceScheme`], the `Average` scheme applies the mean of
+//! As in [`super::interface::InterfaceScheme`], the `Average` scheme applies the mean of
 //! the new and the previous-but-one stresses over the step (trapezoidal, no numerical
 //! dissipation for springs), and rigid constraints (Signorini, bonded, rigid stick) keep
 //! the backward projection that enforces them at the new level.
 
-use super::barstack::InterfaceScheme;
-use super::interface::{self, InterfaceUpdate};
+use super::interface::{self, InterfaceScheme, InterfaceUpdate};
 use crate::error::{Error, Result};
 use crate::law::{ContactLaw, TangentialLaw};
 use crate::numeric::root::brent_past;

@@ -7,13 +7,14 @@ mod fields;
 pub mod files;
 mod shear;
 mod simulate;
+mod waves;
 
 pub use files::{bar_stack_files, FRF_HEADER};
 pub use shear::{BarShear, ShearProbeHistory};
 pub use simulate::{
     simulate_bar_stack, simulate_bar_stack_with_progress, BarStackResult, Frf, ProbeHistory,
-    WaveHistories,
 };
+pub use waves::WaveHistories;
 
 use super::record::summary_record;
 use super::template::{FromSpec, SpecTemplate};

@@ -4,7 +4,7 @@
 //! dissipation and the energy balance of both wave types, and the transverse histories
 //! at the probes.
 
-use super::simulate::{wave_analysis, WaveHistories};
+use super::waves::{wave_analysis, WaveHistories};
 use crate::analysis::{set_shear_harmonics, Summary};
 use crate::scenario::bar_stack::BarStackScenario;
 use crate::solver::barstack::{End, FdOutput, Mesh};
