@@ -143,6 +143,15 @@ def commands():
                          ["run", rel(p), "--out", f"{{OUT}}/run/shear_{p.stem}"], "txt"))
             cmds.append((f"law_shear_{p.stem}",
                          ["law", rel(p), "--out", f"{{OUT}}/law/shear_{p.stem}"], "txt"))
+    # oblique incidence (examples/oblique): runs and the pressure x angle sweep
+    for p in sorted((ex / "oblique").glob("*.toml")):
+        if is_sweep_file(p):
+            cmds.append((f"sweep_oblique_{p.stem}",
+                         ["sweep", rel(p), "--out", f"{{OUT}}/sweep/oblique_{p.stem}",
+                          "--threads", "2"], "txt"))
+        else:
+            cmds.append((f"run_oblique_{p.stem}",
+                         ["run", rel(p), "--out", f"{{OUT}}/run/oblique_{p.stem}"], "txt"))
     for p in scenarios:
         cmds.append((f"run_{p.stem}", ["run", rel(p), "--out", f"{{OUT}}/run/{p.stem}"], "txt"))
     for p in sweeps:

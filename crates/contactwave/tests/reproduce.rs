@@ -144,6 +144,19 @@ fn shear_chapter_matches_the_clipping_closed_form_and_friction_takes_over_from_a
     assert!(value(&c, "shear_rccm_beta_end_shear_only") > 0.99);
     assert!(value(&c, "shear_rccm_beta_end_shear_only_8MPa") < 0.5);
     assert!(value(&c, "shear_rccm_spring_share_end") < 0.05);
+    // oblique incidence: A2/A1 of the reflected P wave has an interior maximum against p0
+    // (1e2..1e7 Pa) at every angle, higher at larger angles where friction slips; two
+    // extractions agree at the maxima, and the audit closes
+    let mut last = 0.0;
+    for tag in ["0", "22p5", "45"] {
+        let h = value(&c, &format!("oblique_A2_over_A1_max_{tag}deg"));
+        let p = value(&c, &format!("oblique_A2_max_pressure_{tag}deg"));
+        assert!(h > last, "{tag}: {h} after {last}");
+        assert!(p > 1.5e2 && p < 5e6, "{tag}: {p}");
+        last = h;
+    }
+    assert!(value(&c, "oblique_pulse_inversion_vs_plateau_fit") < 0.05);
+    assert!(value(&c, "oblique_energy_closure_error") < 1e-6);
     for f in &c.figures {
         assert!(!f.caption.is_empty(), "{}", f.id);
         assert!(

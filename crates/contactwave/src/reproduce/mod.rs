@@ -19,6 +19,7 @@
 mod chapter3;
 mod chapter4;
 mod chapter5;
+mod oblique;
 mod report;
 mod shear;
 
@@ -63,6 +64,10 @@ pub const SCENARIOS: &[(&str, &str)] = &[
     (
         "shear_rccm.toml",
         include_str!("../../../../examples/shear/rccm_shear.toml"),
+    ),
+    (
+        "oblique_p.toml",
+        include_str!("../../../../examples/oblique/p_45deg.toml"),
     ),
 ];
 

@@ -14,7 +14,9 @@
 //! 4. the full RCCM law (`examples/shear/rccm_shear.toml`: C_N = 2e13 Pa/m, w = 0.1 J/m^2,
 //!    C_T = 1e13 Pa/m, mu = 0.4, p0 = 0.82 MPa): the competition of adhesion and friction
 //!    (thesis chapter 1, Figure 5) under a normal and a shear burst, against the shear
-//!    amplitude, with a shear-only series and the Coulomb limit (no adhesion).
+//!    amplitude, with a shear-only series and the Coulomb limit (no adhesion);
+//! 5. oblique incidence ([`super::oblique`]): the reflected P wave's A2/A1 against the static
+//!    pressure at 0, 22.5 and 45 degrees.
 
 use super::{
     argmax_refined, column, f, finding, fmt_value, lin, panel, tv, Chapter, ChapterResult, Ctx,
@@ -171,9 +173,10 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
     loops(ctx, &s, &rect, &mut out)?;
     dissipation(&s, &rect, &hann, &mut out);
     rccm(ctx, &s, &mut out)?;
+    super::oblique::run(ctx, &mut out.figures, &mut out.findings)?;
     Ok(ChapterResult {
         chapter: Chapter::Shear,
-        title: "Beyond the thesis: shear waves and friction".into(),
+        title: "Beyond the thesis: shear waves, friction and oblique incidence".into(),
         intro: "Not in the thesis (its chapter 1 states the full RCCM law, chapters 3-5 probe \
                 it with longitudinal waves only). Two identical aluminium half-spaces (E = 71 \
                 GPa, nu = 0.33, rho = 2710 kg/m^3, shear impedance Z_T = rho c_T) under a \
@@ -183,7 +186,9 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
                 above the friction ratio mu p0 / tau_inc = 1 (closed form: model of Meziane, \
                 Norris and Shuvalov, JASA 2011, analytic::friction). The full RCCM law adds \
                 an adhesive spring beta^2 C_T [u]_T, damaged by the normal and tangential gaps \
-                together, so friction takes over as beta falls to 0."
+                together, so friction takes over as beta falls to 0. Last, a P wave at 0, 22.5 \
+                and 45 degrees on a pressed power-law contact with friction (oblique \
+                incidence, mode conversion, model.md section 14)."
             .into(),
         figures: out.figures,
         findings: out.findings,

@@ -94,6 +94,26 @@ pub fn analyse(
     out: &HalfSpaceOutput,
     solve: impl Fn(&Scenario) -> Result<HalfSpaceOutput>,
 ) -> Result<Analysis> {
+    analyse_keeping(scenario, out, |s| solve(s).map(|o| (o, ()))).map(|(a, _)| a)
+}
+
+/// The derived solves of an analysis, kept with what the solver returned beside the normal
+/// histories (at oblique incidence the tangential ones, to analyse each outgoing wave by the
+/// same method).
+#[derive(Debug, Clone)]
+pub struct Derived<T> {
+    /// The interface linearised at its static state ([`linearised`]), where it has one.
+    pub linear: Option<(HalfSpaceOutput, T)>,
+    /// The phase-inverted burst ([`inverted`]), for pulse inversion.
+    pub inverse: Option<(HalfSpaceOutput, T)>,
+}
+
+/// [`analyse`], keeping the derived solves: `solve` returns the normal histories and `T`.
+pub fn analyse_keeping<T>(
+    scenario: &Scenario,
+    out: &HalfSpaceOutput,
+    solve: impl Fn(&Scenario) -> Result<(HalfSpaceOutput, T)>,
+) -> Result<(Analysis, Derived<T>)> {
     let method = scenario.spec.analysis.method;
     let sig = signal(scenario, out);
     let linear = match linearised(scenario) {
@@ -113,12 +133,14 @@ pub fn analyse(
              at p0 = 0 has none); use pulse_inversion",
         ));
     }
-    let lin = linear.as_ref().map(|o| o.reflected_displacement.as_slice());
+    let lin = linear
+        .as_ref()
+        .map(|o| o.0.reflected_displacement.as_slice());
     let records = Records {
         response: &out.reflected_displacement,
         inverse: inverse
             .as_ref()
-            .map(|o| o.reflected_displacement.as_slice()),
+            .map(|o| o.0.reflected_displacement.as_slice()),
         linear: lin,
     };
     let bands = method_bands(method, &records, &sig)
@@ -136,9 +158,12 @@ pub fn analyse(
             }
         }
     };
-    Ok(Analysis {
-        method,
-        bands,
-        floor,
-    })
+    Ok((
+        Analysis {
+            method,
+            bands,
+            floor,
+        },
+        Derived { linear, inverse },
+    ))
 }

@@ -2,8 +2,10 @@
 //! particle velocities from the interface's face velocities, their harmonics (the band
 //! analysis of section 6) and energies.
 
+use super::methods::Derived;
 use super::shear::ShearResult;
-use crate::analysis::{velocity_bands, BandAmplitudes, Summary};
+use crate::analysis::methods::{method_bands, plateau, Records, Signal};
+use crate::analysis::{AnalysisMethod, BandAmplitudes, Summary};
 use crate::analytic::oblique::{inv2, PlaneWave};
 use crate::scenario::{ObliqueSetup, Scenario};
 use crate::solver::halfspace::HalfSpaceOutput;
@@ -65,15 +67,18 @@ fn ratio(a: f64, b: f64) -> f64 {
 }
 
 /// The oblique keys of a run's summary (docs/scenario.md, outputs): angles, and for each
-/// outgoing wave its harmonics over the incident particle velocity amplitude and its
+/// outgoing wave its harmonics over the incident particle velocity amplitude by the
+/// scenario's analysis method (pulse inversion from the waves of the `derived` solve with
+/// the inverted burst, linear reference from those of the linearised interface) and its
 /// energy.
 pub fn set_summary(
     s: &mut Summary,
     scenario: &Scenario,
     o: &ObliqueSetup,
-    normal: &HalfSpaceOutput,
-    shear: &ShearResult,
+    solved: (&HalfSpaceOutput, &ShearResult),
+    derived: &Derived<ShearResult>,
 ) {
+    let (normal, shear) = solved;
     let g = &o.geometry;
     s.set("angle", o.angle.to_degrees());
     s.set("slowness", g.slowness);
@@ -81,7 +86,20 @@ pub fn set_summary(
     s.set("wave_amplitude", o.burst.peak());
     s.set("wave_A_inc", a_inc);
     let f0 = o.burst.fundamental();
+    let sig = Signal {
+        dt: normal.dt,
+        t0: normal.t.first().copied().unwrap_or(0.0),
+        f0,
+        f2: None,
+        plateau: plateau(|t| o.burst.stress(t), o.burst.duration(), f0),
+    };
+    let method = scenario.spec.analysis.method;
     let disp = wave_displacements(o, normal, &shear.interface);
+    let of = |d: &Option<(HalfSpaceOutput, ShearResult)>| {
+        d.as_ref()
+            .map(|(n, sh)| wave_displacements(o, n, &sh.interface))
+    };
+    let (inverse, linear) = (of(&derived.inverse), of(&derived.linear));
     let waves: Vec<Option<&PlaneWave>> = vec![
         Some(&g.reflected[0]),
         Some(&g.reflected[1]),
@@ -93,7 +111,15 @@ pub fn set_summary(
     for (k, name) in WAVES.iter().enumerate() {
         let Some(w) = waves[k] else { continue };
         s.set(&format!("{name}_angle"), w.angle.to_degrees());
-        let b: BandAmplitudes = velocity_bands(&disp[k], normal.dt, f0, None);
+        let records = Records {
+            response: &disp[k],
+            inverse: inverse.as_ref().map(|d| d[k].as_slice()),
+            linear: linear.as_ref().map(|d| d[k].as_slice()),
+        };
+        // every method's records are solved by `analyse_keeping`; band peak if one is not
+        let b: BandAmplitudes = method_bands(method, &records, &sig).unwrap_or_else(|| {
+            method_bands(AnalysisMethod::BandPeak, &records, &sig).unwrap_or_default()
+        });
         let mut a = b.harmonic;
         // a wave that is not there has ratios 0, not noise over noise
         if a[1] <= 1e-9 * a_inc {
@@ -108,7 +134,6 @@ pub fn set_summary(
         s.set(&format!("energy_{name}"), e);
         s.set(&format!("energy_{name}_fraction"), ratio(e, incident));
     }
-    let _ = scenario;
 }
 
 /// Measured transfer coefficients at frequency `f` (Hz) of a run: the Fourier sums at `f`

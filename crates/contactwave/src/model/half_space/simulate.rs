@@ -121,12 +121,16 @@ pub fn settings(scenario: &Scenario) -> HalfSpaceSettings {
 pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
     if let Some(sh) = &scenario.shear {
         let (out, shear) = super::shear::solve(scenario, sh)?;
+        if let Some(o) = &scenario.oblique {
+            let (analysis, derived) = analyse_oblique(scenario, &out)?;
+            let mut s = summarise(scenario, &out, None, &analysis);
+            super::shear::set_summary(&mut s, scenario, sh, &shear);
+            super::oblique::set_summary(&mut s, scenario, o, (&out, &shear), &derived);
+            return Ok(s);
+        }
         let analysis = analyse(scenario, &out)?;
         let mut s = summarise(scenario, &out, None, &analysis);
         super::shear::set_summary(&mut s, scenario, sh, &shear);
-        if let Some(o) = &scenario.oblique {
-            super::oblique::set_summary(&mut s, scenario, o, &out, &shear);
-        }
         return Ok(s);
     }
     let out = solve_with(scenario, true)?;
@@ -155,6 +159,27 @@ fn analyse(scenario: &Scenario, out: &HalfSpaceOutput) -> Result<methods::Analys
             floor: BandAmplitudes::default(),
         })
     }
+}
+
+/// At oblique incidence: the reflected normal wave analysed by the scenario's method, and
+/// the derived solves with their tangential histories, to analyse each outgoing P and SV
+/// wave by the same method (model.md section 14.3). The derived solves run even for an SV
+/// wave at 0 degrees (no normal traction), where the waves need them.
+fn analyse_oblique(
+    scenario: &Scenario,
+    out: &HalfSpaceOutput,
+) -> Result<(
+    methods::Analysis,
+    methods::Derived<super::shear::ShearResult>,
+)> {
+    methods::analyse_keeping(scenario, out, |s| match &s.shear {
+        Some(sh) => super::shear::solve(s, sh),
+        None => Err(crate::error::Error::numerical(
+            0.0,
+            "an oblique scenario without its tangential part",
+            "",
+        )),
+    })
 }
 
 fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
@@ -190,12 +215,18 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
         None => (solve(scenario)?, None),
     };
     let inc = bands(scenario, &out.incident_displacement, out.dt);
-    let analysis = analyse(scenario, &out)?;
+    let (analysis, derived) = match (&scenario.oblique, &shear) {
+        (Some(_), Some(_)) => {
+            let (a, d) = analyse_oblique(scenario, &out)?;
+            (a, Some(d))
+        }
+        _ => (analyse(scenario, &out)?, None),
+    };
     let mut summary = summarise(scenario, &out, Some(&inc), &analysis);
     if let (Some(sh), Some(r)) = (&scenario.shear, &shear) {
         super::shear::set_summary(&mut summary, scenario, sh, r);
-        if let Some(o) = &scenario.oblique {
-            super::oblique::set_summary(&mut summary, scenario, o, &out, r);
+        if let (Some(o), Some(d)) = (&scenario.oblique, &derived) {
+            super::oblique::set_summary(&mut summary, scenario, o, (&out, r), d);
         }
     }
     let f_max = 6.0 * scenario.incident.highest_frequency();
