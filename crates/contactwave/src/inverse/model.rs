@@ -127,11 +127,19 @@ impl<'a> Model<'a> {
         })
     }
 
-    /// Run row `i` with overrides `extra` and parameter `values`.
+    /// Run row `i` with overrides `extra` and parameter `values`: the summary's observed
+    /// keys (other keys may be left out of the run, see [`ForwardModel::summary_for`]).
     pub fn run_with(&self, i: usize, values: &[f64], extra: &[(String, f64)]) -> Result<Summary> {
         let s = self.build(i, values, extra)?;
         self.runs.fetch_add(1, Ordering::Relaxed);
-        s.summary()
+        let keys: Vec<&str> = self
+            .spec
+            .measured
+            .observed
+            .iter()
+            .map(|o| o.key.as_str())
+            .collect();
+        s.summary_for(&keys)
     }
 
     /// Model values `[row][observed]` at scaled coordinates `z`, for the given rows

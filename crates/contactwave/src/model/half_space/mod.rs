@@ -81,6 +81,12 @@ impl Model for Scenario {
         simulate_summary(self)
     }
 
+    fn summary_for(&self, keys: &[&str]) -> Result<Summary> {
+        // the floor keys (`A*_floor_over_Ainc`, `harmonic_floor_warning`) need the
+        // linearised solve
+        simulate::simulate_summary_with(self, keys.iter().any(|k| k.contains("floor")))
+    }
+
     fn run(&self, _control: &RunControl) -> Result<Box<dyn Outcome>> {
         crate::scenario::budget::check_half_space_run(self)?;
         Ok(Box::new(simulate(self)?))
