@@ -180,14 +180,20 @@ pub fn plateau(stress: impl Fn(f64) -> f64, duration: f64, f0: f64) -> (f64, f64
         return (0.0, duration);
     }
     const M: usize = 64;
+    // the phases of the M samples are the same in every period: their cosines and sines
+    // once (the same values as computed per sample)
+    let mut trig = [(0.0, 0.0); M];
+    for (i, cs) in trig.iter_mut().enumerate() {
+        let ph = 2.0 * PI * (i as f64 + 0.5) / M as f64;
+        *cs = (ph.cos(), ph.sin());
+    }
     let amp: Vec<f64> = (0..n)
         .map(|j| {
             let (mut a, mut b) = (0.0, 0.0);
-            for i in 0..M {
-                let ph = 2.0 * PI * (i as f64 + 0.5) / M as f64;
+            for (i, &(c, s)) in trig.iter().enumerate() {
                 let v = stress((j as f64 + (i as f64 + 0.5) / M as f64) * period);
-                a += v * ph.cos();
-                b += v * ph.sin();
+                a += v * c;
+                b += v * s;
             }
             (a * a + b * b).sqrt()
         })

@@ -156,11 +156,19 @@ impl<'a> Model<'a> {
         })
     }
 
-    /// Run row `i` with overrides `extra` and parameter `values`.
+    /// Run row `i` with overrides `extra` and parameter `values`: the summary's observed
+    /// keys (other keys may be left out of the run, see [`ForwardModel::summary_for`]).
     pub fn run_with(&self, i: usize, values: &[f64], extra: &[(String, f64)]) -> Result<Summary> {
         let s = self.build(i, values, extra)?;
         self.runs.fetch_add(1, Ordering::Relaxed);
-        let summary = s.summary();
+        let keys: Vec<&str> = self
+            .spec
+            .measured
+            .observed
+            .iter()
+            .map(|o| o.key.as_str())
+            .collect();
+        let summary = s.summary_for(&keys);
         if let Err(e @ Error::Numerical { .. }) = &summary {
             self.record_failure(i, e);
         }

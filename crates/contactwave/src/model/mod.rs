@@ -229,6 +229,14 @@ pub trait Model: Debug + Send + Sync {
     /// Run and return only the summary scalars (what a sweep row needs; no recorded
     /// series or spectra beyond what the summary uses).
     fn summary(&self) -> Result<Summary>;
+    /// [`Self::summary`] for a caller that reads only `keys` (an identification's observed
+    /// keys): a model may skip work that no key of the list needs, leaving the other keys
+    /// NaN or 0 (the half-space model skips the analysis floor's linearised solve when no
+    /// key is a floor key). The listed keys are the same as from [`Self::summary`].
+    fn summary_for(&self, keys: &[&str]) -> Result<Summary> {
+        let _ = keys;
+        self.summary()
+    }
     /// Run fully: signals, spectra, summary.
     ///
     /// ```

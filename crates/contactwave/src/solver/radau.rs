@@ -120,7 +120,6 @@ pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) ->
         }
     }
     let nn = 3 * n;
-    let mut jac = [0.0f64; 36];
     let mut rhs = [0.0f64; 6];
     let mut f = [[0.0; 2]; 3];
     for iter in 0..25 {
@@ -149,24 +148,36 @@ pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) ->
         for l in 0..3 {
             jj[l] = sys.jacobian(t + C[l] * h, [y[0] + z[l][0], y[1] + z[l][1]]);
         }
-        for j in 0..3 {
-            for i in 0..n {
-                let r = j * n + i;
+        let ok = if n == 1 {
+            // 3x3 system of the scalar gap equation (no 6x6 buffer to clear per step)
+            let mut jac = [0.0f64; 9];
+            for j in 0..3 {
                 for l in 0..3 {
-                    for k in 0..n {
-                        let c = l * n + k;
-                        let mut v = -h * A[j][l] * jj[l][i][k];
-                        if j == l && i == k {
-                            v += m[i];
+                    let mut v = -h * A[j][l] * jj[l][0][0];
+                    if j == l {
+                        v += m[0];
+                    }
+                    jac[j * 3 + l] = v;
+                }
+            }
+            solve3(&jac, &mut rhs)
+        } else {
+            let mut jac = [0.0f64; 36];
+            for j in 0..3 {
+                for i in 0..n {
+                    let r = j * n + i;
+                    for l in 0..3 {
+                        for k in 0..n {
+                            let c = l * n + k;
+                            let mut v = -h * A[j][l] * jj[l][i][k];
+                            if j == l && i == k {
+                                v += m[i];
+                            }
+                            jac[r * nn + c] = v;
                         }
-                        jac[r * nn + c] = v;
                     }
                 }
             }
-        }
-        let ok = if n == 1 {
-            solve3(&jac, &mut rhs)
-        } else {
             crate::numeric::solve_dense(&mut jac[..nn * nn], &mut rhs[..nn], nn)
         };
         if !ok {
@@ -199,7 +210,7 @@ pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) ->
 
 /// Solve the 3x3 system (row-major in `a[..9]`) by Cramer's rule, in place in `b[..3]`.
 #[inline]
-fn solve3(a: &[f64; 36], b: &mut [f64; 6]) -> bool {
+fn solve3(a: &[f64; 9], b: &mut [f64; 6]) -> bool {
     let m = |r: usize, c: usize| a[r * 3 + c];
     let det = m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
         - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))

@@ -74,7 +74,8 @@ pub fn inverted(scenario: &Scenario) -> Scenario {
     s
 }
 
-/// What the analysis needs to know about a scenario's signals on the grid of `out`.
+/// What the analysis needs to know about a scenario's signals on the grid of `out` (the
+/// plateau is the whole burst unless the method is `plateau_fit`, the only one reading it).
 pub fn signal(scenario: &Scenario, out: &HalfSpaceOutput) -> Signal {
     let inc = &scenario.incident;
     let f0 = inc.fundamental();
@@ -83,18 +84,26 @@ pub fn signal(scenario: &Scenario, out: &HalfSpaceOutput) -> Signal {
         t0: out.t.first().copied().unwrap_or(0.0),
         f0,
         f2: inc.second_frequency(),
-        plateau: plateau(|t| inc.stress(t), inc.duration(), f0),
+        // only `plateau_fit` reads the plateau: the other methods skip its 64 samples per
+        // period of the burst
+        plateau: if scenario.spec.analysis.method == AnalysisMethod::PlateauFit {
+            plateau(|t| inc.stress(t), inc.duration(), f0)
+        } else {
+            (0.0, inc.duration())
+        },
     }
 }
 
 /// Analyse the reflected wave of `out` (the scenario's solution) by the scenario's method,
-/// with the floor; `solve` runs the solver on the derived scenarios.
+/// with the floor when `with_floor` (without it the floor is NaN and the linearised solve
+/// is made only if the method needs it); `solve` runs the solver on the derived scenarios.
 pub fn analyse(
     scenario: &Scenario,
     out: &HalfSpaceOutput,
     solve: impl Fn(&Scenario) -> Result<HalfSpaceOutput>,
+    with_floor: bool,
 ) -> Result<Analysis> {
-    analyse_keeping(scenario, out, |s| solve(s).map(|o| (o, ()))).map(|(a, _)| a)
+    analyse_keeping(scenario, out, |s| solve(s).map(|o| (o, ())), with_floor).map(|(a, _)| a)
 }
 
 /// The derived solves of an analysis, kept with what the solver returned beside the normal
@@ -113,12 +122,14 @@ pub fn analyse_keeping<T>(
     scenario: &Scenario,
     out: &HalfSpaceOutput,
     solve: impl Fn(&Scenario) -> Result<(HalfSpaceOutput, T)>,
+    with_floor: bool,
 ) -> Result<(Analysis, Derived<T>)> {
     let method = scenario.spec.analysis.method;
     let sig = signal(scenario, out);
+    let need_linear = with_floor || method == AnalysisMethod::LinearReference;
     let linear = match linearised(scenario) {
-        Some(s) => Some(solve(&s)?),
-        None => None,
+        Some(s) if need_linear => Some(solve(&s)?),
+        _ => None,
     };
     let inverse = match method {
         AnalysisMethod::PulseInversion => Some(solve(&inverted(scenario))?),
@@ -146,8 +157,8 @@ pub fn analyse_keeping<T>(
     let bands = method_bands(method, &records, &sig)
         .ok_or_else(|| Error::numerical(0.0, "a record of the analysis is missing", ""))?;
     let floor = match lin {
-        Some(l) => method_floor(method, l, &sig),
-        None => {
+        Some(l) if with_floor => method_floor(method, l, &sig),
+        _ => {
             let nan = f64::NAN;
             BandAmplitudes {
                 harmonic: [nan; 6],
