@@ -166,6 +166,17 @@ fn every_example_loads_and_runs() {
             continue;
         }
         let table: toml::Table = std::fs::read_to_string(&p).unwrap().parse().unwrap();
+        if contactwave::scenario::bar_stack::BarStackScenario::is_bar_stack(&table) {
+            // the shear waves on the FD bar stack (model.md section 9.7)
+            let s = contactwave::scenario::bar_stack::BarStackScenario::from_table(table, &p)
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            let summary = contactwave::simulate_bar_stack(&s)
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+                .summary;
+            assert!(summary.get("shear_A1_over_Ainc").unwrap().is_finite());
+            assert!(summary.get("energy_closure_error").unwrap() < 1e-5);
+            continue;
+        }
         let scenarios: Vec<contactwave::scenario::Scenario> = if table.contains_key("axis") {
             contactwave::study::Sweep::load(&p)
                 .unwrap()
