@@ -228,38 +228,7 @@ fn run<'py>(py: Python<'py>, scenario: &PyScenario) -> PyResult<Bound<'py, PyDic
     contactwave::interrupt::clear();
     // the run goes on a helper thread while this one watches for Ctrl-C: a long bar-stack
     // run stops at its next time-step check and raises KeyboardInterrupt
-    let finished = (Mutex::new(false), Condvar::new());
-    let record = std::thread::scope(|s| {
-        let worker = s.spawn(|| {
-            let out = m.run(&RunControl::default()).map(|o| o.record());
-            let (done, cv) = &finished;
-            *done.lock().unwrap_or_else(|p| p.into_inner()) = true;
-            cv.notify_all();
-            out
-        });
-        loop {
-            let finished_now = py.detach(|| {
-                let (done, cv) = &finished;
-                let g = done.lock().unwrap_or_else(|p| p.into_inner());
-                let (g, _) = cv
-                    .wait_timeout_while(g, SIGNAL_POLL, |d| !*d)
-                    .unwrap_or_else(|p| p.into_inner());
-                *g
-            });
-            if let Err(e) = py.check_signals() {
-                contactwave::interrupt::request();
-                let _ = py.detach(|| worker.join());
-                contactwave::interrupt::clear();
-                return Err(e);
-            }
-            if finished_now {
-                return py
-                    .detach(|| worker.join())
-                    .map_err(|_| PyRuntimeError::new_err("internal error: the run panicked"))?
-                    .map_err(to_py);
-            }
-        }
-    })?;
+    let record = detach_interruptibly(py, || m.run(&RunControl::default()).map(|o| o.record()))?;
     record_to_py(py, record)
 }
 
