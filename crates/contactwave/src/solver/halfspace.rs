@@ -174,8 +174,7 @@ impl System for GapOde<'_> {
         self.cache.set([c[1], (t, v)]);
         v
     }
-    /// The stage values in one call to the incident wave (one transcendental evaluation
-    /// per step for a tone burst); the end value is cached as [`System::forcing`]'s.
+    /// The stage values in one call to the incident wave; the end value is cached.
     fn forcing_stages(&self, t: f64, h: f64) -> [f64; 3] {
         let mut g = [0.0; 3];
         self.hs.incident.stress_nodes(t, h, &radau::C, &mut g);
@@ -479,14 +478,12 @@ impl<'a> Runner<'a> {
         self.acc_stuck_cached(acc, h, &sinc);
     }
 
-    /// Accumulate a stuck step from the incident stress already evaluated at its GL nodes
-    /// (the weighted sums over the nodes first, then one scaling by the impedances).
+    /// Accumulate a stuck step from the incident stress at its GL nodes (sums, then scale).
     fn acc_stuck_cached(&self, acc: &mut Acc, h: f64, sinc: &[f64; 4]) {
         let (mut d_ref, mut d_inc, mut d_tr) = (0.0, 0.0, 0.0);
         let (mut e_inc, mut e_ref, mut e_tr) = (0.0, 0.0, 0.0);
         for i in 0..4 {
-            let w = GL4_WEIGHTS[i];
-            let si = sinc[i];
+            let (w, si) = (GL4_WEIGHTS[i], sinc[i]);
             let s = self.s_of(si);
             let sref = s - si;
             d_ref += w * sref;
@@ -496,12 +493,11 @@ impl<'a> Runner<'a> {
             d_tr += w * s;
             e_tr += w * s * s;
         }
-        let z1 = self.hs.z1;
+        let (z1, z2) = (self.hs.z1, self.hs.z2);
         acc.disp_ref += h * d_ref / z1;
         acc.disp_inc -= h * d_inc / z1;
         acc.e_inc += h * e_inc / z1;
         acc.e_ref += h * e_ref / z1;
-        let z2 = self.hs.z2;
         if z2.is_finite() {
             acc.disp_tr -= h * d_tr / z2;
             acc.e_tr += h * e_tr / z2;
