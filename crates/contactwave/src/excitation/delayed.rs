@@ -23,6 +23,9 @@ impl Excitation for Delayed {
     fn stress(&self, t: f64) -> f64 {
         self.inner.stress(t - self.delay)
     }
+    fn stress_nodes(&self, t: f64, h: f64, c: &[f64], out: &mut [f64]) {
+        self.inner.stress_nodes(t - self.delay, h, c, out);
+    }
     fn duration(&self) -> f64 {
         self.inner.duration() + self.delay
     }

@@ -23,6 +23,16 @@ pub trait Excitation: Debug + Send + Sync {
     /// Incident stress at the interface `s_inc(t)`, Pa (tension positive); 0 outside
     /// `[0, duration]`.
     fn stress(&self, t: f64) -> f64;
+    /// Incident stress at the nodes `t + c[i] h` of one solver step, Pa, written to
+    /// `out[i]` (`t`, `h` in s; `c` in [0, 1]; `out` at least as long as `c`). The same
+    /// values as [`Excitation::stress`] at those times up to round-off (a tone burst
+    /// evaluates its transcendental functions once per step and steps to the nodes by
+    /// angle addition).
+    fn stress_nodes(&self, t: f64, h: f64, c: &[f64], out: &mut [f64]) {
+        for (o, ci) in out.iter_mut().zip(c) {
+            *o = self.stress(t + ci * h);
+        }
+    }
     /// Duration of the waveform, s.
     fn duration(&self) -> f64;
     /// Fundamental frequency f0 used by the analysis and by xi, Hz.

@@ -22,6 +22,12 @@ impl Excitation for Scaled {
     fn stress(&self, t: f64) -> f64 {
         self.factor * self.inner.stress(t)
     }
+    fn stress_nodes(&self, t: f64, h: f64, c: &[f64], out: &mut [f64]) {
+        self.inner.stress_nodes(t, h, c, out);
+        for o in out.iter_mut() {
+            *o *= self.factor;
+        }
+    }
     fn duration(&self) -> f64 {
         self.inner.duration()
     }

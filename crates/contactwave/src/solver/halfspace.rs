@@ -174,6 +174,14 @@ impl System for GapOde<'_> {
         self.cache.set([c[1], (t, v)]);
         v
     }
+    /// The stage values in one call to the incident wave; the end value is cached.
+    fn forcing_stages(&self, t: f64, h: f64) -> [f64; 3] {
+        let mut g = [0.0; 3];
+        self.hs.incident.stress_nodes(t, h, &radau::C, &mut g);
+        let c = self.cache.get();
+        self.cache.set([c[1], (t + radau::C[2] * h, g[2])]);
+        g
+    }
     fn rhs_forced(&self, _t: f64, s_inc: f64, y: [f64; 2]) -> [f64; 2] {
         let f1 = if self.phase == Phase::Damaging && !self.algebraic_damage() {
             // b dbeta/dt = min(phi, 0): beta never increases
@@ -331,6 +339,8 @@ struct Runner<'a> {
     has_damage: bool,
     /// Normaliser of the damage event functions, `|w(beta = 1)|` (J/m^2, at least 1e-300).
     w_norm: f64,
+    /// `S / s_inc` in a stuck phase, `(2 / Z1) / (1/Z1 + 1/Z2)` (1).
+    stuck_gain: f64,
 }
 
 impl<'a> Runner<'a> {
@@ -375,13 +385,14 @@ impl<'a> Runner<'a> {
             flips_here: 0,
             has_damage: hs.law.traction.has_damage(),
             w_norm: hs.law.traction.adhesion_energy(1.0).abs().max(1e-300),
+            stuck_gain: 2.0 / hs.z1 / k,
         }
     }
 
     /// Interface stress plus p0 (S = sigma + p0) in a stuck phase at time t.
     #[inline]
     fn stuck_s(&self, t: f64) -> f64 {
-        self.ode.two_over_z1 * self.ode.forcing(t) / self.ode.k
+        self.s_of(self.ode.forcing(t))
     }
 
     /// Event function of a stuck phase (exit when > 0).
@@ -462,32 +473,41 @@ impl<'a> Runner<'a> {
 
     /// Accumulate integrals over [t, t + h] of a stuck phase (explicit, GL4).
     fn acc_stuck(&self, acc: &mut Acc, t: f64, h: f64) {
-        let z1 = self.hs.z1;
-        let z2 = self.hs.z2;
-        for i in 0..4 {
-            let sinc = self.hs.incident.stress(t + GL4_NODES[i] * h);
-            self.acc_point(acc, GL4_WEIGHTS[i] * h, sinc, self.s_of(sinc), z1, z2);
-        }
+        let mut sinc = [0.0; 4];
+        self.hs.incident.stress_nodes(t, h, &GL4_NODES, &mut sinc);
+        self.acc_stuck_cached(acc, h, &sinc);
     }
 
-    /// Accumulate a stuck step from the incident stress already evaluated at its GL nodes.
+    /// Accumulate a stuck step from the incident stress at its GL nodes (sums, then scale).
     fn acc_stuck_cached(&self, acc: &mut Acc, h: f64, sinc: &[f64; 4]) {
+        let (mut d_ref, mut d_inc, mut d_tr) = (0.0, 0.0, 0.0);
+        let (mut e_inc, mut e_ref, mut e_tr) = (0.0, 0.0, 0.0);
         for i in 0..4 {
-            self.acc_point(
-                acc,
-                GL4_WEIGHTS[i] * h,
-                sinc[i],
-                self.s_of(sinc[i]),
-                self.hs.z1,
-                self.hs.z2,
-            );
+            let (w, si) = (GL4_WEIGHTS[i], sinc[i]);
+            let s = self.s_of(si);
+            let sref = s - si;
+            d_ref += w * sref;
+            d_inc += w * si;
+            e_inc += w * si * si;
+            e_ref += w * sref * sref;
+            d_tr += w * s;
+            e_tr += w * s * s;
+        }
+        let (z1, z2) = (self.hs.z1, self.hs.z2);
+        acc.disp_ref += h * d_ref / z1;
+        acc.disp_inc -= h * d_inc / z1;
+        acc.e_inc += h * e_inc / z1;
+        acc.e_ref += h * e_ref / z1;
+        if z2.is_finite() {
+            acc.disp_tr -= h * d_tr / z2;
+            acc.e_tr += h * e_tr / z2;
         }
     }
 
     /// S = sigma + p0 in a stuck phase from the incident stress.
     #[inline]
     fn s_of(&self, sinc: f64) -> f64 {
-        self.ode.two_over_z1 * sinc / self.ode.k
+        self.stuck_gain * sinc
     }
 
     #[inline]
@@ -653,9 +673,7 @@ impl<'a> Runner<'a> {
                 // incident stress at the GL nodes: used for the event check and the
                 // quadrature alike
                 let mut sinc = [0.0; 4];
-                for (i, c) in GL4_NODES.iter().enumerate() {
-                    sinc[i] = self.hs.incident.stress(t + c * h);
-                }
+                self.hs.incident.stress_nodes(t, h, &GL4_NODES, &mut sinc);
                 let ev = |s: f64| {
                     let sigma = self.s_of(s) - self.ode.p0;
                     if phase == Phase::Closed {

@@ -65,6 +65,14 @@ pub trait System {
     fn forcing(&self, _t: f64) -> f64 {
         0.0
     }
+    /// The forcing at the three stage times `t + C[j] h` of a step.
+    fn forcing_stages(&self, t: f64, h: f64) -> [f64; 3] {
+        [
+            self.forcing(t + C[0] * h),
+            self.forcing(t + C[1] * h),
+            self.forcing(t + C[2] * h),
+        ]
+    }
     /// Right-hand side f(t, y) given the forcing g(t).
     fn rhs_forced(&self, t: f64, g: f64, y: [f64; 2]) -> [f64; 2];
     /// Right-hand side f(t, y).
@@ -103,11 +111,7 @@ pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) ->
     let n = sys.dim();
     let f0 = sys.rhs(t, y);
     let j0 = sys.jacobian(t, y);
-    let g = [
-        sys.forcing(t + C[0] * h),
-        sys.forcing(t + C[1] * h),
-        sys.forcing(t + C[2] * h),
-    ];
+    let g = sys.forcing_stages(t, h);
     let stiff = h * j0[0][0].abs() > 1.0 || (n == 2 && h * j0[1][1].abs() > m[1].abs());
     let mut z = [[0.0f64; 2]; 3];
     if !stiff {
