@@ -4,14 +4,12 @@
 
 mod delayed;
 mod file;
-mod negated;
 mod scaled;
 mod tone_burst;
 mod two_tone;
 
 pub use delayed::Delayed;
 pub use file::FileWaveform;
-pub use negated::Negated;
 pub use scaled::Scaled;
 pub use tone_burst::{ToneBurst, Window};
 pub use two_tone::TwoTone;

@@ -1,5 +1,7 @@
 //! A waveform times a constant: the normal or tangential traction of an obliquely
-//! incident plane wave at the interface (model.md section 14).
+//! incident plane wave at the interface (model.md section 14), and with factor -1 the
+//! phase-inverted copy of a burst, the second burst of pulse inversion (thesis chapter 1;
+//! model.md section 6.1).
 
 use super::Excitation;
 use std::sync::Arc;
@@ -15,6 +17,12 @@ impl Scaled {
     /// `factor` (dimensionless) times `inner`.
     pub fn new(inner: Arc<dyn Excitation>, factor: f64) -> Self {
         Scaled { inner, factor }
+    }
+
+    /// The phase-inverted copy of `inner`, `-inner(t)` (same duration, breakpoints,
+    /// frequencies and peak).
+    pub fn negated(inner: Arc<dyn Excitation>) -> Self {
+        Scaled::new(inner, -1.0)
     }
 }
 
@@ -60,5 +68,22 @@ mod tests {
         assert_eq!(s.stress(1.3e-6), -0.5 * b.stress(1.3e-6));
         assert!((s.peak() - 1.0).abs() < 1e-12);
         assert_eq!(s.duration(), b.duration());
+    }
+
+    #[test]
+    fn negation_flips_the_sign_and_keeps_everything_else() {
+        let b: Arc<dyn Excitation> = Arc::new(ToneBurst::new(2.0, 1e5, 5.0, Window::Hann));
+        let n = Scaled::negated(b.clone());
+        let mut largest = 0.0f64;
+        for k in 0..500 {
+            let t = k as f64 * 1.1e-6;
+            assert_eq!(n.stress(t), -b.stress(t));
+            largest = largest.max(b.stress(t).abs());
+        }
+        assert!(largest > 1.0, "the burst was sampled where it is not zero");
+        assert_eq!(n.duration(), b.duration());
+        assert_eq!(n.fundamental(), 1e5);
+        assert_eq!(n.peak(), b.peak());
+        assert_eq!(n.breakpoints(), b.breakpoints());
     }
 }

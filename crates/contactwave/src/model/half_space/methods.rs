@@ -5,7 +5,7 @@
 use crate::analysis::methods::{method_bands, method_floor, plateau, Records, Signal};
 use crate::analysis::{AnalysisMethod, BandAmplitudes};
 use crate::error::{Error, Result};
-use crate::excitation::Negated;
+use crate::excitation::Scaled;
 use crate::law::compression::{Linear, Rigid};
 use crate::law::traction::{Bonded, Linear as LinearTraction};
 use crate::law::ContactLaw;
@@ -64,11 +64,11 @@ pub fn linearised(scenario: &Scenario) -> Option<Scenario> {
 /// The scenario with its burst phase-inverted.
 pub fn inverted(scenario: &Scenario) -> Scenario {
     let mut s = scenario.clone();
-    s.incident = Arc::new(Negated::new(scenario.incident.clone()));
+    s.incident = Arc::new(Scaled::negated(scenario.incident.clone()));
     // at oblique incidence the wave's tangential traction is inverted with it
     if scenario.oblique.is_some() {
         if let Some(sh) = &mut s.shear {
-            sh.incident = Arc::new(Negated::new(sh.incident.clone()));
+            sh.incident = Arc::new(Scaled::negated(sh.incident.clone()));
         }
     }
     s
