@@ -78,37 +78,9 @@ fn run(p: &CoupledHalfSpace, spp: usize, tail: f64) -> CoupledOutput {
 }
 
 /// Fourier sums at f0 of the outgoing waves' particle velocities over the incident's:
-/// `[R_P, R_SV, T_P, T_SV]`.
+/// `[R_P, R_SV, T_P, T_SV]` (the library's measurement, `transfer_at`).
 fn measured(out: &CoupledOutput, g: &Geometry, burst: &dyn Excitation) -> [Complex64; 4] {
-    let w = 2.0 * PI * F0;
-    let rw = Geometry::traction_to_waves(&g.reflected);
-    let tw = g.transmitted.map(|t| Geometry::traction_to_waves(&t));
-    let mut acc = [Complex64::new(0.0, 0.0); 5];
-    for (k, &t) in out.normal.t.iter().enumerate() {
-        let e = Complex64::from_polar(1.0, -w * t);
-        let winc = -burst.stress(t) / g.incident.impedance;
-        acc[4] += e * winc;
-        let r = [
-            out.normal.reflected_stress[k],
-            out.shear.reflected_stress[k],
-        ];
-        let s = [
-            out.normal.transmitted_stress[k],
-            out.shear.transmitted_stress[k],
-        ];
-        for j in 0..2 {
-            acc[j] += e * (rw[j][0] * r[0] + rw[j][1] * r[1]);
-            if let Some(m) = &tw {
-                acc[2 + j] += e * (m[j][0] * s[0] + m[j][1] * s[1]);
-            }
-        }
-    }
-    [
-        acc[0] / acc[4],
-        acc[1] / acc[4],
-        acc[2] / acc[4],
-        acc[3] / acc[4],
-    ]
+    contactwave::model::half_space::oblique::transfer_at(out, g, burst, F0)
 }
 
 fn max_err(a: &[Complex64; 4], b: &[Complex64; 4]) -> f64 {
