@@ -115,6 +115,37 @@ fn contact_loss_starts_at_xi_one() {
     }
 }
 
+/// At xi = 1 exactly the constraint stress of a closed rigid contact just touches the
+/// opening threshold at the burst's peak: no event and no contact loss, whatever the
+/// round-off of the incident stress (windows, resolutions, RCCM or free traction); just
+/// below, the interface opens.
+#[test]
+fn grazing_at_xi_one_does_not_open() {
+    for (traction, window, spp) in [
+        ("", "hann", 200),
+        ("", "hann", 137),
+        ("", "hann_ramps", 200),
+        (
+            "traction = { law = \"rccm\", stiffness = 1e16, energy = 0.1, viscosity = 1e-8 }",
+            "hann",
+            200,
+        ),
+    ] {
+        let at = |xi: f64| {
+            let mut text = pmma(
+                &format!("static_pressure = 0.082e6\n{traction}"),
+                &format!("cycles = 15\nwindow = \"{window}\"\nxi = {xi:?}"),
+            );
+            text.push_str(&format!("[solver]\nsamples_per_period = {spp}\n"));
+            let r = run(&text);
+            (get(&r, "events"), get(&r, "contact_loss_fraction"))
+        };
+        assert_eq!(at(1.0), (0.0, 0.0), "{traction} {window} {spp}");
+        let (events, loss) = at(1.0 - 1e-6);
+        assert!(events >= 2.0 && loss > 0.0, "{traction} {window} {spp}");
+    }
+}
+
 /// Unilateral contact (Richardson 1979; thesis chapter 3): A2/A_inc is maximal and
 /// A1/A_inc minimal at xi = 0.35 +- 0.03.
 #[test]

@@ -16,6 +16,26 @@ pub use two_tone::TwoTone;
 
 use std::fmt::Debug;
 
+/// [`Excitation::stress_grid`] step by step through [`Excitation::stress_nodes`].
+pub(crate) fn grid_by_steps<E: Excitation + ?Sized>(
+    e: &E,
+    h: f64,
+    c: &[f64],
+    steps: usize,
+    out: &mut [f64],
+) {
+    let mut v = [0.0; 16];
+    for k in 0..steps {
+        let (ta, tb) = (k as f64 * h, (k + 1) as f64 * h);
+        for (ci, i) in c.chunks(16).zip((0..).step_by(16)) {
+            e.stress_nodes(ta, tb - ta, ci, &mut v[..ci.len()]);
+            for (j, vj) in v[..ci.len()].iter().enumerate() {
+                out[(i + j) * steps + k] = *vj;
+            }
+        }
+    }
+}
+
 /// An incident stress waveform.
 pub trait Excitation: Debug + Send + Sync {
     /// Incident stress at the interface `s_inc(t)`, Pa (tension positive); 0 outside
@@ -30,6 +50,15 @@ pub trait Excitation: Debug + Send + Sync {
         for (o, ci) in out.iter_mut().zip(c) {
             *o = self.stress(t + ci * h);
         }
+    }
+    /// Incident stress at the nodes of `steps` consecutive steps of the uniform grid
+    /// `t_k = k h`, node by node: `out[i * steps + k]` at `t_k + c[i] (t_{k+1} - t_k)`, Pa
+    /// (`h` in s, `c` in [0, 1], `out` at least `steps * c.len()` long). The same values as
+    /// [`Excitation::stress_nodes`] step by step up to round-off; a solver tabulates the
+    /// burst once per run with it (a tone burst carries its phasors from step to step by
+    /// rotation, with an exact `sin_cos` every 32 steps).
+    fn stress_grid(&self, h: f64, c: &[f64], steps: usize, out: &mut [f64]) {
+        grid_by_steps(self, h, c, steps, out);
     }
     /// Duration of the waveform, s.
     fn duration(&self) -> f64;

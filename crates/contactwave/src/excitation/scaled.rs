@@ -36,6 +36,12 @@ impl Excitation for Scaled {
             *o *= self.factor;
         }
     }
+    fn stress_grid(&self, h: f64, c: &[f64], steps: usize, out: &mut [f64]) {
+        self.inner.stress_grid(h, c, steps, out);
+        for o in out.iter_mut().take(steps * c.len()) {
+            *o *= self.factor;
+        }
+    }
     fn duration(&self) -> f64 {
         self.inner.duration()
     }

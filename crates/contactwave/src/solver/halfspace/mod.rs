@@ -17,6 +17,8 @@
 //! transmitted, released by damage) are integrated with the same quadrature, so the energy
 //! audit closes to the integration error.
 
+mod ode;
+
 pub use super::output::{EnergyAudit, HalfSpaceOutput};
 use super::radau::{self, System};
 use super::Solver;
@@ -26,6 +28,7 @@ use crate::law::ContactLaw;
 use crate::material::Material;
 use crate::numeric::root::brent_past;
 use crate::numeric::{GL4_NODES, GL4_WEIGHTS};
+use ode::{GapOde, IncidentGrid, Phase, STUCK_NODES};
 use std::sync::Arc;
 
 /// Settings of the exact solver.
@@ -69,175 +72,14 @@ pub struct HalfSpace {
     pub incident: Arc<dyn Excitation>,
 }
 
+/// Relative threshold of the stuck phases' event functions: a constraint stress that
+/// passes the opening (or debonding) threshold by less than this fraction of the stress
+/// scale is round-off (a burst whose peak just reaches it, xi = 1, does not open).
+const STUCK_TOLERANCE: f64 = 1e-12;
+
 /// Normalised threshold of the damage on/off event functions (phi / w and the scaled
 /// opening rate) below which no switch is made.
 const EVENT_HYSTERESIS: f64 = 1e-10;
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Phase {
-    /// Rigid compression active: gap held at 0.
-    Closed,
-    /// Bonded traction active: gap held at [u]_c.
-    Bonded,
-    /// Both branches rigid: gap held at 0 forever.
-    Locked,
-    /// Compliant compression branch.
-    Compression,
-    /// Traction branch, beta constant.
-    Traction,
-    /// Traction branch, damage evolving.
-    Damaging,
-}
-
-impl Phase {
-    fn is_stuck(self) -> bool {
-        matches!(self, Phase::Closed | Phase::Bonded | Phase::Locked)
-    }
-}
-
-/// The gap ODE in one phase, as a Radau system.
-struct GapOde<'a> {
-    hs: &'a HalfSpace,
-    /// The last two evaluations of the incident stress (time, value): the end of a step is
-    /// the start of the next one and the time of the recorded sample.
-    cache: std::cell::Cell<[(f64, f64); 2]>,
-    phase: Phase,
-    k: f64,
-    p0: f64,
-    uc: f64,
-    two_over_z1: f64,
-}
-
-impl GapOde<'_> {
-    /// Damage in its rate-independent limit (b = 0): beta is an algebraic function of the
-    /// opening, `beta = update_adhesion(d, beta_start, inf)`, and the ODE is scalar.
-    #[inline]
-    fn algebraic_damage(&self) -> bool {
-        self.phase == Phase::Damaging && self.hs.law.traction.damage_viscosity() == 0.0
-    }
-
-    /// Adhesion in effect at state y.
-    #[inline]
-    fn beta(&self, y: [f64; 2]) -> f64 {
-        if self.algebraic_damage() {
-            self.hs
-                .law
-                .traction
-                .update_adhesion((y[0] - self.uc).max(0.0), y[1], f64::INFINITY)
-        } else {
-            y[1]
-        }
-    }
-
-    #[inline]
-    fn sigma(&self, y: [f64; 2]) -> f64 {
-        match self.phase {
-            Phase::Compression => self.hs.law.compression.stress(y[0].min(self.uc)),
-            _ => self
-                .hs
-                .law
-                .traction
-                .stress((y[0] - self.uc).max(0.0), self.beta(y)),
-        }
-    }
-    #[inline]
-    fn gap_rate(&self, t: f64, y: [f64; 2]) -> f64 {
-        self.two_over_z1 * self.hs.incident.stress(t) - self.k * (self.sigma(y) + self.p0)
-    }
-}
-
-impl System for GapOde<'_> {
-    fn dim(&self) -> usize {
-        if self.phase == Phase::Damaging && !self.algebraic_damage() {
-            2
-        } else {
-            1
-        }
-    }
-    fn mass(&self) -> [f64; 2] {
-        if self.phase == Phase::Damaging && !self.algebraic_damage() {
-            [1.0, self.hs.law.traction.damage_viscosity()]
-        } else {
-            [1.0, 1.0]
-        }
-    }
-    #[inline]
-    fn forcing(&self, t: f64) -> f64 {
-        let c = self.cache.get();
-        if c[0].0 == t {
-            return c[0].1;
-        }
-        if c[1].0 == t {
-            return c[1].1;
-        }
-        let v = self.hs.incident.stress(t);
-        self.cache.set([c[1], (t, v)]);
-        v
-    }
-    /// The stage values in one call to the incident wave; the end value is cached.
-    fn forcing_stages(&self, t: f64, h: f64) -> [f64; 3] {
-        let mut g = [0.0; 3];
-        self.hs.incident.stress_nodes(t, h, &radau::C, &mut g);
-        let c = self.cache.get();
-        self.cache.set([c[1], (t + radau::C[2] * h, g[2])]);
-        g
-    }
-    fn rhs_forced(&self, _t: f64, s_inc: f64, y: [f64; 2]) -> [f64; 2] {
-        let f1 = if self.phase == Phase::Damaging && !self.algebraic_damage() {
-            // b dbeta/dt = min(phi, 0): beta never increases
-            self.hs
-                .law
-                .traction
-                .damage_driving_force((y[0] - self.uc).max(0.0), y[1])
-                .min(0.0)
-        } else {
-            0.0
-        };
-        [
-            self.two_over_z1 * s_inc - self.k * (self.sigma(y) + self.p0),
-            f1,
-        ]
-    }
-    fn jacobian(&self, _t: f64, y: [f64; 2]) -> [[f64; 2]; 2] {
-        match self.phase {
-            Phase::Compression => [
-                [
-                    -self.k * self.hs.law.compression.tangent(y[0].min(self.uc)),
-                    0.0,
-                ],
-                [0.0, 0.0],
-            ],
-            _ if self.algebraic_damage() => {
-                let tr = &self.hs.law.traction;
-                let d = (y[0] - self.uc).max(0.0);
-                let beta = self.beta(y);
-                let mut ds = tr.tangent(d, beta);
-                if beta < y[1] {
-                    // on the damage surface phi(d, beta) = 0: dbeta/dd = -phi_d / phi_beta
-                    let (pd, pb) = tr.damage_driving_force_gradient(d, beta);
-                    if pb != 0.0 {
-                        ds += tr.stress_d_adhesion(d, beta) * (-pd / pb);
-                    }
-                }
-                [[-self.k * ds, 0.0], [0.0, 0.0]]
-            }
-            _ => {
-                let tr = &self.hs.law.traction;
-                let d = (y[0] - self.uc).max(0.0);
-                let row0 = [
-                    -self.k * tr.tangent(d, y[1]),
-                    -self.k * tr.stress_d_adhesion(d, y[1]),
-                ];
-                if self.phase == Phase::Damaging && tr.damage_driving_force(d, y[1]) < 0.0 {
-                    let (a, b) = tr.damage_driving_force_gradient(d, y[1]);
-                    [row0, [a, b]]
-                } else {
-                    [row0, [0.0, 0.0]]
-                }
-            }
-        }
-    }
-}
 
 /// Running integrals.
 #[derive(Debug, Default, Clone, Copy)]
@@ -341,6 +183,11 @@ struct Runner<'a> {
     w_norm: f64,
     /// `S / s_inc` in a stuck phase, `(2 / Z1) / (1/Z1 + 1/Z2)` (1).
     stuck_gain: f64,
+    /// Threshold of the stuck event functions, Pa: [`STUCK_TOLERANCE`] times the larger of
+    /// `p0` and the peak stuck stress.
+    stuck_tol: f64,
+    /// `[1/Z1, 1/Z2]` (`1/Z2 = 0` at a rigid wall), m/(Pa s).
+    inv_z: [f64; 2],
 }
 
 impl<'a> Runner<'a> {
@@ -364,6 +211,7 @@ impl<'a> Runner<'a> {
             ode: GapOde {
                 hs,
                 cache: std::cell::Cell::new([(f64::NAN, 0.0); 2]),
+                grid: IncidentGrid::new(&*hs.incident, h),
                 phase: hs.rest_phase(),
                 k,
                 p0,
@@ -386,6 +234,11 @@ impl<'a> Runner<'a> {
             has_damage: hs.law.traction.has_damage(),
             w_norm: hs.law.traction.adhesion_energy(1.0).abs().max(1e-300),
             stuck_gain: 2.0 / hs.z1 / k,
+            inv_z: [
+                1.0 / hs.z1,
+                if hs.z2.is_finite() { 1.0 / hs.z2 } else { 0.0 },
+            ],
+            stuck_tol: STUCK_TOLERANCE * p0.abs().max(2.0 / hs.z1 / k * hs.incident.peak()),
         }
     }
 
@@ -398,10 +251,18 @@ impl<'a> Runner<'a> {
     /// Event function of a stuck phase (exit when > 0).
     #[inline]
     fn stuck_event(&self, phase: Phase, t: f64) -> f64 {
-        let sigma = self.stuck_s(t) - self.ode.p0;
+        self.stuck_event_of(phase, self.ode.forcing(t))
+    }
+
+    /// Event function of a stuck phase from the incident stress `sinc` (Pa): the
+    /// constraint stress past [`STUCK_TOLERANCE`] of the stress scale in the direction that
+    /// ends the phase (a grazing touch of the threshold within round-off is no event).
+    #[inline]
+    fn stuck_event_of(&self, phase: Phase, sinc: f64) -> f64 {
+        let sigma = self.s_of(sinc) - self.ode.p0;
         match phase {
-            Phase::Closed => sigma,
-            Phase::Bonded => -sigma,
+            Phase::Closed => sigma - self.stuck_tol,
+            Phase::Bonded => -sigma - self.stuck_tol,
             _ => f64::NEG_INFINITY,
         }
     }
@@ -471,15 +332,29 @@ impl<'a> Runner<'a> {
         })
     }
 
-    /// Accumulate integrals over [t, t + h] of a stuck phase (explicit, GL4).
-    fn acc_stuck(&self, acc: &mut Acc, t: f64, h: f64) {
-        let mut sinc = [0.0; 4];
-        self.hs.incident.stress_nodes(t, h, &GL4_NODES, &mut sinc);
-        self.acc_stuck_cached(acc, h, &sinc);
+    /// The incident stress at the nodes of the stuck step `[t, t_end]` ([`STUCK_NODES`]:
+    /// GL4 and the end, which is cached), from the grid's table where it is a grid step.
+    #[inline]
+    fn stuck_nodes(&self, t: f64, t_end: f64) -> [f64; 5] {
+        let h = t_end - t;
+        let v = self.ode.grid.stuck(t, h).unwrap_or_else(|| {
+            let mut v = [0.0; 5];
+            self.hs.incident.stress_nodes(t, h, &STUCK_NODES, &mut v);
+            v
+        });
+        self.ode.remember(t_end, v[4]);
+        v
     }
 
-    /// Accumulate a stuck step from the incident stress at its GL nodes (sums, then scale).
-    fn acc_stuck_cached(&self, acc: &mut Acc, h: f64, sinc: &[f64; 4]) {
+    /// Accumulate integrals over [t, t_end] of a stuck phase (explicit, GL4).
+    fn acc_stuck(&self, acc: &mut Acc, t: f64, t_end: f64) {
+        let sinc = self.stuck_nodes(t, t_end);
+        self.acc_stuck_cached(acc, t_end - t, &sinc);
+    }
+
+    /// Accumulate a stuck step from the incident stress at its nodes (GL4: sums, then
+    /// scale; the end node is not used).
+    fn acc_stuck_cached(&self, acc: &mut Acc, h: f64, sinc: &[f64; 5]) {
         let (mut d_ref, mut d_inc, mut d_tr) = (0.0, 0.0, 0.0);
         let (mut e_inc, mut e_ref, mut e_tr) = (0.0, 0.0, 0.0);
         for i in 0..4 {
@@ -493,15 +368,14 @@ impl<'a> Runner<'a> {
             d_tr += w * s;
             e_tr += w * s * s;
         }
-        let (z1, z2) = (self.hs.z1, self.hs.z2);
-        acc.disp_ref += h * d_ref / z1;
-        acc.disp_inc -= h * d_inc / z1;
-        acc.e_inc += h * e_inc / z1;
-        acc.e_ref += h * e_ref / z1;
-        if z2.is_finite() {
-            acc.disp_tr -= h * d_tr / z2;
-            acc.e_tr += h * e_tr / z2;
-        }
+        let (h1, h2) = (h * self.inv_z[0], h * self.inv_z[1]);
+        acc.disp_ref += h1 * d_ref;
+        acc.disp_inc -= h1 * d_inc;
+        acc.e_inc += h1 * e_inc;
+        acc.e_ref += h1 * e_ref;
+        // (1/Z2 = 0 at a rigid wall: nothing transmitted)
+        acc.disp_tr -= h2 * d_tr;
+        acc.e_tr += h2 * e_tr;
     }
 
     /// S = sigma + p0 in a stuck phase from the incident stress.
@@ -666,31 +540,20 @@ impl<'a> Runner<'a> {
             let phase = self.ode.phase;
             if phase.is_stuck() {
                 if phase == Phase::Locked {
-                    self.acc_stuck(acc, t, h);
+                    self.acc_stuck(acc, t, t_end);
                     return Ok(());
                 }
                 let e0 = self.stuck_event(phase, t);
-                // incident stress at the GL nodes: used for the event check and the
-                // quadrature alike
-                let mut sinc = [0.0; 4];
-                self.hs.incident.stress_nodes(t, h, &GL4_NODES, &mut sinc);
-                let ev = |s: f64| {
-                    let sigma = self.s_of(s) - self.ode.p0;
-                    if phase == Phase::Closed {
-                        sigma
-                    } else {
-                        -sigma
-                    }
-                };
+                // incident stress at the GL nodes and the end: used for the event check
+                // and the quadrature alike
+                let sinc = self.stuck_nodes(t, t_end);
+                let ev = |s: f64| self.stuck_event_of(phase, s);
                 let mut hit = None;
                 let mut prev_t = t;
                 let mut prev_e = e0;
                 for i in 0..5 {
-                    let (tau, e) = if i < 4 {
-                        (t + GL4_NODES[i] * h, ev(sinc[i]))
-                    } else {
-                        (t_end, self.stuck_event(phase, t_end))
-                    };
+                    let tau = if i < 4 { t + GL4_NODES[i] * h } else { t_end };
+                    let e = ev(sinc[i]);
                     if e > 0.0 && prev_e <= 0.0 {
                         hit = Some((prev_t, prev_e, tau, e));
                         break;
@@ -713,7 +576,7 @@ impl<'a> Runner<'a> {
                                     format!("phase = {phase:?}"),
                                 )
                             })?;
-                        self.acc_stuck(acc, t, te - t);
+                        self.acc_stuck(acc, t, te);
                         t = te;
                         self.switch(phase, 0, t, y);
                     }

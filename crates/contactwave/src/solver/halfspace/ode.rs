@@ -1,0 +1,292 @@
+//! The gap equation of one phase as a Radau system, and the incident stress tabulated on
+//! the solver's grid (model.md section 4; thesis eqs. 2.3-2.9, 5.5).
+
+use super::HalfSpace;
+use crate::excitation::Excitation;
+use crate::numeric::GL4_NODES;
+use crate::solver::radau::{self, System};
+
+/// The nodes of a stuck step: the four Gauss-Legendre nodes and the step end.
+pub(super) const STUCK_NODES: [f64; 5] =
+    [GL4_NODES[0], GL4_NODES[1], GL4_NODES[2], GL4_NODES[3], 1.0];
+
+/// Largest table of [`IncidentGrid`], steps (8 values a step: 64 MB).
+const MAX_GRID_STEPS: usize = 1 << 20;
+
+/// The incident stress at the nodes of every whole step `[k h, (k + 1) h]` of the solver's
+/// grid inside the burst, tabulated once per run ([`Excitation::stress_grid`]): the Radau
+/// stage nodes and the nodes of a stuck step ([`STUCK_NODES`]), Pa. Steps split by an
+/// event or a breakpoint, and steps after the burst, are evaluated directly.
+pub(super) struct IncidentGrid {
+    /// Grid step, s.
+    h: f64,
+    /// `1 / h`, 1/s.
+    inv_h: f64,
+    /// Tabulated steps.
+    steps: usize,
+    /// `table[i * steps + k]`: stress at `t_k + GRID_NODES[i] h`, Pa.
+    table: Vec<f64>,
+}
+
+thread_local! {
+    /// The table buffer of the thread's last [`IncidentGrid`], reused by the next one.
+    static POOL: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
+}
+
+impl Drop for IncidentGrid {
+    /// Hand the table buffer back to the thread's pool (up to 8 MB is kept).
+    fn drop(&mut self) {
+        let table = std::mem::take(&mut self.table);
+        if table.capacity() <= 1 << 20 {
+            POOL.with(|p| p.set(table));
+        }
+    }
+}
+
+/// The tabulated nodes: Radau's three stage nodes, then [`STUCK_NODES`].
+const GRID_NODES: [f64; 8] = [
+    radau::C[0],
+    radau::C[1],
+    radau::C[2],
+    STUCK_NODES[0],
+    STUCK_NODES[1],
+    STUCK_NODES[2],
+    STUCK_NODES[3],
+    STUCK_NODES[4],
+];
+
+impl IncidentGrid {
+    /// Tabulate `incident` on the grid of step `h` (s) over its duration (nothing when the
+    /// table would exceed [`MAX_GRID_STEPS`]).
+    pub(super) fn new(incident: &dyn Excitation, h: f64) -> Self {
+        let n = (incident.duration() / h).ceil();
+        let steps = if n.is_finite() && n >= 0.0 && n <= MAX_GRID_STEPS as f64 {
+            n as usize
+        } else {
+            0
+        };
+        // the buffer of the thread's previous run (no allocation in a sweep)
+        let mut table = POOL.with(|p| p.take());
+        table.clear();
+        table.resize(GRID_NODES.len() * steps, 0.0);
+        incident.stress_grid(h, &GRID_NODES, steps, &mut table);
+        IncidentGrid {
+            h,
+            inv_h: 1.0 / h,
+            steps,
+            table,
+        }
+    }
+
+    /// The index `k` when `[t, t + h]` is the whole grid step `k` of the table, as the
+    /// solver forms it (`t = k h`, `h = (k + 1) h - k h`).
+    #[inline]
+    fn step(&self, t: f64, h: f64) -> Option<usize> {
+        let k = (t * self.inv_h).round();
+        if !(k >= 0.0 && k < self.steps as f64) {
+            return None;
+        }
+        let k = k as usize;
+        let (ta, tb) = (k as f64 * self.h, (k + 1) as f64 * self.h);
+        (t == ta && h == tb - ta).then_some(k)
+    }
+
+    /// The stuck-step nodes of `[t, t + h]` when it is a tabulated grid step.
+    #[inline]
+    pub(super) fn stuck(&self, t: f64, h: f64) -> Option<[f64; 5]> {
+        let k = self.step(t, h)?;
+        let n = self.steps;
+        Some(std::array::from_fn(|i| self.table[(3 + i) * n + k]))
+    }
+
+    /// The Radau stage nodes of `[t, t + h]` when it is a tabulated grid step.
+    #[inline]
+    fn radau(&self, t: f64, h: f64) -> Option<[f64; 3]> {
+        let k = self.step(t, h)?;
+        let n = self.steps;
+        Some(std::array::from_fn(|j| self.table[j * n + k]))
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Phase {
+    /// Rigid compression active: gap held at 0.
+    Closed,
+    /// Bonded traction active: gap held at [u]_c.
+    Bonded,
+    /// Both branches rigid: gap held at 0 forever.
+    Locked,
+    /// Compliant compression branch.
+    Compression,
+    /// Traction branch, beta constant.
+    Traction,
+    /// Traction branch, damage evolving.
+    Damaging,
+}
+
+impl Phase {
+    pub(super) fn is_stuck(self) -> bool {
+        matches!(self, Phase::Closed | Phase::Bonded | Phase::Locked)
+    }
+}
+
+/// The gap ODE in one phase, as a Radau system.
+pub(super) struct GapOde<'a> {
+    pub(super) hs: &'a HalfSpace,
+    /// The last two evaluations of the incident stress (time, value): the end of a step is
+    /// the start of the next one and the time of the recorded sample.
+    pub(super) cache: std::cell::Cell<[(f64, f64); 2]>,
+    /// The incident stress tabulated on the grid.
+    pub(super) grid: IncidentGrid,
+    pub(super) phase: Phase,
+    /// `1/Z1 + 1/Z2`, m/(Pa s).
+    pub(super) k: f64,
+    /// Static pressure, Pa.
+    pub(super) p0: f64,
+    /// Critical gap of the traction branch, m.
+    pub(super) uc: f64,
+    /// `2 / Z1`, m/(Pa s).
+    pub(super) two_over_z1: f64,
+}
+
+impl GapOde<'_> {
+    /// Put the incident stress `v` (Pa) at time `t` (s) into the two-entry cache.
+    #[inline]
+    pub(super) fn remember(&self, t: f64, v: f64) {
+        let c = self.cache.get();
+        self.cache.set([c[1], (t, v)]);
+    }
+
+    /// Damage in its rate-independent limit (b = 0): beta is an algebraic function of the
+    /// opening, `beta = update_adhesion(d, beta_start, inf)`, and the ODE is scalar.
+    #[inline]
+    pub(super) fn algebraic_damage(&self) -> bool {
+        self.phase == Phase::Damaging && self.hs.law.traction.damage_viscosity() == 0.0
+    }
+
+    /// Adhesion in effect at state y.
+    #[inline]
+    pub(super) fn beta(&self, y: [f64; 2]) -> f64 {
+        if self.algebraic_damage() {
+            self.hs
+                .law
+                .traction
+                .update_adhesion((y[0] - self.uc).max(0.0), y[1], f64::INFINITY)
+        } else {
+            y[1]
+        }
+    }
+
+    #[inline]
+    pub(super) fn sigma(&self, y: [f64; 2]) -> f64 {
+        match self.phase {
+            Phase::Compression => self.hs.law.compression.stress(y[0].min(self.uc)),
+            _ => self
+                .hs
+                .law
+                .traction
+                .stress((y[0] - self.uc).max(0.0), self.beta(y)),
+        }
+    }
+    #[inline]
+    pub(super) fn gap_rate(&self, t: f64, y: [f64; 2]) -> f64 {
+        self.two_over_z1 * self.hs.incident.stress(t) - self.k * (self.sigma(y) + self.p0)
+    }
+}
+
+impl System for GapOde<'_> {
+    fn dim(&self) -> usize {
+        if self.phase == Phase::Damaging && !self.algebraic_damage() {
+            2
+        } else {
+            1
+        }
+    }
+    fn mass(&self) -> [f64; 2] {
+        if self.phase == Phase::Damaging && !self.algebraic_damage() {
+            [1.0, self.hs.law.traction.damage_viscosity()]
+        } else {
+            [1.0, 1.0]
+        }
+    }
+    #[inline]
+    fn forcing(&self, t: f64) -> f64 {
+        let c = self.cache.get();
+        if c[0].0 == t {
+            return c[0].1;
+        }
+        if c[1].0 == t {
+            return c[1].1;
+        }
+        let v = self.hs.incident.stress(t);
+        self.cache.set([c[1], (t, v)]);
+        v
+    }
+    /// The stage values from the grid's table, or in one call to the incident wave; the
+    /// end value is cached.
+    fn forcing_stages(&self, t: f64, h: f64) -> [f64; 3] {
+        let g = self.grid.radau(t, h).unwrap_or_else(|| {
+            let mut g = [0.0; 3];
+            self.hs.incident.stress_nodes(t, h, &radau::C, &mut g);
+            g
+        });
+        let c = self.cache.get();
+        self.cache.set([c[1], (t + radau::C[2] * h, g[2])]);
+        g
+    }
+    fn rhs_forced(&self, _t: f64, s_inc: f64, y: [f64; 2]) -> [f64; 2] {
+        let f1 = if self.phase == Phase::Damaging && !self.algebraic_damage() {
+            // b dbeta/dt = min(phi, 0): beta never increases
+            self.hs
+                .law
+                .traction
+                .damage_driving_force((y[0] - self.uc).max(0.0), y[1])
+                .min(0.0)
+        } else {
+            0.0
+        };
+        [
+            self.two_over_z1 * s_inc - self.k * (self.sigma(y) + self.p0),
+            f1,
+        ]
+    }
+    fn jacobian(&self, _t: f64, y: [f64; 2]) -> [[f64; 2]; 2] {
+        match self.phase {
+            Phase::Compression => [
+                [
+                    -self.k * self.hs.law.compression.tangent(y[0].min(self.uc)),
+                    0.0,
+                ],
+                [0.0, 0.0],
+            ],
+            _ if self.algebraic_damage() => {
+                let tr = &self.hs.law.traction;
+                let d = (y[0] - self.uc).max(0.0);
+                let beta = self.beta(y);
+                let mut ds = tr.tangent(d, beta);
+                if beta < y[1] {
+                    // on the damage surface phi(d, beta) = 0: dbeta/dd = -phi_d / phi_beta
+                    let (pd, pb) = tr.damage_driving_force_gradient(d, beta);
+                    if pb != 0.0 {
+                        ds += tr.stress_d_adhesion(d, beta) * (-pd / pb);
+                    }
+                }
+                [[-self.k * ds, 0.0], [0.0, 0.0]]
+            }
+            _ => {
+                let tr = &self.hs.law.traction;
+                let d = (y[0] - self.uc).max(0.0);
+                let row0 = [
+                    -self.k * tr.tangent(d, y[1]),
+                    -self.k * tr.stress_d_adhesion(d, y[1]),
+                ];
+                if self.phase == Phase::Damaging && tr.damage_driving_force(d, y[1]) < 0.0 {
+                    let (a, b) = tr.damage_driving_force_gradient(d, y[1]);
+                    [row0, [a, b]]
+                } else {
+                    [row0, [0.0, 0.0]]
+                }
+            }
+        }
+    }
+}
