@@ -111,6 +111,17 @@ impl ToneBurst {
         b
     }
 
+    /// The same burst with peak `amplitude` (Pa): identical to [`ToneBurst::new`] with
+    /// that amplitude, without recomputing the window's normalisation (a sweep over the
+    /// amplitude or `xi` builds its bursts from one).
+    pub fn with_amplitude(&self, amplitude: f64) -> Self {
+        ToneBurst {
+            amplitude,
+            scale: amplitude / self.norm,
+            ..self.clone()
+        }
+    }
+
     #[inline]
     fn raw(&self, t: f64) -> f64 {
         -self.window.value(t / self.duration) * (self.omega * t).sin()
@@ -370,6 +381,19 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+    #[test]
+    fn with_amplitude_is_new_with_that_amplitude() {
+        let w = Window::HannRamps {
+            ramp_fraction: 0.25,
+        };
+        let a = ToneBurst::new(1.0, 1e6, 15.0, w).with_amplitude(3.5e5);
+        let b = ToneBurst::new(3.5e5, 1e6, 15.0, w);
+        assert_eq!(a.peak(), 3.5e5);
+        for k in 0..1000 {
+            let t = k as f64 * 1.6e-8;
+            assert_eq!(a.stress(t).to_bits(), b.stress(t).to_bits(), "{t}");
         }
     }
     #[test]

@@ -4,6 +4,7 @@
 //! the entries whose inputs are equal.
 
 use crate::error::Result;
+use crate::excitation::{ToneBurst, Window};
 use crate::law::spec::{CompressionSpec, TractionSpec};
 use crate::law::{registry, ContactLaw};
 use std::path::{Path, PathBuf};
@@ -18,11 +19,18 @@ pub type Columns = Arc<(Vec<f64>, Vec<f64>)>;
 
 type LawKey = (u64, CompressionSpec, TractionSpec, String);
 
+/// Frequency and cycles (bits) and window of a tone burst.
+type BurstKey = (u64, u64, Window);
+
+/// Most tone bursts kept (a sweep over the frequency or the cycles builds one per point).
+const MAX_BURSTS: usize = 16;
+
 /// Laws and files shared by the points of one template.
 #[derive(Debug, Default)]
 pub struct BuildCache {
     laws: Mutex<Vec<(LawKey, Arc<ContactLaw>)>>,
     files: Mutex<Vec<(PathBuf, String, Columns)>>,
+    bursts: Mutex<Vec<(BurstKey, ToneBurst)>>,
 }
 
 impl BuildCache {
@@ -64,6 +72,30 @@ impl BuildCache {
             laws.push((key, law.clone()));
         }
         Ok(law)
+    }
+
+    /// A tone burst of `cycles` cycles at `frequency` (Hz) in `window` with peak
+    /// `amplitude` (Pa), its window normalisation computed once per frequency, cycles and
+    /// window ([`ToneBurst::with_amplitude`]: the same burst as [`ToneBurst::new`]).
+    pub fn tone_burst(
+        &self,
+        amplitude: f64,
+        frequency: f64,
+        cycles: f64,
+        window: Window,
+    ) -> ToneBurst {
+        let key: BurstKey = (frequency.to_bits(), cycles.to_bits(), window);
+        let bursts = self.bursts.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some((_, b)) = bursts.iter().find(|(k, _)| *k == key) {
+            return b.with_amplitude(amplitude);
+        }
+        drop(bursts);
+        let b = ToneBurst::new(amplitude, frequency, cycles, window);
+        let mut bursts = self.bursts.lock().unwrap_or_else(|p| p.into_inner());
+        if bursts.len() < MAX_BURSTS {
+            bursts.push((key, b.clone()));
+        }
+        b
     }
 
     /// The two columns of a CSV file read by `read` once (`field` names the key in

@@ -633,7 +633,7 @@ pub(crate) fn build_wave(
     };
     let exc: Arc<dyn Excitation> = match inc.kind {
         IncidentKind::ToneBurst => {
-            Arc::new(ToneBurst::new(amplitude.unwrap_or(0.0), f0, cycles, window))
+            Arc::new(cache.tone_burst(amplitude.unwrap_or(0.0), f0, cycles, window))
         }
         IncidentKind::TwoTone => {
             let f2 = positive_opt(file, &key("frequency2"), inc.frequency2, None)?;

@@ -66,8 +66,9 @@ impl IncidentGrid {
             0
         };
         // the buffer of the thread's previous run (no allocation in a sweep)
+        // (stress_grid writes every entry: only a longer table than the last is zeroed)
         let mut table = POOL.with(|p| p.take());
-        table.clear();
+        table.truncate(GRID_NODES.len() * steps);
         table.resize(GRID_NODES.len() * steps, 0.0);
         incident.stress_grid(h, &GRID_NODES, steps, &mut table);
         IncidentGrid {
