@@ -193,7 +193,8 @@ impl Excitation for ToneBurst {
         // the base and the phasor of its phase, scaled by 0 on the flat top ((ws0, wc0));
         // `irregular` steps are evaluated directly
         const BLOCK: usize = 64;
-        let mut ph = [[0.0f64; 5]; BLOCK];
+        // phasors by component (structure of arrays: the node loop below vectorises)
+        let mut ph = [[0.0f64; BLOCK]; 5];
         let mut irregular = [false; BLOCK];
         let rot = small_sin_cos(wh);
         // window phase per step (the same on both ramps of a window)
@@ -210,16 +211,27 @@ impl Excitation for ToneBurst {
         let mut k0 = 0;
         while k0 < steps {
             let nb = BLOCK.min(steps - k0);
-            for (j, (p, irr)) in ph.iter_mut().zip(irregular.iter_mut()).take(nb).enumerate() {
+            // a block inside the burst on one window piece needs no per-step checks
+            let (sa0, sb1) = (k0 as f64 * h * inv_d, (k0 + nb) as f64 * h * inv_d);
+            let block_piece = ((k0 + nb) as f64 * h <= d && self.window.same_piece(sa0, sb1))
+                .then(|| self.window.hann_piece(sa0));
+            for j in 0..nb {
                 let k = k0 + j;
-                let (ta, tb) = (k as f64 * h, (k + 1) as f64 * h);
-                let (sa, sb) = (ta * inv_d, tb * inv_d);
-                *irr = !(tb <= d) || !self.window.same_piece(sa, sb);
-                if *irr {
-                    piece = None;
-                    continue;
-                }
-                let wp = self.window.hann_piece(sa);
+                let ta = k as f64 * h;
+                let sa = ta * inv_d;
+                let wp = match block_piece {
+                    Some(wp) => wp,
+                    None => {
+                        let tb = (k + 1) as f64 * h;
+                        irregular[j] = !(tb <= d) || !self.window.same_piece(sa, tb * inv_d);
+                        if irregular[j] {
+                            piece = None;
+                            continue;
+                        }
+                        self.window.hann_piece(sa)
+                    }
+                };
+                irregular[j] = false;
                 if piece != Some(wp) || since_anchor >= REANCHOR {
                     (s0, c0) = (self.omega * ta).sin_cos();
                     if let Some((kp, phi)) = wp {
@@ -234,10 +246,15 @@ impl Excitation for ToneBurst {
                     }
                 }
                 since_anchor += 1;
-                *p = match wp {
-                    Some(_) => [s0, c0, 0.5, ws0, wc0],
-                    None => [s0, c0, 1.0, 0.0, 0.0],
+                let (base, ws, wc) = match wp {
+                    Some(_) => (0.5, ws0, wc0),
+                    None => (1.0, 0.0, 0.0),
                 };
+                ph[0][j] = s0;
+                ph[1][j] = c0;
+                ph[2][j] = base;
+                ph[3][j] = ws;
+                ph[4][j] = wc;
             }
             for (i0, cc) in c.chunks(16).enumerate().map(|(n, cc)| (16 * n, cc)) {
                 for (o, ci) in off.iter_mut().zip(cc) {
@@ -245,11 +262,12 @@ impl Excitation for ToneBurst {
                     let (wsd, wcd) = small_sin_cos(kw * h / d * ci);
                     *o = [sd, cd, wsd, wcd];
                 }
+                let [p0, p1, p2, p3, p4] = &ph;
                 for (i, o) in off.iter().take(cc.len()).enumerate() {
                     let row = (i0 + i) * steps + k0;
-                    for (x, p) in out[row..row + nb].iter_mut().zip(&ph) {
-                        let w = p[2] - 0.5 * (p[4] * o[3] - p[3] * o[2]);
-                        *x = scale * -(w * (p[0] * o[1] + p[1] * o[0]));
+                    for (j, x) in out[row..row + nb].iter_mut().enumerate() {
+                        let w = p2[j] - 0.5 * (p4[j] * o[3] - p3[j] * o[2]);
+                        *x = scale * -(w * (p0[j] * o[1] + p1[j] * o[0]));
                     }
                 }
                 for j in (0..nb).filter(|&j| irregular[j]) {

@@ -355,27 +355,22 @@ impl<'a> Runner<'a> {
     /// Accumulate a stuck step from the incident stress at its nodes (GL4: sums, then
     /// scale; the end node is not used).
     fn acc_stuck_cached(&self, acc: &mut Acc, h: f64, sinc: &[f64; 5]) {
-        let (mut d_ref, mut d_inc, mut d_tr) = (0.0, 0.0, 0.0);
-        let (mut e_inc, mut e_ref, mut e_tr) = (0.0, 0.0, 0.0);
+        // S = g s_inc and s_ref = (g - 1) s_inc: the integrals of s_inc and s_inc^2 give all
+        let (mut d_inc, mut e_inc) = (0.0, 0.0);
         for i in 0..4 {
             let (w, si) = (GL4_WEIGHTS[i], sinc[i]);
-            let s = self.s_of(si);
-            let sref = s - si;
-            d_ref += w * sref;
             d_inc += w * si;
             e_inc += w * si * si;
-            e_ref += w * sref * sref;
-            d_tr += w * s;
-            e_tr += w * s * s;
         }
+        let g = self.stuck_gain;
         let (h1, h2) = (h * self.inv_z[0], h * self.inv_z[1]);
-        acc.disp_ref += h1 * d_ref;
+        acc.disp_ref += h1 * ((g - 1.0) * d_inc);
         acc.disp_inc -= h1 * d_inc;
         acc.e_inc += h1 * e_inc;
-        acc.e_ref += h1 * e_ref;
+        acc.e_ref += h1 * ((g - 1.0) * (g - 1.0) * e_inc);
         // (1/Z2 = 0 at a rigid wall: nothing transmitted)
-        acc.disp_tr -= h2 * d_tr;
-        acc.e_tr += h2 * e_tr;
+        acc.disp_tr -= h2 * (g * d_inc);
+        acc.e_tr += h2 * (g * g * e_inc);
     }
 
     /// S = sigma + p0 in a stuck phase from the incident stress.
@@ -813,6 +808,7 @@ impl<'a> Runner<'a> {
         while k < n_max {
             let ta = k as f64 * h;
             let tb = (k + 1) as f64 * h;
+            self.ode.grid.enter_step(k, ta, tb);
             let mut t = ta;
             while bi < self.breaks.len() && self.breaks[bi] <= ta {
                 bi += 1;

@@ -18,14 +18,12 @@ const MAX_GRID_STEPS: usize = 1 << 20;
 /// stage nodes and the nodes of a stuck step ([`STUCK_NODES`]), Pa. Steps split by an
 /// event or a breakpoint, and steps after the burst, are evaluated directly.
 pub(super) struct IncidentGrid {
-    /// Grid step, s.
-    h: f64,
-    /// `1 / h`, 1/s.
-    inv_h: f64,
     /// Tabulated steps.
     steps: usize,
     /// `table[i * steps + k]`: stress at `t_k + GRID_NODES[i] h`, Pa.
     table: Vec<f64>,
+    /// The solver's current grid step `(ta, tb, k)`.
+    current: std::cell::Cell<(f64, f64, usize)>,
 }
 
 thread_local! {
@@ -72,24 +70,24 @@ impl IncidentGrid {
         table.resize(GRID_NODES.len() * steps, 0.0);
         incident.stress_grid(h, &GRID_NODES, steps, &mut table);
         IncidentGrid {
-            h,
-            inv_h: 1.0 / h,
             steps,
             table,
+            current: std::cell::Cell::new((f64::NAN, f64::NAN, usize::MAX)),
         }
     }
 
-    /// The index `k` when `[t, t + h]` is the whole grid step `k` of the table, as the
-    /// solver forms it (`t = k h`, `h = (k + 1) h - k h`).
+    /// Set the grid step the solver is in: `k`, from `ta = k h` to `tb = (k + 1) h` (s).
+    #[inline]
+    pub(super) fn enter_step(&self, k: usize, ta: f64, tb: f64) {
+        self.current.set((ta, tb, k));
+    }
+
+    /// The index `k` when `[t, t + h]` is the whole current grid step `k` and it is in the
+    /// table (`h` as the solver forms it: `tb - ta`).
     #[inline]
     fn step(&self, t: f64, h: f64) -> Option<usize> {
-        let k = (t * self.inv_h).round();
-        if !(k >= 0.0 && k < self.steps as f64) {
-            return None;
-        }
-        let k = k as usize;
-        let (ta, tb) = (k as f64 * self.h, (k + 1) as f64 * self.h);
-        (t == ta && h == tb - ta).then_some(k)
+        let (ta, tb, k) = self.current.get();
+        (t == ta && h == tb - ta && k < self.steps).then_some(k)
     }
 
     /// The stuck-step nodes of `[t, t + h]` when it is a tabulated grid step.
