@@ -42,6 +42,20 @@ pub trait CompressionBranch: Debug + Send + Sync {
     fn stiffness_at_rest(&self) -> f64 {
         self.tangent(0.0)
     }
+    /// Tangent stiffness `d sigma / d[u]` at `gap` whose stress `stress` (Pa) is known as
+    /// well (a solver's record of both), Pa/m: [`CompressionBranch::tangent`]; a branch
+    /// that finds its stress numerically reads it at the stress instead of solving again.
+    fn tangent_at(&self, gap: f64, _stress: f64) -> f64 {
+        self.tangent(gap)
+    }
+    /// The implicit interface update on the compressed side, for branches that solve it
+    /// faster than a Newton iteration on the gap: the gap `[u] <= [u]_c` (m) with
+    /// `sigma([u]) + ([u] - q)/chi = 0` for a shifted prediction `q <= [u]_c` (m) and a
+    /// compliance `chi > 0` (m/Pa), from `hint`, an estimate of the pressure `-sigma` of
+    /// the solution (Pa; NaN for none). `None` (the default): no solver of its own.
+    fn solve_compressed(&self, _shifted_gap: f64, _chi: f64, _hint: f64) -> Option<f64> {
+        None
+    }
 }
 
 /// A traction branch: the interface stress for an opening `d = [u] - [u]_c > 0`, possibly

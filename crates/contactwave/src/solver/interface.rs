@@ -57,12 +57,15 @@ fn s_of(law: &ContactLaw, g: f64, beta_old: f64, dt: f64) -> (f64, f64) {
     }
 }
 
-/// Solve the interface update. `t` is only used in error messages.
+/// Solve the interface update. `hint` is an estimate of the dynamic stress `S` of the
+/// solution (Pa: the previous steps' extrapolated; NaN for none): with one, a compression
+/// branch with a solver of its own ([`crate::law::CompressionBranch::solve_compressed`])
+/// starts there. `t` is only used in error messages.
 pub fn update(
     law: &ContactLaw,
     predicted_gap: f64,
     chi: f64,
-    beta_old: f64,
+    (beta_old, hint): (f64, f64),
     dt: f64,
     t: f64,
 ) -> Result<InterfaceUpdate> {
@@ -87,6 +90,20 @@ pub fn update(
             return Ok(InterfaceUpdate {
                 gap: uc,
                 dynamic_stress: p0,
+                adhesion: beta_old,
+            });
+        }
+        // sigma(g) + (g - q)/chi = 0 with q = g~ - chi p0; the hint's pressure p0 - S
+        let own = if hint.is_nan() {
+            None
+        } else {
+            law.compression
+                .solve_compressed(gt - chi * p0, chi, p0 - hint)
+        };
+        if let Some(g) = own.filter(|g| *g <= uc) {
+            return Ok(InterfaceUpdate {
+                gap: g,
+                dynamic_stress: (gt - g) / chi,
                 adhesion: beta_old,
             });
         }

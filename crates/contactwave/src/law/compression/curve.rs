@@ -37,6 +37,9 @@ pub struct StiffnessCurve<K: StiffnessPressure> {
     bucket: Vec<u32>,
     /// Width of one bucket in G, m.
     bucket_width: f64,
+    /// Step of the uniform part of the pressure grid (`p <= p_lin`), Pa, and `p_lin`.
+    dp_lin: f64,
+    p_lin: f64,
     g0: f64,
     h0: f64,
     name: &'static str,
@@ -77,6 +80,8 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
             k,
             bucket,
             bucket_width,
+            dp_lin: p_lin / n_lin as f64,
+            p_lin,
             g0: 0.0,
             h0: 0.0,
             name,
@@ -103,6 +108,35 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
         (
             self.g[i] + gauss4(a, pr, |x| 1.0 / self.law.stiffness(x)),
             self.h[i] + gauss4(a, pr, |x| x / self.law.stiffness(x)),
+        )
+    }
+
+    /// (G(p), K(p)) at `pr >= 0`, Pa: G as [`StiffnessCurve::integrals`] finds it (the
+    /// quadrature from the grid node below), the pressure interval found from the uniform
+    /// grid step (at most two inserted nodes, kinks and p0, shift it) instead of a binary
+    /// search; K of the law (beyond the grid, its last node's, as G is extrapolated).
+    #[inline]
+    fn g_and_k(&self, pr: f64) -> (f64, f64) {
+        let n = self.p.len();
+        if pr >= self.p[n - 1] {
+            let k = self.k[n - 1];
+            return (self.g[n - 1] + (pr - self.p[n - 1]) / k, k);
+        }
+        let mut i = if pr < self.p_lin {
+            ((pr / self.dp_lin) as usize).min(n - 2)
+        } else {
+            self.p.partition_point(|&v| v <= pr).saturating_sub(1)
+        };
+        while i > 0 && self.p[i] > pr {
+            i -= 1;
+        }
+        while i + 2 < n && self.p[i + 1] <= pr {
+            i += 1;
+        }
+        let a = self.p[i];
+        (
+            self.g[i] + gauss4(a, pr, |x| 1.0 / self.law.stiffness(x)),
+            self.law.stiffness(pr),
         )
     }
 
@@ -204,6 +238,10 @@ impl<K: StiffnessPressure> CompressionBranch for StiffnessCurve<K> {
     fn tangent(&self, gap: f64) -> f64 {
         self.law.stiffness(self.pressure(gap))
     }
+    /// `K(-sigma)`: the pressure is the recorded one (no curve inversion).
+    fn tangent_at(&self, _gap: f64, stress: f64) -> f64 {
+        self.law.stiffness((-stress).max(0.0))
+    }
     fn stress_tangent(&self, gap: f64) -> (f64, f64) {
         let p = self.pressure(gap);
         (-p, self.law.stiffness(p))
@@ -216,5 +254,52 @@ impl<K: StiffnessPressure> CompressionBranch for StiffnessCurve<K> {
     }
     fn stiffness_at_rest(&self) -> f64 {
         self.law.stiffness(self.static_pressure)
+    }
+    /// Newton's method on the pressure instead of the gap: with `g = [u]_c - G(p)` the
+    /// update reads `Phi(p) = chi p + G(p) - ([u]_c - q) = 0`, `Phi' = chi + 1/K(p) > 0`,
+    /// one quadrature of `1/K` and one `K` per iteration (no curve inversion inside the
+    /// iteration), from the hint (the previous steps' pressure extrapolated: one or two
+    /// iterations). Converged when the correction is below 1e-9 (p + p0) (the error of the
+    /// corrected pressure is then of the order of its square, round-off); the gap of the
+    /// corrected pressure to first order in the correction. Bracketed by the signs of
+    /// `Phi` (`Phi(0) <= 0` on the compressed side), bisection when an iterate leaves the
+    /// bracket; `None` (the caller's iteration on the gap) if it does not converge.
+    fn solve_compressed(&self, shifted_gap: f64, chi: f64, hint: f64) -> Option<f64> {
+        let target = self.g0 - shifted_gap;
+        if !(target >= 0.0 && chi > 0.0) {
+            return None;
+        }
+        let scale = self.static_pressure;
+        let (mut lo, mut hi) = (0.0, f64::INFINITY);
+        let mut p = if hint.is_finite() && hint > 0.0 {
+            hint
+        } else {
+            scale
+        };
+        for _ in 0..60 {
+            let (gp, k) = self.g_and_k(p);
+            let phi = chi * p + gp - target;
+            if phi <= 0.0 {
+                lo = p;
+            } else {
+                hi = p;
+            }
+            let d = phi / (chi + 1.0 / k);
+            if d.abs() <= 1e-9 * (p + scale) {
+                let np = p - d;
+                if np >= 0.0 {
+                    return Some(self.g0 - gp + d / k);
+                }
+            }
+            let np = p - d;
+            p = if np > lo && np < hi {
+                np
+            } else if hi.is_finite() {
+                0.5 * (lo + hi)
+            } else {
+                return None;
+            };
+        }
+        None
     }
 }

@@ -119,23 +119,26 @@ impl JointState {
     }
 }
 
-/// One interface update of the normal law alone: `s_old` is the dynamic stress two levels
-/// back (Pa); returns the update (its `dynamic_stress` the stress of the new level) and
-/// the stress to apply over the step.
+/// One interface update of the normal law alone from the state `st` (adhesion and the
+/// dynamic stresses of the last two levels, Pa); returns the update (its `dynamic_stress`
+/// the stress of the new level) and the stress to apply over the step. The stress of the
+/// new level is first guessed by linear extrapolation of the last two (the warm start of
+/// a compression branch that solves the update itself).
 #[inline]
 fn interface_step(
     ctx: StepContext,
     law: &ContactLaw,
     gt: f64,
     chi: f64,
-    beta_old: f64,
-    s_old: f64,
+    st: &JointState,
 ) -> Result<(interface::InterfaceUpdate, f64)> {
     let StepContext { scheme, dt, t } = ctx;
+    let (beta_old, s_old) = (st.beta, st.s_prev);
+    let guess = (beta_old, 2.0 * st.s_cur - st.s_prev);
     if scheme == InterfaceScheme::Average {
         // g = g~ - chi (S_new + S_old) / 2: the update with compliance chi/2 from the
         // shifted prediction g~ - chi S_old / 2
-        let upd = interface::update(law, gt - 0.5 * chi * s_old, 0.5 * chi, beta_old, dt, t)?;
+        let upd = interface::update(law, gt - 0.5 * chi * s_old, 0.5 * chi, guess, dt, t)?;
         let uc = law.critical_gap();
         let on_constraint = (upd.gap <= uc && law.compression.is_rigid())
             || (upd.gap >= uc && law.traction.is_rigid());
@@ -143,7 +146,7 @@ fn interface_step(
             return Ok((upd, 0.5 * (upd.dynamic_stress + s_old)));
         }
     }
-    let upd = interface::update(law, gt, chi, beta_old, dt, t)?;
+    let upd = interface::update(law, gt, chi, guess, dt, t)?;
     Ok((upd, upd.dynamic_stress))
 }
 
@@ -161,7 +164,7 @@ pub(super) fn update(
     let chi = joint.compliances(normal);
     let gn = joint.gap(&normal.u_next);
     let Some((sf, joint_t, tl)) = shear else {
-        let (upd, s_app) = interface_step(ctx, law, gn, chi.0 + chi.1, st.beta, st.s_prev)?;
+        let (upd, s_app) = interface_step(ctx, law, gn, chi.0 + chi.1, st)?;
         joint.apply(&mut normal.u_next, chi, s_app);
         st.finish_normal(upd, law);
         return Ok(());
