@@ -51,10 +51,33 @@ pub trait CompressionBranch: Debug + Send + Sync {
     /// The implicit interface update on the compressed side, for branches that solve it
     /// faster than a Newton iteration on the gap: the gap `[u] <= [u]_c` (m) with
     /// `sigma([u]) + ([u] - q)/chi = 0` for a shifted prediction `q <= [u]_c` (m) and a
-    /// compliance `chi > 0` (m/Pa), from `hint`, an estimate of the pressure `-sigma` of
-    /// the solution (Pa; NaN for none). `None` (the default): no solver of its own.
-    fn solve_compressed(&self, _shifted_gap: f64, _chi: f64, _hint: f64) -> Option<f64> {
+    /// compliance `chi > 0` (m/Pa), warm-started from (and updating) what the previous
+    /// updates of the same interface left in `warm`. `None` (the default): no solver of
+    /// its own.
+    fn solve_compressed(&self, _shifted_gap: f64, _chi: f64, _warm: &mut WarmStart) -> Option<f64> {
         None
+    }
+}
+
+/// What a compression branch's own interface solver
+/// ([`CompressionBranch::solve_compressed`]) carries from one update of an interface to
+/// the next: the last two points it evaluated, three numbers each (for a stiffness
+/// curve: pressure, Pa, `G(p) = integral_0^p dp'/K`, m, and `1/K(p)`, m/Pa), oldest first.
+/// Start from `WarmStart::default()` (none).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct WarmStart {
+    /// The points, oldest first (the first `len` of them from the newest backwards).
+    pub points: [[f64; 3]; 2],
+    /// How many are set: 0, 1 or 2.
+    pub len: usize,
+}
+
+impl WarmStart {
+    /// Add the newest point (the oldest is dropped).
+    pub fn push(&mut self, point: [f64; 3]) {
+        self.points[0] = self.points[1];
+        self.points[1] = point;
+        self.len = (self.len + 1).min(2);
     }
 }
 

@@ -13,7 +13,7 @@
 //! damage by the law's unconditionally stable backward-Euler update inside `S(g)`.
 
 use crate::error::{Error, Result};
-use crate::law::ContactLaw;
+use crate::law::{ContactLaw, WarmStart};
 use crate::numeric::root::brent_past;
 
 /// How the interface force enters the step (the law itself holds exactly at the new time
@@ -57,15 +57,16 @@ fn s_of(law: &ContactLaw, g: f64, beta_old: f64, dt: f64) -> (f64, f64) {
     }
 }
 
-/// Solve the interface update. `hint` is an estimate of the dynamic stress `S` of the
-/// solution (Pa: the previous steps' extrapolated; NaN for none): with one, a compression
-/// branch with a solver of its own ([`crate::law::CompressionBranch::solve_compressed`])
-/// starts there. `t` is only used in error messages.
+/// Solve the interface update. With `warm` (what the previous updates of this interface
+/// left), a compression branch with a solver of its own
+/// ([`crate::law::CompressionBranch::solve_compressed`]) uses it; without, the Newton
+/// iteration on the gap below. `t` is only used in error messages.
 pub fn update(
     law: &ContactLaw,
     predicted_gap: f64,
     chi: f64,
-    (beta_old, hint): (f64, f64),
+    beta_old: f64,
+    warm: Option<&mut WarmStart>,
     dt: f64,
     t: f64,
 ) -> Result<InterfaceUpdate> {
@@ -93,13 +94,8 @@ pub fn update(
                 adhesion: beta_old,
             });
         }
-        // sigma(g) + (g - q)/chi = 0 with q = g~ - chi p0; the hint's pressure p0 - S
-        let own = if hint.is_nan() {
-            None
-        } else {
-            law.compression
-                .solve_compressed(gt - chi * p0, chi, p0 - hint)
-        };
+        // sigma(g) + (g - q)/chi = 0 with q = g~ - chi p0
+        let own = warm.and_then(|w| law.compression.solve_compressed(gt - chi * p0, chi, w));
         if let Some(g) = own.filter(|g| *g <= uc) {
             return Ok(InterfaceUpdate {
                 gap: g,
