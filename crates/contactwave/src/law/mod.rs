@@ -42,6 +42,43 @@ pub trait CompressionBranch: Debug + Send + Sync {
     fn stiffness_at_rest(&self) -> f64 {
         self.tangent(0.0)
     }
+    /// Tangent stiffness `d sigma / d[u]` at `gap` whose stress `stress` (Pa) is known as
+    /// well (a solver's record of both), Pa/m: [`CompressionBranch::tangent`]; a branch
+    /// that finds its stress numerically reads it at the stress instead of solving again.
+    fn tangent_at(&self, gap: f64, _stress: f64) -> f64 {
+        self.tangent(gap)
+    }
+    /// The implicit interface update on the compressed side, for branches that solve it
+    /// faster than a Newton iteration on the gap: the gap `[u] <= [u]_c` (m) with
+    /// `sigma([u]) + ([u] - q)/chi = 0` for a shifted prediction `q <= [u]_c` (m) and a
+    /// compliance `chi > 0` (m/Pa), warm-started from (and updating) what the previous
+    /// updates of the same interface left in `warm`. `None` (the default): no solver of
+    /// its own.
+    fn solve_compressed(&self, _shifted_gap: f64, _chi: f64, _warm: &mut WarmStart) -> Option<f64> {
+        None
+    }
+}
+
+/// What a compression branch's own interface solver
+/// ([`CompressionBranch::solve_compressed`]) carries from one update of an interface to
+/// the next: the last two points it evaluated, three numbers each (for a stiffness
+/// curve: pressure, Pa, `G(p) = integral_0^p dp'/K`, m, and `1/K(p)`, m/Pa), oldest first.
+/// Start from `WarmStart::default()` (none).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct WarmStart {
+    /// The points, oldest first (the first `len` of them from the newest backwards).
+    pub points: [[f64; 3]; 2],
+    /// How many are set: 0, 1 or 2.
+    pub len: usize,
+}
+
+impl WarmStart {
+    /// Add the newest point (the oldest is dropped).
+    pub fn push(&mut self, point: [f64; 3]) {
+        self.points[0] = self.points[1];
+        self.points[1] = point;
+        self.len = (self.len + 1).min(2);
+    }
 }
 
 /// A traction branch: the interface stress for an opening `d = [u] - [u]_c > 0`, possibly

@@ -13,7 +13,7 @@
 //! damage by the law's unconditionally stable backward-Euler update inside `S(g)`.
 
 use crate::error::{Error, Result};
-use crate::law::ContactLaw;
+use crate::law::{ContactLaw, WarmStart};
 use crate::numeric::root::brent_past;
 
 /// How the interface force enters the step (the law itself holds exactly at the new time
@@ -57,12 +57,16 @@ fn s_of(law: &ContactLaw, g: f64, beta_old: f64, dt: f64) -> (f64, f64) {
     }
 }
 
-/// Solve the interface update. `t` is only used in error messages.
+/// Solve the interface update. With `warm` (what the previous updates of this interface
+/// left), a compression branch with a solver of its own
+/// ([`crate::law::CompressionBranch::solve_compressed`]) uses it; without, the Newton
+/// iteration on the gap below. `t` is only used in error messages.
 pub fn update(
     law: &ContactLaw,
     predicted_gap: f64,
     chi: f64,
     beta_old: f64,
+    warm: Option<&mut WarmStart>,
     dt: f64,
     t: f64,
 ) -> Result<InterfaceUpdate> {
@@ -87,6 +91,15 @@ pub fn update(
             return Ok(InterfaceUpdate {
                 gap: uc,
                 dynamic_stress: p0,
+                adhesion: beta_old,
+            });
+        }
+        // sigma(g) + (g - q)/chi = 0 with q = g~ - chi p0
+        let own = warm.and_then(|w| law.compression.solve_compressed(gt - chi * p0, chi, w));
+        if let Some(g) = own.filter(|g| *g <= uc) {
+            return Ok(InterfaceUpdate {
+                gap: g,
+                dynamic_stress: (gt - g) / chi,
                 adhesion: beta_old,
             });
         }
@@ -195,4 +208,65 @@ pub fn update(
         dynamic_stress: (gt - g) / chi,
         adhesion: b,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::law::compression::modified_power::{ModifiedPower, ModifiedPowerStiffness};
+    use crate::law::compression::StiffnessCurve;
+    use crate::law::traction::Free;
+
+    /// The pressure iteration of a stiffness-curve branch, warm-started along a history of
+    /// predictions (a slow oscillation through both branches of the modified power law,
+    /// then jumps: a large compression, near contact loss, far beyond the tabulated
+    /// pressures), gives the update of the Newton iteration on the gap: the same gap and
+    /// stress to round-off, the law holds at the result, and the tangent read at the
+    /// stress is the one at the gap.
+    #[test]
+    fn warm_started_curve_solve_matches_gap_newton() {
+        let p0 = 0.137e6;
+        let k = ModifiedPowerStiffness::new(1.81e10, 0.35, 0.2e6, 0.2);
+        let curve: ModifiedPower = StiffnessCurve::new(k, p0, "modified_power");
+        let law = ContactLaw {
+            static_pressure: p0,
+            compression: Box::new(curve),
+            traction: Box::new(Free),
+        };
+        let uc = law.critical_gap();
+        let chi = 1e-13;
+        let mut warm = WarmStart::default();
+        let mut gaps: Vec<f64> = (0..2000)
+            .map(|i| -1.2 * uc * (i as f64 * 0.01).sin())
+            .collect();
+        gaps.extend([-50.0 * uc, 0.999 * uc, -1e6 * uc, 0.3 * uc, -0.3 * uc]);
+        let (mut max_dev, mut compressed) = (0.0f64, 0);
+        for gt in gaps {
+            let fast = update(&law, gt, chi, 1.0, Some(&mut warm), 0.0, 0.0).unwrap();
+            let slow = update(&law, gt, chi, 1.0, None, 0.0, 0.0).unwrap();
+            let s = slow.dynamic_stress;
+            let scale = p0 + s.abs();
+            if fast.gap <= uc {
+                // the law's stress at the gap is S - p0 (and g = g~ - chi S by construction)
+                let law_s = law.compression.stress(fast.gap) + p0;
+                assert!(
+                    (fast.dynamic_stress - law_s).abs() <= 1e-12 * scale,
+                    "{gt:e}"
+                );
+                // the tangent read at the recorded stress is the one at the gap
+                let (kt, kg) = (
+                    law.compression
+                        .tangent_at(fast.gap, fast.dynamic_stress - p0),
+                    law.compression.tangent(fast.gap),
+                );
+                assert!((kt - kg).abs() <= 1e-12 * kg, "{gt:e}: {kt:e} {kg:e}");
+                compressed += 1;
+            }
+            max_dev = max_dev.max((fast.dynamic_stress - s).abs() / scale);
+        }
+        assert!(max_dev < 1e-13, "largest relative deviation {max_dev:e}");
+        assert!(compressed > 1000);
+        // the branch's own solver ran (it leaves its points)
+        assert_eq!(warm.len, 2);
+    }
 }

@@ -91,7 +91,7 @@ pub fn normal_update(
     t: f64,
 ) -> Result<InterfaceUpdate> {
     if !tangential.branch.needs_adhesion() || !law.traction.has_damage() {
-        return interface::update(law, predicted_gap, chi, beta_old, dt, t);
+        return interface::update(law, predicted_gap, chi, beta_old, None, dt, t);
     }
     let uc = law.critical_gap();
     let p0 = law.static_pressure;
@@ -99,7 +99,7 @@ pub fn normal_update(
     let f_uc = p0 + (uc - gt) / chi;
     if f_uc >= 0.0 || law.traction.is_rigid() {
         // closed (or bonded): the stress does not depend on beta; damage from the shear gap
-        let upd = interface::update(law, gt, chi, beta_old, dt, t)?;
+        let upd = interface::update(law, gt, chi, beta_old, None, dt, t)?;
         let d = (upd.gap - uc).max(0.0);
         return Ok(InterfaceUpdate {
             adhesion: adhesion_update(law, tangential, d, ut, beta_old, dt),

@@ -4,7 +4,7 @@
 //! inverted by Newton's method (`d[u]/dp = -1/K` exactly), so that the stress, the tangent
 //! (`K(p)` itself) and the energy are smooth to working precision.
 
-use crate::law::CompressionBranch;
+use crate::law::{CompressionBranch, WarmStart};
 use crate::numeric::gauss4;
 
 /// A stiffness-pressure relation `K(p)`, Pa/m, for `p >= 0`, Pa. Must be positive for
@@ -37,6 +37,9 @@ pub struct StiffnessCurve<K: StiffnessPressure> {
     bucket: Vec<u32>,
     /// Width of one bucket in G, m.
     bucket_width: f64,
+    /// Step of the uniform part of the pressure grid (`p <= p_lin`), Pa, and `p_lin`.
+    dp_lin: f64,
+    p_lin: f64,
     g0: f64,
     h0: f64,
     name: &'static str,
@@ -77,6 +80,8 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
             k,
             bucket,
             bucket_width,
+            dp_lin: p_lin / n_lin as f64,
+            p_lin,
             g0: 0.0,
             h0: 0.0,
             name,
@@ -103,6 +108,35 @@ impl<K: StiffnessPressure> StiffnessCurve<K> {
         (
             self.g[i] + gauss4(a, pr, |x| 1.0 / self.law.stiffness(x)),
             self.h[i] + gauss4(a, pr, |x| x / self.law.stiffness(x)),
+        )
+    }
+
+    /// (G(p), K(p)) at `pr >= 0`, Pa: G as [`StiffnessCurve::integrals`] finds it (the
+    /// quadrature from the grid node below), the pressure interval found from the uniform
+    /// grid step (at most two inserted nodes, kinks and p0, shift it) instead of a binary
+    /// search; K of the law (beyond the grid, its last node's, as G is extrapolated).
+    #[inline]
+    fn g_and_k(&self, pr: f64) -> (f64, f64) {
+        let n = self.p.len();
+        if pr >= self.p[n - 1] {
+            let k = self.k[n - 1];
+            return (self.g[n - 1] + (pr - self.p[n - 1]) / k, k);
+        }
+        let mut i = if pr < self.p_lin {
+            ((pr / self.dp_lin) as usize).min(n - 2)
+        } else {
+            self.p.partition_point(|&v| v <= pr).saturating_sub(1)
+        };
+        while i > 0 && self.p[i] > pr {
+            i -= 1;
+        }
+        while i + 2 < n && self.p[i + 1] <= pr {
+            i += 1;
+        }
+        let a = self.p[i];
+        (
+            self.g[i] + gauss4(a, pr, |x| 1.0 / self.law.stiffness(x)),
+            self.law.stiffness(pr),
         )
     }
 
@@ -204,6 +238,10 @@ impl<K: StiffnessPressure> CompressionBranch for StiffnessCurve<K> {
     fn tangent(&self, gap: f64) -> f64 {
         self.law.stiffness(self.pressure(gap))
     }
+    /// `K(-sigma)`: the pressure is the recorded one (no curve inversion).
+    fn tangent_at(&self, _gap: f64, stress: f64) -> f64 {
+        self.law.stiffness((-stress).max(0.0))
+    }
     fn stress_tangent(&self, gap: f64) -> (f64, f64) {
         let p = self.pressure(gap);
         (-p, self.law.stiffness(p))
@@ -217,4 +255,82 @@ impl<K: StiffnessPressure> CompressionBranch for StiffnessCurve<K> {
     fn stiffness_at_rest(&self) -> f64 {
         self.law.stiffness(self.static_pressure)
     }
+    /// Newton's method on the pressure instead of the gap: with `g = [u]_c - G(p)` the
+    /// update reads `Phi(p) = chi p + G(p) - ([u]_c - q) = 0`, `Phi' = chi + 1/K(p) > 0`,
+    /// one quadrature of `1/K` and one `K` per iteration (no curve inversion inside the
+    /// iteration). The start is the root of the cubic Hermite model of `G` through the
+    /// last two points evaluated on this interface (`warm`; the previous steps: one
+    /// iteration as a rule). Converged when the correction is below 1e-9 (p + p0) (the
+    /// error of the corrected pressure is then of the order of its square, round-off);
+    /// the gap of the corrected pressure to first order in the correction. Bracketed by
+    /// the signs of `Phi` (`Phi(0) <= 0` on the compressed side), bisection when an
+    /// iterate leaves the bracket; `None` (the caller's iteration on the gap) if it does
+    /// not converge.
+    fn solve_compressed(&self, shifted_gap: f64, chi: f64, warm: &mut WarmStart) -> Option<f64> {
+        let target = self.g0 - shifted_gap;
+        if !(target >= 0.0 && chi > 0.0) {
+            return None;
+        }
+        let scale = self.static_pressure;
+        let (mut lo, mut hi) = (0.0, f64::INFINITY);
+        let mut p = predict(warm, chi, target)
+            .filter(|p| p.is_finite() && *p >= 0.0)
+            .unwrap_or(scale);
+        for _ in 0..60 {
+            let (gp, k) = self.g_and_k(p);
+            let phi = chi * p + gp - target;
+            if phi <= 0.0 {
+                lo = p;
+            } else {
+                hi = p;
+            }
+            let sk = 1.0 / k;
+            let d = phi / (chi + sk);
+            let np = p - d;
+            if d.abs() <= 1e-9 * (p + scale) && np >= 0.0 {
+                if warm.len == 0 || warm.points[1][0] != p {
+                    warm.push([p, gp, sk]);
+                }
+                return Some(self.g0 - gp + d * sk);
+            }
+            p = if np > lo && np < hi {
+                np
+            } else if hi.is_finite() {
+                0.5 * (lo + hi)
+            } else {
+                return None;
+            };
+        }
+        None
+    }
+}
+
+/// The start of the pressure iteration of [`StiffnessCurve::solve_compressed`]: the root
+/// of `chi p + G(p) = target` (Pa) for the model of `G` the warm start holds (points
+/// `(p, G, 1/K)`): the cubic Hermite through its two points (values and slopes `1/K`),
+/// extrapolated no further than four times their distance, else the tangent at the
+/// newest; `None` without a point.
+fn predict(warm: &WarmStart, chi: f64, target: f64) -> Option<f64> {
+    if warm.len == 0 {
+        return None;
+    }
+    let [pb, gb, sb] = warm.points[1];
+    let psi0 = chi * pb + gb - target;
+    let d1 = chi + sb;
+    let t = -psi0 / d1;
+    let h = warm.points[0][0] - pb;
+    if warm.len < 2 || !(h != 0.0 && t.abs() <= 4.0 * h.abs()) {
+        return Some(pb + t);
+    }
+    let [_, ga, sa] = warm.points[0];
+    // G(pb + t) = gb + sb t + c2 t^2 + c3 t^3 with value ga and slope sa at t = h; one
+    // Newton step on chi (pb + t) + G(pb + t) = target from the tangent's root
+    let ih = 1.0 / h;
+    let r1 = ((ga - gb) * ih - sb) * ih;
+    let r2 = (sa - sb) * ih;
+    let c3 = (r2 - 2.0 * r1) * ih;
+    let c2 = 3.0 * r1 - r2;
+    let psi = psi0 + t * (d1 + t * (c2 + t * c3));
+    let dpsi = d1 + t * (2.0 * c2 + 3.0 * c3 * t);
+    Some(pb + t - psi / dpsi)
 }

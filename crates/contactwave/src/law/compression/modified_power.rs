@@ -22,17 +22,21 @@ pub struct ModifiedPowerStiffness {
     pub zero_pressure_fraction: f64,
     /// K(p_t) = C p_t^m, Pa/m (cached by [`ModifiedPowerStiffness::new`]).
     kt: f64,
+    /// dK/dp at p_t, m K(p_t) / p_t, 1/m (cached by [`ModifiedPowerStiffness::new`]).
+    dkt: f64,
 }
 
 impl ModifiedPowerStiffness {
     /// The relation with parameters C (Pa^(1-m)/m), m, p_t (Pa) and K(0)/K(p_t).
     pub fn new(c: f64, m: f64, transition_pressure: f64, zero_pressure_fraction: f64) -> Self {
+        let kt = c * transition_pressure.powf(m);
         ModifiedPowerStiffness {
             c,
             m,
             transition_pressure,
             zero_pressure_fraction,
-            kt: c * transition_pressure.powf(m),
+            kt,
+            dkt: m * kt / transition_pressure,
         }
     }
 }
@@ -44,7 +48,7 @@ impl StiffnessPressure for ModifiedPowerStiffness {
             return self.c * p.powf(self.m);
         }
         let kt = self.kt;
-        let dkt = self.m * kt / pt; // slope at p_t
+        let dkt = self.dkt; // slope at p_t
         let k0 = self.zero_pressure_fraction * kt;
         let s = (p / pt).max(0.0);
         // Hermite basis on [0, 1], slopes scaled by pt

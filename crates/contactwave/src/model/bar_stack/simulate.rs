@@ -186,6 +186,9 @@ pub fn simulate_bar_stack_with_progress(
         steps: ((0.05 / dt) as usize).min(steps),
         imposed: None,
         progress: None,
+        // only the first node's displacement is read
+        probes: vec![0],
+        shear_probes: Vec::new(),
         ..run.clone()
     };
     let lin = s.stack.run(&probe_run)?;
@@ -213,22 +216,25 @@ pub fn simulate_bar_stack_with_progress(
         },
     );
     let (pressure, stiffness) = interface_histories(s, &out, &mut summary);
+    let shear = shear::analyse(s, &out, &mut summary);
+    let mut out = out;
+    let displacement = std::mem::take(&mut out.displacement[0]);
     Ok(BarStackResult {
         file: s.file.clone(),
         dt: s.dt,
         static_pressure: s.static_pressure.clone(),
-        t: out.t.clone(),
+        t: out.t,
         force,
-        displacement: u.clone(),
+        displacement,
         acceleration: acc,
-        gap: out.gap.clone(),
+        gap: out.gap,
         pressure,
-        beta: out.beta.clone(),
+        beta: out.beta,
         stiffness,
         probes,
         frf,
         waves: None,
-        shear: shear::analyse(s, &out, &mut summary),
+        shear,
         summary,
     })
 }
@@ -303,12 +309,13 @@ fn interface_histories(
         let k: Vec<f64> = out.gap[i]
             .iter()
             .zip(&out.beta[i])
-            .map(|(&g, &b)| {
+            .zip(&out.stress[i])
+            .map(|((&g, &b), &sigma)| {
                 if g <= uc {
                     if law.compression.is_rigid() {
                         f64::INFINITY
                     } else {
-                        law.compression.tangent(g)
+                        law.compression.tangent_at(g, sigma)
                     }
                 } else {
                     law.traction.tangent(g - uc, b)

@@ -7,7 +7,7 @@
 use super::field::Field;
 use super::InterfaceScheme;
 use crate::error::Result;
-use crate::law::{ContactLaw, TangentialLaw};
+use crate::law::{ContactLaw, TangentialLaw, WarmStart};
 use crate::solver::interface;
 use crate::solver::interface_shear::{coupled_step, CoupledStepInput, ShearState};
 
@@ -73,6 +73,8 @@ pub(super) struct JointState {
     pub gap: f64,
     /// Normal contact stress sigma (tension positive, -p0 at rest), Pa.
     pub stress: f64,
+    /// Warm start of the compression branch's own interface solver.
+    pub warm: WarmStart,
     /// Tangential state (with a shear field).
     pub shear: ShearState,
     /// Tangential dynamic stress of the previous-but-one and the current level, Pa.
@@ -95,6 +97,7 @@ impl JointState {
             s_cur: 0.0,
             gap: 0.0,
             stress: -law.static_pressure,
+            warm: WarmStart::default(),
             shear: tangential.map_or_else(ShearState::default, |tl| {
                 ShearState::at_rest(tl, law.static_pressure)
             }),
@@ -119,23 +122,26 @@ impl JointState {
     }
 }
 
-/// One interface update of the normal law alone: `s_old` is the dynamic stress two levels
-/// back (Pa); returns the update (its `dynamic_stress` the stress of the new level) and
-/// the stress to apply over the step.
+/// One interface update of the normal law alone from the state `st` (adhesion, the
+/// dynamic stress two levels back, the compression branch's warm start); returns the
+/// update (its `dynamic_stress` the stress of the new level) and the stress to apply over
+/// the step.
 #[inline]
 fn interface_step(
     ctx: StepContext,
     law: &ContactLaw,
     gt: f64,
     chi: f64,
-    beta_old: f64,
-    s_old: f64,
+    st: &mut JointState,
 ) -> Result<(interface::InterfaceUpdate, f64)> {
     let StepContext { scheme, dt, t } = ctx;
+    let (beta_old, s_old) = (st.beta, st.s_prev);
+    let warm = &mut st.warm;
     if scheme == InterfaceScheme::Average {
         // g = g~ - chi (S_new + S_old) / 2: the update with compliance chi/2 from the
         // shifted prediction g~ - chi S_old / 2
-        let upd = interface::update(law, gt - 0.5 * chi * s_old, 0.5 * chi, beta_old, dt, t)?;
+        let gs = gt - 0.5 * chi * s_old;
+        let upd = interface::update(law, gs, 0.5 * chi, beta_old, Some(warm), dt, t)?;
         let uc = law.critical_gap();
         let on_constraint = (upd.gap <= uc && law.compression.is_rigid())
             || (upd.gap >= uc && law.traction.is_rigid());
@@ -143,7 +149,7 @@ fn interface_step(
             return Ok((upd, 0.5 * (upd.dynamic_stress + s_old)));
         }
     }
-    let upd = interface::update(law, gt, chi, beta_old, dt, t)?;
+    let upd = interface::update(law, gt, chi, beta_old, Some(warm), dt, t)?;
     Ok((upd, upd.dynamic_stress))
 }
 
@@ -161,7 +167,7 @@ pub(super) fn update(
     let chi = joint.compliances(normal);
     let gn = joint.gap(&normal.u_next);
     let Some((sf, joint_t, tl)) = shear else {
-        let (upd, s_app) = interface_step(ctx, law, gn, chi.0 + chi.1, st.beta, st.s_prev)?;
+        let (upd, s_app) = interface_step(ctx, law, gn, chi.0 + chi.1, st)?;
         joint.apply(&mut normal.u_next, chi, s_app);
         st.finish_normal(upd, law);
         return Ok(());
