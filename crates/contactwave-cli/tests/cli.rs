@@ -729,3 +729,48 @@ fn bad_identification_inputs_fail_with_one_line_and_no_output() {
         assert!(!out.exists(), "{name}: output folder created");
     }
 }
+
+/// `bench` times each issue-13 target and prints one line per target; a missing
+/// identification file is a one-line error with exit code 2.
+#[test]
+fn bench_prints_every_target_and_rejects_a_missing_file() {
+    let o = bin()
+        .args([
+            "bench",
+            "--runs",
+            "2",
+            "--points",
+            "3",
+            "--tribobrake-runs",
+            "1",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    for head in [
+        "single simulation",
+        "xi sweep (3 points",
+        "Tribobrake hammer test",
+    ] {
+        assert!(out.contains(head), "{head} missing in\n{out}");
+    }
+    assert!(!out.contains("identification"));
+    let o = bin()
+        .args([
+            "bench",
+            "--runs",
+            "1",
+            "--points",
+            "1",
+            "--tribobrake-runs",
+            "0",
+        ])
+        .arg("--identify")
+        .arg(examples().join("identify/missing.toml"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(stderr(&o).trim().lines().count(), 1, "{}", stderr(&o));
+    assert!(stderr(&o).contains("missing.toml"));
+}

@@ -1,8 +1,10 @@
 //! `contactwave bench`: time one simulation of the thesis' chapter-3 RCCM scenario (median
-//! of `--runs` runs on one thread) and an in-memory sweep of `--points` load ratios on all
-//! cores, and print the timings. Writes no files.
+//! of `--runs` runs on one thread), an in-memory sweep of `--points` load ratios on all
+//! cores, the Tribobrake hammer test of `examples/tribobrake.toml`, and with `--identify`
+//! an identification, and print the timings (docs/performance.md). Writes no files.
 
 use super::EXIT_OK;
+use contactwave::inverse::{identify, IdentifySpec};
 use contactwave::model;
 use contactwave::run::Executor;
 use contactwave::scenario::parse_toml;
@@ -11,8 +13,10 @@ use std::path::Path;
 use std::time::Instant;
 
 /// Time one simulation of the thesis' chapter-3 RCCM scenario (PMMA, p0 = 0.082 MPa,
-/// 1 MHz, 15 cycles, amplitude 0.82 MPa; median of --runs runs, one thread) and a sweep
-/// of --points load ratios xi in [0.05, 1.2] on all cores (in memory, no files).
+/// 1 MHz, 15 cycles, amplitude 0.82 MPa; median of --runs runs, one thread), a sweep of
+/// --points load ratios xi in [0.05, 1.2] on all cores, the Tribobrake hammer test of
+/// examples/tribobrake.toml (median of --tribobrake-runs) and, with --identify FILE, one
+/// identification (in memory, no files).
 #[derive(clap::Args)]
 pub struct Args {
     /// Points of the xi sweep.
@@ -23,6 +27,32 @@ pub struct Args {
     #[arg(long, default_value_t = 50,
           value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..))]
     runs: usize,
+    /// Repetitions of the Tribobrake hammer test (the median is reported; 0: skip it).
+    #[arg(long, default_value_t = 3)]
+    tribobrake_runs: usize,
+    /// Also time one identification of this file (e.g.
+    /// examples/identify/rccm_damaged.toml: a few seconds), files not written.
+    #[arg(long, value_name = "FILE")]
+    identify: Option<std::path::PathBuf>,
+}
+
+/// The Tribobrake hammer test of the thesis' chapter 4 (examples/tribobrake.toml).
+const TRIBOBRAKE: &str = include_str!("../../../../examples/tribobrake.toml");
+
+/// Median (s) of `runs` timings of `f`, with the minimum and maximum.
+fn timed(
+    runs: usize,
+    mut f: impl FnMut() -> contactwave::Result<()>,
+) -> contactwave::Result<(f64, f64, f64)> {
+    let mut times = Vec::with_capacity(runs);
+    for _ in 0..runs {
+        contactwave::interrupt::check()?;
+        let t0 = Instant::now();
+        f()?;
+        times.push(t0.elapsed().as_secs_f64());
+    }
+    times.sort_by(f64::total_cmp);
+    Ok((times[times.len() / 2], times[0], times[times.len() - 1]))
 }
 
 /// The chapter-3 RCCM scenario of `bench`.
@@ -41,21 +71,29 @@ x = -0.03
 "#;
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
-    let Args { points, runs } = args;
+    let Args {
+        points,
+        runs,
+        tribobrake_runs,
+        identify: identify_file,
+    } = args;
     let file = "<bench: chapter-3 RCCM scenario>";
     let table = parse_toml(BENCH_SCENARIO, file)?;
     let template = model::plan_valid(table, Path::new(file))?;
     let scenario = template.base()?;
     // (a) one simulation, single thread, median of `runs`
-    let mut times = Vec::with_capacity(runs);
-    for _ in 0..runs {
-        let t0 = Instant::now();
-        let s = scenario.summary()?;
-        times.push(t0.elapsed().as_secs_f64());
-        std::hint::black_box(s);
-    }
-    times.sort_by(f64::total_cmp);
-    let median = times[times.len() / 2];
+    let (median, min, max) = timed(runs, || {
+        std::hint::black_box(scenario.summary()?);
+        Ok(())
+    })?;
+    println!("single simulation (chapter-3 RCCM, 0.82 MPa, 1 thread):");
+    println!(
+        "  median {:.3} ms per simulation over {} runs (min {:.3} ms, max {:.3} ms)",
+        median * 1e3,
+        runs,
+        min * 1e3,
+        max * 1e3
+    );
     // (b) xi sweep on all cores, in memory: the models are built from the template first
     let xis = study::linspace(0.05, 1.2, points);
     let xi = template.param("incident.xi")?;
@@ -67,14 +105,6 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let results = Executor::new().try_map(&models, |m| m.summary())?;
     let sweep_s = t0.elapsed().as_secs_f64();
     std::hint::black_box(results);
-    println!("single simulation (chapter-3 RCCM, 0.82 MPa, 1 thread):");
-    println!(
-        "  median {:.3} ms per simulation over {} runs (min {:.3} ms, max {:.3} ms)",
-        median * 1e3,
-        runs,
-        times[0] * 1e3,
-        times[times.len() - 1] * 1e3
-    );
     println!(
         "xi sweep ({} points in [0.05, 1.2], {} threads):",
         points,
@@ -85,5 +115,35 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         sweep_s * 1e3,
         sweep_s * 1e3 / points as f64
     );
+    // (c) the Tribobrake hammer test (0.2 s simulated, FRF, guide-mode probe run)
+    if tribobrake_runs > 0 {
+        let file = "<bench: examples/tribobrake.toml>";
+        let tb = model::plan_valid(parse_toml(TRIBOBRAKE, file)?, Path::new(file))?.base()?;
+        let (median, min, max) = timed(tribobrake_runs, || {
+            std::hint::black_box(tb.summary()?);
+            Ok(())
+        })?;
+        println!("Tribobrake hammer test (examples/tribobrake.toml, summary, 1 thread):");
+        println!(
+            "  median {:.1} ms per run over {} runs (min {:.1} ms, max {:.1} ms)",
+            median * 1e3,
+            tribobrake_runs,
+            min * 1e3,
+            max * 1e3
+        );
+    }
+    // (d) one identification, forward runs on all cores
+    if let Some(path) = identify_file {
+        let spec = IdentifySpec::load(&path)?;
+        let t0 = Instant::now();
+        let r = identify(&spec, &|_| {})?;
+        println!("identification ({}):", path.display());
+        println!(
+            "  {:.2} s wall, {} forward runs ({:.0} runs/s)",
+            t0.elapsed().as_secs_f64(),
+            r.forward_runs,
+            r.forward_runs as f64 / t0.elapsed().as_secs_f64()
+        );
+    }
     Ok(EXIT_OK)
 }
