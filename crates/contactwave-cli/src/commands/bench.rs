@@ -39,6 +39,19 @@ pub struct Args {
 /// The Tribobrake hammer test of the thesis' chapter 4 (examples/tribobrake.toml).
 const TRIBOBRAKE: &str = include_str!("../../../../examples/tribobrake.toml");
 
+/// Print `title` and the median, minimum and maximum `t` (s) of `runs` runs in ms with
+/// `digits` decimals.
+fn print_timing(title: &str, what: &str, runs: usize, t: (f64, f64, f64), digits: usize) {
+    let ms = |x: f64| format!("{:.*}", digits, x * 1e3);
+    println!("{title}");
+    println!(
+        "  median {} ms per {what} over {runs} runs (min {} ms, max {} ms)",
+        ms(t.0),
+        ms(t.1),
+        ms(t.2)
+    );
+}
+
 /// Median (s) of `runs` timings of `f`, with the minimum and maximum.
 fn timed(
     runs: usize,
@@ -86,13 +99,12 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         std::hint::black_box(scenario.summary()?);
         Ok(())
     })?;
-    println!("single simulation (chapter-3 RCCM, 0.82 MPa, 1 thread):");
-    println!(
-        "  median {:.3} ms per simulation over {} runs (min {:.3} ms, max {:.3} ms)",
-        median * 1e3,
+    print_timing(
+        "single simulation (chapter-3 RCCM, 0.82 MPa, 1 thread):",
+        "simulation",
         runs,
-        min * 1e3,
-        max * 1e3
+        (median, min, max),
+        3,
     );
     // (b) xi sweep on all cores, in memory: the models are built from the template first
     let xis = study::linspace(0.05, 1.2, points);
@@ -123,13 +135,12 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             std::hint::black_box(tb.summary()?);
             Ok(())
         })?;
-        println!("Tribobrake hammer test (examples/tribobrake.toml, summary, 1 thread):");
-        println!(
-            "  median {:.1} ms per run over {} runs (min {:.1} ms, max {:.1} ms)",
-            median * 1e3,
+        print_timing(
+            "Tribobrake hammer test (examples/tribobrake.toml, summary, 1 thread):",
+            "run",
             tribobrake_runs,
-            min * 1e3,
-            max * 1e3
+            (median, min, max),
+            1,
         );
     }
     // (d) one identification, forward runs on all cores
