@@ -211,7 +211,7 @@ impl<'a> Runner<'a> {
             ode: GapOde {
                 hs,
                 cache: std::cell::Cell::new([(f64::NAN, 0.0); 2]),
-                grid: IncidentGrid::new(&*hs.incident, h),
+                grid: IncidentGrid::new(&*hs.incident, h, hs.rest_phase() == Phase::Locked),
                 phase: hs.rest_phase(),
                 k,
                 p0,
@@ -515,6 +515,35 @@ impl<'a> Runner<'a> {
         }
     }
 
+    /// The whole grid step `k` from `ta` to `tb` (s) of a stuck phase that it does not
+    /// leave, straight from the incident table: the quadrature of [`Runner::advance`]
+    /// without its event search. Returns `false` (nothing done) where `advance` must take
+    /// the step: not a stuck phase, a step outside the table, or an exit event inside.
+    #[inline]
+    fn stuck_grid_step(&mut self, acc: &mut Acc, k: usize, ta: f64, tb: f64) -> bool {
+        let phase = self.ode.phase;
+        if !phase.is_stuck() {
+            return false;
+        }
+        let Some(sinc) = self.ode.grid.stuck_at(k) else {
+            return false;
+        };
+        if phase != Phase::Locked {
+            // advance's event check: an exit function turning positive at a node
+            let mut prev = self.stuck_event(phase, ta);
+            for &s in &sinc {
+                let e = self.stuck_event_of(phase, s);
+                if e > 0.0 && prev <= 0.0 {
+                    return false;
+                }
+                prev = e;
+            }
+        }
+        self.ode.remember(tb, sinc[4]);
+        self.acc_stuck_cached(acc, tb - ta, &sinc);
+        true
+    }
+
     /// Advance from t to t_end (no breakpoint inside), updating y, the phase, the
     /// integrals. Returns when t_end is reached.
     fn advance(&mut self, acc: &mut Acc, mut t: f64, t_end: f64, y: &mut [f64; 2]) -> Result<()> {
@@ -813,13 +842,17 @@ impl<'a> Runner<'a> {
             while bi < self.breaks.len() && self.breaks[bi] <= ta {
                 bi += 1;
             }
-            while bi < self.breaks.len() && self.breaks[bi] < tb {
+            let whole = bi >= self.breaks.len() || self.breaks[bi] >= tb;
+            let done = whole && self.stuck_grid_step(&mut acc, k, ta, tb);
+            while !done && bi < self.breaks.len() && self.breaks[bi] < tb {
                 let tbk = self.breaks[bi];
                 self.advance(&mut acc, t, tbk, &mut y)?;
                 t = tbk;
                 bi += 1;
             }
-            self.advance(&mut acc, t, tb, &mut y)?;
+            if !done {
+                self.advance(&mut acc, t, tb, &mut y)?;
+            }
             k += 1;
             if k % 4096 == 0 {
                 crate::interrupt::check()?;

@@ -56,7 +56,9 @@ const GRID_NODES: [f64; 8] = [
 impl IncidentGrid {
     /// Tabulate `incident` on the grid of step `h` (s) over its duration (nothing when the
     /// table would exceed [`MAX_GRID_STEPS`]).
-    pub(super) fn new(incident: &dyn Excitation, h: f64) -> Self {
+    /// With `stuck_only` (a locked interface: no ODE phase ever) only the stuck-step nodes
+    /// are tabulated; the Radau rows are then not to be read.
+    pub(super) fn new(incident: &dyn Excitation, h: f64, stuck_only: bool) -> Self {
         let n = (incident.duration() / h).ceil();
         let steps = if n.is_finite() && n >= 0.0 && n <= MAX_GRID_STEPS as f64 {
             n as usize
@@ -68,7 +70,11 @@ impl IncidentGrid {
         let mut table = POOL.with(|p| p.take());
         table.truncate(GRID_NODES.len() * steps);
         table.resize(GRID_NODES.len() * steps, 0.0);
-        incident.stress_grid(h, &GRID_NODES, steps, &mut table);
+        if stuck_only {
+            incident.stress_grid(h, &STUCK_NODES, steps, &mut table[3 * steps..]);
+        } else {
+            incident.stress_grid(h, &GRID_NODES, steps, &mut table);
+        }
         IncidentGrid {
             steps,
             table,
@@ -88,6 +94,13 @@ impl IncidentGrid {
     fn step(&self, t: f64, h: f64) -> Option<usize> {
         let (ta, tb, k) = self.current.get();
         (t == ta && h == tb - ta && k < self.steps).then_some(k)
+    }
+
+    /// The stuck-step nodes of grid step `k` when it is tabulated.
+    #[inline]
+    pub(super) fn stuck_at(&self, k: usize) -> Option<[f64; 5]> {
+        let n = self.steps;
+        (k < n).then(|| std::array::from_fn(|i| self.table[(3 + i) * n + k]))
     }
 
     /// The stuck-step nodes of `[t, t + h]` when it is a tabulated grid step.
