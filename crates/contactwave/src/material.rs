@@ -71,6 +71,16 @@ impl Material {
     }
 }
 
+/// Admittance `1/Z` of an impedance `z` (Pa s/m), m/(Pa s): 0 for a rigid wall (`z` infinite).
+#[inline]
+pub fn admittance(z: f64) -> f64 {
+    if z.is_finite() {
+        1.0 / z
+    } else {
+        0.0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

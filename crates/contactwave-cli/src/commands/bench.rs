@@ -68,20 +68,8 @@ fn timed(
     Ok((times[times.len() / 2], times[0], times[times.len() - 1]))
 }
 
-/// The chapter-3 RCCM scenario of `bench`.
-const BENCH_SCENARIO: &str = r#"
-[medium]
-material = "pmma"
-[interface]
-static_pressure = 0.082e6
-traction = { law = "rccm", stiffness = 2e13, energy = 0.1, viscosity = 1e-8 }
-[incident]
-frequency = 1e6
-cycles = 15
-amplitude = 0.82e6
-[probe]
-x = -0.03
-"#;
+/// The chapter-3 RCCM scenario of `bench` (examples/rccm_0.82MPa.toml).
+const BENCH_SCENARIO: &str = include_str!("../../../../examples/rccm_0.82MPa.toml");
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
     let Args {
@@ -90,7 +78,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         tribobrake_runs,
         identify: identify_file,
     } = args;
-    let file = "<bench: chapter-3 RCCM scenario>";
+    let file = "<bench: examples/rccm_0.82MPa.toml>";
     let table = parse_toml(BENCH_SCENARIO, file)?;
     let template = model::plan_valid(table, Path::new(file))?;
     let scenario = template.base()?;

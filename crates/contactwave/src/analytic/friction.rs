@@ -39,12 +39,7 @@ impl ClippedShear {
 
     /// `k_T = 1/Z1 + 1/Z2`, m/(Pa s).
     pub fn compliance(&self) -> f64 {
-        1.0 / self.z1
-            + if self.z2.is_finite() {
-                1.0 / self.z2
-            } else {
-                0.0
-            }
+        1.0 / self.z1 + crate::material::admittance(self.z2)
     }
 
     /// Clip angle `theta_c = asin(c / (T A))` (`pi/2` when the interface never slips).

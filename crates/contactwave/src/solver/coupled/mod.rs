@@ -33,6 +33,7 @@ use super::Solver;
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::law::TangentialLaw;
+use crate::material::admittance as inv;
 use crate::numeric::root::brent_past;
 use std::sync::Arc;
 
@@ -227,14 +228,6 @@ struct Runner<'a> {
     /// Impedances in effect: `(Z1, Z2, Z1T, Z2T)` at normal incidence, the inverses of the
     /// compliances' diagonals at oblique incidence, Pa s/m.
     z: [f64; 4],
-}
-
-fn inv(z: f64) -> f64 {
-    if z.is_finite() {
-        1.0 / z
-    } else {
-        0.0
-    }
 }
 
 impl<'a> Runner<'a> {

@@ -97,12 +97,7 @@ struct Acc {
 impl HalfSpace {
     /// `1/Z1 + 1/Z2`, m/(Pa s).
     pub fn compliance(&self) -> f64 {
-        1.0 / self.z1
-            + if self.z2.is_finite() {
-                1.0 / self.z2
-            } else {
-                0.0
-            }
+        1.0 / self.z1 + crate::material::admittance(self.z2)
     }
 
     /// Initial phase at rest.
@@ -234,10 +229,7 @@ impl<'a> Runner<'a> {
             has_damage: hs.law.traction.has_damage(),
             w_norm: hs.law.traction.adhesion_energy(1.0).abs().max(1e-300),
             stuck_gain: 2.0 / hs.z1 / k,
-            inv_z: [
-                1.0 / hs.z1,
-                if hs.z2.is_finite() { 1.0 / hs.z2 } else { 0.0 },
-            ],
+            inv_z: [1.0 / hs.z1, crate::material::admittance(hs.z2)],
             stuck_tol: STUCK_TOLERANCE * p0.abs().max(2.0 / hs.z1 / k * hs.incident.peak()),
         }
     }
