@@ -48,6 +48,13 @@ impl Excitation for Delayed {
     fn peak(&self) -> f64 {
         self.inner.peak()
     }
+    /// The inner shape, delayed.
+    fn unit_shape(&self) -> Option<super::UnitShape> {
+        let mut u = self.inner.unit_shape()?;
+        u.key.extend([3, self.delay.to_bits()]);
+        u.unit = Arc::new(Delayed::new(u.unit, self.delay));
+        Some(u)
+    }
 }
 
 #[cfg(test)]

@@ -15,6 +15,18 @@ pub use tone_burst::{ToneBurst, Window};
 pub use two_tone::TwoTone;
 
 use std::fmt::Debug;
+use std::sync::Arc;
+
+/// A waveform apart from its amplitude ([`Excitation::unit_shape`]): the waveform at unit
+/// peak, and a key of its shape. Equal keys give the same unit waveform, bit for bit,
+/// whatever the amplitudes of the waveforms they came from.
+#[derive(Debug, Clone)]
+pub struct UnitShape {
+    /// Identifies the shape (numbers as bits, each kind of waveform tagged).
+    pub key: Vec<u64>,
+    /// The waveform with `peak() == 1` Pa.
+    pub unit: Arc<dyn Excitation>,
+}
 
 /// [`Excitation::stress_grid`] step by step through [`Excitation::stress_nodes`].
 pub(crate) fn grid_by_steps<E: Excitation + ?Sized>(
@@ -76,6 +88,13 @@ pub trait Excitation: Debug + Send + Sync {
     fn breakpoints(&self) -> Vec<f64>;
     /// Peak of |s_inc|, Pa.
     fn peak(&self) -> f64;
+    /// The waveform at unit peak, built from its shape alone, with the key of that shape:
+    /// `self` is `peak()` times it, so that what is linear in the amplitude (the response
+    /// of a linear interface) can be computed once per shape. `None` (the default): the
+    /// waveform cannot say, and nothing is shared between its runs.
+    fn unit_shape(&self) -> Option<UnitShape> {
+        None
+    }
 }
 
 /// Peak of |f| over [0, d], found on a fine grid refined by golden-section search.

@@ -60,6 +60,14 @@ impl Excitation for Scaled {
     fn peak(&self) -> f64 {
         self.factor.abs() * self.inner.peak()
     }
+    /// The inner shape with the factor's sign.
+    fn unit_shape(&self) -> Option<super::UnitShape> {
+        let mut u = self.inner.unit_shape()?;
+        let sign = self.factor.signum();
+        u.key.extend([2, sign.to_bits()]);
+        u.unit = Arc::new(Scaled::new(u.unit, sign));
+        Some(u)
+    }
 }
 
 #[cfg(test)]

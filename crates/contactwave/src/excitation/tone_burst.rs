@@ -296,6 +296,25 @@ impl Excitation for ToneBurst {
     fn peak(&self) -> f64 {
         self.amplitude
     }
+    /// Frequency, duration, window and normalisation (none depends on the amplitude).
+    fn unit_shape(&self) -> Option<super::UnitShape> {
+        let (tag, ramp) = match self.window {
+            Window::HannRamps { ramp_fraction } => (0, ramp_fraction),
+            Window::Hann => (1, 0.0),
+            Window::Rectangular => (2, 0.0),
+        };
+        Some(super::UnitShape {
+            key: vec![
+                1,
+                self.frequency.to_bits(),
+                self.duration.to_bits(),
+                self.norm.to_bits(),
+                tag,
+                ramp.to_bits(),
+            ],
+            unit: std::sync::Arc::new(self.with_amplitude(1.0)),
+        })
+    }
 }
 
 /// Largest step phase (rad) that [`ToneBurst::stress_nodes`] steps by angle addition.

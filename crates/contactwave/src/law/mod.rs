@@ -38,6 +38,12 @@ pub trait CompressionBranch: Debug + Send + Sync {
     }
     /// Energy stored from rest, `integral_0^[u] (sigma + p0) d[u]`, J/m^2.
     fn energy(&self, gap: f64) -> f64;
+    /// `true` when the stress is affine in the gap over the whole branch (constant
+    /// [`CompressionBranch::tangent`]): a solver may then integrate the branch's phase
+    /// without iterating. Default `false`.
+    fn is_affine(&self) -> bool {
+        false
+    }
     /// Tangent stiffness at rest K(p0), Pa/m (`f64::INFINITY` for rigid); enters xi.
     fn stiffness_at_rest(&self) -> f64 {
         self.tangent(0.0)
@@ -104,6 +110,12 @@ pub trait TractionBranch: Debug + Send + Sync {
     }
     /// Elastic energy `psi(d, beta) = integral_0^d sigma dd`, J/m^2.
     fn energy(&self, opening: f64, adhesion: f64) -> f64;
+    /// `true` when, at fixed adhesion, the stress is linear in the opening `d >= 0`
+    /// (constant [`TractionBranch::tangent`]): a solver may then integrate a phase without
+    /// damage growth without iterating. Default `false`.
+    fn is_affine(&self) -> bool {
+        false
+    }
     /// `d psi / d beta`, J/m^2: energy released per unit decrease of beta.
     fn energy_d_adhesion(&self, _opening: f64, _adhesion: f64) -> f64 {
         0.0

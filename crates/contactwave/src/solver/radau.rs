@@ -86,6 +86,24 @@ pub trait System {
     fn dim(&self) -> usize {
         2
     }
+    /// Where a one-component system (`dim() == 1`) is affine in `y[0]` near the state `y`:
+    /// `f(t, y + (z, 0)) = f(t, y) + slope z` for every `y[0] + z` in `[lower, upper]`.
+    /// [`step`] then solves the collocation equations in one linear solve, without
+    /// Newton's iterations; `None` (the default): no such interval.
+    fn affine(&self, _y: [f64; 2]) -> Option<Affine> {
+        None
+    }
+}
+
+/// An interval where a scalar right-hand side is affine in the state ([`System::affine`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Affine {
+    /// `df/dy[0]` (units of f per unit of y).
+    pub slope: f64,
+    /// Smallest `y[0]` of the interval.
+    pub lower: f64,
+    /// Largest `y[0]` of the interval.
+    pub upper: f64,
 }
 
 /// Result of one step.
@@ -109,6 +127,13 @@ impl Step {
 pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) -> Option<Step> {
     let m = sys.mass();
     let n = sys.dim();
+    if n == 1 {
+        if let Some(a) = sys.affine(y) {
+            if let Some(s) = affine_step(sys, t, y, h, m[0], a) {
+                return Some(s);
+            }
+        }
+    }
     let f0 = sys.rhs(t, y);
     let j0 = sys.jacobian(t, y);
     let g = sys.forcing_stages(t, h);
@@ -212,6 +237,36 @@ pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) ->
     Some(Step { stages, forcing: g })
 }
 
+/// The Radau step of an affine scalar system ([`System::affine`]): the collocation
+/// equations `m z_j = h sum_l A_jl (f(t_l, y) + slope z_l)` are linear, so one 3 x 3 solve
+/// gives what Newton's iteration converges to (the same solution up to round-off). `None`
+/// when a stage leaves the affine interval (a step across a kink of the law: Newton takes
+/// it) or the system is singular.
+fn affine_step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, m: f64, a: Affine) -> Option<Step> {
+    let g = sys.forcing_stages(t, h);
+    let f: [f64; 3] = std::array::from_fn(|l| sys.rhs_forced(t + C[l] * h, g[l], y)[0]);
+    let mut b = [0.0f64; 6];
+    let mut jac = [0.0f64; 9];
+    for j in 0..3 {
+        b[j] = h * (A[j][0] * f[0] + A[j][1] * f[1] + A[j][2] * f[2]);
+        for l in 0..3 {
+            jac[j * 3 + l] = if j == l { m } else { 0.0 } - h * A[j][l] * a.slope;
+        }
+    }
+    if !solve3(&jac, &mut b) {
+        return None;
+    }
+    let mut stages = [[0.0; 2]; 3];
+    for j in 0..3 {
+        let v = y[0] + b[j];
+        if !(v >= a.lower && v <= a.upper) {
+            return None;
+        }
+        stages[j] = [v, y[1]];
+    }
+    Some(Step { stages, forcing: g })
+}
+
 /// Solve the 3x3 system (row-major in `a[..9]`) by Cramer's rule, in place in `b[..3]`.
 #[inline]
 fn solve3(a: &[f64; 9], b: &mut [f64; 6]) -> bool {
@@ -277,6 +332,63 @@ mod tests {
                 .end();
         }
         assert!((y[0] - 1.0f64.cos()).abs() < 1e-9);
+    }
+    /// The decay of [`Decay`] declaring itself affine above `lower`.
+    struct AffineDecay(f64, f64);
+    impl System for AffineDecay {
+        fn mass(&self) -> [f64; 2] {
+            [1.0, 1.0]
+        }
+        fn rhs_forced(&self, t: f64, _g: f64, y: [f64; 2]) -> [f64; 2] {
+            Decay(self.0).rhs_forced(t, 0.0, y)
+        }
+        fn jacobian(&self, t: f64, y: [f64; 2]) -> [[f64; 2]; 2] {
+            Decay(self.0).jacobian(t, y)
+        }
+        fn dim(&self) -> usize {
+            1
+        }
+        fn affine(&self, _y: [f64; 2]) -> Option<Affine> {
+            Some(Affine {
+                slope: -self.0,
+                lower: self.1,
+                upper: f64::INFINITY,
+            })
+        }
+    }
+    #[test]
+    fn affine_step_is_the_newton_step() {
+        // mild and stiff decay rates: the one linear solve lands where Newton converges
+        for (lambda, h) in [(1.0, 0.1), (1e3, 0.01), (1e12, 0.1)] {
+            let (newton, affine) = (Decay(lambda), AffineDecay(lambda, f64::NEG_INFINITY));
+            let a = step(&newton, 0.3, [2.0, 0.0], h, [1.0, 1.0]).unwrap();
+            let b = step(&affine, 0.3, [2.0, 0.0], h, [1.0, 1.0]).unwrap();
+            for j in 0..3 {
+                let (x, y) = (a.stages[j][0], b.stages[j][0]);
+                assert!(
+                    (x - y).abs() <= 1e-14 * x.abs().max(1.0),
+                    "{lambda}: {x} vs {y}"
+                );
+            }
+        }
+    }
+    #[test]
+    fn affine_step_leaves_a_kink_to_newton() {
+        // a stage below `lower` (the law's kink): the affine solve is refused, and step
+        // falls back to Newton on the true right-hand side (here the same: no kink)
+        let sys = AffineDecay(1.0, 1.9);
+        let g = sys.forcing_stages(0.3, 0.5);
+        assert!(affine_step(
+            &sys,
+            0.3,
+            [2.0, 0.0],
+            0.5,
+            1.0,
+            sys.affine([2.0, 0.0]).unwrap()
+        )
+        .is_none());
+        assert!(step(&sys, 0.3, [2.0, 0.0], 0.5, [1.0, 1.0]).is_some());
+        assert_eq!(g, [0.0; 3]);
     }
     #[test]
     fn a_inverse_is_inverse() {

@@ -28,4 +28,7 @@ impl CompressionBranch for Linear {
     fn energy(&self, gap: f64) -> f64 {
         0.5 * self.stiffness * gap * gap
     }
+    fn is_affine(&self) -> bool {
+        true
+    }
 }

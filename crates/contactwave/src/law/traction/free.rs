@@ -19,4 +19,7 @@ impl TractionBranch for Free {
     fn energy(&self, _opening: f64, _adhesion: f64) -> f64 {
         0.0
     }
+    fn is_affine(&self) -> bool {
+        true
+    }
 }

@@ -23,4 +23,7 @@ impl TractionBranch for Linear {
     fn energy(&self, opening: f64, _adhesion: f64) -> f64 {
         0.5 * self.stiffness * opening * opening
     }
+    fn is_affine(&self) -> bool {
+        true
+    }
 }

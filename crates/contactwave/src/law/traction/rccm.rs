@@ -37,6 +37,9 @@ impl TractionBranch for Rccm {
     fn energy(&self, d: f64, beta: f64) -> f64 {
         0.5 * beta * beta * self.stiffness * d * d
     }
+    fn is_affine(&self) -> bool {
+        true
+    }
     fn energy_d_adhesion(&self, d: f64, beta: f64) -> f64 {
         beta * self.stiffness * d * d
     }

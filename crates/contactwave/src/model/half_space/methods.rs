@@ -126,7 +126,14 @@ pub fn analyse_keeping<T>(
 ) -> Result<(Analysis, Derived<T>)> {
     let method = scenario.spec.analysis.method;
     let sig = signal(scenario, out);
-    let need_linear = with_floor || method == AnalysisMethod::LinearReference;
+    // a locked interface's floor, once per burst shape (no linearised solve here)
+    let locked = if with_floor {
+        locked_floor(scenario, &sig, |s| solve(s).map(|o| o.0)).transpose()?
+    } else {
+        None
+    };
+    let need_linear =
+        (with_floor && locked.is_none()) || method == AnalysisMethod::LinearReference;
     let linear = match linearised(scenario) {
         Some(s) if need_linear => Some(solve(&s)?),
         _ => None,
@@ -157,6 +164,7 @@ pub fn analyse_keeping<T>(
     let bands = method_bands(method, &records, &sig)
         .ok_or_else(|| Error::numerical(0.0, "a record of the analysis is missing", ""))?;
     let floor = match lin {
+        _ if locked.is_some() => locked.unwrap_or_default(),
         Some(l) if with_floor => method_floor(method, l, &sig),
         _ => {
             let nan = f64::NAN;
@@ -177,4 +185,97 @@ pub fn analyse_keeping<T>(
         },
         Derived { linear, inverse },
     ))
+}
+
+/// Most floors a thread keeps ([`locked_floor`]).
+const MAX_FLOORS: usize = 8;
+
+/// What fixes the floor of a locked interface, apart from the amplitude: the burst's
+/// shape ([`crate::excitation::UnitShape::key`]) and, as bits, `Z1`, `Z2`, the samples
+/// per period, the tail, the analysis method and the signal's step, start and plateau.
+type FloorKey = (Vec<u64>, [u64; 9]);
+
+thread_local! {
+    /// The floors at unit incident peak this thread computed last, oldest first.
+    static FLOORS: std::cell::RefCell<Vec<(FloorKey, BandAmplitudes)>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// The analysis floor of a scenario whose interface linearises to a locked one (rigid
+/// compression: [`linearised_law`] is rigid x bonded), from the floor at unit incident peak,
+/// computed once per burst shape and thread and scaled by the peak. The locked interface's
+/// response is linear in the burst and its record length does not depend on the amplitude,
+/// so this is the floor of the scenario's own linearised solve (up to round-off), and the
+/// same whichever point of a sweep computed it first. `None` where that does not hold or
+/// the burst cannot give its shape (the caller then solves): `linear_reference` (which
+/// reads the linear record itself), a tangential or oblique part, the FD solver, a
+/// compliant compression branch, a file or two-tone burst.
+fn locked_floor(
+    scenario: &Scenario,
+    sig: &Signal,
+    solve: impl Fn(&Scenario) -> Result<HalfSpaceOutput>,
+) -> Option<Result<BandAmplitudes>> {
+    use crate::scenario::spec::Method;
+    let method = scenario.spec.analysis.method;
+    let law = &scenario.law;
+    let locked = law.compression.is_rigid() || law.compression.stiffness_at_rest() == f64::INFINITY;
+    if !locked
+        || method == AnalysisMethod::LinearReference
+        || scenario.shear.is_some()
+        || scenario.oblique.is_some()
+        || scenario.spec.solver.method != Method::Exact
+    {
+        return None;
+    }
+    let shape = scenario.incident.unit_shape()?;
+    let solver = &scenario.spec.solver;
+    let tail = solver.tail_periods;
+    let key: FloorKey = (
+        shape.key,
+        [
+            scenario.medium.impedance().to_bits(),
+            scenario.counterpart.map_or(f64::INFINITY, |m| m.impedance()).to_bits(),
+            solver.samples_per_period() as u64,
+            tail.map_or(u64::MAX, f64::to_bits),
+            method.code().to_bits(),
+            sig.dt.to_bits(),
+            sig.t0.to_bits(),
+            sig.plateau.0.to_bits(),
+            sig.plateau.1.to_bits(),
+        ],
+    );
+    let peak = scenario.incident.peak();
+    let hit = FLOORS.with(|f| f.borrow().iter().find(|(k, _)| *k == key).map(|e| e.1));
+    let unit = match hit {
+        Some(u) => u,
+        None => {
+            let mut s = linearised(scenario)?;
+            s.incident = shape.unit;
+            let out = match solve(&s) {
+                Ok(o) => o,
+                Err(e) => return Some(Err(e)),
+            };
+            let u = method_floor(method, &out.reflected_displacement, sig);
+            FLOORS.with(|f| {
+                let mut f = f.borrow_mut();
+                if f.len() >= MAX_FLOORS {
+                    f.remove(0);
+                }
+                f.push((key, u));
+            });
+            u
+        }
+    };
+    Some(Ok(scaled(&unit, peak)))
+}
+
+/// Every amplitude of `b` times `factor`.
+fn scaled(b: &BandAmplitudes, factor: f64) -> BandAmplitudes {
+    BandAmplitudes {
+        harmonic: b.harmonic.map(|a| a * factor),
+        subharmonic: b.subharmonic * factor,
+        f2: b.f2 * factor,
+        sum: b.sum * factor,
+        difference: b.difference * factor,
+    }
 }

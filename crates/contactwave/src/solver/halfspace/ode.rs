@@ -4,7 +4,7 @@
 use super::HalfSpace;
 use crate::excitation::Excitation;
 use crate::numeric::GL4_NODES;
-use crate::solver::radau::{self, System};
+use crate::solver::radau::{self, Affine, System};
 
 /// The nodes of a stuck step: the four Gauss-Legendre nodes and the step end.
 pub(super) const STUCK_NODES: [f64; 5] =
@@ -24,6 +24,10 @@ pub(super) struct IncidentGrid {
     table: Vec<f64>,
     /// The solver's current grid step `(ta, tb, k)`.
     current: std::cell::Cell<(f64, f64, usize)>,
+    /// Grid step, s.
+    h: f64,
+    /// Duration of the burst, s (its stress is 0 after it).
+    duration: f64,
 }
 
 thread_local! {
@@ -79,6 +83,8 @@ impl IncidentGrid {
             steps,
             table,
             current: std::cell::Cell::new((f64::NAN, f64::NAN, usize::MAX)),
+            h,
+            duration: incident.duration(),
         }
     }
 
@@ -96,11 +102,18 @@ impl IncidentGrid {
         (t == ta && h == tb - ta && k < self.steps).then_some(k)
     }
 
-    /// The stuck-step nodes of grid step `k` when it is tabulated.
+    /// The stuck-step nodes of grid step `k` when it is tabulated, or zeros when the step
+    /// starts after the burst (the incident stress is 0 past its duration).
     #[inline]
     pub(super) fn stuck_at(&self, k: usize) -> Option<[f64; 5]> {
         let n = self.steps;
-        (k < n).then(|| std::array::from_fn(|i| self.table[(3 + i) * n + k]))
+        if k < n {
+            Some(std::array::from_fn(|i| self.table[(3 + i) * n + k]))
+        } else if k as f64 * self.h > self.duration {
+            Some([0.0; 5])
+        } else {
+            None
+        }
     }
 
     /// The stuck-step nodes of `[t, t + h]` when it is a tabulated grid step.
@@ -261,6 +274,25 @@ impl System for GapOde<'_> {
             self.two_over_z1 * s_inc - self.k * (self.sigma(y) + self.p0),
             f1,
         ]
+    }
+    /// A compliant compression branch with constant stiffness (up to `[u]_c`), or a
+    /// traction branch linear in the opening at the phase's fixed adhesion (from `[u]_c`):
+    /// the gap equation is then linear and Radau's step needs no Newton iteration.
+    fn affine(&self, y: [f64; 2]) -> Option<Affine> {
+        let law = &self.hs.law;
+        match self.phase {
+            Phase::Compression if law.compression.is_affine() => Some(Affine {
+                slope: -self.k * law.compression.tangent(self.uc),
+                lower: f64::NEG_INFINITY,
+                upper: self.uc,
+            }),
+            Phase::Traction if law.traction.is_affine() => Some(Affine {
+                slope: -self.k * law.traction.tangent(0.0, y[1]),
+                lower: self.uc,
+                upper: f64::INFINITY,
+            }),
+            _ => None,
+        }
     }
     fn jacobian(&self, _t: f64, y: [f64; 2]) -> [[f64; 2]; 2] {
         match self.phase {
