@@ -11,6 +11,7 @@
 //! O(1/samples_per_period^2) only.
 
 pub mod fit;
+mod low_bins;
 pub mod methods;
 pub mod projection;
 mod spectrum;

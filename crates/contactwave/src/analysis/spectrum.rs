@@ -1,6 +1,7 @@
 //! Spectra and band amplitudes with plans made once and reused (RustFFT's planner design):
 //! an [`Analyzer`] owns its planners and scratch buffers; a sweep keeps one per thread.
 
+use super::low_bins::LowBins;
 use crate::error::{Error, Result};
 use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
@@ -77,7 +78,16 @@ pub struct Analyzer {
     spec: Vec<Complex<f64>>,
     band: Vec<Complex<f64>>,
     scratch: Vec<Complex<f64>>,
+    /// Plans of the band analysis' low bins ([`LowBins`]), newest last.
+    low: Vec<LowBins>,
+    /// `(n_fft, dt bits)` of [`Analyzer::sinc`].
+    sinc_key: (usize, u64),
+    /// The cell-average response `max(sin(a)/a, 1e-3)`, `a = pi k df dt`, of bins `k`.
+    sinc: Vec<f64>,
 }
+
+/// Most [`LowBins`] plans an analyser keeps.
+const MAX_LOW_PLANS: usize = 4;
 
 impl Default for Analyzer {
     fn default() -> Self {
@@ -101,7 +111,61 @@ impl Analyzer {
             spec: Vec::new(),
             band: Vec::new(),
             scratch: Vec::new(),
+            low: Vec::new(),
+            sinc_key: (0, 0),
+            sinc: Vec::new(),
         }
+    }
+
+    /// [`Self::transform_input`] for bins `0..k` only (the bins a band analysis reads):
+    /// from a [`LowBins`] plan where that is cheaper than the whole transform. Leaves at
+    /// least bins `0..k` (at most `n_fft / 2 + 1`) in `self.spec`; returns (n_fft, df).
+    fn transform_low(&mut self, dt: f64, min_len: usize, f_max: f64) -> (usize, f64) {
+        let len = self.input.len();
+        let n_fft = fast_len((len + len / 8 + 16).max(min_len));
+        let df = 1.0 / (n_fft as f64 * dt);
+        let k = (f_max / df).ceil();
+        let k = if k.is_finite() && k >= 0.0 {
+            (k as usize).min(n_fft / 2 + 1)
+        } else {
+            n_fft / 2 + 1
+        };
+        let i = match self
+            .low
+            .iter()
+            .position(|p| p.size() == n_fft && p.bins() == k)
+        {
+            Some(i) => Some(i),
+            None => LowBins::plan(&mut self.cplx, n_fft, k).map(|p| {
+                if self.low.len() >= MAX_LOW_PLANS {
+                    self.low.remove(0);
+                }
+                self.low.push(p);
+                self.low.len() - 1
+            }),
+        };
+        match i {
+            Some(i) => {
+                self.low[i].process(&self.input, &mut self.spec);
+                (n_fft, df)
+            }
+            None => self.transform_input(dt, min_len),
+        }
+    }
+
+    /// The cell-average response of bin `k` for transform length `n_fft` and step `dt`:
+    /// `max(sin(a)/a, 1e-3)`, `a = pi k df dt`, tabulated once per `(n_fft, dt)`.
+    fn sinc_at(&mut self, n_fft: usize, df: f64, dt: f64, k: usize) -> f64 {
+        let key = (n_fft, dt.to_bits());
+        if self.sinc_key != key {
+            self.sinc_key = key;
+            self.sinc.clear();
+        }
+        while self.sinc.len() <= k {
+            let a = std::f64::consts::PI * self.sinc.len() as f64 * df * dt;
+            self.sinc.push((a.sin() / a).max(1e-3));
+        }
+        self.sinc[k]
     }
 
     /// Forward transform of cell-averaged samples `x` (step `dt`), zero-padded to a power
@@ -138,11 +202,10 @@ impl Analyzer {
         let m = (16 * nb).next_power_of_two().max(64);
         self.band.clear();
         // divide out the cell-average response sinc(pi f dt)
-        self.band
-            .extend(self.spec[k_lo..k_hi].iter().enumerate().map(|(i, c)| {
-                let a = std::f64::consts::PI * (k_lo + i) as f64 * df * dt;
-                c / (a.sin() / a).max(1e-3)
-            }));
+        for kk in k_lo..k_hi {
+            let c = self.spec[kk] / self.sinc_at(n_fft, df, dt, kk);
+            self.band.push(c);
+        }
         self.band.resize(m, Complex::new(0.0, 0.0));
         let plan = self.cplx.plan_fft_inverse(m);
         self.scratch
@@ -188,19 +251,36 @@ impl Analyzer {
         } else {
             0
         };
-        let (n_fft, df) = self.transform_input(dt, min_len);
-        let mut out = BandAmplitudes::default();
-        for n in 1..=5 {
+        // the bands: harmonics 1..=5, the sub-harmonic, and a two-tone's f2, sum and
+        // difference components
+        let mut bands = [(0.0, 0.0); 9];
+        for (n, b) in bands.iter_mut().enumerate().take(6).skip(1) {
             let c = n as f64 * f0;
-            out.harmonic[n] = self.band_peak(n_fft, df, dt, c - 0.5 * f0, c + 0.5 * f0);
+            *b = (c - 0.5 * f0, c + 0.5 * f0);
         }
-        out.subharmonic = self.band_peak(n_fft, df, dt, 0.25 * f0, 0.75 * f0);
-        if let Some(f2) = f2 {
-            let diff = (f2 - f0).abs();
-            let hw = 0.25 * f0.min(f2).min(diff);
-            out.f2 = self.band_peak(n_fft, df, dt, f2 - hw, f2 + hw);
-            out.sum = self.band_peak(n_fft, df, dt, f0 + f2 - hw, f0 + f2 + hw);
-            out.difference = self.band_peak(n_fft, df, dt, diff - hw, diff + hw);
+        bands[0] = (0.25 * f0, 0.75 * f0);
+        let used = match f2 {
+            Some(f2) => {
+                let diff = (f2 - f0).abs();
+                let hw = 0.25 * f0.min(f2).min(diff);
+                bands[6] = (f2 - hw, f2 + hw);
+                bands[7] = (f0 + f2 - hw, f0 + f2 + hw);
+                bands[8] = (diff - hw, diff + hw);
+                9
+            }
+            None => 6,
+        };
+        let f_max = bands[..used].iter().fold(0.0f64, |m, b| m.max(b.1));
+        let (n_fft, df) = self.transform_low(dt, min_len, f_max);
+        let mut peak = [0.0; 9];
+        for (p, &(lo, hi)) in peak.iter_mut().zip(&bands[..used]) {
+            *p = self.band_peak(n_fft, df, dt, lo, hi);
+        }
+        let mut out = BandAmplitudes::default();
+        out.harmonic[1..6].copy_from_slice(&peak[1..6]);
+        out.subharmonic = peak[0];
+        if f2.is_some() {
+            (out.f2, out.sum, out.difference) = (peak[6], peak[7], peak[8]);
         }
         out
     }

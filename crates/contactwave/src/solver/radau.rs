@@ -75,6 +75,11 @@ pub trait System {
     }
     /// Right-hand side f(t, y) given the forcing g(t).
     fn rhs_forced(&self, t: f64, g: f64, y: [f64; 2]) -> [f64; 2];
+    /// First component of the right-hand side at the three stage times `t + C[l] h` of a
+    /// step, all at the same state `y`, given their forcings `g` (what an affine step needs).
+    fn rhs_stages(&self, t: f64, h: f64, g: [f64; 3], y: [f64; 2]) -> [f64; 3] {
+        std::array::from_fn(|l| self.rhs_forced(t + C[l] * h, g[l], y)[0])
+    }
     /// Right-hand side f(t, y).
     fn rhs(&self, t: f64, y: [f64; 2]) -> [f64; 2] {
         self.rhs_forced(t, self.forcing(t), y)
@@ -244,7 +249,7 @@ pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) ->
 /// it) or the system is singular.
 fn affine_step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, m: f64, a: Affine) -> Option<Step> {
     let g = sys.forcing_stages(t, h);
-    let f: [f64; 3] = std::array::from_fn(|l| sys.rhs_forced(t + C[l] * h, g[l], y)[0]);
+    let f = sys.rhs_stages(t, h, g, y);
     let mut b = [0.0f64; 6];
     let mut jac = [0.0f64; 9];
     for j in 0..3 {

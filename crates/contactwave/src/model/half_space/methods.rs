@@ -132,8 +132,7 @@ pub fn analyse_keeping<T>(
     } else {
         None
     };
-    let need_linear =
-        (with_floor && locked.is_none()) || method == AnalysisMethod::LinearReference;
+    let need_linear = (with_floor && locked.is_none()) || method == AnalysisMethod::LinearReference;
     let linear = match linearised(scenario) {
         Some(s) if need_linear => Some(solve(&s)?),
         _ => None,
@@ -234,7 +233,10 @@ fn locked_floor(
         shape.key,
         [
             scenario.medium.impedance().to_bits(),
-            scenario.counterpart.map_or(f64::INFINITY, |m| m.impedance()).to_bits(),
+            scenario
+                .counterpart
+                .map_or(f64::INFINITY, |m| m.impedance())
+                .to_bits(),
             solver.samples_per_period() as u64,
             tail.map_or(u64::MAX, f64::to_bits),
             method.code().to_bits(),

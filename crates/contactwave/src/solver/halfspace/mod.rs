@@ -629,6 +629,10 @@ impl<'a> Runner<'a> {
             let st = self.step_ode(t, y0, h)?;
             // (which, tau_hi, the step of length tau_hi: reused as the bracket's end)
             let mut first: Option<(usize, f64, radau::Step)> = None;
+            // the event functions at the step end and (when needed) at the first two
+            // stages, each evaluated once for both events
+            let ev_end = self.ode_events(phase, t_end, st.end());
+            let mut ev_stage: [Option<[f64; 2]>; 2] = [None; 2];
             for which in 0..2 {
                 if e_start[which] > 0.0 || (which == 1 && t == self.last_mode_switch) {
                     continue;
@@ -636,7 +640,7 @@ impl<'a> Runner<'a> {
                 // damage on/off switches happen where the opening turns (grazing): a
                 // small hysteresis keeps round-off from chattering between the modes
                 let thr = if which == 1 { EVENT_HYSTERESIS } else { 0.0 };
-                let e_end = self.ode_events(phase, t_end, st.end())[which];
+                let e_end = ev_end[which];
                 if e_end > thr {
                     if first.map_or(true, |(_, th, _)| h < th) {
                         first = Some((which, h, st));
@@ -645,7 +649,9 @@ impl<'a> Runner<'a> {
                 }
                 for j in 0..2 {
                     let tj = t + radau::C[j] * h;
-                    if self.ode_events(phase, tj, st.stages[j])[which] > thr {
+                    let ev = *ev_stage[j]
+                        .get_or_insert_with(|| self.ode_events(phase, tj, st.stages[j]));
+                    if ev[which] > thr {
                         let hj = radau::C[j] * h;
                         let sj = self.step_ode(t, y0, hj)?;
                         if self.ode_events(phase, tj, sj.end())[which] > thr

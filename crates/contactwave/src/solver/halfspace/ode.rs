@@ -259,6 +259,11 @@ impl System for GapOde<'_> {
         self.cache.set([c[1], (t + radau::C[2] * h, g[2])]);
         g
     }
+    /// One stress evaluation for the three stages (the same state).
+    fn rhs_stages(&self, _t: f64, _h: f64, g: [f64; 3], y: [f64; 2]) -> [f64; 3] {
+        let s = self.sigma(y) + self.p0;
+        g.map(|gl| self.two_over_z1 * gl - self.k * s)
+    }
     fn rhs_forced(&self, _t: f64, s_inc: f64, y: [f64; 2]) -> [f64; 2] {
         let f1 = if self.phase == Phase::Damaging && !self.algebraic_damage() {
             // b dbeta/dt = min(phi, 0): beta never increases
