@@ -67,7 +67,7 @@ impl LowBins {
             .flat_map(|d| [d, n / d]);
         for n2 in divisors.filter(|&d| d >= k && d <= n / 2) {
             let n1 = n / n2;
-            let cost = n1.div_ceil(2) as f64 * fft_cost(n2) + 4.0 * (n1 * k) as f64;
+            let cost = n1.div_ceil(2) as f64 * fft_cost(n2) + 16.0 * (n1 * k) as f64;
             if best.map_or(true, |(c, _)| cost < c) {
                 best = Some((cost, n2));
             }

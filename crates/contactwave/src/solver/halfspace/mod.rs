@@ -536,6 +536,71 @@ impl<'a> Runner<'a> {
         true
     }
 
+    /// Take the ODE step `st` of length `h` from `(t, y0)` in which no event happens: the
+    /// largest gap, the quadrature, and the new state in `y` (beta never increases).
+    fn accept_ode(
+        &mut self,
+        acc: &mut Acc,
+        t: f64,
+        h: f64,
+        y0: [f64; 2],
+        st: &radau::Step,
+        y: &mut [f64; 2],
+    ) -> Result<()> {
+        if !(st.end()[0].is_finite() && st.end()[1].is_finite()) {
+            return Err(Error::numerical(
+                t,
+                "non-finite state",
+                format!("{:?}", st.end()),
+            ));
+        }
+        for s in &st.stages {
+            self.max_gap = self.max_gap.max(s[0]);
+        }
+        self.acc_ode(acc, t, h, y0, st);
+        *y = st.end();
+        y[1] = self.ode.beta(*y).min(y0[1]).max(0.0);
+        Ok(())
+    }
+
+    /// The whole grid step `[ta, tb]` (s) of an ODE phase when no event happens in it, as
+    /// [`Runner::advance`] takes it (the same step, event checks and quadrature) without
+    /// its event machinery. Returns `false` (nothing done) where `advance` must take the
+    /// step: a stuck phase, a boundary-layer ramp, a step right after a switch, an event
+    /// function past its threshold at the start, the end or a stage, or a step Newton
+    /// cannot take in one piece.
+    #[inline]
+    fn ode_grid_step(&mut self, acc: &mut Acc, ta: f64, tb: f64, y: &mut [f64; 2]) -> Result<bool> {
+        let phase = self.ode.phase;
+        if phase.is_stuck()
+            || self.ramp.is_some()
+            || ta == self.last_switch
+            || ta == self.last_mode_switch
+        {
+            return Ok(false);
+        }
+        let h = tb - ta;
+        let y0 = *y;
+        let quiet = |e: [f64; 2], thr: f64| e[0] <= 0.0 && e[1] <= thr;
+        if !quiet(self.ode_events(phase, ta, y0), 0.0) {
+            return Ok(false);
+        }
+        let Some(st) = radau::step(&self.ode, ta, y0, h, self.scale) else {
+            return Ok(false);
+        };
+        if !quiet(self.ode_events(phase, tb, st.end()), EVENT_HYSTERESIS) {
+            return Ok(false);
+        }
+        for j in 0..2 {
+            let tj = ta + radau::C[j] * h;
+            if !quiet(self.ode_events(phase, tj, st.stages[j]), EVENT_HYSTERESIS) {
+                return Ok(false);
+            }
+        }
+        self.accept_ode(acc, ta, h, y0, &st, y)?;
+        Ok(true)
+    }
+
     /// Advance from t to t_end (no breakpoint inside), updating y, the phase, the
     /// integrals. Returns when t_end is reached.
     fn advance(&mut self, acc: &mut Acc, mut t: f64, t_end: f64, y: &mut [f64; 2]) -> Result<()> {
@@ -723,19 +788,7 @@ impl<'a> Runner<'a> {
             }
             match event {
                 None => {
-                    if !(st.end()[0].is_finite() && st.end()[1].is_finite()) {
-                        return Err(Error::numerical(
-                            t,
-                            "non-finite state",
-                            format!("{:?}", st.end()),
-                        ));
-                    }
-                    for s in &st.stages {
-                        self.max_gap = self.max_gap.max(s[0]);
-                    }
-                    self.acc_ode(acc, t, h, y0, &st);
-                    *y = st.end();
-                    y[1] = self.ode.beta(*y).min(y0[1]).max(0.0);
+                    self.accept_ode(acc, t, h, y0, &st, y)?;
                     t = t_end;
                     if let Some(r) = self.ramp {
                         self.ramp = (2.0 * r < self.h).then_some(2.0 * r);
@@ -841,7 +894,9 @@ impl<'a> Runner<'a> {
                 bi += 1;
             }
             let whole = bi >= self.breaks.len() || self.breaks[bi] >= tb;
-            let done = whole && self.stuck_grid_step(&mut acc, k, ta, tb);
+            let done = whole
+                && (self.stuck_grid_step(&mut acc, k, ta, tb)
+                    || self.ode_grid_step(&mut acc, ta, tb, &mut y)?);
             while !done && bi < self.breaks.len() && self.breaks[bi] < tb {
                 let tbk = self.breaks[bi];
                 self.advance(&mut acc, t, tbk, &mut y)?;
