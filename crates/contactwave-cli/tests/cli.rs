@@ -750,6 +750,7 @@ fn bench_prints_every_target_and_rejects_a_missing_file() {
     let out = String::from_utf8_lossy(&o.stdout);
     for head in [
         "single simulation",
+        "single simulation, cold",
         "xi sweep (3 points",
         "Tribobrake hammer test",
     ] {

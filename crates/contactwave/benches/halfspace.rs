@@ -4,6 +4,11 @@
 //!   (PMMA, p0 = 0.082 MPa, C_N = 2e13 Pa/m, w = 0.1 J/m^2, b = 1e-8, 1 MHz, 15 cycles,
 //!   amplitude 0.82 MPa), solver plus harmonic analysis, one thread;
 //! - `simulate_summary/unilateral_xi0.35`: unilateral contact (rigid x free) at xi = 0.35;
+//!   (both repeat one scenario: from the second run on, the analysis floor of the locked
+//!   interface comes from the thread's cache, as in every sweep point after the first;
+//!   docs/model.md section 6.1)
+//! - `simulate_summary_cold/*`: the same runs with the floor cache emptied before each, so
+//!   that each run also solves and analyses the locked interface (a first run);
 //! - `xi_sweep/rccm_100_points`: 100 load ratios xi in [0.05, 1.2] of the RCCM scenario,
 //!   scenarios built beforehand, run with rayon `par_iter` on all cores;
 //! - `shear_sweep/friction_ratio_100_points`: the coupled normal/tangential solver on 100
@@ -14,6 +19,7 @@
 //! Sample sizes are small so that `cargo bench -p contactwave` finishes in a few minutes on
 //! two cores.
 
+use contactwave::model::half_space::methods::forget_locked_floors;
 use contactwave::scenario::Scenario;
 use contactwave::simulate_summary;
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -70,6 +76,17 @@ fn single_runs(c: &mut Criterion) {
     g.bench_function("unilateral_xi0.35", |b| {
         b.iter(|| simulate_summary(black_box(&unilateral)).expect("run succeeds"))
     });
+    g.finish();
+    let mut g = c.benchmark_group("simulate_summary_cold");
+    g.sample_size(20).measurement_time(Duration::from_secs(5));
+    for (name, s) in [("rccm_0.82MPa", &rccm), ("unilateral_xi0.35", &unilateral)] {
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                forget_locked_floors();
+                simulate_summary(black_box(s)).expect("run succeeds")
+            })
+        });
+    }
     g.finish();
 }
 

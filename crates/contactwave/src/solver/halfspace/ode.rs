@@ -10,7 +10,7 @@ use crate::solver::radau::{self, Affine, System};
 pub(super) const STUCK_NODES: [f64; 5] =
     [GL4_NODES[0], GL4_NODES[1], GL4_NODES[2], GL4_NODES[3], 1.0];
 
-/// Largest table of [`IncidentGrid`], steps (8 values a step: 64 MB).
+/// Largest table of [`IncidentGrid`], steps (7 values a step: 56 MB).
 const MAX_GRID_STEPS: usize = 1 << 20;
 
 /// The incident stress at the nodes of every whole step `[k h, (k + 1) h]` of the solver's
@@ -45,8 +45,9 @@ impl Drop for IncidentGrid {
     }
 }
 
-/// The tabulated nodes: Radau's three stage nodes, then [`STUCK_NODES`].
-const GRID_NODES: [f64; 8] = [
+/// The tabulated nodes: Radau's three stage nodes (the last is the step end, which is also
+/// the last of [`STUCK_NODES`]), then the four Gauss-Legendre nodes of a stuck step.
+const GRID_NODES: [f64; 7] = [
     radau::C[0],
     radau::C[1],
     radau::C[2],
@@ -54,14 +55,17 @@ const GRID_NODES: [f64; 8] = [
     STUCK_NODES[1],
     STUCK_NODES[2],
     STUCK_NODES[3],
-    STUCK_NODES[4],
 ];
+
+/// Row of the table holding the stuck step's node `i` ([`STUCK_NODES`]): the GL nodes from
+/// row 3, the end (`c = 1`) in Radau's last row.
+const STUCK_ROWS: [usize; 5] = [3, 4, 5, 6, 2];
 
 impl IncidentGrid {
     /// Tabulate `incident` on the grid of step `h` (s) over its duration (nothing when the
     /// table would exceed [`MAX_GRID_STEPS`]).
     /// With `stuck_only` (a locked interface: no ODE phase ever) only the stuck-step nodes
-    /// are tabulated; the Radau rows are then not to be read.
+    /// are tabulated (rows 2 to 6); the first two Radau rows are then not to be read.
     pub(super) fn new(incident: &dyn Excitation, h: f64, stuck_only: bool) -> Self {
         let n = (incident.duration() / h).ceil();
         let steps = if n.is_finite() && n >= 0.0 && n <= MAX_GRID_STEPS as f64 {
@@ -75,7 +79,8 @@ impl IncidentGrid {
         table.truncate(GRID_NODES.len() * steps);
         table.resize(GRID_NODES.len() * steps, 0.0);
         if stuck_only {
-            incident.stress_grid(h, &STUCK_NODES, steps, &mut table[3 * steps..]);
+            // the end and the GL nodes: rows 2 to 6
+            incident.stress_grid(h, &GRID_NODES[2..], steps, &mut table[2 * steps..]);
         } else {
             incident.stress_grid(h, &GRID_NODES, steps, &mut table);
         }
@@ -108,7 +113,7 @@ impl IncidentGrid {
     pub(super) fn stuck_at(&self, k: usize) -> Option<[f64; 5]> {
         let n = self.steps;
         if k < n {
-            Some(std::array::from_fn(|i| self.table[(3 + i) * n + k]))
+            Some(std::array::from_fn(|i| self.table[STUCK_ROWS[i] * n + k]))
         } else if k as f64 * self.h > self.duration {
             Some([0.0; 5])
         } else {
@@ -121,7 +126,7 @@ impl IncidentGrid {
     pub(super) fn stuck(&self, t: f64, h: f64) -> Option<[f64; 5]> {
         let k = self.step(t, h)?;
         let n = self.steps;
-        Some(std::array::from_fn(|i| self.table[(3 + i) * n + k]))
+        Some(std::array::from_fn(|i| self.table[STUCK_ROWS[i] * n + k]))
     }
 
     /// The Radau stage nodes of `[t, t + h]` when it is a tabulated grid step.
