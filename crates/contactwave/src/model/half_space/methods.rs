@@ -316,7 +316,7 @@ mod tests {
 
     fn floor_of(s: &Scenario) -> BandAmplitudes {
         let out = super::super::simulate::solve(s).unwrap();
-        analyse(s, &out, |d| super::super::simulate::solve(d), true)
+        analyse(s, &out, super::super::simulate::solve, true)
             .unwrap()
             .floor
     }
