@@ -512,14 +512,19 @@ impl<'a> Runner<'a> {
     }
 
     /// The whole grid step `k` from `ta` to `tb` (s) of a stuck phase that it does not
-    /// leave, straight from the incident table: the quadrature of [`Runner::advance`]
-    /// without its event search. Returns `false` (nothing done) where `advance` must take
+    /// leave, straight from the incident table (after the burst: nothing to add): the
+    /// quadrature of [`Runner::advance`] without its event search. Returns `false` (nothing done) where `advance` must take
     /// the step: not a stuck phase, a step outside the table, or an exit event inside.
     #[inline]
     fn stuck_grid_step(&mut self, acc: &mut Acc, k: usize, ta: f64, tb: f64) -> bool {
         let phase = self.ode.phase;
         if !phase.is_stuck() {
             return false;
+        }
+        if self.ode.grid.after_burst(k) {
+            // a stuck phase with no incident wave: its exit function is the same at every
+            // node (it cannot turn positive within the step) and the quadrature adds zeros
+            return true;
         }
         let Some(sinc) = self.ode.grid.stuck_at(k) else {
             return false;

@@ -107,18 +107,18 @@ impl IncidentGrid {
         (t == ta && h == tb - ta && k < self.steps).then_some(k)
     }
 
-    /// The stuck-step nodes of grid step `k` when it is tabulated, or zeros when the step
-    /// starts after the burst (the incident stress is 0 past its duration).
+    /// Whether grid step `k` starts after the burst (beyond the table): the incident stress
+    /// is 0 at all its nodes (the `Excitation` contract).
+    #[inline]
+    pub(super) fn after_burst(&self, k: usize) -> bool {
+        k >= self.steps && k as f64 * self.h > self.duration
+    }
+
+    /// The stuck-step nodes of grid step `k` when it is tabulated.
     #[inline]
     pub(super) fn stuck_at(&self, k: usize) -> Option<[f64; 5]> {
         let n = self.steps;
-        if k < n {
-            Some(std::array::from_fn(|i| self.table[STUCK_ROWS[i] * n + k]))
-        } else if k as f64 * self.h > self.duration {
-            Some([0.0; 5])
-        } else {
-            None
-        }
+        (k < n).then(|| std::array::from_fn(|i| self.table[STUCK_ROWS[i] * n + k]))
     }
 
     /// The stuck-step nodes of `[t, t + h]` when it is a tabulated grid step.
