@@ -75,6 +75,47 @@ mod tests {
     use super::*;
     use crate::excitation::{ToneBurst, Window};
 
+    /// A waveform is its peak times its unit shape, and the shape's key depends on the
+    /// shape only: the same for two amplitudes (and the same unit waveform, bit for bit),
+    /// another for another window, cycle count, sign or delay.
+    #[test]
+    fn unit_shape_is_the_waveform_over_its_peak() {
+        let w = Window::HannRamps {
+            ramp_fraction: 0.25,
+        };
+        let burst = |a: f64, cycles: f64| -> Arc<dyn Excitation> {
+            Arc::new(ToneBurst::new(a, 1e6, cycles, w))
+        };
+        let wrapped = |e: Arc<dyn Excitation>, f: f64| -> Arc<dyn Excitation> {
+            Arc::new(Scaled::new(
+                Arc::new(crate::excitation::Delayed::new(e, 2e-6)),
+                f,
+            ))
+        };
+        let (a, b) = (
+            wrapped(burst(3e5, 15.0), -0.7),
+            wrapped(burst(8e6, 15.0), -2.0),
+        );
+        let (ua, ub) = (a.unit_shape().unwrap(), b.unit_shape().unwrap());
+        assert_eq!(ua.key, ub.key);
+        assert_eq!(ua.unit.peak(), 1.0);
+        for k in 0..2000 {
+            let t = k as f64 * 1.1e-8;
+            let (sa, su) = (a.stress(t), a.peak() * ua.unit.stress(t));
+            assert!((sa - su).abs() <= 1e-12 * a.peak(), "{t}: {sa} vs {su}");
+            assert_eq!(ua.unit.stress(t).to_bits(), ub.unit.stress(t).to_bits());
+        }
+        let others = [
+            wrapped(burst(3e5, 15.0), 0.7),
+            wrapped(burst(3e5, 10.0), -0.7),
+            Arc::new(Scaled::new(burst(3e5, 15.0), -0.7)),
+            Arc::new(ToneBurst::new(3e5, 1e6, 15.0, Window::Hann)),
+        ];
+        for o in others {
+            assert_ne!(o.unit_shape().unwrap().key, ua.key, "{o:?}");
+        }
+    }
+
     #[test]
     fn scales_stress_and_peak() {
         let b: Arc<dyn Excitation> = Arc::new(ToneBurst::new(2.0, 1e6, 5.0, Window::Hann));
