@@ -245,9 +245,13 @@ pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) ->
 /// The Radau step of an affine scalar system ([`System::affine`]): the collocation
 /// equations `m z_j = h sum_l A_jl (f(t_l, y) + slope z_l)` are linear, so one 3 x 3 solve
 /// gives what Newton's iteration converges to (the same solution up to round-off). `None`
-/// when a stage leaves the affine interval (a step across a kink of the law: Newton takes
-/// it) or the system is singular.
+/// when the start or a stage is outside the affine interval (a step at or across a kink of
+/// the law: Newton takes it) or the system is singular.
 fn affine_step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, m: f64, a: Affine) -> Option<Step> {
+    // a start outside the interval (a grazing step-on across a kink): Newton
+    if !(y[0] >= a.lower && y[0] <= a.upper) {
+        return None;
+    }
     let g = sys.forcing_stages(t, h);
     let f = sys.rhs_stages(t, h, g, y);
     let mut b = [0.0f64; 6];

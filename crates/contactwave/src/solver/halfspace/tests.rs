@@ -1,0 +1,122 @@
+//! The grid fast paths of the time loop against the general, event-locating path.
+
+use super::*;
+use crate::excitation::{Delayed, ToneBurst, Window};
+use crate::law::registry::build_law;
+use crate::law::spec::{CompressionSpec, TractionSpec};
+
+/// Every recorded series and scalar of `out`, as bits.
+fn fingerprint(out: &HalfSpaceOutput) -> Vec<u64> {
+    let mut v: Vec<u64> = [
+        &out.t,
+        &out.beta,
+        &out.gap,
+        &out.contact_stress,
+        &out.incident_stress,
+        &out.reflected_stress,
+        &out.transmitted_stress,
+        &out.reflected_displacement,
+        &out.incident_displacement,
+        &out.transmitted_displacement,
+    ]
+    .iter()
+    .flat_map(|s| s.iter().map(|x| x.to_bits()))
+    .collect();
+    let e = &out.energy;
+    v.extend(
+        [
+            e.incident,
+            e.reflected,
+            e.transmitted,
+            e.stored,
+            e.damage,
+            out.max_gap,
+            out.open_time_in_burst,
+        ]
+        .map(f64::to_bits),
+    );
+    v.push(out.events as u64);
+    v
+}
+
+fn solve(hs: &HalfSpace, samples_per_period: usize, general_only: bool) -> HalfSpaceOutput {
+    GENERAL_ONLY.with(|g| g.set(general_only));
+    let settings = HalfSpaceSettings {
+        samples_per_period,
+        ..Default::default()
+    };
+    let out = hs.solve(&settings);
+    GENERAL_ONLY.with(|g| g.set(false));
+    out.unwrap()
+}
+
+/// The fast paths (stuck steps from the table or after the burst, ODE steps without an
+/// event) give the general path's outputs bit for bit: laws with stuck, affine and
+/// nonlinear phases, damage with and without viscosity, clapping and no contact loss,
+/// two windows and a delayed burst, a rigid wall and a second medium.
+#[test]
+fn fast_paths_are_the_general_path_bit_for_bit() {
+    let p0 = 0.1e6;
+    let c_n = 2e13;
+    let compressions = [
+        CompressionSpec::Rigid,
+        CompressionSpec::Linear { stiffness: 3e12 },
+        CompressionSpec::Quadratic { k0: 3e12, k1: 1e19 },
+    ];
+    let tractions = [
+        TractionSpec::Free,
+        TractionSpec::Linear { stiffness: 1e12 },
+        TractionSpec::Rccm {
+            stiffness: c_n,
+            energy: 0.1,
+            viscosity: 1e-8,
+        },
+        TractionSpec::Rccm {
+            stiffness: c_n,
+            energy: 0.02,
+            viscosity: 0.0,
+        },
+        TractionSpec::Bonded,
+    ];
+    let (pmma, steel) = (Material::PMMA, Material::STEEL);
+    let mut compared = 0;
+    for compression in &compressions {
+        for traction in &tractions {
+            let law = match build_law(p0, compression, traction, "test.toml", "interface") {
+                Ok(l) => Arc::new(l),
+                Err(_) => continue,
+            };
+            for (i, xi) in [0.3, 0.6, 0.95, 1.2, 1.6, 2.2, 3.0, 4.5, 6.0, 9.0]
+                .into_iter()
+                .enumerate()
+            {
+                let window = if i % 2 == 1 {
+                    Window::Hann
+                } else {
+                    Window::HannRamps { ramp_fraction: 0.2 }
+                };
+                let cycles = [6.0, 6.5, 5.25][i % 3];
+                let burst: Arc<dyn Excitation> =
+                    Arc::new(ToneBurst::new(xi * p0, 1e6, cycles, window));
+                let incident: Arc<dyn Excitation> = if i % 4 == 2 {
+                    Arc::new(Delayed::new(burst, 0.37e-6))
+                } else {
+                    burst
+                };
+                let counterpart = (i % 3 == 1).then_some(steel);
+                let spp = [200, 48, 100, 64][i % 4];
+                let hs = HalfSpace::new(pmma, counterpart, law.clone(), incident);
+                let (fast, general) = (solve(&hs, spp, false), solve(&hs, spp, true));
+                let (a, b) = (fingerprint(&fast), fingerprint(&general));
+                let first = (0..a.len().max(b.len())).find(|&i| a.get(i) != b.get(i));
+                assert!(
+                    first.is_none(),
+                    "{compression:?} x {traction:?} at xi = {xi}: entry {first:?} of {} differs",
+                    a.len()
+                );
+                compared += 1;
+            }
+        }
+    }
+    assert!(compared >= 120, "{compared} runs compared");
+}
