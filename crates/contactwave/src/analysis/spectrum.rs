@@ -122,7 +122,7 @@ impl Analyzer {
     /// least bins `0..k` (at most `n_fft / 2 + 1`) in `self.spec`; returns (n_fft, df).
     fn transform_low(&mut self, dt: f64, min_len: usize, f_max: f64) -> (usize, f64) {
         let len = self.input.len();
-        let n_fft = fast_len((len + len / 8 + 16).max(min_len));
+        let n_fft = padded_len(len, min_len);
         let df = 1.0 / (n_fft as f64 * dt);
         let k = (f_max / df).ceil();
         let k = if k.is_finite() && k >= 0.0 {
@@ -180,7 +180,7 @@ impl Analyzer {
     /// [`Self::transform`] of the samples already in `self.input`.
     fn transform_input(&mut self, dt: f64, min_len: usize) -> (usize, f64) {
         let len = self.input.len();
-        let n_fft = fast_len((len + len / 8 + 16).max(min_len));
+        let n_fft = padded_len(len, min_len);
         let plan = self.real.plan_fft_forward(n_fft);
         self.input.resize(n_fft, 0.0);
         self.spec.resize(n_fft / 2 + 1, Complex::new(0.0, 0.0));
@@ -335,6 +335,12 @@ impl Analyzer {
 
 /// Zero padding of the band analysis, in periods of the fundamental.
 const BAND_PAD_PERIODS: f64 = 64.0;
+
+/// Transform length of a record of `len` samples: at least `1.125 len + 16` and
+/// `min_len`, of the form 2^a 3^b 5^c.
+fn padded_len(len: usize, min_len: usize) -> usize {
+    fast_len((len + len / 8 + 16).max(min_len))
+}
 
 /// Smallest length >= n of the form 2^a 3^b 5^c (fast for RustFFT).
 fn fast_len(n: usize) -> usize {
