@@ -31,7 +31,7 @@ pub struct Analysis {
 pub fn linearised_law(law: &ContactLaw) -> Option<ContactLaw> {
     let p0 = law.static_pressure;
     let k0 = law.compression.stiffness_at_rest();
-    if law.compression.is_rigid() || k0 == f64::INFINITY {
+    if linearises_locked(law) {
         Some(ContactLaw {
             static_pressure: p0,
             compression: Box::new(Rigid {
@@ -51,6 +51,12 @@ pub fn linearised_law(law: &ContactLaw) -> Option<ContactLaw> {
     } else {
         None
     }
+}
+
+/// Whether the law linearises to a locked interface (rigid x bonded): its compression
+/// branch is rigid or infinitely stiff at rest.
+fn linearises_locked(law: &ContactLaw) -> bool {
+    law.compression.is_rigid() || law.compression.stiffness_at_rest() == f64::INFINITY
 }
 
 /// The scenario with its interface linearised ([`linearised_law`]).
@@ -162,9 +168,9 @@ pub fn analyse_keeping<T>(
     };
     let bands = method_bands(method, &records, &sig)
         .ok_or_else(|| Error::numerical(0.0, "a record of the analysis is missing", ""))?;
-    let floor = match lin {
-        _ if locked.is_some() => locked.unwrap_or_default(),
-        Some(l) if with_floor => method_floor(method, l, &sig),
+    let floor = match (locked, lin) {
+        (Some(f), _) => f,
+        (None, Some(l)) if with_floor => method_floor(method, l, &sig),
         _ => {
             let nan = f64::NAN;
             BandAmplitudes {
@@ -216,9 +222,7 @@ fn locked_floor(
 ) -> Option<Result<BandAmplitudes>> {
     use crate::scenario::spec::Method;
     let method = scenario.spec.analysis.method;
-    let law = &scenario.law;
-    let locked = law.compression.is_rigid() || law.compression.stiffness_at_rest() == f64::INFINITY;
-    if !locked
+    if !linearises_locked(&scenario.law)
         || method == AnalysisMethod::LinearReference
         || scenario.shear.is_some()
         || scenario.oblique.is_some()

@@ -532,8 +532,9 @@ impl<'a> Runner<'a> {
 
     /// The whole grid step `k` from `ta` to `tb` (s) of a stuck phase that it does not
     /// leave, straight from the incident table (after the burst: nothing to add): the
-    /// quadrature of [`Runner::advance`] without its event search. Returns `false` (nothing done) where `advance` must take
-    /// the step: not a stuck phase, a step outside the table, or an exit event inside.
+    /// quadrature of [`Runner::advance`] without its event search. Returns `false`
+    /// (nothing done) where `advance` must take the step: not a stuck phase, a step
+    /// outside the table, or an exit event inside.
     #[inline]
     fn stuck_grid_step(&mut self, acc: &mut Acc, k: usize, ta: f64, tb: f64) -> bool {
         let phase = self.ode.phase;
@@ -564,8 +565,8 @@ impl<'a> Runner<'a> {
         true
     }
 
-    /// Take the ODE step `st` of length `h` from `(t, y0)` in which no event happens: the
-    /// largest gap, the quadrature, and the new state in `y` (beta never increases).
+    /// Take the ODE step `st` of length `h` from `(t, y0)` in which no event happens
+    /// ([`Runner::take_ode`]), refusing a non-finite end state.
     fn accept_ode(
         &mut self,
         acc: &mut Acc,
@@ -582,13 +583,27 @@ impl<'a> Runner<'a> {
                 format!("{:?}", st.end()),
             ));
         }
+        self.take_ode(acc, t, h, y0, st, y);
+        Ok(())
+    }
+
+    /// Take the ODE step `st` of length `h` from `(t, y0)`: the largest gap over its
+    /// stages, its quadrature, and its end state in `y` (beta never increases).
+    fn take_ode(
+        &mut self,
+        acc: &mut Acc,
+        t: f64,
+        h: f64,
+        y0: [f64; 2],
+        st: &radau::Step,
+        y: &mut [f64; 2],
+    ) {
         for s in &st.stages {
             self.max_gap = self.max_gap.max(s[0]);
         }
         self.acc_ode(acc, t, h, y0, st);
         *y = st.end();
         y[1] = self.ode.beta(*y).min(y0[1]).max(0.0);
-        Ok(())
     }
 
     /// The whole grid step `[ta, tb]` (s) of an ODE phase when no event happens in it, as
@@ -841,12 +856,7 @@ impl<'a> Runner<'a> {
                         Some(se) => se,
                         None => self.step_ode(t, y0, tau)?,
                     };
-                    for s in &se.stages {
-                        self.max_gap = self.max_gap.max(s[0]);
-                    }
-                    self.acc_ode(acc, t, tau, y0, &se);
-                    *y = se.end();
-                    y[1] = self.ode.beta(*y).min(y0[1]).max(0.0);
+                    self.take_ode(acc, t, tau, y0, &se, y);
                     t += tau;
                     if which == 1 {
                         self.last_mode_switch = t;
