@@ -67,8 +67,8 @@ pub trait Excitation: Debug + Send + Sync {
     /// `t_k = k h`, node by node: `out[i * steps + k]` at `t_k + c[i] (t_{k+1} - t_k)`, Pa
     /// (`h` in s, `c` in [0, 1], `out` at least `steps * c.len()` long). The same values as
     /// [`Excitation::stress_nodes`] step by step up to round-off; a solver tabulates the
-    /// burst once per run with it (a tone burst carries its phasors from step to step by
-    /// rotation, with an exact `sin_cos` every 32 steps).
+    /// burst once per run with it (a tone burst rotates an exact `sin_cos` at the start of
+    /// each block of up to 128 steps to every node of the block).
     fn stress_grid(&self, h: f64, c: &[f64], steps: usize, out: &mut [f64]) {
         grid_by_steps(self, h, c, steps, out);
     }

@@ -174,108 +174,105 @@ impl Excitation for ToneBurst {
             }
         }
     }
-    /// The carrier phasor `(sin, cos)(omega t_k)` and the window's are carried from step to
-    /// step by a rotation through the step angle (re-anchored by an exact `sin_cos` every
-    /// [`REANCHOR`] steps and at each new window piece); then each node is rotated from its
-    /// step's phasors by the node offsets (computed once), node by node over all steps.
-    /// Steps that leave the burst or cross a window joint are evaluated by
-    /// [`Excitation::stress_nodes`].
+    /// Block by block of up to [`GRID_BLOCK`] steps on one window piece: one exact `sin_cos`
+    /// of the carrier (and one of the window's ramp) at the block's first step, then each node of each step by
+    /// angle addition with the rotation from the block start to the node, tabulated once
+    /// per call (`j` steps by angle addition of exact `sin_cos` of `16 a` and `b < 16`
+    /// steps, plus the node's small offset). No recurrence: every value is a few roundings
+    /// from exact, and the node loops over a block vectorise. A step that leaves the burst
+    /// or crosses a window joint is evaluated by [`Excitation::stress_nodes`].
     fn stress_grid(&self, h: f64, c: &[f64], steps: usize, out: &mut [f64]) {
         let m = c.len();
         let d = self.duration;
         let wh = self.omega * h;
         let out = &mut out[..steps * m];
-        if !(h > 0.0) || !(wh <= SMALL_ANGLE) {
+        if !(h > 0.0) || !(wh <= SMALL_ANGLE) || m > GRID_NODES_MAX {
             grid_by_steps(self, h, c, steps, out);
             return;
         }
-        // per step of a block: carrier phasor (s0, c0); window `base - 0.5 cos(phase)` as
-        // the base and the phasor of its phase, scaled by 0 on the flat top ((ws0, wc0));
-        // `irregular` steps are evaluated directly
-        const BLOCK: usize = 64;
-        // phasors by component (structure of arrays: the node loop below vectorises)
-        let mut ph = [[0.0f64; BLOCK]; 5];
-        let mut irregular = [false; BLOCK];
-        let rot = small_sin_cos(wh);
         // window phase per step (the same on both ramps of a window)
         let kw = self.window.hann_piece(0.0).map_or(0.0, |(k, _)| k);
-        let wrot = small_sin_cos(kw * h / d);
-        // node offsets of the carrier and the window
-        let mut off = [[0.0f64; 4]; 16];
-        let mut piece: Option<Option<(f64, f64)>> = None;
-        let (mut s0, mut c0, mut ws0, mut wc0) = (0.0, 1.0, 0.0, 1.0);
-        let mut since_anchor = REANCHOR;
+        let kh = kw * h / d;
+        // rotations from a block's first step to node i of its step j: (sin, cos) of the
+        // carrier angle (j + c_i) omega h and of the window angle (j + c_i) kw h / d
+        let mut rot = [[[0.0f64; GRID_BLOCK]; 4]; GRID_NODES_MAX];
+        // (sin, cos) of j steps, j = 16 a + b, by angle addition from exact values of
+        // 16 a and of b steps
+        let coarse: [[f64; 4]; GRID_BLOCK / 16] = std::array::from_fn(|a| {
+            let (s, c) = ((16 * a) as f64 * wh).sin_cos();
+            let (ws, wc) = ((16 * a) as f64 * kh).sin_cos();
+            [s, c, ws, wc]
+        });
+        let fine: [[f64; 4]; 16] = std::array::from_fn(|b| {
+            let (s, c) = (b as f64 * wh).sin_cos();
+            let (ws, wc) = (b as f64 * kh).sin_cos();
+            [s, c, ws, wc]
+        });
+        let steps_sc: [[f64; 4]; GRID_BLOCK] = std::array::from_fn(|j| {
+            let ([s1, c1, ws1, wc1], [s2, c2, ws2, wc2]) = (coarse[j / 16], fine[j % 16]);
+            [
+                s1 * c2 + c1 * s2,
+                c1 * c2 - s1 * s2,
+                ws1 * wc2 + wc1 * ws2,
+                wc1 * wc2 - ws1 * ws2,
+            ]
+        });
+        for (r, ci) in rot.iter_mut().zip(c) {
+            let (sd, cd) = small_sin_cos(wh * ci);
+            let (wsd, wcd) = small_sin_cos(kh * ci);
+            for (j, sc) in steps_sc.iter().enumerate() {
+                let [s, c, ws, wc] = *sc;
+                r[0][j] = s * cd + c * sd;
+                r[1][j] = c * cd - s * sd;
+                r[2][j] = ws * wcd + wc * wsd;
+                r[3][j] = wc * wcd - ws * wsd;
+            }
+        }
         let inv_d = 1.0 / d;
         let scale = self.scale;
-        let mut v = [0.0; 16];
+        let mut v = [0.0; GRID_NODES_MAX];
         let mut k0 = 0;
         while k0 < steps {
-            let nb = BLOCK.min(steps - k0);
-            // a block inside the burst on one window piece needs no per-step checks
-            let (sa0, sb1) = (k0 as f64 * h * inv_d, (k0 + nb) as f64 * h * inv_d);
-            let block_piece = ((k0 + nb) as f64 * h <= d && self.window.same_piece(sa0, sb1))
-                .then(|| self.window.hann_piece(sa0));
-            for j in 0..nb {
-                let k = k0 + j;
-                let ta = k as f64 * h;
-                let sa = ta * inv_d;
-                let wp = match block_piece {
-                    Some(wp) => wp,
-                    None => {
-                        let tb = (k + 1) as f64 * h;
-                        irregular[j] = !(tb <= d) || !self.window.same_piece(sa, tb * inv_d);
-                        if irregular[j] {
-                            piece = None;
-                            continue;
-                        }
-                        self.window.hann_piece(sa)
-                    }
-                };
-                irregular[j] = false;
-                if piece != Some(wp) || since_anchor >= REANCHOR {
-                    (s0, c0) = (self.omega * ta).sin_cos();
-                    if let Some((kp, phi)) = wp {
-                        (ws0, wc0) = (kp * sa + phi).sin_cos();
-                    }
-                    piece = Some(wp);
-                    since_anchor = 0;
-                } else {
-                    (s0, c0) = (s0 * rot.1 + c0 * rot.0, c0 * rot.1 - s0 * rot.0);
-                    if wp.is_some() {
-                        (ws0, wc0) = (ws0 * wrot.1 + wc0 * wrot.0, wc0 * wrot.1 - ws0 * wrot.0);
-                    }
-                }
-                since_anchor += 1;
-                let (base, ws, wc) = match wp {
-                    Some(_) => (0.5, ws0, wc0),
-                    None => (1.0, 0.0, 0.0),
-                };
-                ph[0][j] = s0;
-                ph[1][j] = c0;
-                ph[2][j] = base;
-                ph[3][j] = ws;
-                ph[4][j] = wc;
+            let ta0 = k0 as f64 * h;
+            let sa0 = ta0 * inv_d;
+            // the block: up to GRID_BLOCK steps inside the burst on the piece of its start
+            let inside = |k: usize| {
+                let tb = (k + 1) as f64 * h;
+                tb <= d && self.window.same_piece(sa0, tb * inv_d)
+            };
+            let mut nb = GRID_BLOCK.min(steps - k0);
+            if !inside(k0 + nb - 1) {
+                nb = (0..nb).take_while(|&j| inside(k0 + j)).count();
             }
-            for (i0, cc) in c.chunks(16).enumerate().map(|(n, cc)| (16 * n, cc)) {
-                for (o, ci) in off.iter_mut().zip(cc) {
-                    let (sd, cd) = small_sin_cos(wh * ci);
-                    let (wsd, wcd) = small_sin_cos(kw * h / d * ci);
-                    *o = [sd, cd, wsd, wcd];
+            if nb == 0 {
+                // a step that leaves the burst or crosses a joint: directly
+                let (ta, tb) = (ta0, (k0 + 1) as f64 * h);
+                self.stress_nodes(ta, tb - ta, c, &mut v[..m]);
+                for (i, vi) in v[..m].iter().enumerate() {
+                    out[i * steps + k0] = *vi;
                 }
-                let [p0, p1, p2, p3, p4] = &ph;
-                for (i, o) in off.iter().take(cc.len()).enumerate() {
-                    let row = (i0 + i) * steps + k0;
-                    for (j, x) in out[row..row + nb].iter_mut().enumerate() {
-                        let w = p2[j] - 0.5 * (p4[j] * o[3] - p3[j] * o[2]);
-                        *x = scale * -(w * (p0[j] * o[1] + p1[j] * o[0]));
+                k0 += 1;
+                continue;
+            }
+            let (s0, c0) = (self.omega * ta0).sin_cos();
+            match self.window.hann_piece(sa0) {
+                None => {
+                    for (i, r) in rot.iter().take(m).enumerate() {
+                        let row = &mut out[i * steps + k0..i * steps + k0 + nb];
+                        for ((x, rs), rc) in row.iter_mut().zip(&r[0]).zip(&r[1]) {
+                            *x = scale * -(s0 * rc + c0 * rs);
+                        }
                     }
                 }
-                for j in (0..nb).filter(|&j| irregular[j]) {
-                    let k = k0 + j;
-                    let (ta, tb) = (k as f64 * h, (k + 1) as f64 * h);
-                    self.stress_nodes(ta, tb - ta, cc, &mut v[..cc.len()]);
-                    for (i, vi) in v[..cc.len()].iter().enumerate() {
-                        out[(i0 + i) * steps + k] = *vi;
+                Some((kp, phi)) => {
+                    let (ws0, wc0) = (kp * sa0 + phi).sin_cos();
+                    for (i, r) in rot.iter().take(m).enumerate() {
+                        let row = &mut out[i * steps + k0..i * steps + k0 + nb];
+                        let [rs, rc, rws, rwc] = r;
+                        for (j, x) in row.iter_mut().enumerate() {
+                            let w = 0.5 * (1.0 - (wc0 * rwc[j] - ws0 * rws[j]));
+                            *x = scale * -(w * (s0 * rc[j] + c0 * rs[j]));
+                        }
                     }
                 }
             }
@@ -320,9 +317,13 @@ impl Excitation for ToneBurst {
 /// Largest step phase (rad) that [`ToneBurst::stress_nodes`] steps by angle addition.
 const SMALL_ANGLE: f64 = 0.11;
 
-/// Steps between two exact `sin_cos` of [`ToneBurst::stress_grid`]'s phasors (each
-/// rotation adds about one ulp of error: the drift stays below ~1e-14).
-const REANCHOR: usize = 32;
+/// Steps per block of [`ToneBurst::stress_grid`] (one exact `sin_cos` of the carrier
+/// per block).
+const GRID_BLOCK: usize = 128;
+
+/// Most nodes per step that [`ToneBurst::stress_grid`] tabulates block by block (more:
+/// step by step).
+const GRID_NODES_MAX: usize = 8;
 
 /// `(sin x, cos x)` for `|x| <= SMALL_ANGLE` by their Taylor series (the first omitted
 /// terms, `x^15 / 15!` and `x^14 / 14!`, are below 1e-26).

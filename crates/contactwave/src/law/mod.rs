@@ -128,6 +128,13 @@ pub trait TractionBranch: Debug + Send + Sync {
     fn damage_driving_force(&self, _opening: f64, _adhesion: f64) -> f64 {
         f64::INFINITY
     }
+    /// An opening (m) below which the damage driving force is positive at adhesion
+    /// `adhesion` (no damage): `phi(d, beta) > 0` for every `0 <= d < damage_onset(beta)`,
+    /// with a margin that covers the round-off of evaluating `phi`. A solver may then skip
+    /// evaluating `phi` below it. Default 0 (nothing known: always evaluate).
+    fn damage_onset(&self, _adhesion: f64) -> f64 {
+        0.0
+    }
     /// `(d phi / d d, d phi / d beta)`.
     fn damage_driving_force_gradient(&self, _opening: f64, _adhesion: f64) -> (f64, f64) {
         (0.0, 0.0)

@@ -243,37 +243,75 @@ pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) ->
 }
 
 /// The Radau step of an affine scalar system ([`System::affine`]): the collocation
-/// equations `m z_j = h sum_l A_jl (f(t_l, y) + slope z_l)` are linear, so one 3 x 3 solve
-/// gives what Newton's iteration converges to (the same solution up to round-off). `None`
-/// when the start or a stage is outside the affine interval (a step at or across a kink of
-/// the law: Newton takes it) or the system is singular.
+/// equations `m z_j = h sum_l A_jl (f(t_l, y) + slope z_l)` are linear, so one
+/// [`AffineMap`] gives what Newton's iteration converges to (the same solution up to
+/// round-off). `None` when the start or a stage is outside the affine interval (a step at
+/// or across a kink of the law: Newton takes it) or the system is singular.
 fn affine_step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, m: f64, a: Affine) -> Option<Step> {
     // a start outside the interval (a grazing step-on across a kink): Newton
     if !(y[0] >= a.lower && y[0] <= a.upper) {
         return None;
     }
+    let map = AffineMap::new(h, m, a.slope)?;
     let g = sys.forcing_stages(t, h);
-    let f = sys.rhs_stages(t, h, g, y);
-    let mut b = [0.0f64; 6];
-    let mut jac = [0.0f64; 9];
-    for j in 0..3 {
-        b[j] = h * (A[j][0] * f[0] + A[j][1] * f[1] + A[j][2] * f[2]);
-        for l in 0..3 {
-            jac[j * 3 + l] = if j == l { m } else { 0.0 } - h * A[j][l] * a.slope;
-        }
-    }
-    if !solve3(&jac, &mut b) {
-        return None;
-    }
+    let z = map.apply(sys.rhs_stages(t, h, g, y));
     let mut stages = [[0.0; 2]; 3];
     for j in 0..3 {
-        let v = y[0] + b[j];
+        let v = y[0] + z[j];
         if !(v >= a.lower && v <= a.upper) {
             return None;
         }
         stages[j] = [v, y[1]];
     }
     Some(Step { stages, forcing: g })
+}
+
+/// The solution of the collocation equations of an affine scalar system with mass `m`,
+/// slope `slope` and step `h` (s): the stage increments `z = P f` from the right-hand side
+/// `f_l = f(t_l, y)` at the stage times and the start state, with
+/// `P = (m I - h slope A)^-1 h A` (plan once per step size and slope, apply per step).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AffineMap {
+    /// `P`, row-major (s, in units of y per unit of f).
+    p: [[f64; 3]; 3],
+}
+
+impl AffineMap {
+    /// The map of step `h` (s), mass `m` and slope `slope`; `None` when the collocation
+    /// matrix is singular or not finite.
+    pub fn new(h: f64, m: f64, slope: f64) -> Option<AffineMap> {
+        let mut jac = [0.0f64; 9];
+        for j in 0..3 {
+            for l in 0..3 {
+                jac[j * 3 + l] = if j == l { m } else { 0.0 } - h * A[j][l] * slope;
+            }
+        }
+        // column l of P solves (m I - h slope A) x = h A e_l
+        let mut p = [[0.0; 3]; 3];
+        for l in 0..3 {
+            let mut b = [0.0f64; 6];
+            for (j, bj) in b.iter_mut().take(3).enumerate() {
+                *bj = h * A[j][l];
+            }
+            if !solve3(&jac, &mut b) {
+                return None;
+            }
+            for j in 0..3 {
+                p[j][l] = b[j];
+            }
+        }
+        p.iter()
+            .flatten()
+            .all(|v| v.is_finite())
+            .then_some(AffineMap { p })
+    }
+
+    /// The stage increments `z = P f`.
+    #[inline]
+    pub fn apply(&self, f: [f64; 3]) -> [f64; 3] {
+        let p = &self.p;
+        std::array::from_fn(|j| p[j][0] * f[0] + p[j][1] * f[1] + p[j][2] * f[2])
+    }
 }
 
 /// Solve the 3x3 system (row-major in `a[..9]`) by Cramer's rule, in place in `b[..3]`.

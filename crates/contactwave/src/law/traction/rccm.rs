@@ -49,6 +49,16 @@ impl TractionBranch for Rccm {
     fn damage_driving_force(&self, d: f64, beta: f64) -> f64 {
         self.energy - beta * self.stiffness * d * d
     }
+    /// `sqrt(w / (beta C_N))` less a relative 2e-9 (`phi` is then at least `4e-9 w`, far
+    /// above its round-off); infinite at `beta = 0` with `w > 0`, and 0 where `w = 0`.
+    fn damage_onset(&self, beta: f64) -> f64 {
+        let d = (self.energy / (beta * self.stiffness)).sqrt() * (1.0 - 2e-9);
+        if d >= 0.0 {
+            d
+        } else {
+            0.0
+        }
+    }
     fn damage_driving_force_gradient(&self, d: f64, beta: f64) -> (f64, f64) {
         (-2.0 * beta * self.stiffness * d, -self.stiffness * d * d)
     }
@@ -91,6 +101,13 @@ mod tests {
             assert!(nb <= beta && nb >= 0.0);
             beta = nb;
         }
+        // below the onset the driving force is positive, at and above it zero or less
+        for beta in [1.0, 0.37, 1e-6] {
+            let on = law.damage_onset(beta);
+            assert!(law.damage_driving_force(on, beta) > 0.0);
+            assert!(law.damage_driving_force(on * (1.0 + 1e-8), beta) <= 0.0);
+        }
+        assert_eq!(law.damage_onset(0.0), f64::INFINITY);
         // rate-independent limit
         let b = law.update_adhesion(2.0 * d_lim, 1.0, f64::INFINITY);
         assert!((b - 0.25).abs() < 1e-12);

@@ -17,6 +17,8 @@
 //! transmitted, released by damage) are integrated with the same quadrature, so the energy
 //! audit closes to the integration error.
 
+mod block;
+mod fast;
 mod ode;
 
 pub use super::output::{EnergyAudit, HalfSpaceOutput};
@@ -74,8 +76,9 @@ pub struct HalfSpace {
 
 #[cfg(test)]
 thread_local! {
-    /// Tests: every step through [`Runner::advance`] (the grid fast paths off).
-    static GENERAL_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// Tests: 0 every path, 1 the grid fast paths but no affine blocks, 2 every step
+    /// through [`Runner::advance`].
+    static PATHS: std::cell::Cell<u8> = const { std::cell::Cell::new(0) };
 }
 
 /// Whether whole grid steps may take the fast paths (always, except in the tests that
@@ -83,7 +86,17 @@ thread_local! {
 #[inline]
 fn fast_paths() -> bool {
     #[cfg(test)]
-    return !GENERAL_ONLY.with(|g| g.get());
+    return PATHS.with(|g| g.get()) < 2;
+    #[cfg(not(test))]
+    true
+}
+
+/// Whether runs of affine steps may be taken by [`Runner::affine_block`] (always, except
+/// in the tests that compare it with the step-by-step paths).
+#[inline]
+fn affine_blocks() -> bool {
+    #[cfg(test)]
+    return PATHS.with(|g| g.get()) < 1;
     #[cfg(not(test))]
     true
 }
@@ -202,9 +215,14 @@ struct Runner<'a> {
     stuck_tol: f64,
     /// `[1/Z1, 1/Z2]` (`1/Z2 = 0` at a rigid wall), m/(Pa s).
     inv_z: [f64; 2],
-    /// The event functions [`Runner::ode_grid_step`] evaluated last at a step end: time
-    /// (s), state as bits, phase, values (the start of the next step when nothing changed).
-    end_events: (f64, [u64; 2], Phase, [f64; 2]),
+    /// What [`Runner::ode_grid_step`] found last at a step end: time (s), state as bits,
+    /// phase, and whether no event function is positive there (the start of the next
+    /// step when nothing changed).
+    end_events: (f64, [u64; 2], Phase, bool),
+    /// The affine interval of the current ODE phase ([`fast::AffinePhase`]).
+    affine_phase: Option<fast::AffinePhase>,
+    /// The affine maps of the step lengths and slopes met.
+    maps: fast::Maps,
 }
 
 impl<'a> Runner<'a> {
@@ -252,7 +270,9 @@ impl<'a> Runner<'a> {
             w_norm: hs.law.traction.adhesion_energy(1.0).abs().max(1e-300),
             stuck_gain: 2.0 / hs.z1 / k,
             inv_z: [1.0 / hs.z1, crate::material::admittance(hs.z2)],
-            end_events: (f64::NAN, [0; 2], Phase::Locked, [0.0; 2]),
+            end_events: (f64::NAN, [0; 2], Phase::Locked, false),
+            affine_phase: None,
+            maps: fast::Maps::default(),
             stuck_tol: STUCK_TOLERANCE * p0.abs().max(2.0 / hs.z1 / k * hs.incident.peak()),
         }
     }
@@ -282,20 +302,30 @@ impl<'a> Runner<'a> {
         }
     }
 
-    /// Event functions of an ODE phase at state y (exit when > 0): returns the largest
-    /// one together with which event it is.
+    /// The gap event function of an ODE phase at state `y` (exit when > 0): the gap past
+    /// `[u]_c` towards the other branch, over the gap scale.
+    #[inline]
+    fn gap_event(&self, phase: Phase, y: [f64; 2]) -> f64 {
+        match phase {
+            Phase::Compression => (y[0] - self.ode.uc) / self.scale[0],
+            _ => (self.ode.uc - y[0]) / self.scale[0],
+        }
+    }
+
+    /// Event functions of an ODE phase at state y (exit when > 0): `[the gap event, the
+    /// damage on/off event]`.
     fn ode_events(&self, phase: Phase, t: f64, y: [f64; 2]) -> [f64; 2] {
         let tr = &self.hs.law.traction;
         let uc = self.ode.uc;
         match phase {
-            Phase::Compression => [(y[0] - uc) / self.scale[0], f64::NEG_INFINITY],
+            Phase::Compression => [self.gap_event(phase, y), f64::NEG_INFINITY],
             Phase::Traction => {
                 let dmg = if self.has_damage {
                     -tr.damage_driving_force((y[0] - uc).max(0.0), y[1]) / self.w_norm
                 } else {
                     f64::NEG_INFINITY
                 };
-                [(uc - y[0]) / self.scale[0], dmg]
+                [self.gap_event(phase, y), dmg]
             }
             Phase::Damaging => {
                 let heal = if tr.damage_viscosity() > 0.0 {
@@ -394,30 +424,32 @@ impl<'a> Runner<'a> {
         self.stuck_gain * sinc
     }
 
-    #[inline]
-    fn acc_point(&self, acc: &mut Acc, w: f64, sinc: f64, s: f64, z1: f64, z2: f64) {
-        let sref = s - sinc;
-        acc.disp_ref += w * sref / z1;
-        acc.disp_inc -= w * sinc / z1;
-        acc.e_inc += w * sinc * sinc / z1;
-        acc.e_ref += w * sref * sref / z1;
-        if z2.is_finite() {
-            acc.disp_tr -= w * s / z2;
-            acc.e_tr += w * s * s / z2;
-        }
-    }
-
-    /// Accumulate integrals of an ODE step with its stages (Radau quadrature).
+    /// Accumulate integrals of an ODE step with its stages (Radau quadrature: weighted
+    /// sums over the stages, then scaled by `h / Z`).
     fn acc_ode(&self, acc: &mut Acc, t: f64, h: f64, y0: [f64; 2], st: &radau::Step) {
-        let z1 = self.hs.z1;
-        let z2 = self.hs.z2;
         let p0 = self.ode.p0;
+        // sums of s_inc, s_ref, s_inc^2, s_ref^2, S and S^2 (S = sigma + p0)
+        let mut sum = [0.0f64; 6];
         for j in 0..3 {
-            let w = radau::B[j] * h;
+            let w = radau::B[j];
             let sinc = st.forcing[j];
             let s = self.ode.sigma(st.stages[j]) + p0;
-            self.acc_point(acc, w, sinc, s, z1, z2);
+            let sref = s - sinc;
+            sum[0] += w * sinc;
+            sum[1] += w * sref;
+            sum[2] += w * sinc * sinc;
+            sum[3] += w * sref * sref;
+            sum[4] += w * s;
+            sum[5] += w * s * s;
         }
+        let (h1, h2) = (h * self.inv_z[0], h * self.inv_z[1]);
+        acc.disp_ref += h1 * sum[1];
+        acc.disp_inc -= h1 * sum[0];
+        acc.e_inc += h1 * sum[2];
+        acc.e_ref += h1 * sum[3];
+        // (1/Z2 = 0 at a rigid wall: nothing transmitted)
+        acc.disp_tr -= h2 * sum[4];
+        acc.e_tr += h2 * sum[5];
         if self.ode.phase == Phase::Damaging {
             let tr = &self.hs.law.traction;
             let b0 = self.ode.beta(y0);
@@ -528,134 +560,6 @@ impl<'a> Runner<'a> {
                 self.ramp = Some(0.05 / lambda);
             }
         }
-    }
-
-    /// The whole grid step `k` from `ta` to `tb` (s) of a stuck phase that it does not
-    /// leave, straight from the incident table (after the burst: nothing to add): the
-    /// quadrature of [`Runner::advance`] without its event search. Returns `false`
-    /// (nothing done) where `advance` must take the step: not a stuck phase, a step
-    /// outside the table, or an exit event inside.
-    #[inline]
-    fn stuck_grid_step(&mut self, acc: &mut Acc, k: usize, ta: f64, tb: f64) -> bool {
-        let phase = self.ode.phase;
-        if !phase.is_stuck() {
-            return false;
-        }
-        if self.ode.grid.after_burst(k) {
-            // a stuck phase with no incident wave: its exit function is the same at every
-            // node (it cannot turn positive within the step) and the quadrature adds zeros
-            return true;
-        }
-        let Some(sinc) = self.ode.grid.stuck_at(k) else {
-            return false;
-        };
-        if phase != Phase::Locked {
-            // advance's event check: an exit function turning positive at a node
-            let mut prev = self.stuck_event(phase, ta);
-            for &s in &sinc {
-                let e = self.stuck_event_of(phase, s);
-                if e > 0.0 && prev <= 0.0 {
-                    return false;
-                }
-                prev = e;
-            }
-        }
-        self.ode.remember(tb, sinc[4]);
-        self.acc_stuck_cached(acc, tb - ta, &sinc);
-        true
-    }
-
-    /// Take the ODE step `st` of length `h` from `(t, y0)` in which no event happens
-    /// ([`Runner::take_ode`]), refusing a non-finite end state.
-    fn accept_ode(
-        &mut self,
-        acc: &mut Acc,
-        t: f64,
-        h: f64,
-        y0: [f64; 2],
-        st: &radau::Step,
-        y: &mut [f64; 2],
-    ) -> Result<()> {
-        if !(st.end()[0].is_finite() && st.end()[1].is_finite()) {
-            return Err(Error::numerical(
-                t,
-                "non-finite state",
-                format!("{:?}", st.end()),
-            ));
-        }
-        self.take_ode(acc, t, h, y0, st, y);
-        Ok(())
-    }
-
-    /// Take the ODE step `st` of length `h` from `(t, y0)`: the largest gap over its
-    /// stages, its quadrature, and its end state in `y` (beta never increases).
-    fn take_ode(
-        &mut self,
-        acc: &mut Acc,
-        t: f64,
-        h: f64,
-        y0: [f64; 2],
-        st: &radau::Step,
-        y: &mut [f64; 2],
-    ) {
-        for s in &st.stages {
-            self.max_gap = self.max_gap.max(s[0]);
-        }
-        self.acc_ode(acc, t, h, y0, st);
-        *y = st.end();
-        y[1] = self.ode.beta(*y).min(y0[1]).max(0.0);
-    }
-
-    /// The whole grid step `[ta, tb]` (s) of an ODE phase when no event happens in it, as
-    /// [`Runner::advance`] takes it (the same step, event checks and quadrature) without
-    /// its event machinery. Returns `false` (nothing done) where `advance` must take the
-    /// step: a stuck phase, a boundary-layer ramp, a step right after a switch, an event
-    /// function past its threshold at the start, the end or a stage, or a step Newton
-    /// cannot take in one piece.
-    #[inline]
-    fn ode_grid_step(&mut self, acc: &mut Acc, ta: f64, tb: f64, y: &mut [f64; 2]) -> Result<bool> {
-        let phase = self.ode.phase;
-        if phase.is_stuck()
-            || self.ramp.is_some()
-            || ta == self.last_switch
-            || ta == self.last_mode_switch
-        {
-            return Ok(false);
-        }
-        let h = tb - ta;
-        let y0 = *y;
-        let quiet = |e: [f64; 2], thr: f64| e[0] <= 0.0 && e[1] <= thr;
-        // the start is the previous step's end when the state was left as it was
-        let e_start = match self.end_events {
-            (t, bits, p, e) if t == ta && bits == y0.map(f64::to_bits) && p == phase => e,
-            _ => self.ode_events(phase, ta, y0),
-        };
-        if !quiet(e_start, 0.0) {
-            return Ok(false);
-        }
-        // the step leaves the incident cache as advance would find it if declined (its
-        // Newton path reads the step start from the cache: the tabulated value)
-        let cache = self.ode.cache.get();
-        let decline = |r: &Self| {
-            r.ode.cache.set(cache);
-            Ok(false)
-        };
-        let Some(st) = radau::step(&self.ode, ta, y0, h, self.scale) else {
-            return decline(self);
-        };
-        let e_end = self.ode_events(phase, tb, st.end());
-        if !quiet(e_end, EVENT_HYSTERESIS) {
-            return decline(self);
-        }
-        for j in 0..2 {
-            let tj = ta + radau::C[j] * h;
-            if !quiet(self.ode_events(phase, tj, st.stages[j]), EVENT_HYSTERESIS) {
-                return decline(self);
-            }
-        }
-        self.accept_ode(acc, ta, h, y0, &st, y)?;
-        self.end_events = (tb, st.end().map(f64::to_bits), phase, e_end);
-        Ok(true)
     }
 
     /// Advance from t to t_end (no breakpoint inside), updating y, the phase, the
@@ -946,6 +850,14 @@ impl<'a> Runner<'a> {
                 bi += 1;
             }
             let whole = bi >= self.breaks.len() || self.breaks[bi] >= tb;
+            // a run of affine steps (before the tail's end checks)
+            if whole && affine_blocks() && k + 1 < n_min {
+                let n = self.affine_block(&mut acc, &mut out, k, n_min - 1, &mut bi, &mut y)?;
+                if n > 0 {
+                    k += n;
+                    continue;
+                }
+            }
             let done = whole
                 && fast_paths()
                 && (self.stuck_grid_step(&mut acc, k, ta, tb)

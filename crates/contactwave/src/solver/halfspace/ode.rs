@@ -121,6 +121,13 @@ impl IncidentGrid {
         (k < n).then(|| std::array::from_fn(|i| self.table[STUCK_ROWS[i] * n + k]))
     }
 
+    /// The Radau stage nodes of grid step `k` when it is tabulated.
+    #[inline]
+    pub(super) fn radau_at(&self, k: usize) -> Option<[f64; 3]> {
+        let n = self.steps;
+        (k < n).then(|| std::array::from_fn(|j| self.table[j * n + k]))
+    }
+
     /// The stuck-step nodes of `[t, t + h]` when it is a tabulated grid step.
     #[inline]
     pub(super) fn stuck(&self, t: f64, h: f64) -> Option<[f64; 5]> {

@@ -1,4 +1,5 @@
-//! The grid fast paths of the time loop against the general, event-locating path.
+//! The grid fast paths and the affine blocks of the time loop against the general,
+//! event-locating path.
 
 use super::*;
 use crate::excitation::{Delayed, ToneBurst, Window};
@@ -39,23 +40,48 @@ fn fingerprint(out: &HalfSpaceOutput) -> Vec<u64> {
     v
 }
 
-fn solve(hs: &HalfSpace, samples_per_period: usize, general_only: bool) -> HalfSpaceOutput {
-    GENERAL_ONLY.with(|g| g.set(general_only));
+/// Solve with the paths of `paths` ([`PATHS`]: 0 all, 1 no affine blocks, 2 general only).
+fn solve(hs: &HalfSpace, samples_per_period: usize, paths: u8) -> HalfSpaceOutput {
+    PATHS.with(|g| g.set(paths));
     let settings = HalfSpaceSettings {
         samples_per_period,
         ..Default::default()
     };
     let out = hs.solve(&settings);
-    GENERAL_ONLY.with(|g| g.set(false));
+    PATHS.with(|g| g.set(0));
     out.unwrap()
 }
 
-/// The fast paths (stuck steps from the table or after the burst, ODE steps without an
-/// event) give the general path's outputs bit for bit: laws with stuck, affine and
-/// nonlinear phases, damage with and without viscosity, clapping and no contact loss,
-/// two windows and a delayed burst, a rigid wall and a second medium.
-#[test]
-fn fast_paths_are_the_general_path_bit_for_bit() {
+/// Every recorded series of `out`, and its scalars.
+fn series(out: &HalfSpaceOutput) -> Vec<(&'static str, Vec<f64>)> {
+    let e = &out.energy;
+    vec![
+        ("t", out.t.clone()),
+        ("beta", out.beta.clone()),
+        ("gap", out.gap.clone()),
+        ("contact_stress", out.contact_stress.clone()),
+        ("incident_stress", out.incident_stress.clone()),
+        ("reflected_stress", out.reflected_stress.clone()),
+        ("transmitted_stress", out.transmitted_stress.clone()),
+        ("reflected_displacement", out.reflected_displacement.clone()),
+        ("incident_displacement", out.incident_displacement.clone()),
+        (
+            "transmitted_displacement",
+            out.transmitted_displacement.clone(),
+        ),
+        (
+            "energy",
+            vec![e.incident, e.reflected, e.transmitted, e.damage],
+        ),
+        ("max_gap", vec![out.max_gap]),
+        ("open_time_in_burst", vec![out.open_time_in_burst]),
+    ]
+}
+
+/// The scenarios of the comparisons: laws with stuck, affine and nonlinear phases, damage
+/// with and without viscosity, clapping and no contact loss, two windows and a delayed
+/// burst, a rigid wall and a second medium, four samplings.
+fn cases() -> Vec<(String, HalfSpace, usize)> {
     let p0 = 0.1e6;
     let c_n = 2e13;
     let compressions = [
@@ -79,7 +105,7 @@ fn fast_paths_are_the_general_path_bit_for_bit() {
         TractionSpec::Bonded,
     ];
     let (pmma, steel) = (Material::PMMA, Material::STEEL);
-    let mut compared = 0;
+    let mut cases = Vec::new();
     for compression in &compressions {
         for traction in &tractions {
             let law = match build_law(p0, compression, traction, "test.toml", "interface") {
@@ -105,18 +131,59 @@ fn fast_paths_are_the_general_path_bit_for_bit() {
                 };
                 let counterpart = (i % 3 == 1).then_some(steel);
                 let spp = [200, 48, 100, 64][i % 4];
-                let hs = HalfSpace::new(pmma, counterpart, law.clone(), incident);
-                let (fast, general) = (solve(&hs, spp, false), solve(&hs, spp, true));
-                let (a, b) = (fingerprint(&fast), fingerprint(&general));
-                let first = (0..a.len().max(b.len())).find(|&i| a.get(i) != b.get(i));
-                assert!(
-                    first.is_none(),
-                    "{compression:?} x {traction:?} at xi = {xi}: entry {first:?} of {} differs",
-                    a.len()
-                );
-                compared += 1;
+                let name = format!("{compression:?} x {traction:?} at xi = {xi}");
+                cases.push((
+                    name,
+                    HalfSpace::new(pmma, counterpart, law.clone(), incident),
+                    spp,
+                ));
             }
         }
+    }
+    cases
+}
+
+/// The grid fast paths (stuck steps from the table or after the burst, ODE steps without
+/// an event) give the general path's outputs bit for bit.
+#[test]
+fn fast_paths_are_the_general_path_bit_for_bit() {
+    let mut compared = 0;
+    for (name, hs, spp) in cases() {
+        let (fast, general) = (solve(&hs, spp, 1), solve(&hs, spp, 2));
+        let (a, b) = (fingerprint(&fast), fingerprint(&general));
+        let first = (0..a.len().max(b.len())).find(|&i| a.get(i) != b.get(i));
+        assert!(
+            first.is_none(),
+            "{name}: entry {first:?} of {} differs",
+            a.len()
+        );
+        compared += 1;
+    }
+    assert!(compared >= 120, "{compared} runs compared");
+}
+
+/// The runs of affine steps ([`Runner::affine_block`]: the same collocation solution, its
+/// stage stresses from the phase's stiffness instead of the law) give the step-by-step
+/// outputs to round-off: the same events and record length, every series within 1e-12 of
+/// its largest magnitude, every scalar within 1e-12 relative.
+#[test]
+fn affine_blocks_are_the_step_by_step_solution() {
+    let mut compared = 0;
+    for (name, hs, spp) in cases() {
+        let (block, steps) = (solve(&hs, spp, 0), solve(&hs, spp, 1));
+        assert_eq!(block.events, steps.events, "{name}: events");
+        for ((key, a), (_, b)) in series(&block).into_iter().zip(series(&steps)) {
+            assert_eq!(a.len(), b.len(), "{name}: length of {key}");
+            let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (i, (x, y)) in a.iter().zip(&b).enumerate() {
+                let tol = 1e-12 * if b.len() > 4 { scale } else { y.abs() };
+                assert!(
+                    (x - y).abs() <= tol,
+                    "{name}: {key}[{i}] = {x:e} with blocks, {y:e} step by step"
+                );
+            }
+        }
+        compared += 1;
     }
     assert!(compared >= 120, "{compared} runs compared");
 }

@@ -1,0 +1,286 @@
+//! The time loop's fast paths (model.md section 4): whole grid steps taken as
+//! [`Runner::advance`] would take them, bit for bit, without its event machinery. A stuck
+//! step reads the incident table; an ODE step of an affine phase applies the collocation
+//! map planned once per step length and slope ([`AffineMap`]) and evaluates the damage
+//! event function only above the law's damage onset.
+
+use super::ode::Phase;
+use super::{Acc, Runner, EVENT_HYSTERESIS};
+use crate::error::{Error, Result};
+use crate::solver::radau::{self, Affine, AffineMap, Step, System};
+
+impl Runner<'_> {
+    /// The whole grid step `k` from `ta` to `tb` (s) of a stuck phase that it does not
+    /// leave, straight from the incident table (after the burst: nothing to add): the
+    /// quadrature of [`Runner::advance`] without its event search. Returns `false`
+    /// (nothing done) where `advance` must take the step: not a stuck phase, a step
+    /// outside the table, or an exit event inside.
+    #[inline]
+    pub(super) fn stuck_grid_step(&mut self, acc: &mut Acc, k: usize, ta: f64, tb: f64) -> bool {
+        let phase = self.ode.phase;
+        if !phase.is_stuck() {
+            return false;
+        }
+        if self.ode.grid.after_burst(k) {
+            // a stuck phase with no incident wave: its exit function is the same at every
+            // node (it cannot turn positive within the step) and the quadrature adds zeros
+            return true;
+        }
+        let Some(sinc) = self.ode.grid.stuck_at(k) else {
+            return false;
+        };
+        if phase != Phase::Locked {
+            // advance's event check: an exit function turning positive at a node
+            let mut prev = self.stuck_event(phase, ta);
+            for &s in &sinc {
+                let e = self.stuck_event_of(phase, s);
+                if e > 0.0 && prev <= 0.0 {
+                    return false;
+                }
+                prev = e;
+            }
+        }
+        self.ode.remember(tb, sinc[4]);
+        self.acc_stuck_cached(acc, tb - ta, &sinc);
+        true
+    }
+
+    /// Take the ODE step `st` of length `h` from `(t, y0)` in which no event happens
+    /// ([`Runner::take_ode`]), refusing a non-finite end state.
+    pub(super) fn accept_ode(
+        &mut self,
+        acc: &mut Acc,
+        t: f64,
+        h: f64,
+        y0: [f64; 2],
+        st: &radau::Step,
+        y: &mut [f64; 2],
+    ) -> Result<()> {
+        if !(st.end()[0].is_finite() && st.end()[1].is_finite()) {
+            return Err(Error::numerical(
+                t,
+                "non-finite state",
+                format!("{:?}", st.end()),
+            ));
+        }
+        self.take_ode(acc, t, h, y0, st, y);
+        Ok(())
+    }
+
+    /// Take the ODE step `st` of length `h` from `(t, y0)`: the largest gap over its
+    /// stages, its quadrature, and its end state in `y` (beta never increases).
+    pub(super) fn take_ode(
+        &mut self,
+        acc: &mut Acc,
+        t: f64,
+        h: f64,
+        y0: [f64; 2],
+        st: &radau::Step,
+        y: &mut [f64; 2],
+    ) {
+        for s in &st.stages {
+            self.max_gap = self.max_gap.max(s[0]);
+        }
+        self.acc_ode(acc, t, h, y0, st);
+        *y = st.end();
+        y[1] = self.ode.beta(*y).min(y0[1]).max(0.0);
+    }
+
+    /// The whole grid step `[ta, tb]` (s) of an ODE phase when no event happens in it, as
+    /// [`Runner::advance`] takes it (the same step, event checks and quadrature, bit for
+    /// bit) without its event machinery. Returns `false` (nothing done) where `advance`
+    /// must take the step: a stuck phase, a boundary-layer ramp, a step right after a
+    /// switch, an event function past its threshold at the start, the end or a stage, or
+    /// a step Newton cannot take in one piece. In an affine phase the step is
+    /// [`AffineMap`]'s (planned once per step length and slope) and the damage event
+    /// function is evaluated only above the law's damage onset.
+    #[inline]
+    pub(super) fn ode_grid_step(
+        &mut self,
+        acc: &mut Acc,
+        ta: f64,
+        tb: f64,
+        y: &mut [f64; 2],
+    ) -> Result<bool> {
+        let phase = self.ode.phase;
+        if phase.is_stuck()
+            || self.ramp.is_some()
+            || ta == self.last_switch
+            || ta == self.last_mode_switch
+        {
+            return Ok(false);
+        }
+        let h = tb - ta;
+        let y0 = *y;
+        let ap = self.affine_phase(y0);
+        // the start is the previous step's end when the state was left as it was
+        let start_quiet = match self.end_events {
+            (t, bits, p, q) if t == ta && bits == y0.map(f64::to_bits) && p == phase => q,
+            _ => self.quiet(&ap, phase, ta, y0).1,
+        };
+        if !start_quiet {
+            return Ok(false);
+        }
+        // the step leaves the incident cache as advance would find it if declined (its
+        // Newton path reads the step start from the cache: the tabulated value)
+        let cache = self.ode.cache.get();
+        let st = match self.affine_stages(&ap, ta, h, y0) {
+            Some(st) => Some(st),
+            None => {
+                self.ode.cache.set(cache);
+                radau::step(&self.ode, ta, y0, h, self.scale)
+            }
+        };
+        let decline = |r: &Self| {
+            r.ode.cache.set(cache);
+            Ok(false)
+        };
+        let Some(st) = st else {
+            return decline(self);
+        };
+        let (end_quiet, next_start_quiet) = self.quiet(&ap, phase, tb, st.end());
+        if !end_quiet {
+            return decline(self);
+        }
+        for j in 0..2 {
+            let tj = ta + radau::C[j] * h;
+            if !self.quiet(&ap, phase, tj, st.stages[j]).0 {
+                return decline(self);
+            }
+        }
+        self.accept_ode(acc, ta, h, y0, &st, y)?;
+        self.end_events = (tb, st.end().map(f64::to_bits), phase, next_start_quiet);
+        Ok(true)
+    }
+
+    /// The affine interval and damage onset of the current ODE phase at adhesion `y[1]`
+    /// (cached until the phase or the adhesion changes).
+    #[inline]
+    pub(super) fn affine_phase(&mut self, y: [f64; 2]) -> AffinePhase {
+        let phase = self.ode.phase;
+        match self.affine_phase {
+            Some(a) if a.phase == phase && a.adhesion == y[1].to_bits() => a,
+            _ => {
+                let a = AffinePhase {
+                    phase,
+                    adhesion: y[1].to_bits(),
+                    affine: if self.ode.dim() == 1 {
+                        self.ode.affine(y)
+                    } else {
+                        None
+                    },
+                    onset: if phase == Phase::Traction && self.has_damage {
+                        self.hs.law.traction.damage_onset(y[1])
+                    } else {
+                        0.0
+                    },
+                };
+                self.affine_phase = Some(a);
+                a
+            }
+        }
+    }
+
+    /// Whether no event function of `phase` at `(t, y)` is past its threshold:
+    /// `(at the hysteresis of a step's end and stages, at 0 as a step's start)`. The
+    /// values of [`Runner::ode_events`]; the damage function is not evaluated below the
+    /// onset `ap.onset`, where it is negative.
+    #[inline]
+    pub(super) fn quiet(
+        &self,
+        ap: &AffinePhase,
+        phase: Phase,
+        t: f64,
+        y: [f64; 2],
+    ) -> (bool, bool) {
+        if phase == Phase::Traction && (y[0] - self.ode.uc).max(0.0) < ap.onset {
+            let gap = self.gap_event(phase, y);
+            return (gap <= 0.0, gap <= 0.0);
+        }
+        let e = self.ode_events(phase, t, y);
+        (
+            e[0] <= 0.0 && e[1] <= EVENT_HYSTERESIS,
+            e[0] <= 0.0 && e[1] <= 0.0,
+        )
+    }
+
+    /// The step of [`radau::step`] in an affine phase (its `affine_step`, the same
+    /// arithmetic), with the map from [`Maps`]; `None` where that step is refused (a start
+    /// or stage outside the interval, a singular map) or the phase is not affine.
+    #[inline]
+    fn affine_stages(&mut self, ap: &AffinePhase, t: f64, h: f64, y: [f64; 2]) -> Option<Step> {
+        let a = ap.affine?;
+        if !(y[0] >= a.lower && y[0] <= a.upper) {
+            return None;
+        }
+        let map = self.maps.get(h, self.ode.mass()[0], a.slope)?;
+        let g = self.ode.forcing_stages(t, h);
+        let z = map.apply(self.ode.rhs_stages(t, h, g, y));
+        let mut stages = [[0.0; 2]; 3];
+        for j in 0..3 {
+            let v = y[0] + z[j];
+            if !(v >= a.lower && v <= a.upper) {
+                return None;
+            }
+            stages[j] = [v, y[1]];
+        }
+        Some(Step { stages, forcing: g })
+    }
+}
+
+/// The affine interval of an ODE phase at one adhesion, and its damage onset.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct AffinePhase {
+    phase: Phase,
+    /// The adhesion beta, as bits.
+    adhesion: u64,
+    /// [`System::affine`] of the phase (`None`: not affine).
+    pub(super) affine: Option<Affine>,
+    /// [`crate::law::TractionBranch::damage_onset`] in a traction phase, m (else 0).
+    pub(super) onset: f64,
+}
+
+/// The [`AffineMap`]s of the last few `(step, mass, slope)` met: a grid step `tb - ta` takes
+/// a few values that differ in the last bits, and a phase keeps its slope.
+#[derive(Debug)]
+pub(super) struct Maps {
+    /// `(step, mass, slope)` as bits (`u64::MAX`: empty).
+    keys: [[u64; 3]; MAPS],
+    maps: [Option<AffineMap>; MAPS],
+    next: usize,
+}
+
+/// Entries of [`Maps`].
+const MAPS: usize = 4;
+
+impl Default for Maps {
+    fn default() -> Self {
+        Maps {
+            keys: [[u64::MAX; 3]; MAPS],
+            maps: [None; MAPS],
+            next: 0,
+        }
+    }
+}
+
+impl Maps {
+    /// The map of step `h` (s), mass `m` and slope `slope` (`None`: singular).
+    #[inline]
+    pub(super) fn get(&mut self, h: f64, m: f64, slope: f64) -> Option<&AffineMap> {
+        let (a, b, c) = (h.to_bits(), m.to_bits(), slope.to_bits());
+        let i = match (0..MAPS).find(|&i| {
+            let k = &self.keys[i];
+            k[0] == a && k[1] == b && k[2] == c
+        }) {
+            Some(i) => i,
+            None => {
+                let i = self.next;
+                self.keys[i] = [a, b, c];
+                self.maps[i] = AffineMap::new(h, m, slope);
+                self.next = (i + 1) % MAPS;
+                i
+            }
+        };
+        self.maps[i].as_ref()
+    }
+}
