@@ -98,8 +98,10 @@ impl Runner<'_> {
             for (j, &v) in stages.iter().enumerate() {
                 let st = [v, y[1]];
                 let (q, q0) = if c.damage_free(v) {
-                    let e = self.gap_event(phase, st);
-                    (e <= 0.0, e <= 0.0)
+                    // the gap event's sign (its division only where the gap is past)
+                    let e = c.toward_other_branch * (v - self.ode.uc) <= 0.0
+                        || self.gap_event(phase, st) <= 0.0;
+                    (e, e)
                 } else {
                     self.quiet(&ap, phase, ta + radau::C[j] * hk, st)
                 };
@@ -182,6 +184,9 @@ struct BlockConstants {
     damage_free_below: f64,
     /// Whether the phase is a traction phase with damage.
     damage: bool,
+    /// `+1` in compression (the gap event is `[u] - [u]_c`), `-1` in traction
+    /// (`[u]_c - [u]`).
+    toward_other_branch: f64,
 }
 
 impl BlockConstants {
@@ -205,6 +210,7 @@ impl BlockConstants {
                 f64::NEG_INFINITY
             },
             damage: traction && r.has_damage,
+            toward_other_branch: if traction { -1.0 } else { 1.0 },
         }
     }
 

@@ -550,7 +550,11 @@ impl<'a> Runner<'a> {
                 l
             };
             let mut lambda = stiffness(t, *y);
-            if let Ok(st) = self.step_ode(t, *y, self.h) {
+            // (a one-component phase whose branch has a constant tangent has the same
+            // stiffness one step later: no probe step)
+            let constant = self.ode.dim() == 1 && self.ode.affine(*y).is_some();
+            if constant {
+            } else if let Ok(st) = self.step_ode(t, *y, self.h) {
                 let end = st.end();
                 if end[0].is_finite() && end[1].is_finite() {
                     lambda = lambda.max(stiffness(t + self.h, end));
@@ -819,6 +823,9 @@ impl<'a> Runner<'a> {
             ..Default::default()
         };
         let summary_only = self.settings.summary_only;
+        // the shortest record, plus the period of rest that ends an automatic tail (an
+        // interface at rest by the shortest tail's end: no vector grows in the run)
+        let reserve = (n_min + (period / h).ceil() as usize + 2).min(n_max + 1);
         for (v, needed) in [
             (&mut out.t, true),
             (&mut out.beta, true),
@@ -832,7 +839,7 @@ impl<'a> Runner<'a> {
             (&mut out.transmitted_displacement, !summary_only),
         ] {
             if needed {
-                v.reserve(n_min + 1);
+                v.reserve(reserve);
             }
         }
         let mut acc = Acc::default();
