@@ -858,7 +858,7 @@ impl<'a> Runner<'a> {
             }
             let whole = bi >= self.breaks.len() || self.breaks[bi] >= tb;
             // a run of affine steps (before the tail's end checks)
-            if whole && affine_blocks() && k + 1 < n_min {
+            if whole && !self.ode.phase.is_stuck() && affine_blocks() && k + 1 < n_min {
                 let n = self.affine_block(&mut acc, &mut out, k, n_min - 1, &mut bi, &mut y)?;
                 if n > 0 {
                     k += n;
