@@ -132,7 +132,10 @@ impl Runner<'_> {
                 sum[3] += w * sref * sref;
                 sum[4] += w * sj;
                 sum[5] += w * sj * sj;
-                self.max_gap = self.max_gap.max(stages[j]);
+                // (the stages are numbers here: the interval check refuses NaN)
+                if stages[j] > self.max_gap {
+                    self.max_gap = stages[j];
+                }
             }
             let (h1, h2) = (hk * self.inv_z[0], hk * self.inv_z[1]);
             acc.disp_ref += h1 * sum[1];
@@ -155,7 +158,6 @@ impl Runner<'_> {
                     break Err(e);
                 }
             }
-            self.max_gap = self.max_gap.max(y[0]);
             self.record(out, acc, tb, *y);
             if !next_quiet {
                 break Ok(());
