@@ -117,24 +117,30 @@ impl LowBins {
         let (n1, n2, k) = (self.n1, self.n2, self.k);
         let len = x.len().min(self.n);
         let pairs = n1.div_ceil(2);
-        self.buf.clear();
         self.buf.resize(pairs * n2, Complex::new(0.0, 0.0));
         // two decimated sequences per complex transform: x[a + n1 j] + i x[a + 1 + n1 j]
+        // (zero where the record has ended; every entry is written: no clearing first)
         for (p, chunk) in self.buf.chunks_exact_mut(n2).enumerate() {
             let a = 2 * p;
-            for (j, c) in chunk.iter_mut().enumerate() {
+            // entries with both parts in the record, then the last partial one
+            let both = if a + 1 < n1 && a + 1 < len {
+                (len - a - 1).div_ceil(n1).min(n2)
+            } else {
+                0
+            };
+            let real = if a < len {
+                (len - a).div_ceil(n1).min(n2)
+            } else {
+                0
+            };
+            for (j, c) in chunk[..both].iter_mut().enumerate() {
                 let i = a + n1 * j;
-                if i >= len {
-                    break;
-                }
-                let re = x[i];
-                let im = if a + 1 < n1 && i + 1 < len {
-                    x[i + 1]
-                } else {
-                    0.0
-                };
-                *c = Complex::new(re, im);
+                *c = Complex::new(x[i], x[i + 1]);
             }
+            for (j, c) in chunk[both..real].iter_mut().enumerate() {
+                *c = Complex::new(x[a + n1 * (both + j)], 0.0);
+            }
+            chunk[real..].fill(Complex::new(0.0, 0.0));
         }
         self.fft
             .process_with_scratch(&mut self.buf, &mut self.scratch);
