@@ -153,7 +153,7 @@ impl LowBins {
                 let tb = &self.twiddle[(a + 1) * k..(a + 2) * k];
                 for kk in 0..k {
                     let c = chunk[kk];
-                    let d = chunk[(n2 - kk) % n2].conj();
+                    let d = chunk[mirror(kk, n2)].conj();
                     // the two real sequences' spectra: (c + d) / 2 and (c - d) / (2 i)
                     let ya = (c + d) * 0.5;
                     let diff = c - d;
@@ -163,11 +163,21 @@ impl LowBins {
             } else {
                 for kk in 0..k {
                     let c = chunk[kk];
-                    let d = chunk[(n2 - kk) % n2].conj();
+                    let d = chunk[mirror(kk, n2)].conj();
                     out[kk] += ta[kk] * ((c + d) * 0.5);
                 }
             }
         }
+    }
+}
+
+/// `(n - k) mod n` for `k < n`: the bin of frequency `-k` (no integer division).
+#[inline]
+fn mirror(k: usize, n: usize) -> usize {
+    if k == 0 {
+        0
+    } else {
+        n - k
     }
 }
 

@@ -5,7 +5,7 @@
 //! event function only above the law's damage onset.
 
 use super::ode::Phase;
-use super::{Acc, Runner, EVENT_HYSTERESIS};
+use super::{Acc, HalfSpaceOutput, Runner, EVENT_HYSTERESIS};
 use crate::error::{Error, Result};
 use crate::solver::radau::{self, Affine, AffineMap, Step, System};
 
@@ -43,6 +43,43 @@ impl Runner<'_> {
         self.ode.remember(tb, sinc[4]);
         self.acc_stuck_cached(acc, tb - ta, &sinc);
         true
+    }
+
+    /// Whole stuck grid steps from `k0` (up to `k_end`, exclusive) as the time loop takes
+    /// them one by one through [`Runner::stuck_grid_step`] (bit for bit), each recorded;
+    /// `bi` is the index of the next breakpoint. Stops at a step with a breakpoint inside
+    /// or one the fast path declines (an exit event). Returns the number of steps taken.
+    pub(super) fn stuck_run(
+        &mut self,
+        acc: &mut Acc,
+        out: &mut HalfSpaceOutput,
+        k0: usize,
+        k_end: usize,
+        bi: &mut usize,
+        y: [f64; 2],
+    ) -> Result<usize> {
+        let h = self.h;
+        let mut k = k0;
+        while k < k_end {
+            let (ta, tb) = (k as f64 * h, (k + 1) as f64 * h);
+            while *bi < self.breaks.len() && self.breaks[*bi] <= ta {
+                *bi += 1;
+            }
+            if *bi < self.breaks.len() && self.breaks[*bi] < tb {
+                break;
+            }
+            self.ode.grid.enter_step(k, ta, tb);
+            if !self.stuck_grid_step(acc, k, ta, tb) {
+                break;
+            }
+            k += 1;
+            if k % 4096 == 0 {
+                crate::interrupt::check()?;
+            }
+            self.max_gap = self.max_gap.max(y[0]);
+            self.record(out, acc, tb, y);
+        }
+        Ok(k - k0)
     }
 
     /// Take the ODE step `st` of length `h` from `(t, y0)` in which no event happens

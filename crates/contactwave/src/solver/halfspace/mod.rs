@@ -777,13 +777,20 @@ impl<'a> Runner<'a> {
         Ok(())
     }
 
+    /// Record the state at time `t` (s): the series a summary needs, then (unless
+    /// `summary_only`) the others.
+    #[inline(always)]
     fn record(&self, out: &mut HalfSpaceOutput, acc: &Acc, t: f64, y: [f64; 2]) {
         out.t.push(t);
         out.beta.push(self.ode.beta(y));
         out.reflected_displacement.push(acc.disp_ref);
-        if self.settings.summary_only {
-            return;
+        if !self.settings.summary_only {
+            self.record_full(out, acc, t, y);
         }
+    }
+
+    /// The series beyond a summary's ([`Runner::record`]).
+    fn record_full(&self, out: &mut HalfSpaceOutput, acc: &Acc, t: f64, y: [f64; 2]) {
         let sinc = self.ode.forcing(t);
         let sigma = if self.ode.phase.is_stuck() {
             self.stuck_s(t) - self.ode.p0
@@ -857,9 +864,19 @@ impl<'a> Runner<'a> {
                 bi += 1;
             }
             let whole = bi >= self.breaks.len() || self.breaks[bi] >= tb;
-            // a run of affine steps (before the tail's end checks)
-            if whole && !self.ode.phase.is_stuck() && affine_blocks() && k + 1 < n_min {
-                let n = self.affine_block(&mut acc, &mut out, k, n_min - 1, &mut bi, &mut y)?;
+            // runs of stuck or affine steps (before the tail's end checks)
+            if whole && k + 1 < n_min {
+                let n = if self.ode.phase.is_stuck() {
+                    if fast_paths() {
+                        self.stuck_run(&mut acc, &mut out, k, n_min - 1, &mut bi, y)?
+                    } else {
+                        0
+                    }
+                } else if affine_blocks() {
+                    self.affine_block(&mut acc, &mut out, k, n_min - 1, &mut bi, &mut y)?
+                } else {
+                    0
+                };
                 if n > 0 {
                     k += n;
                     continue;
