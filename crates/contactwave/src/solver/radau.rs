@@ -252,7 +252,20 @@ fn affine_step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, m: f64, a: Affin
     if !(y[0] >= a.lower && y[0] <= a.upper) {
         return None;
     }
-    let map = AffineMap::new(h, m, a.slope)?;
+    affine_step_with(sys, t, y, h, a, &AffineMap::new(h, m, a.slope)?)
+}
+
+/// The affine step from `(t, y)` of length `h` (s) with the planned `map` of that step
+/// length and the slope of `a`: the forcing at the stage times, the stage right-hand sides
+/// at `y`, `z = P f`; `None` when a stage leaves `a`'s interval.
+pub fn affine_step_with<S: System>(
+    sys: &S,
+    t: f64,
+    y: [f64; 2],
+    h: f64,
+    a: Affine,
+    map: &AffineMap,
+) -> Option<Step> {
     let g = sys.forcing_stages(t, h);
     let z = map.apply(sys.rhs_stages(t, h, g, y));
     let mut stages = [[0.0; 2]; 3];

@@ -12,24 +12,23 @@
 
 use super::fast::AffinePhase;
 use super::ode::Phase;
-use super::{Acc, HalfSpaceOutput, Runner};
+use super::{Runner, StageSums, Tape};
 use crate::error::{Error, Result};
 use crate::solver::radau::{self, AffineMap};
 
 impl Runner<'_> {
     /// Take whole grid steps from `k0` (at most up to `k_end`, exclusive) while the interface
-    /// stays in its affine ODE phase and nothing happens; `bi` is the index of the next
-    /// breakpoint (advanced as the loop goes). Records each step. Returns the number of
+    /// stays in its affine ODE phase and nothing happens, into `tape` (its next breakpoint
+    /// advanced as the loop goes). Records each step. Returns the number of
     /// steps taken (0: the first step is not one this loop takes).
     pub(super) fn affine_block(
         &mut self,
-        acc: &mut Acc,
-        out: &mut HalfSpaceOutput,
+        tape: &mut Tape,
         k0: usize,
         k_end: usize,
-        bi: &mut usize,
         y: &mut [f64; 2],
     ) -> Result<usize> {
+        let (acc, out, bi) = (&mut *tape.acc, &mut *tape.out, &mut *tape.bi);
         let phase = self.ode.phase;
         let h = self.h;
         let ta0 = k0 as f64 * h;
@@ -121,35 +120,15 @@ impl Runner<'_> {
                 ));
             }
             // quadrature (Radau weights), as Runner::acc_ode
-            let mut sum = [0.0f64; 6];
+            let mut sum = StageSums::default();
             for j in 0..3 {
-                let (w, sinc) = (radau::B[j], g[j]);
-                let sj = s + c.stiffness * z[j];
-                let sref = sj - sinc;
-                sum[0] += w * sinc;
-                sum[1] += w * sref;
-                sum[2] += w * sinc * sinc;
-                sum[3] += w * sref * sref;
-                sum[4] += w * sj;
-                sum[5] += w * sj * sj;
+                sum.add(radau::B[j], g[j], s + c.stiffness * z[j]);
                 // (the stages are numbers here: the interval check refuses NaN)
                 if stages[j] > self.max_gap {
                     self.max_gap = stages[j];
                 }
             }
-            let (h1, h2) = (hk * self.inv_z[0], hk * self.inv_z[1]);
-            acc.disp_ref += h1 * sum[1];
-            acc.disp_inc -= h1 * sum[0];
-            acc.e_inc += h1 * sum[2];
-            acc.e_ref += h1 * sum[3];
-            acc.disp_tr -= h2 * sum[4];
-            acc.e_tr += h2 * sum[5];
-            if phase == Phase::Traction {
-                let (lo, hi) = (ta.max(0.0), (ta + hk).min(self.duration));
-                if hi > lo {
-                    acc.open_in_burst += hi - lo;
-                }
-            }
+            self.add_step(acc, ta, hk, &sum, phase == Phase::Traction);
             y[0] = stages[2];
             self.ode.remember(tb, g[2]);
             k += 1;

@@ -5,7 +5,7 @@
 //! event function only above the law's damage onset.
 
 use super::ode::Phase;
-use super::{Acc, HalfSpaceOutput, Runner, EVENT_HYSTERESIS};
+use super::{Acc, Runner, Tape, EVENT_HYSTERESIS};
 use crate::error::{Error, Result};
 use crate::solver::radau::{self, Affine, AffineMap, Step, System};
 
@@ -46,18 +46,17 @@ impl Runner<'_> {
     }
 
     /// Whole stuck grid steps from `k0` (up to `k_end`, exclusive) as the time loop takes
-    /// them one by one through [`Runner::stuck_grid_step`] (bit for bit), each recorded;
-    /// `bi` is the index of the next breakpoint. Stops at a step with a breakpoint inside
+    /// them one by one through [`Runner::stuck_grid_step`] (bit for bit), each recorded
+    /// into `tape` (its next breakpoint advanced). Stops at a step with a breakpoint inside
     /// or one the fast path declines (an exit event). Returns the number of steps taken.
     pub(super) fn stuck_run(
         &mut self,
-        acc: &mut Acc,
-        out: &mut HalfSpaceOutput,
+        tape: &mut Tape,
         k0: usize,
         k_end: usize,
-        bi: &mut usize,
         y: [f64; 2],
     ) -> Result<usize> {
+        let (acc, out, bi) = (&mut *tape.acc, &mut *tape.out, &mut *tape.bi);
         let h = self.h;
         let mut k = k0;
         while k < k_end {
@@ -82,9 +81,10 @@ impl Runner<'_> {
         Ok(k - k0)
     }
 
-    /// Take the ODE step `st` of length `h` from `(t, y0)` in which no event happens
-    /// ([`Runner::take_ode`]), refusing a non-finite end state.
-    pub(super) fn accept_ode(
+    /// Take the ODE step `st` of length `h` from `(t, y0)`: the largest gap over its
+    /// stages, its quadrature, and its end state in `y` (beta never increases); a
+    /// non-finite end state is refused.
+    pub(super) fn take_ode(
         &mut self,
         acc: &mut Acc,
         t: f64,
@@ -100,27 +100,13 @@ impl Runner<'_> {
                 format!("{:?}", st.end()),
             ));
         }
-        self.take_ode(acc, t, h, y0, st, y);
-        Ok(())
-    }
-
-    /// Take the ODE step `st` of length `h` from `(t, y0)`: the largest gap over its
-    /// stages, its quadrature, and its end state in `y` (beta never increases).
-    pub(super) fn take_ode(
-        &mut self,
-        acc: &mut Acc,
-        t: f64,
-        h: f64,
-        y0: [f64; 2],
-        st: &radau::Step,
-        y: &mut [f64; 2],
-    ) {
         for s in &st.stages {
             self.max_gap = self.max_gap.max(s[0]);
         }
         self.acc_ode(acc, t, h, y0, st);
         *y = st.end();
         y[1] = self.ode.beta(*y).min(y0[1]).max(0.0);
+        Ok(())
     }
 
     /// The whole grid step `[ta, tb]` (s) of an ODE phase when no event happens in it, as
@@ -185,7 +171,7 @@ impl Runner<'_> {
                 return decline(self);
             }
         }
-        self.accept_ode(acc, ta, h, y0, &st, y)?;
+        self.take_ode(acc, ta, h, y0, &st, y)?;
         self.end_events = (tb, st.end().map(f64::to_bits), phase, next_start_quiet);
         Ok(true)
     }
@@ -251,17 +237,7 @@ impl Runner<'_> {
             return None;
         }
         let map = self.maps.get(h, self.ode.mass()[0], a.slope)?;
-        let g = self.ode.forcing_stages(t, h);
-        let z = map.apply(self.ode.rhs_stages(t, h, g, y));
-        let mut stages = [[0.0; 2]; 3];
-        for j in 0..3 {
-            let v = y[0] + z[j];
-            if !(v >= a.lower && v <= a.upper) {
-                return None;
-            }
-            stages[j] = [v, y[1]];
-        }
-        Some(Step { stages, forcing: g })
+        radau::affine_step_with(&self.ode, t, y, h, a, map)
     }
 }
 

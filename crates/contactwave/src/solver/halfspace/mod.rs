@@ -113,6 +113,34 @@ const STUCK_TOLERANCE: f64 = 1e-12;
 /// opening rate) below which no switch is made.
 const EVENT_HYSTERESIS: f64 = 1e-10;
 
+/// The Radau quadrature sums of a step: over its stages, the weight times `s_inc`, `s_ref`,
+/// `s_inc^2`, `s_ref^2`, `S` and `S^2` (`S = sigma + p0`; Pa and Pa^2).
+#[derive(Debug, Default, Clone, Copy)]
+struct StageSums([f64; 6]);
+
+impl StageSums {
+    /// Add a stage of weight `w` with incident stress `sinc` and `S = s` (Pa).
+    #[inline]
+    fn add(&mut self, w: f64, sinc: f64, s: f64) {
+        let sref = s - sinc;
+        let v = &mut self.0;
+        v[0] += w * sinc;
+        v[1] += w * sref;
+        v[2] += w * sinc * sinc;
+        v[3] += w * sref * sref;
+        v[4] += w * s;
+        v[5] += w * s * s;
+    }
+}
+
+/// What a run of whole grid steps writes to: the time loop's integrals, its records and
+/// the index of its next breakpoint.
+struct Tape<'t> {
+    acc: &'t mut Acc,
+    out: &'t mut HalfSpaceOutput,
+    bi: &'t mut usize,
+}
+
 /// Running integrals.
 #[derive(Debug, Default, Clone, Copy)]
 struct Acc {
@@ -428,28 +456,16 @@ impl<'a> Runner<'a> {
     /// sums over the stages, then scaled by `h / Z`).
     fn acc_ode(&self, acc: &mut Acc, t: f64, h: f64, y0: [f64; 2], st: &radau::Step) {
         let p0 = self.ode.p0;
-        // sums of s_inc, s_ref, s_inc^2, s_ref^2, S and S^2 (S = sigma + p0)
-        let mut sum = [0.0f64; 6];
+        let mut sum = StageSums::default();
         for j in 0..3 {
-            let w = radau::B[j];
-            let sinc = st.forcing[j];
-            let s = self.ode.sigma(st.stages[j]) + p0;
-            let sref = s - sinc;
-            sum[0] += w * sinc;
-            sum[1] += w * sref;
-            sum[2] += w * sinc * sinc;
-            sum[3] += w * sref * sref;
-            sum[4] += w * s;
-            sum[5] += w * s * s;
+            sum.add(
+                radau::B[j],
+                st.forcing[j],
+                self.ode.sigma(st.stages[j]) + p0,
+            );
         }
-        let (h1, h2) = (h * self.inv_z[0], h * self.inv_z[1]);
-        acc.disp_ref += h1 * sum[1];
-        acc.disp_inc -= h1 * sum[0];
-        acc.e_inc += h1 * sum[2];
-        acc.e_ref += h1 * sum[3];
-        // (1/Z2 = 0 at a rigid wall: nothing transmitted)
-        acc.disp_tr -= h2 * sum[4];
-        acc.e_tr += h2 * sum[5];
+        let open = matches!(self.ode.phase, Phase::Traction | Phase::Damaging);
+        self.add_step(acc, t, h, &sum, open);
         if self.ode.phase == Phase::Damaging {
             let tr = &self.hs.law.traction;
             let b0 = self.ode.beta(y0);
@@ -468,7 +484,22 @@ impl<'a> Runner<'a> {
                 acc.e_damage += radau::B[j] * h * tr.energy_d_adhesion(d, betas[j]) * (-dbeta);
             }
         }
-        if matches!(self.ode.phase, Phase::Traction | Phase::Damaging) {
+    }
+
+    /// Add an ODE step from `t` of length `h` (s) to the integrals from its stage sums, and
+    /// to the open time in the burst when the interface is `open`.
+    #[inline]
+    fn add_step(&self, acc: &mut Acc, t: f64, h: f64, sum: &StageSums, open: bool) {
+        let sum = &sum.0;
+        let (h1, h2) = (h * self.inv_z[0], h * self.inv_z[1]);
+        acc.disp_ref += h1 * sum[1];
+        acc.disp_inc -= h1 * sum[0];
+        acc.e_inc += h1 * sum[2];
+        acc.e_ref += h1 * sum[3];
+        // (1/Z2 = 0 at a rigid wall: nothing transmitted)
+        acc.disp_tr -= h2 * sum[4];
+        acc.e_tr += h2 * sum[5];
+        if open {
             let lo = t.max(0.0);
             let hi = (t + h).min(self.duration);
             if hi > lo {
@@ -753,7 +784,7 @@ impl<'a> Runner<'a> {
             }
             match event {
                 None => {
-                    self.accept_ode(acc, t, h, y0, &st, y)?;
+                    self.take_ode(acc, t, h, y0, &st, y)?;
                     t = t_end;
                     if let Some(r) = self.ramp {
                         self.ramp = (2.0 * r < self.h).then_some(2.0 * r);
@@ -764,7 +795,7 @@ impl<'a> Runner<'a> {
                         Some(se) => se,
                         None => self.step_ode(t, y0, tau)?,
                     };
-                    self.take_ode(acc, t, tau, y0, &se, y);
+                    self.take_ode(acc, t, tau, y0, &se, y)?;
                     t += tau;
                     if which == 1 {
                         self.last_mode_switch = t;
@@ -866,14 +897,19 @@ impl<'a> Runner<'a> {
             let whole = bi >= self.breaks.len() || self.breaks[bi] >= tb;
             // runs of stuck or affine steps (before the tail's end checks)
             if whole && k + 1 < n_min {
+                let mut tape = Tape {
+                    acc: &mut acc,
+                    out: &mut out,
+                    bi: &mut bi,
+                };
                 let n = if self.ode.phase.is_stuck() {
                     if fast_paths() {
-                        self.stuck_run(&mut acc, &mut out, k, n_min - 1, &mut bi, y)?
+                        self.stuck_run(&mut tape, k, n_min - 1, y)?
                     } else {
                         0
                     }
                 } else if affine_blocks() {
-                    self.affine_block(&mut acc, &mut out, k, n_min - 1, &mut bi, &mut y)?
+                    self.affine_block(&mut tape, k, n_min - 1, &mut y)?
                 } else {
                     0
                 };
