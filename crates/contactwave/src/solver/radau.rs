@@ -293,30 +293,44 @@ impl AffineMap {
     /// The map of step `h` (s), mass `m` and slope `slope`; `None` when the collocation
     /// matrix is singular or not finite.
     pub fn new(h: f64, m: f64, slope: f64) -> Option<AffineMap> {
-        let mut jac = [0.0f64; 9];
+        // M = m I - h slope A, its inverse from the adjugate, then P = M^-1 (h A)
+        let mut mm = [[0.0f64; 3]; 3];
         for j in 0..3 {
             for l in 0..3 {
-                jac[j * 3 + l] = if j == l { m } else { 0.0 } - h * A[j][l] * slope;
+                mm[j][l] = if j == l { m } else { 0.0 } - h * A[j][l] * slope;
             }
         }
-        // column l of P solves (m I - h slope A) x = h A e_l
+        let cof = |r0: usize, r1: usize, c0: usize, c1: usize| {
+            mm[r0][c0] * mm[r1][c1] - mm[r0][c1] * mm[r1][c0]
+        };
+        // adjugate (transposed cofactors): adj[i][j] = C[j][i]
+        let adj = [
+            [cof(1, 2, 1, 2), -cof(0, 2, 1, 2), cof(0, 1, 1, 2)],
+            [-cof(1, 2, 0, 2), cof(0, 2, 0, 2), -cof(0, 1, 0, 2)],
+            [cof(1, 2, 0, 1), -cof(0, 2, 0, 1), cof(0, 1, 0, 1)],
+        ];
+        let det = mm[0][0] * adj[0][0] + mm[0][1] * adj[1][0] + mm[0][2] * adj[2][0];
+        if !(det.abs() > 0.0) || !det.is_finite() {
+            return None;
+        }
+        let inv_det = 1.0 / det;
         let mut p = [[0.0; 3]; 3];
-        for l in 0..3 {
-            let mut b = [0.0f64; 6];
-            for (j, bj) in b.iter_mut().take(3).enumerate() {
-                *bj = h * A[j][l];
-            }
-            if !solve3(&jac, &mut b) {
-                return None;
-            }
-            for j in 0..3 {
-                p[j][l] = b[j];
+        for i in 0..3 {
+            for l in 0..3 {
+                let v: f64 = (0..3).map(|j| adj[i][j] * A[j][l]).sum();
+                p[i][l] = h * v * inv_det;
             }
         }
         p.iter()
             .flatten()
             .all(|v| v.is_finite())
             .then_some(AffineMap { p })
+    }
+
+    /// `P`, row-major.
+    #[inline]
+    pub fn matrix(&self) -> [[f64; 3]; 3] {
+        self.p
     }
 
     /// The stage increments `z = P f`.
@@ -449,6 +463,27 @@ mod tests {
         .is_none());
         assert!(step(&sys, 0.3, [2.0, 0.0], 0.5, [1.0, 1.0]).is_some());
         assert_eq!(g, [0.0; 3]);
+    }
+    #[test]
+    fn affine_map_solves_the_collocation_equations() {
+        // (m I - h slope A) P = h A, from mild to very stiff slopes, and refused where the
+        // matrix is singular
+        for (h, m, slope) in [(0.1, 1.0, -1.0), (5e-9, 1.0, -6e6), (1e-3, 1.0, -1e12)] {
+            let p = AffineMap::new(h, m, slope).unwrap().matrix();
+            for j in 0..3 {
+                for l in 0..3 {
+                    let lhs: f64 = (0..3)
+                        .map(|i| (if j == i { m } else { 0.0 } - h * A[j][i] * slope) * p[i][l])
+                        .sum();
+                    let rhs = h * A[j][l];
+                    assert!(
+                        (lhs - rhs).abs() <= 1e-13 * h,
+                        "{h} {slope}: {lhs} vs {rhs}"
+                    );
+                }
+            }
+        }
+        assert!(AffineMap::new(1.0, 0.0, 0.0).is_none());
     }
     #[test]
     fn a_inverse_is_inverse() {
