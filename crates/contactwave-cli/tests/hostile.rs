@@ -357,7 +357,8 @@ fn ctrl_c_and_sigterm_stop_run_and_sweep_with_130_and_no_partial_file() {
             took.as_secs_f64() * 1e3
         );
     }
-    // identification (tens of seconds), reproduce (about 15 s), convergence (about 5 s)
+    // identification (tens of seconds), reproduce (about 4 s), convergence with a seventh
+    // resolution (about 3 s; the default six now take about 1.5 s, too close to the signal)
     let ident = examples().join("identify/rccm_undamaged.toml");
     for (name, args) in [
         (
@@ -377,6 +378,8 @@ fn ctrl_c_and_sigterm_stop_run_and_sweep_with_130_and_no_partial_file() {
                     .to_str()
                     .unwrap()
                     .to_string(),
+                "--spp".into(),
+                "125,250,500,1000,2000,4000,8000".into(),
                 "--out".into(),
                 "out".into(),
             ],
