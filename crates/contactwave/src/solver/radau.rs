@@ -283,6 +283,15 @@ pub fn affine_step_with<S: System>(
 /// slope `slope` and step `h` (s): the stage increments `z = P f` from the right-hand side
 /// `f_l = f(t_l, y)` at the stage times and the start state, with
 /// `P = (m I - h slope A)^-1 h A` (plan once per step size and slope, apply per step).
+///
+/// ```
+/// use contactwave::solver::radau::AffineMap;
+/// // y' = -y from y = 1 over h = 0.1: f = -1 at every stage time at the start state
+/// let map = AffineMap::new(0.1, 1.0, -1.0).unwrap();
+/// let z = map.apply([-1.0; 3]);
+/// // the end stage is Radau IIA's fifth-order step: e^-0.1 to 1e-9
+/// assert!((1.0 + z[2] - (-0.1f64).exp()).abs() < 1e-9);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AffineMap {
     /// `P`, row-major (s, in units of y per unit of f).
