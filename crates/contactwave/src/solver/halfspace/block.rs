@@ -95,15 +95,7 @@ impl Runner<'_> {
             let mut quiet = true;
             let mut next_quiet = true;
             for (j, &v) in stages.iter().enumerate() {
-                let st = [v, y[1]];
-                let (q, q0) = if c.damage_free(v) {
-                    // the gap event's sign (its division only where the gap is past)
-                    let e = c.toward_other_branch * (v - self.ode.uc) <= 0.0
-                        || self.gap_event(phase, st) <= 0.0;
-                    (e, e)
-                } else {
-                    self.quiet(&ap, phase, ta + radau::C[j] * hk, st)
-                };
+                let (q, q0) = self.quiet(&ap, phase, ta + radau::C[j] * hk, [v, y[1]]);
                 quiet &= q;
                 if j == 2 {
                     next_quiet = q0;
@@ -161,44 +153,16 @@ struct BlockConstants {
     y0: f64,
     /// `d sigma / d[u]` of the phase, Pa/m.
     stiffness: f64,
-    /// `[u]_c + onset`: gaps below it are below the damage onset, m (`-inf`: unknown).
-    damage_free_below: f64,
-    /// Whether the phase is a traction phase with damage.
-    damage: bool,
-    /// `+1` in compression (the gap event is `[u] - [u]_c`), `-1` in traction
-    /// (`[u]_c - [u]`).
-    toward_other_branch: f64,
 }
 
 impl BlockConstants {
     fn new(r: &Runner, ap: &AffinePhase, y: [f64; 2]) -> Self {
-        let law = &r.hs.law;
-        let traction = r.ode.phase == Phase::Traction;
-        let stiffness = if traction {
-            law.traction.tangent(0.0, y[1])
-        } else {
-            law.compression.tangent(r.ode.uc)
-        };
         BlockConstants {
             two_over_z1: r.ode.two_over_z1,
             k: r.ode.k,
             s0: r.ode.sigma(y) + r.ode.p0,
             y0: y[0],
-            stiffness,
-            damage_free_below: if ap.onset > 0.0 {
-                r.ode.uc + ap.onset
-            } else {
-                f64::NEG_INFINITY
-            },
-            damage: traction && r.has_damage,
-            toward_other_branch: if traction { -1.0 } else { 1.0 },
+            stiffness: ap.stiffness,
         }
-    }
-
-    /// Whether the gap `v` is certainly below the damage onset (or the phase cannot damage):
-    /// only the gap event function then decides.
-    #[inline]
-    fn damage_free(&self, v: f64) -> bool {
-        !self.damage || v < self.damage_free_below
     }
 }

@@ -192,10 +192,13 @@ impl Runner<'_> {
                     } else {
                         None
                     },
-                    onset: if phase == Phase::Traction && self.has_damage {
-                        self.hs.law.traction.damage_onset(y[1])
-                    } else {
-                        0.0
+                    stiffness: self.ode.affine_stiffness(y).unwrap_or(f64::NAN),
+                    onset: match phase {
+                        Phase::Traction if self.has_damage => {
+                            self.hs.law.traction.damage_onset(y[1])
+                        }
+                        Phase::Compression | Phase::Traction => f64::INFINITY,
+                        _ => 0.0,
                     },
                 };
                 self.affine_phase = Some(a);
@@ -206,8 +209,9 @@ impl Runner<'_> {
 
     /// Whether no event function of `phase` at `(t, y)` is past its threshold:
     /// `(at the hysteresis of a step's end and stages, at 0 as a step's start)`. The
-    /// values of [`Runner::ode_events`]; the damage function is not evaluated below the
-    /// onset `ap.onset`, where it is negative.
+    /// values of [`Runner::ode_events`]; below the opening `ap.onset` (where the damage
+    /// function is negative, or the phase has none) only the gap event's sign decides, and
+    /// its division is made only where the gap is past `[u]_c`.
     #[inline]
     pub(super) fn quiet(
         &self,
@@ -216,9 +220,15 @@ impl Runner<'_> {
         t: f64,
         y: [f64; 2],
     ) -> (bool, bool) {
-        if phase == Phase::Traction && (y[0] - self.ode.uc).max(0.0) < ap.onset {
-            let gap = self.gap_event(phase, y);
-            return (gap <= 0.0, gap <= 0.0);
+        let uc = self.ode.uc;
+        if phase != Phase::Damaging && (y[0] - uc).max(0.0) < ap.onset {
+            let toward_other_branch = if phase == Phase::Compression {
+                y[0] - uc
+            } else {
+                uc - y[0]
+            };
+            let gap = toward_other_branch <= 0.0 || self.gap_event(phase, y) <= 0.0;
+            return (gap, gap);
         }
         let e = self.ode_events(phase, t, y);
         (
@@ -249,7 +259,11 @@ pub(super) struct AffinePhase {
     adhesion: u64,
     /// [`System::affine`] of the phase (`None`: not affine).
     pub(super) affine: Option<Affine>,
-    /// [`crate::law::TractionBranch::damage_onset`] in a traction phase, m (else 0).
+    /// The branch's constant tangent where the phase is affine, Pa/m (else NaN).
+    pub(super) stiffness: f64,
+    /// The opening below which no damage event can happen, m:
+    /// [`crate::law::TractionBranch::damage_onset`] in a damaging traction phase, `inf` in
+    /// a phase without damage, 0 while damaging.
     pub(super) onset: f64,
 }
 

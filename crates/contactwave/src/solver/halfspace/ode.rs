@@ -231,6 +231,23 @@ impl GapOde<'_> {
     }
 }
 
+impl GapOde<'_> {
+    /// The constant tangent `d sigma / d[u]` (Pa/m) of the phase's branch at adhesion
+    /// `y[1]`, where the phase is affine ([`System::affine`]): a compliant compression
+    /// branch of constant stiffness, or a traction branch linear in the opening.
+    #[inline]
+    pub(super) fn affine_stiffness(&self, y: [f64; 2]) -> Option<f64> {
+        let law = &self.hs.law;
+        match self.phase {
+            Phase::Compression if law.compression.is_affine() => {
+                Some(law.compression.tangent(self.uc))
+            }
+            Phase::Traction if law.traction.is_affine() => Some(law.traction.tangent(0.0, y[1])),
+            _ => None,
+        }
+    }
+}
+
 impl System for GapOde<'_> {
     fn dim(&self) -> usize {
         if self.phase == Phase::Damaging && !self.algebraic_damage() {
@@ -296,20 +313,16 @@ impl System for GapOde<'_> {
     /// traction branch linear in the opening at the phase's fixed adhesion (from `[u]_c`):
     /// the gap equation is then linear and Radau's step needs no Newton iteration.
     fn affine(&self, y: [f64; 2]) -> Option<Affine> {
-        let law = &self.hs.law;
-        match self.phase {
-            Phase::Compression if law.compression.is_affine() => Some(Affine {
-                slope: -self.k * law.compression.tangent(self.uc),
-                lower: f64::NEG_INFINITY,
-                upper: self.uc,
-            }),
-            Phase::Traction if law.traction.is_affine() => Some(Affine {
-                slope: -self.k * law.traction.tangent(0.0, y[1]),
-                lower: self.uc,
-                upper: f64::INFINITY,
-            }),
-            _ => None,
-        }
+        let stiffness = self.affine_stiffness(y)?;
+        let (lower, upper) = match self.phase {
+            Phase::Compression => (f64::NEG_INFINITY, self.uc),
+            _ => (self.uc, f64::INFINITY),
+        };
+        Some(Affine {
+            slope: -self.k * stiffness,
+            lower,
+            upper,
+        })
     }
     fn jacobian(&self, _t: f64, y: [f64; 2]) -> [[f64; 2]; 2] {
         match self.phase {
