@@ -10,6 +10,7 @@
 //! `sinc(pi f dt)` response: jumps of the reflected wave at closures then alias by
 //! O(1/samples_per_period^2) only.
 
+mod envelope;
 pub mod fit;
 mod low_bins;
 pub mod methods;

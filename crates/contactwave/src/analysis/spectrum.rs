@@ -1,6 +1,7 @@
 //! Spectra and band amplitudes with plans made once and reused (RustFFT's planner design):
 //! an [`Analyzer`] owns its planners and scratch buffers; a sweep keeps one per thread.
 
+use super::envelope::EnvelopePeak;
 use super::low_bins::LowBins;
 use crate::error::{Error, Result};
 use realfft::num_complex::Complex;
@@ -80,13 +81,15 @@ pub struct Analyzer {
     scratch: Vec<Complex<f64>>,
     /// Plans of the band analysis' low bins ([`LowBins`]), newest last.
     low: Vec<LowBins>,
+    /// Plans of the band envelopes' peaks ([`EnvelopePeak`]), newest last.
+    envelopes: Vec<EnvelopePeak>,
     /// `(n_fft, dt bits)` of [`Analyzer::sinc`].
     sinc_key: (usize, u64),
     /// The cell-average response `max(sin(a)/a, 1e-3)`, `a = pi k df dt`, of bins `k`.
     sinc: Vec<f64>,
 }
 
-/// Most [`LowBins`] plans an analyser keeps.
+/// Most [`LowBins`] (and [`EnvelopePeak`]) plans an analyser keeps.
 const MAX_LOW_PLANS: usize = 4;
 
 impl Default for Analyzer {
@@ -112,6 +115,7 @@ impl Analyzer {
             band: Vec::new(),
             scratch: Vec::new(),
             low: Vec::new(),
+            envelopes: Vec::new(),
             sinc_key: (0, 0),
             sinc: Vec::new(),
         }
@@ -153,19 +157,19 @@ impl Analyzer {
         }
     }
 
-    /// The cell-average response of bin `k` for transform length `n_fft` and step `dt`:
-    /// `max(sin(a)/a, 1e-3)`, `a = pi k df dt`, tabulated once per `(n_fft, dt)`.
-    fn sinc_at(&mut self, n_fft: usize, df: f64, dt: f64, k: usize) -> f64 {
+    /// The cell-average responses of bins `0..k` for transform length `n_fft` and step
+    /// `dt`: `max(sin(a)/a, 1e-3)`, `a = pi k df dt`, tabulated once per `(n_fft, dt)`.
+    fn sinc_upto(&mut self, n_fft: usize, df: f64, dt: f64, k: usize) -> &[f64] {
         let key = (n_fft, dt.to_bits());
         if self.sinc_key != key {
             self.sinc_key = key;
             self.sinc.clear();
         }
-        while self.sinc.len() <= k {
+        while self.sinc.len() < k {
             let a = std::f64::consts::PI * self.sinc.len() as f64 * df * dt;
             self.sinc.push((a.sin() / a).max(1e-3));
         }
-        self.sinc[k]
+        &self.sinc[..k]
     }
 
     /// Forward transform of cell-averaged samples `x` (step `dt`), zero-padded to a power
@@ -200,18 +204,30 @@ impl Analyzer {
         }
         let nb = k_hi - k_lo;
         let m = (16 * nb).next_power_of_two().max(64);
-        self.band.clear();
         // divide out the cell-average response sinc(pi f dt)
-        for kk in k_lo..k_hi {
-            let c = self.spec[kk] / self.sinc_at(n_fft, df, dt, kk);
-            self.band.push(c);
-        }
-        self.band.resize(m, Complex::new(0.0, 0.0));
-        let plan = self.cplx.plan_fft_inverse(m);
-        self.scratch
-            .resize(plan.get_inplace_scratch_len(), Complex::new(0.0, 0.0));
-        plan.process_with_scratch(&mut self.band, &mut self.scratch);
-        let peak2 = self.band.iter().fold(0.0f64, |p, c| p.max(c.norm_sqr()));
+        self.sinc_upto(n_fft, df, dt, k_hi);
+        self.band.clear();
+        self.band.extend(
+            self.spec[k_lo..k_hi]
+                .iter()
+                .zip(&self.sinc[k_lo..k_hi])
+                .map(|(c, s)| c / s),
+        );
+        let i = match self.envelopes.iter().position(|p| p.size() == m) {
+            Some(i) => i,
+            None => {
+                // (m is a power of two of at least 64: a multiple of 16)
+                let Some(p) = EnvelopePeak::plan(&mut self.cplx, m) else {
+                    return f64::NAN;
+                };
+                if self.envelopes.len() >= MAX_LOW_PLANS {
+                    self.envelopes.remove(0);
+                }
+                self.envelopes.push(p);
+                self.envelopes.len() - 1
+            }
+        };
+        let peak2 = self.envelopes[i].peak_norm_sqr(&self.band);
         2.0 * peak2.sqrt() / n_fft as f64
     }
 

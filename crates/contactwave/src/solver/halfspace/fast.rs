@@ -29,20 +29,27 @@ impl Runner<'_> {
         let Some(sinc) = self.ode.grid.stuck_at(k) else {
             return false;
         };
-        if phase != Phase::Locked {
-            // advance's event check: an exit function turning positive at a node
-            let mut prev = self.stuck_event(phase, ta);
-            for &s in &sinc {
-                let e = self.stuck_event_of(phase, s);
-                if e > 0.0 && prev <= 0.0 {
-                    return false;
-                }
-                prev = e;
-            }
+        if phase != Phase::Locked && self.stuck_exit(phase, self.stuck_event(phase, ta), &sinc) {
+            return false;
         }
         self.ode.remember(tb, sinc[4]);
         self.acc_stuck_cached(acc, tb - ta, &sinc);
         true
+    }
+
+    /// [`Runner::advance`]'s event check of a stuck step: whether an exit function turns
+    /// positive at a node of `sinc` (the incident stress at [`super::ode::STUCK_NODES`],
+    /// Pa), from `prev`, its value at the step start (no branch per node).
+    #[inline]
+    fn stuck_exit(&self, phase: Phase, prev: f64, sinc: &[f64; 5]) -> bool {
+        let mut prev_quiet = prev <= 0.0;
+        let mut exit = false;
+        for &s in sinc {
+            let e = self.stuck_event_of(phase, s);
+            exit |= (e > 0.0) & prev_quiet;
+            prev_quiet = e <= 0.0;
+        }
+        exit
     }
 
     /// Whole stuck grid steps from `k0` (up to `k_end`, exclusive) as the time loop takes
@@ -57,7 +64,15 @@ impl Runner<'_> {
         y: [f64; 2],
     ) -> Result<usize> {
         let (acc, out, bi) = (&mut *tape.acc, &mut *tape.out, &mut *tape.bi);
+        let phase = self.ode.phase;
+        if !phase.is_stuck() {
+            return Ok(0);
+        }
         let h = self.h;
+        self.max_gap = self.max_gap.max(y[0]);
+        // the exit function at the step start: the last node's of the step before (the
+        // value the incident cache holds for that time)
+        let mut prev: Option<f64> = None;
         let mut k = k0;
         while k < k_end {
             let (ta, tb) = (k as f64 * h, (k + 1) as f64 * h);
@@ -67,15 +82,25 @@ impl Runner<'_> {
             if *bi < self.breaks.len() && self.breaks[*bi] < tb {
                 break;
             }
-            self.ode.grid.enter_step(k, ta, tb);
-            if !self.stuck_grid_step(acc, k, ta, tb) {
-                break;
+            // as stuck_grid_step: after the burst nothing to add; else from the table
+            if !self.ode.grid.after_burst(k) {
+                let Some(sinc) = self.ode.grid.stuck_at(k) else {
+                    break;
+                };
+                if phase != Phase::Locked {
+                    let p = prev.unwrap_or_else(|| self.stuck_event(phase, ta));
+                    if self.stuck_exit(phase, p, &sinc) {
+                        break;
+                    }
+                    prev = Some(self.stuck_event_of(phase, sinc[4]));
+                }
+                self.ode.remember(tb, sinc[4]);
+                self.acc_stuck_cached(acc, tb - ta, &sinc);
             }
             k += 1;
             if k % 4096 == 0 {
                 crate::interrupt::check()?;
             }
-            self.max_gap = self.max_gap.max(y[0]);
             self.record(out, acc, tb, y);
         }
         Ok(k - k0)
