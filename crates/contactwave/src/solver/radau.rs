@@ -255,6 +255,31 @@ fn affine_step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, m: f64, a: Affin
     affine_step_with(sys, t, y, h, a, &AffineMap::new(h, m, a.slope)?)
 }
 
+/// The step of the affine branch at `(t, y)` ([`System::affine`]) continued past its
+/// interval: the collocation map applied whatever the stages, i.e. the step of the
+/// phase's linear dynamics. It is [`step`]'s wherever the stages stay inside (the same
+/// arithmetic as its affine step), and is smooth across the interval's end, where `step`
+/// turns to Newton on the law's kink: what an event search between the two sides of a
+/// contact event evaluates. `None` where the system is not scalar and affine at `y`, `y`
+/// is outside the interval, the map is singular or a stage is not finite.
+pub fn continued_step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64) -> Option<Step> {
+    if sys.dim() != 1 {
+        return None;
+    }
+    let a = sys.affine(y)?;
+    if !(y[0] >= a.lower && y[0] <= a.upper) {
+        return None;
+    }
+    let map = AffineMap::new(h, sys.mass()[0], a.slope)?;
+    let g = sys.forcing_stages(t, h);
+    let z = map.apply(sys.rhs_stages(t, h, g, y));
+    let stages = z.map(|zj| [y[0] + zj, y[1]]);
+    stages
+        .iter()
+        .all(|s| s[0].is_finite())
+        .then_some(Step { stages, forcing: g })
+}
+
 /// The affine step from `(t, y)` of length `h` (s) with the planned `map` of that step
 /// length and the slope of `a`: the forcing at the stage times, the stage right-hand sides
 /// at `y`, `z = P f`; `None` when a stage leaves `a`'s interval.

@@ -52,6 +52,7 @@ impl Runner<'_> {
             return Ok(0);
         }
         let c = BlockConstants::new(self, &ap, *y);
+        let uc = self.ode.uc;
         let mut map: Option<(u64, AffineMap)> = None;
         let breaks = std::mem::take(&mut self.breaks);
         let mut k = k0;
@@ -91,14 +92,18 @@ impl Runner<'_> {
                 break Ok(());
             }
             // event functions at the two inner stages and the end (threshold: the
-            // hysteresis), and at the end as the next step's start (threshold 0)
+            // hysteresis), and at the end as the next step's start (threshold 0); below
+            // the damage onset only the gap event's sign counts (Runner::quiet), and a
+            // stage inside the interval is on the phase's side of [u]_c
             let mut quiet = true;
             let mut next_quiet = true;
-            for (j, &v) in stages.iter().enumerate() {
-                let (q, q0) = self.quiet(&ap, phase, ta + radau::C[j] * hk, [v, y[1]]);
-                quiet &= q;
-                if j == 2 {
-                    next_quiet = q0;
+            if !stages.iter().all(|&v| (v - uc).max(0.0) < ap.onset) {
+                for (j, &v) in stages.iter().enumerate() {
+                    let (q, q0) = self.quiet(&ap, phase, ta + radau::C[j] * hk, [v, y[1]]);
+                    quiet &= q;
+                    if j == 2 {
+                        next_quiet = q0;
+                    }
                 }
             }
             if !quiet {

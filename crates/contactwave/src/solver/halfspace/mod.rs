@@ -376,6 +376,17 @@ impl<'a> Runner<'a> {
         self.step_ode_split(t, y, h, 0)
     }
 
+    /// A trial step of an event search from `(t, y)` of length `h`: in an affine phase
+    /// the phase's linear dynamics continued past the event ([`radau::continued_step`]:
+    /// smooth on both sides of a contact event, and the step itself up to it), else the
+    /// step.
+    fn event_step(&self, t: f64, y: [f64; 2], h: f64) -> Result<radau::Step> {
+        match radau::continued_step(&self.ode, t, y, h) {
+            Some(s) => Ok(s),
+            None => self.step_ode(t, y, h),
+        }
+    }
+
     fn step_ode_split(&self, t: f64, y: [f64; 2], h: f64, depth: usize) -> Result<radau::Step> {
         if depth > 12 {
             return Err(Error::numerical(
@@ -735,7 +746,7 @@ impl<'a> Runner<'a> {
                 // bracket end on that side, whose step is then taken from here
                 let mut past = (hi, s_hi);
                 let tau = brent_past(
-                    |tau| match self.step_ode(t, y0, tau) {
+                    |tau| match self.event_step(t, y0, tau) {
                         Ok(s) => {
                             let f = self.ode_events(phase, t + tau, s.end())[which];
                             if f >= 0.0 {
