@@ -413,6 +413,79 @@ mod tests {
             [[-self.0, 0.0], [0.0, 0.0]]
         }
     }
+    /// `y' = -lambda max(y, 0) - 1 + cos t`: affine with slope `-lambda` on `[0, inf)`,
+    /// or on the whole line (`kink = false`).
+    struct Kinked {
+        lambda: f64,
+        kink: bool,
+    }
+    impl System for Kinked {
+        fn mass(&self) -> [f64; 2] {
+            [1.0, 1.0]
+        }
+        fn forcing(&self, t: f64) -> f64 {
+            t.cos()
+        }
+        fn rhs_forced(&self, _t: f64, g: f64, y: [f64; 2]) -> [f64; 2] {
+            let v = if self.kink { y[0].max(0.0) } else { y[0] };
+            [-self.lambda * v - 1.0 + g, 0.0]
+        }
+        fn jacobian(&self, _t: f64, y: [f64; 2]) -> [[f64; 2]; 2] {
+            let d = if self.kink && y[0] < 0.0 {
+                0.0
+            } else {
+                -self.lambda
+            };
+            [[d, 0.0], [0.0, 0.0]]
+        }
+        fn dim(&self) -> usize {
+            1
+        }
+        fn affine(&self, y: [f64; 2]) -> Option<Affine> {
+            let lower = if self.kink { 0.0 } else { f64::NEG_INFINITY };
+            (y[0] >= lower).then_some(Affine {
+                slope: -self.lambda,
+                lower,
+                upper: f64::INFINITY,
+            })
+        }
+    }
+
+    /// The continued step is the step while the stages stay inside the affine interval,
+    /// and past its end the step of the branch continued (the system without the kink),
+    /// where Newton's step follows the kink instead.
+    #[test]
+    fn continued_step_is_the_branch_continued() {
+        let kinked = Kinked {
+            lambda: 3.0,
+            kink: true,
+        };
+        let linear = Kinked {
+            lambda: 3.0,
+            kink: false,
+        };
+        let y = [0.05, 1.0];
+        // y' ~ -1.15 at the start: the state reaches 0 after ~0.045
+        for h in [0.01, 0.03, 0.06, 0.2] {
+            let c = continued_step(&kinked, 0.2, y, h).expect("affine start");
+            let l = step(&linear, 0.2, y, h, [1.0, 1.0]).expect("linear step");
+            let k = step(&kinked, 0.2, y, h, [1.0, 1.0]).expect("kinked step");
+            for j in 0..3 {
+                assert!((c.stages[j][0] - l.stages[j][0]).abs() < 1e-14, "h {h}");
+            }
+            if c.stages.iter().all(|s| s[0] >= 0.0) {
+                assert_eq!(c.stages, k.stages, "inside the interval: the step itself");
+            } else {
+                assert!(
+                    (c.end()[0] - k.end()[0]).abs() > 1e-6,
+                    "h {h}: the kink matters"
+                );
+            }
+        }
+        // not affine at the start (outside the interval): none
+        assert!(continued_step(&kinked, 0.0, [-0.1, 1.0], 0.1).is_none());
+    }
+
     #[test]
     fn fifth_order_convergence() {
         // y' = -(y - cos t), exact: y = (cos t + sin t)/2 + (y0 - 1/2) e^-t
