@@ -139,8 +139,9 @@ impl Runner<'_> {
     /// bit) without its event machinery. Returns `false` (nothing done) where `advance`
     /// must take the step: a stuck phase, a boundary-layer ramp, a step right after a
     /// switch, an event function past its threshold at the start, the end or a stage, or
-    /// a step Newton cannot take in one piece. In an affine phase the step is
-    /// [`AffineMap`]'s (planned once per step length and slope) and the damage event
+    /// a step Newton cannot take in one piece, or in an affine phase a step that leaves the
+    /// interval (the gap event is past its threshold there). In an affine phase the step
+    /// is [`AffineMap`]'s (planned once per step length and slope) and the damage event
     /// function is evaluated only above the law's damage onset.
     #[inline]
     pub(super) fn ode_grid_step(
@@ -174,6 +175,9 @@ impl Runner<'_> {
         let cache = self.ode.cache.get();
         let st = match self.affine_stages(&ap, ta, h, y0) {
             Some(st) => Some(st),
+            // an affine phase whose step leaves the interval: the gap event is past its
+            // threshold at a stage (the general path locates it)
+            None if ap.affine.is_some() => None,
             None => {
                 self.ode.cache.set(cache);
                 radau::step(&self.ode, ta, y0, h, self.scale)

@@ -380,10 +380,18 @@ impl<'a> Runner<'a> {
     /// the phase's linear dynamics continued past the event ([`radau::continued_step`]:
     /// smooth on both sides of a contact event, and the step itself up to it), else the
     /// step.
-    fn event_step(&self, t: f64, y: [f64; 2], h: f64) -> Result<radau::Step> {
+    /// Also returns whether the step is the step itself ([`Runner::step_ode`]'s: every
+    /// stage inside the affine interval, or not an affine phase).
+    fn event_step(&self, t: f64, y: [f64; 2], h: f64) -> Result<(radau::Step, bool)> {
         match radau::continued_step(&self.ode, t, y, h) {
-            Some(s) => Ok(s),
-            None => self.step_ode(t, y, h),
+            Some(s) => {
+                let inside = self
+                    .ode
+                    .affine(y)
+                    .is_some_and(|a| s.stages.iter().all(|v| v[0] >= a.lower && v[0] <= a.upper));
+                Ok((s, inside))
+            }
+            None => Ok((self.step_ode(t, y, h)?, true)),
         }
     }
 
@@ -698,7 +706,9 @@ impl<'a> Runner<'a> {
                 self.switch(phase, 1, t, y);
                 continue;
             }
-            let st = self.step_ode(t, y0, h)?;
+            // (the step, or in an affine phase whose step leaves the interval the branch
+            // continued: what the event search evaluates on both sides of the event)
+            let (st, whole) = self.event_step(t, y0, h)?;
             // (which, tau_hi, the step of length tau_hi: reused as the bracket's end)
             let mut first: Option<(usize, f64, radau::Step)> = None;
             // the event functions at the step end and (when needed) at the first two
@@ -725,7 +735,7 @@ impl<'a> Runner<'a> {
                         .get_or_insert_with(|| self.ode_events(phase, tj, st.stages[j]));
                     if ev[which] > thr {
                         let hj = radau::C[j] * h;
-                        let sj = self.step_ode(t, y0, hj)?;
+                        let sj = self.event_step(t, y0, hj)?.0;
                         if self.ode_events(phase, tj, sj.end())[which] > thr
                             && first.map_or(true, |(_, th, _)| hj < th)
                         {
@@ -747,7 +757,7 @@ impl<'a> Runner<'a> {
                 let mut past = (hi, s_hi);
                 let tau = brent_past(
                     |tau| match self.event_step(t, y0, tau) {
-                        Ok(s) => {
+                        Ok((s, _)) => {
                             let f = self.ode_events(phase, t + tau, s.end())[which];
                             if f >= 0.0 {
                                 past = (tau, s);
@@ -795,6 +805,8 @@ impl<'a> Runner<'a> {
             }
             match event {
                 None => {
+                    // (no event after all: the step itself where st was the continued one)
+                    let st = if whole { st } else { self.step_ode(t, y0, h)? };
                     self.take_ode(acc, t, h, y0, &st, y)?;
                     t = t_end;
                     if let Some(r) = self.ramp {
