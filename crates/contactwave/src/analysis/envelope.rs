@@ -13,6 +13,7 @@
 //! samples are not put back in order. The samples are the `m`-point transform's, to
 //! round-off.
 
+use multiversion::multiversion;
 use realfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 use std::sync::Arc;
@@ -74,24 +75,33 @@ impl EnvelopePeak {
     pub fn peak_norm_sqr(&mut self, band: &[Complex<f64>]) -> f64 {
         let q = self.m / ROWS;
         let nb = band.len().min(q);
-        for (row, tw) in self
-            .buf
-            .chunks_exact_mut(q)
-            .zip(self.twiddle.chunks_exact(q))
-        {
-            for ((y, c), w) in row.iter_mut().zip(&band[..nb]).zip(tw) {
-                *y = c * w;
-            }
-            row[nb..].fill(Complex::new(0.0, 0.0));
-        }
+        twiddle_rows(&mut self.buf, &self.twiddle, &band[..nb], q);
         self.fft
             .process_with_scratch(&mut self.buf, &mut self.scratch);
         max_norm_sqr(&self.buf)
     }
 }
 
+/// Rows of `q` entries of `buf`: `band` times the row's twiddles, then zeros.
+#[multiversion(targets("x86_64+avx+avx2"))]
+fn twiddle_rows(
+    buf: &mut [Complex<f64>],
+    twiddle: &[Complex<f64>],
+    band: &[Complex<f64>],
+    q: usize,
+) {
+    let nb = band.len();
+    for (row, tw) in buf.chunks_exact_mut(q).zip(twiddle.chunks_exact(q)) {
+        for ((y, c), w) in row.iter_mut().zip(band).zip(tw) {
+            *y = c * w;
+        }
+        row[nb..].fill(Complex::new(0.0, 0.0));
+    }
+}
+
 /// The largest `|c|^2` of `v` (0 for an empty slice; NaN entries are passed over), in
 /// four lanes so that the loop vectorises.
+#[multiversion(targets("x86_64+avx+avx2"))]
 pub fn max_norm_sqr(v: &[Complex<f64>]) -> f64 {
     let mut lanes = [0.0f64; 4];
     let chunks = v.chunks_exact(4);

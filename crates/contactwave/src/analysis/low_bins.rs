@@ -13,6 +13,7 @@
 //! transform) and `N1 K` twiddled sums, instead of the whole length-`N` transform (which a
 //! real FFT of odd `N` computes as a complex one). The bins are the DFT's, to round-off.
 
+use multiversion::multiversion;
 use realfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 use std::sync::Arc;
@@ -146,26 +147,42 @@ impl LowBins {
             .process_with_scratch(&mut self.buf, &mut self.scratch);
         out.clear();
         out.resize(k, Complex::new(0.0, 0.0));
-        for (p, chunk) in self.buf.chunks_exact(n2).enumerate() {
-            let a = 2 * p;
-            let ta = &self.twiddle[a * k..(a + 1) * k];
-            if a + 1 < n1 {
-                let tb = &self.twiddle[(a + 1) * k..(a + 2) * k];
-                for kk in 0..k {
-                    let c = chunk[kk];
-                    let d = chunk[mirror(kk, n2)].conj();
-                    // the two real sequences' spectra: (c + d) / 2 and (c - d) / (2 i)
-                    let ya = (c + d) * 0.5;
-                    let diff = c - d;
-                    let yb = Complex::new(0.5 * diff.im, -0.5 * diff.re);
-                    out[kk] += ta[kk] * ya + tb[kk] * yb;
-                }
-            } else {
-                for kk in 0..k {
-                    let c = chunk[kk];
-                    let d = chunk[mirror(kk, n2)].conj();
-                    out[kk] += ta[kk] * ((c + d) * 0.5);
-                }
+        twiddled_sums(&self.buf, &self.twiddle, n1, n2, out);
+    }
+}
+
+/// `out[kk] += sum_a W^(a kk) Y_a[kk]` over the decimated sequences `a < n1`, whose
+/// spectra come in pairs from the complex transforms in `buf` (`n2` entries each):
+/// `Y_a = (c + d) / 2` and `Y_(a+1) = (c - d) / (2 i)` with `c` the bin and `d` the
+/// conjugate of its mirror.
+#[multiversion(targets("x86_64+avx+avx2"))]
+fn twiddled_sums(
+    buf: &[Complex<f64>],
+    twiddle: &[Complex<f64>],
+    n1: usize,
+    n2: usize,
+    out: &mut [Complex<f64>],
+) {
+    let k = out.len();
+    for (p, chunk) in buf.chunks_exact(n2).enumerate() {
+        let a = 2 * p;
+        let ta = &twiddle[a * k..(a + 1) * k];
+        if a + 1 < n1 {
+            let tb = &twiddle[(a + 1) * k..(a + 2) * k];
+            for kk in 0..k {
+                let c = chunk[kk];
+                let d = chunk[mirror(kk, n2)].conj();
+                // the two real sequences' spectra: (c + d) / 2 and (c - d) / (2 i)
+                let ya = (c + d) * 0.5;
+                let diff = c - d;
+                let yb = Complex::new(0.5 * diff.im, -0.5 * diff.re);
+                out[kk] += ta[kk] * ya + tb[kk] * yb;
+            }
+        } else {
+            for kk in 0..k {
+                let c = chunk[kk];
+                let d = chunk[mirror(kk, n2)].conj();
+                out[kk] += ta[kk] * ((c + d) * 0.5);
             }
         }
     }

@@ -2,6 +2,7 @@
 //! window; chapter 5 half-Hann ramps each covering 1/4 of the burst).
 
 use super::{grid_by_steps, numeric_peak, Excitation};
+use multiversion::multiversion;
 
 /// Burst window.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -255,26 +256,13 @@ impl Excitation for ToneBurst {
                 continue;
             }
             let (s0, c0) = (self.omega * ta0).sin_cos();
-            match self.window.hann_piece(sa0) {
-                None => {
-                    for (i, r) in rot.iter().take(m).enumerate() {
-                        let row = &mut out[i * steps + k0..i * steps + k0 + nb];
-                        for ((x, rs), rc) in row.iter_mut().zip(&r[0]).zip(&r[1]) {
-                            *x = scale * -(s0 * rc + c0 * rs);
-                        }
-                    }
-                }
-                Some((kp, phi)) => {
-                    let (ws0, wc0) = (kp * sa0 + phi).sin_cos();
-                    for (i, r) in rot.iter().take(m).enumerate() {
-                        let row = &mut out[i * steps + k0..i * steps + k0 + nb];
-                        let [rs, rc, rws, rwc] = r;
-                        for (j, x) in row.iter_mut().enumerate() {
-                            let w = 0.5 * (1.0 - (wc0 * rwc[j] - ws0 * rws[j]));
-                            *x = scale * -(w * (s0 * rc[j] + c0 * rs[j]));
-                        }
-                    }
-                }
+            let window = self
+                .window
+                .hann_piece(sa0)
+                .map(|(kp, phi)| (kp * sa0 + phi).sin_cos());
+            for (i, r) in rot.iter().take(m).enumerate() {
+                let row = &mut out[i * steps + k0..i * steps + k0 + nb];
+                block_row(row, r, [s0, c0], window, scale);
             }
             k0 += nb;
         }
@@ -311,6 +299,34 @@ impl Excitation for ToneBurst {
             ],
             unit: std::sync::Arc::new(self.with_amplitude(1.0)),
         })
+    }
+}
+
+/// One node's row of a block of [`ToneBurst::stress_grid`]: the stress (Pa) at the
+/// carrier angle of the block start (`[sin, cos]`) rotated by `r`'s carrier rotations
+/// (`r[0]`, `r[1]`: sin, cos), times the window `0.5 (1 - cos)` of the window angle
+/// (`window`: its sin and cos at the block start, rotated by `r[2]`, `r[3]`; `None`: 1).
+#[multiversion(targets("x86_64+avx+avx2"))]
+fn block_row(
+    row: &mut [f64],
+    r: &[[f64; GRID_BLOCK]; 4],
+    [s0, c0]: [f64; 2],
+    window: Option<(f64, f64)>,
+    scale: f64,
+) {
+    let [rs, rc, rws, rwc] = r;
+    match window {
+        None => {
+            for ((x, rs), rc) in row.iter_mut().zip(rs).zip(rc) {
+                *x = scale * -(s0 * rc + c0 * rs);
+            }
+        }
+        Some((ws0, wc0)) => {
+            for (j, x) in row.iter_mut().enumerate() {
+                let w = 0.5 * (1.0 - (wc0 * rwc[j] - ws0 * rws[j]));
+                *x = scale * -(w * (s0 * rc[j] + c0 * rs[j]));
+            }
+        }
     }
 }
 
