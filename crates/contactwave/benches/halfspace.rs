@@ -5,10 +5,13 @@
 //!   amplitude 0.82 MPa), solver plus harmonic analysis, one thread;
 //! - `simulate_summary/unilateral_xi0.35`: unilateral contact (rigid x free) at xi = 0.35;
 //!   (both repeat one scenario: from the second run on, the analysis floor of the locked
-//!   interface comes from the thread's cache, as in every sweep point after the first;
-//!   docs/model.md section 6.1)
-//! - `simulate_summary_cold/*`: the same runs with the floor cache emptied before each, so
-//!   that each run also solves and analyses the locked interface (a first run);
+//!   interface comes from the thread's cache, as in every sweep point after the first,
+//!   docs/model.md section 6.1, and the incident wave's table on the solver's grid is the
+//!   one the thread kept from its last run, as in every run of an identification or of a
+//!   sweep over the interface, docs/model.md section 4)
+//! - `simulate_summary_cold/*`: the same runs with the floor cache and the kept table
+//!   emptied before each, so that each run also solves and analyses the locked interface
+//!   and tabulates its burst (a first run);
 //! - `xi_sweep/rccm_100_points`: 100 load ratios xi in [0.05, 1.2] of the RCCM scenario,
 //!   scenarios built beforehand, run with rayon `par_iter` on all cores;
 //! - `shear_sweep/friction_ratio_100_points`: the coupled normal/tangential solver on 100
@@ -22,6 +25,7 @@
 use contactwave::model::half_space::methods::forget_locked_floors;
 use contactwave::scenario::Scenario;
 use contactwave::simulate_summary;
+use contactwave::solver::halfspace::forget_incident_table;
 use criterion::{criterion_group, criterion_main, Criterion};
 use rayon::prelude::*;
 use std::hint::black_box;
@@ -83,6 +87,7 @@ fn single_runs(c: &mut Criterion) {
         g.bench_function(name, |b| {
             b.iter(|| {
                 forget_locked_floors();
+                forget_incident_table();
                 simulate_summary(black_box(s)).expect("run succeeds")
             })
         });

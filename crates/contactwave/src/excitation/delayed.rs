@@ -49,6 +49,11 @@ impl Excitation for Delayed {
         self.inner.peak()
     }
     /// The inner shape, delayed.
+    fn grid_key(&self) -> Option<Vec<u64>> {
+        let mut k = self.inner.grid_key()?;
+        k.extend([3, self.delay.to_bits()]);
+        Some(k)
+    }
     fn unit_shape(&self) -> Option<super::UnitShape> {
         let mut u = self.inner.unit_shape()?;
         u.key.extend([3, self.delay.to_bits()]);

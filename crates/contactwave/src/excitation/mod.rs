@@ -95,6 +95,13 @@ pub trait Excitation: Debug + Send + Sync {
     fn unit_shape(&self) -> Option<UnitShape> {
         None
     }
+    /// The numbers (as bits, each kind of waveform tagged) that determine
+    /// [`Excitation::stress_grid`] exactly: two waveforms with equal keys give the same
+    /// tables, bit for bit, so that a solver may keep the table of its last run. `None`
+    /// (the default): the waveform cannot say, and its table is made for every run.
+    fn grid_key(&self) -> Option<Vec<u64>> {
+        None
+    }
 }
 
 /// Peak of |f| over [0, d], found on a fine grid refined by golden-section search.

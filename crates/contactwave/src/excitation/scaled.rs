@@ -61,6 +61,11 @@ impl Excitation for Scaled {
         self.factor.abs() * self.inner.peak()
     }
     /// The inner shape with the factor's sign.
+    fn grid_key(&self) -> Option<Vec<u64>> {
+        let mut k = self.inner.grid_key()?;
+        k.extend([2, self.factor.to_bits()]);
+        Some(k)
+    }
     fn unit_shape(&self) -> Option<super::UnitShape> {
         let mut u = self.inner.unit_shape()?;
         let sign = self.factor.signum();

@@ -59,6 +59,16 @@ impl Window {
         }
     }
 
+    /// The window as numbers: a tag (0 Hann ramps, 1 Hann, 2 rectangular) and its ramp
+    /// fraction (0 without ramps).
+    pub(crate) fn tag(&self) -> (u64, f64) {
+        match *self {
+            Window::HannRamps { ramp_fraction } => (0, ramp_fraction),
+            Window::Hann => (1, 0.0),
+            Window::Rectangular => (2, 0.0),
+        }
+    }
+
     /// Whether normalised times `a <= b` lie on the same smooth piece of the window.
     fn same_piece(&self, a: f64, b: f64) -> bool {
         match *self {
@@ -281,13 +291,22 @@ impl Excitation for ToneBurst {
     fn peak(&self) -> f64 {
         self.amplitude
     }
+    /// `A / n`, the carrier's angular frequency, the duration and the window: what
+    /// [`ToneBurst::stress`] and the grid compute from.
+    fn grid_key(&self) -> Option<Vec<u64>> {
+        let (tag, ramp) = self.window.tag();
+        Some(vec![
+            1,
+            self.scale.to_bits(),
+            self.omega.to_bits(),
+            self.duration.to_bits(),
+            tag,
+            ramp.to_bits(),
+        ])
+    }
     /// Frequency, duration, window and normalisation (none depends on the amplitude).
     fn unit_shape(&self) -> Option<super::UnitShape> {
-        let (tag, ramp) = match self.window {
-            Window::HannRamps { ramp_fraction } => (0, ramp_fraction),
-            Window::Hann => (1, 0.0),
-            Window::Rectangular => (2, 0.0),
-        };
+        let (tag, ramp) = self.window.tag();
         Some(super::UnitShape {
             key: vec![
                 1,

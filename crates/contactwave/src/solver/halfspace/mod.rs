@@ -30,6 +30,7 @@ use crate::law::ContactLaw;
 use crate::material::Material;
 use crate::numeric::root::brent_past;
 use crate::numeric::{GL4_NODES, GL4_WEIGHTS};
+pub use ode::forget_incident_table;
 use ode::{GapOde, IncidentGrid, Phase, STUCK_NODES};
 use std::sync::Arc;
 

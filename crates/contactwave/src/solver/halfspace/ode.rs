@@ -16,8 +16,14 @@ const MAX_GRID_STEPS: usize = 1 << 20;
 /// The incident stress at the nodes of every whole step `[k h, (k + 1) h]` of the solver's
 /// grid inside the burst, tabulated once per run ([`Excitation::stress_grid`]): the Radau
 /// stage nodes and the nodes of a stuck step ([`STUCK_NODES`]), Pa. Steps split by an
-/// event or a breakpoint, and steps after the burst, are evaluated directly.
+/// event or a breakpoint, and steps after the burst, are evaluated directly. The table of
+/// a thread's last run is kept and used again, as it is, by a run of the same incident
+/// wave ([`Excitation::grid_key`]) on the same grid: the runs of a sweep over the
+/// interface or the pressure, of an identification, of a repeated scenario.
 pub(super) struct IncidentGrid {
+    /// The waveform's grid key with the step, the step count and the node set (empty:
+    /// the waveform has no key, and the table is not for another run).
+    key: Vec<u64>,
     /// Tabulated steps.
     steps: usize,
     /// `table[i * steps + k]`: stress at `t_k + GRID_NODES[i] h`, Pa.
@@ -30,19 +36,34 @@ pub(super) struct IncidentGrid {
     duration: f64,
 }
 
+/// The table of a thread's last [`IncidentGrid`] and its key.
+#[derive(Default)]
+struct Kept {
+    key: Vec<u64>,
+    table: Vec<f64>,
+}
+
 thread_local! {
-    /// The table buffer of the thread's last [`IncidentGrid`], reused by the next one.
-    static POOL: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
+    /// The table of the thread's last [`IncidentGrid`]: used again as it is by a run with
+    /// the same key, its buffer by any other.
+    static POOL: std::cell::Cell<Kept> = std::cell::Cell::new(Kept::default());
 }
 
 impl Drop for IncidentGrid {
-    /// Hand the table buffer back to the thread's pool (up to 8 MB is kept).
+    /// Hand the table back to the thread's pool (up to 8 MB is kept).
     fn drop(&mut self) {
         let table = std::mem::take(&mut self.table);
         if table.capacity() <= 1 << 20 {
-            POOL.with(|p| p.set(table));
+            let key = std::mem::take(&mut self.key);
+            POOL.with(|p| p.set(Kept { key, table }));
         }
     }
+}
+
+/// Forget the incident table this thread keeps ([`IncidentGrid`]): its next run makes its
+/// table again (what a first run costs; the benchmarks of cold runs call it).
+pub fn forget_incident_table() {
+    POOL.with(|p| p.take());
 }
 
 /// The tabulated nodes: Radau's three stage nodes (the last is the step end, which is also
@@ -73,18 +94,30 @@ impl IncidentGrid {
         } else {
             0
         };
-        // the buffer of the thread's previous run (no allocation in a sweep)
-        // (stress_grid writes every entry: only a longer table than the last is zeroed)
-        let mut table = POOL.with(|p| p.take());
-        table.truncate(GRID_NODES.len() * steps);
-        table.resize(GRID_NODES.len() * steps, 0.0);
-        if stuck_only {
-            // the end and the GL nodes: rows 2 to 6
-            incident.stress_grid(h, &GRID_NODES[2..], steps, &mut table[2 * steps..]);
-        } else {
-            incident.stress_grid(h, &GRID_NODES, steps, &mut table);
+        let key = incident.grid_key().map_or(Vec::new(), |mut k| {
+            k.extend([h.to_bits(), steps as u64, stuck_only as u64]);
+            k
+        });
+        // the table of the thread's previous run: as it is for the same key, else its
+        // buffer (no allocation in a sweep; stress_grid writes every entry: only a longer
+        // table than the last is zeroed)
+        let Kept {
+            key: kept,
+            mut table,
+        } = POOL.with(|p| p.take());
+        let n = GRID_NODES.len() * steps;
+        if key.is_empty() || key != kept || table.len() != n {
+            table.truncate(n);
+            table.resize(n, 0.0);
+            if stuck_only {
+                // the end and the GL nodes: rows 2 to 6
+                incident.stress_grid(h, &GRID_NODES[2..], steps, &mut table[2 * steps..]);
+            } else {
+                incident.stress_grid(h, &GRID_NODES, steps, &mut table);
+            }
         }
         IncidentGrid {
+            key,
             steps,
             table,
             current: std::cell::Cell::new((f64::NAN, f64::NAN, usize::MAX)),

@@ -187,3 +187,43 @@ fn affine_blocks_are_the_step_by_step_solution() {
     }
     assert!(compared >= 120, "{compared} runs compared");
 }
+
+/// The incident table a thread keeps from its last run ([`forget_incident_table`]) gives
+/// the outputs of a table made anew, bit for bit: used again by the same wave on the same
+/// grid, replaced after another (other amplitudes, windows, delays and samplings).
+#[test]
+fn a_kept_incident_table_is_the_table_made_anew() {
+    let mut reused = 0;
+    for (name, hs, spp) in cases() {
+        // the table of the case before is there: replaced
+        let after_other = fingerprint(&solve(&hs, spp, 0));
+        forget_incident_table();
+        let fresh = fingerprint(&solve(&hs, spp, 0));
+        // the table of this very run is there: used again
+        let kept = fingerprint(&solve(&hs, spp, 0));
+        assert!(after_other == fresh, "{name}: after another run");
+        assert!(kept == fresh, "{name}: with its own table kept");
+        reused += 1;
+    }
+    assert!(reused >= 120, "{reused} runs compared");
+    // one shape, amplitudes one after the other: each its own table
+    let p0 = 0.1e6;
+    let law = Arc::new(
+        build_law(
+            p0,
+            &CompressionSpec::Rigid,
+            &TractionSpec::Free,
+            "test.toml",
+            "interface",
+        )
+        .unwrap(),
+    );
+    let window = Window::HannRamps { ramp_fraction: 0.2 };
+    for xi in [0.5, 1.5, 3.0, 1.5] {
+        let burst = Arc::new(ToneBurst::new(xi * p0, 1e6, 6.0, window));
+        let hs = HalfSpace::new(Material::PMMA, None, law.clone(), burst);
+        let after_other = fingerprint(&solve(&hs, 100, 0));
+        forget_incident_table();
+        assert!(after_other == fingerprint(&solve(&hs, 100, 0)), "xi = {xi}");
+    }
+}
