@@ -357,9 +357,10 @@ fn ctrl_c_and_sigterm_stop_run_and_sweep_with_130_and_no_partial_file() {
             took.as_secs_f64() * 1e3
         );
     }
-    // identification (tens of seconds), reproduce (about 4 s), convergence with a seventh
-    // resolution (about 3 s; the default six now take about 1.5 s, too close to the signal)
-    let ident = examples().join("identify/rccm_undamaged.toml");
+    // identification (the bar-stack one: minutes; the exact solver's take 1-2 s, too close
+    // to the signal), reproduce (about 4 s), convergence with a seventh resolution (about
+    // 3 s; the default six now take about 1.5 s)
+    let ident = examples().join("identify/tribobrake_power_law.toml");
     for (name, args) in [
         (
             "identify",
