@@ -18,23 +18,42 @@ impl Runner<'_> {
     #[inline]
     pub(super) fn stuck_grid_step(&mut self, acc: &mut Acc, k: usize, ta: f64, tb: f64) -> bool {
         let phase = self.ode.phase;
-        if !phase.is_stuck() {
-            return false;
-        }
+        phase.is_stuck()
+            && self
+                .stuck_table_step(acc, phase, k, ta, tb, |r| r.stuck_event(phase, ta))
+                .is_some()
+    }
+
+    /// [`Runner::stuck_grid_step`] in the stuck `phase`, with `prev` giving the exit
+    /// function at the step start (asked only where it is needed). Returns the exit
+    /// function at the step end (the next step's start; NaN where none was evaluated), or
+    /// `None` where the step is declined.
+    #[inline]
+    fn stuck_table_step(
+        &mut self,
+        acc: &mut Acc,
+        phase: Phase,
+        k: usize,
+        ta: f64,
+        tb: f64,
+        prev: impl FnOnce(&Self) -> f64,
+    ) -> Option<f64> {
         if self.ode.grid.after_burst(k) {
             // a stuck phase with no incident wave: its exit function is the same at every
             // node (it cannot turn positive within the step) and the quadrature adds zeros
-            return true;
+            return Some(f64::NAN);
         }
-        let Some(sinc) = self.ode.grid.stuck_at(k) else {
-            return false;
-        };
-        if phase != Phase::Locked && self.stuck_exit(phase, self.stuck_event(phase, ta), &sinc) {
-            return false;
+        let sinc = self.ode.grid.stuck_at(k)?;
+        let mut end = f64::NAN;
+        if phase != Phase::Locked {
+            if self.stuck_exit(phase, prev(self), &sinc) {
+                return None;
+            }
+            end = self.stuck_event_of(phase, sinc[4]);
         }
         self.ode.remember(tb, sinc[4]);
         self.acc_stuck_cached(acc, tb - ta, &sinc);
-        true
+        Some(end)
     }
 
     /// [`Runner::advance`]'s event check of a stuck step: whether an exit function turns
@@ -82,20 +101,10 @@ impl Runner<'_> {
             if *bi < self.breaks.len() && self.breaks[*bi] < tb {
                 break;
             }
-            // as stuck_grid_step: after the burst nothing to add; else from the table
-            if !self.ode.grid.after_burst(k) {
-                let Some(sinc) = self.ode.grid.stuck_at(k) else {
-                    break;
-                };
-                if phase != Phase::Locked {
-                    let p = prev.unwrap_or_else(|| self.stuck_event(phase, ta));
-                    if self.stuck_exit(phase, p, &sinc) {
-                        break;
-                    }
-                    prev = Some(self.stuck_event_of(phase, sinc[4]));
-                }
-                self.ode.remember(tb, sinc[4]);
-                self.acc_stuck_cached(acc, tb - ta, &sinc);
+            let start = |r: &Self| prev.unwrap_or_else(|| r.stuck_event(phase, ta));
+            match self.stuck_table_step(acc, phase, k, ta, tb, start) {
+                Some(end) => prev = end.is_finite().then_some(end),
+                None => break,
             }
             k += 1;
             if k % 4096 == 0 {
