@@ -83,7 +83,7 @@ pub struct Analyzer {
     low: Vec<LowBins>,
     /// Plans of the band envelopes' peaks ([`EnvelopePeak`]), newest last.
     envelopes: Vec<EnvelopePeak>,
-    /// `(n_fft, dt bits)` of [`Analyzer::sinc`].
+    /// `(n_fft, dt bits)` of `sinc`.
     sinc_key: (usize, u64),
     /// The cell-average response `max(sin(a)/a, 1e-3)`, `a = pi k df dt`, of bins `k`.
     sinc: Vec<f64>,
@@ -157,9 +157,10 @@ impl Analyzer {
         }
     }
 
-    /// The cell-average responses of bins `0..k` for transform length `n_fft` and step
-    /// `dt`: `max(sin(a)/a, 1e-3)`, `a = pi k df dt`, tabulated once per `(n_fft, dt)`.
-    fn sinc_upto(&mut self, n_fft: usize, df: f64, dt: f64, k: usize) -> &[f64] {
+    /// Tabulate in `self.sinc` the cell-average responses of bins `0..k` for transform
+    /// length `n_fft` and step `dt`: `max(sin(a)/a, 1e-3)`, `a = pi k df dt` (once per
+    /// `(n_fft, dt)`; a longer `k` extends the table).
+    fn tabulate_sinc(&mut self, n_fft: usize, df: f64, dt: f64, k: usize) {
         let key = (n_fft, dt.to_bits());
         if self.sinc_key != key {
             self.sinc_key = key;
@@ -169,7 +170,6 @@ impl Analyzer {
             let a = std::f64::consts::PI * self.sinc.len() as f64 * df * dt;
             self.sinc.push((a.sin() / a).max(1e-3));
         }
-        &self.sinc[..k]
     }
 
     /// Forward transform of cell-averaged samples `x` (step `dt`), zero-padded to a power
@@ -205,7 +205,7 @@ impl Analyzer {
         let nb = k_hi - k_lo;
         let m = (16 * nb).next_power_of_two().max(64);
         // divide out the cell-average response sinc(pi f dt)
-        self.sinc_upto(n_fft, df, dt, k_hi);
+        self.tabulate_sinc(n_fft, df, dt, k_hi);
         self.band.clear();
         self.band.extend(
             self.spec[k_lo..k_hi]
