@@ -44,16 +44,7 @@ impl EnvelopePeak {
             return None;
         }
         let q = m / ROWS;
-        let twiddle = (0..ROWS)
-            .flat_map(|r| {
-                (0..q).map(move |k| {
-                    // the angle from the exact residue of r k modulo m
-                    let e = ((r * k) % m) as f64;
-                    let (s, c) = (2.0 * std::f64::consts::PI * e / m as f64).sin_cos();
-                    Complex::new(c, s)
-                })
-            })
-            .collect();
+        let twiddle = super::low_bins::unit_roots(ROWS, q, m, 1.0);
         let fft = planner.plan_fft_inverse(q);
         let scratch = vec![Complex::new(0.0, 0.0); fft.get_inplace_scratch_len()];
         Some(EnvelopePeak {

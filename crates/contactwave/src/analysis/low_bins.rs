@@ -78,16 +78,7 @@ impl LowBins {
             return None;
         }
         let n1 = n / n2;
-        let twiddle = (0..n1)
-            .flat_map(|a| {
-                (0..k).map(move |b| {
-                    // the angle from the exact residue of a b modulo n
-                    let r = ((a as u64 * b as u64) % n as u64) as f64;
-                    let (s, c) = (-2.0 * std::f64::consts::PI * r / n as f64).sin_cos();
-                    Complex::new(c, s)
-                })
-            })
-            .collect();
+        let twiddle = unit_roots(n1, k, n, -1.0);
         let fft = planner.plan_fft_forward(n2);
         let scratch = vec![Complex::new(0.0, 0.0); fft.get_inplace_scratch_len()];
         Some(LowBins {
@@ -186,6 +177,21 @@ fn twiddled_sums(
             }
         }
     }
+}
+
+/// `exp(sign 2 pi i a b / n)` for `a < rows`, `b < cols`, row by row (`sign` is 1 or -1),
+/// each angle from the exact residue of `a b` modulo `n`: the twiddle factors of the pruned
+/// transforms ([`LowBins`], [`super::envelope::EnvelopePeak`]).
+pub(super) fn unit_roots(rows: usize, cols: usize, n: usize, sign: f64) -> Vec<Complex<f64>> {
+    (0..rows)
+        .flat_map(|a| {
+            (0..cols).map(move |b| {
+                let r = ((a as u64 * b as u64) % n as u64) as f64;
+                let (s, c) = (sign * 2.0 * std::f64::consts::PI * r / n as f64).sin_cos();
+                Complex::new(c, s)
+            })
+        })
+        .collect()
 }
 
 /// `(n - k) mod n` for `k < n`: the bin of frequency `-k` (no integer division).
