@@ -69,6 +69,7 @@ pub mod study;
 pub use error::{Error, Result};
 pub use model::bar_stack::{
     simulate_bar_stack, simulate_bar_stack_with_progress, BarStackResult, Frf, ProbeHistory,
+    FRF_FORCE_FLOOR_DB,
 };
 pub use model::half_space::{
     half_space, settings, simulate, simulate_summary, ProbeSeries, RunResult,

@@ -2,7 +2,7 @@
 //! thesis chapter 4, bad input.
 
 use contactwave::scenario::bar_stack::BarStackScenario;
-use contactwave::{simulate_bar_stack, Error};
+use contactwave::{simulate_bar_stack, Error, FRF_FORCE_FLOOR_DB};
 use std::path::Path;
 
 fn tribobrake() -> String {
@@ -80,6 +80,70 @@ fn tribobrake_modes() {
     // thesis Figure 70: closed at 32 N, minimum contact pressure about 0.025 MPa
     let pmin = g("min_contact_pressure");
     assert!((0.02e6..=0.03e6).contains(&pmin), "min pressure {pmin}");
+}
+
+/// Issue 24: the FRF holds only where the force carries energy. Bins where the hammer's
+/// spectrum is below FRF_FORCE_FLOOR_DB of its peak (around the zeros of the half-sine at
+/// (2k+1)/(2 tau) = 1.32, 2.20, 3.08 kHz, and above its lobes) are masked (NaN), so the
+/// largest receptance below 5 kHz is the first mode, not a division by almost nothing.
+#[test]
+fn frf_is_masked_where_the_force_has_no_energy() {
+    let r = simulate_bar_stack(&load(&tribobrake()).unwrap()).unwrap();
+    let f1 = r.summary.get("first_mode_hz").unwrap();
+    let frf = &r.frf;
+    let n = frf.frequency.len();
+    let k = (0..n)
+        .filter(|&k| frf.frequency[k] < 5e3 && !frf.receptance[k].is_nan())
+        .max_by(|&a, &b| frf.receptance[a].total_cmp(&frf.receptance[b]))
+        .unwrap();
+    assert!(
+        (frf.frequency[k] / f1 - 1.0).abs() < 0.01,
+        "largest receptance below 5 kHz at {} Hz, first mode {f1} Hz",
+        frf.frequency[k]
+    );
+    // the force level is the half-sine's spectrum re its peak (at 0 Hz):
+    // |F(f) / F(0)| = |cos(pi f tau) / (1 - (2 f tau)^2)|
+    let tau = 1.135e-3;
+    let level = |f: f64| {
+        let c = (std::f64::consts::PI * f * tau).cos() / (1.0 - (2.0 * f * tau).powi(2));
+        20.0 * c.abs().log10()
+    };
+    let bin = |f: f64| {
+        (0..n).min_by(|&a, &b| {
+            (frf.frequency[a] - f)
+                .abs()
+                .total_cmp(&(frf.frequency[b] - f).abs())
+        })
+    };
+    for f in [500.0, 1000.0, 1800.0, 2600.0] {
+        let k = bin(f).unwrap();
+        let want = level(frf.frequency[k]);
+        assert!(
+            (frf.force_db[k] - want).abs() < 0.1,
+            "force level at {f} Hz: {} dB, half-sine {want} dB",
+            frf.force_db[k]
+        );
+    }
+    // masked exactly where the force is below the floor: all three FRF columns NaN
+    for k in 0..n {
+        let low = !(frf.force_db[k] >= FRF_FORCE_FLOOR_DB);
+        assert_eq!(low, frf.masked(k));
+        for v in [frf.receptance[k], frf.phase[k], frf.accelerance[k]] {
+            assert_eq!(low, v.is_nan(), "bin {} Hz", frf.frequency[k]);
+        }
+    }
+    // the zeros of the half-sine are masked; the band ends below 5 kHz (the last lobe
+    // above -40 dB is the one near 4.4 kHz: 1 / ((2 f tau)^2 - 1) = 1 / 99 at 2 f tau = 10)
+    for j in [3.0, 5.0, 7.0] {
+        let k = bin(j / (2.0 * tau)).unwrap();
+        assert!(
+            frf.receptance[k].is_nan(),
+            "zero at {} Hz",
+            frf.frequency[k]
+        );
+    }
+    let top = frf.band_limit();
+    assert!((4.0e3..5.0e3).contains(&top), "band limit {top} Hz");
 }
 
 /// A constant 8.5e11 Pa/m interface gives about 840 Hz and no second harmonic while the

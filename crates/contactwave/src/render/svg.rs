@@ -65,11 +65,51 @@ pub(crate) fn decimate(x: &[f64], y: &[f64]) -> Vec<(f64, f64)> {
             .map(|i| (x[i], y[i]))
             .collect();
     }
-    let bucket = n.div_ceil(MAX_POINTS / 2);
     let mut out = Vec::with_capacity(MAX_POINTS + 2);
-    let mut start = 0;
-    while start < n {
-        let end = (start + bucket).min(n);
+    extrema(x, y, 0..n, n.div_ceil(MAX_POINTS / 2), &mut out);
+    out
+}
+
+/// [`decimate`] over each run of finite points, the runs separated by a `(NaN, NaN)` point,
+/// where [`panel_with`] breaks the line: masked values are gaps, not lines across them.
+pub(crate) fn decimate_gaps(x: &[f64], y: &[f64]) -> Vec<(f64, f64)> {
+    let n = x.len().min(y.len());
+    let bucket = n.div_ceil(MAX_POINTS / 2).max(1);
+    let finite = |i: usize| x[i].is_finite() && y[i].is_finite();
+    let mut out = Vec::with_capacity(MAX_POINTS + 2);
+    let mut i = 0;
+    while i < n {
+        if !finite(i) {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < n && finite(i) {
+            i += 1;
+        }
+        if !out.is_empty() {
+            out.push((f64::NAN, f64::NAN));
+        }
+        if bucket == 1 {
+            out.extend((start..i).map(|k| (x[k], y[k])));
+        } else {
+            extrema(x, y, start..i, bucket, &mut out);
+        }
+    }
+    out
+}
+
+/// Each bucket of `bucket` points of `x[span]`, `y[span]`: its min and max, in order.
+fn extrema(
+    x: &[f64],
+    y: &[f64],
+    span: std::ops::Range<usize>,
+    bucket: usize,
+    out: &mut Vec<(f64, f64)>,
+) {
+    let mut start = span.start;
+    while start < span.end {
+        let end = (start + bucket).min(span.end);
         let (mut imin, mut imax) = (start, start);
         for i in start..end {
             if y[i] < y[imin] {
@@ -91,7 +131,6 @@ pub(crate) fn decimate(x: &[f64], y: &[f64]) -> Vec<(f64, f64)> {
         }
         start = end;
     }
-    out
 }
 
 /// Every `k`-th point so that at most `MAX_POINTS * 4` remain (for x-y loops).
@@ -365,12 +404,23 @@ pub(crate) fn panel_with(
     }
     for (i, c) in curves.iter().enumerate() {
         let style = c.color.stroke_width(2);
-        match dash(i) {
-            None => {
-                chart.draw_series(LineSeries::new(c.points.iter().copied(), style))?;
-            }
-            Some((d, g)) => {
-                chart.draw_series(DashedLineSeries::new(c.points.iter().copied(), d, g, style))?;
+        // a non-finite point breaks the line (see decimate_gaps)
+        let pieces: Vec<&[(f64, f64)]> = if c.points.iter().all(|p| p.0.is_finite()) {
+            vec![&c.points]
+        } else {
+            c.points
+                .split(|p| !p.0.is_finite())
+                .filter(|p| !p.is_empty())
+                .collect()
+        };
+        for piece in pieces {
+            match dash(i) {
+                None => {
+                    chart.draw_series(LineSeries::new(piece.iter().copied(), style))?;
+                }
+                Some((d, g)) => {
+                    chart.draw_series(DashedLineSeries::new(piece.iter().copied(), d, g, style))?;
+                }
             }
         }
     }
@@ -486,7 +536,7 @@ pub fn figure(name: &str, width: u32, panels: &[Panel]) -> Result<String> {
                     Curve {
                         label: s.label.clone(),
                         points: if monotone {
-                            decimate(&x, &y)
+                            decimate_gaps(&x, &y)
                         } else {
                             stride(&x, &y)
                         },

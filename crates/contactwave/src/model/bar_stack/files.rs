@@ -7,8 +7,10 @@ use super::BarStackResult;
 use crate::error::Result;
 use crate::render::{csv_columns, OutputFile};
 
-/// Header of `frf.csv`.
-pub const FRF_HEADER: &str = "frequency,receptance,receptance_phase,accelerance";
+/// Header of `frf.csv`: frequency (Hz), |X/F| (m/N), its phase (rad), |A/F| ((m/s^2)/N),
+/// and the force spectrum's level re its peak (dB); the three FRF columns are NaN where
+/// `force_db` is below [`super::FRF_FORCE_FLOOR_DB`].
+pub const FRF_HEADER: &str = "frequency,receptance,receptance_phase,accelerance,force_db";
 
 /// The files of a bar-stack run, rendered in memory.
 pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<OutputFile>> {
@@ -43,7 +45,13 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
     let f = &r.frf;
     let frf = csv_columns(
         FRF_HEADER,
-        &[&f.frequency, &f.receptance, &f.phase, &f.accelerance],
+        &[
+            &f.frequency,
+            &f.receptance,
+            &f.phase,
+            &f.accelerance,
+            &f.force_db,
+        ],
     );
     let mut header = String::from("t,force,displacement,acceleration");
     let mut cols: Vec<&[f64]> = vec![&r.t, &r.force, &r.displacement, &r.acceleration];
@@ -153,26 +161,26 @@ fn shear_csv(r: &BarStackResult, sh: &super::BarShear) -> String {
 }
 
 /// `frf.svg`: the accelerance `|A/F|` in dB re 1 (m/s^2)/N and the receptance `|X/F|` in
-/// dB re 1 m/N against frequency (the phase, which wraps at every bin, is in frf.csv), a dashed marker at the first mode `f1` (`first_mode_hz`).
+/// dB re 1 m/N against frequency (the phase, which wraps at every bin, is in frf.csv), a
+/// dashed marker at the first mode `f1` (`first_mode_hz`). Only where the force carries
+/// energy: bins with the force spectrum below [`super::FRF_FORCE_FLOOR_DB`] of its peak
+/// are gaps, and the frequency axis ends at the last bin above it ([`super::Frf::band_limit`]).
 #[cfg(feature = "plot")]
 pub fn frf_svg(r: &BarStackResult) -> Result<String> {
-    use crate::render::svg::{color, decimate, panel_with, render, scaled, Curve, PanelOpts};
+    use crate::render::svg::{color, decimate_gaps, panel_with, render, scaled, Curve, PanelOpts};
     let f = &r.frf;
-    let (fs, fu) = scaled(&f.frequency, "Hz");
-    let k = match (f.frequency.last(), fs.last()) {
+    let shown = f.frequency.partition_point(|v| *v <= f.band_limit());
+    let (fs, fu) = scaled(&f.frequency[..shown], "Hz");
+    let k = match (f.frequency[..shown].last(), fs.last()) {
         (Some(a), Some(b)) if *a > 0.0 => b / a,
         _ => 1.0,
     };
-    let db: Vec<f64> = f
-        .accelerance
-        .iter()
-        .map(|a| if *a > 0.0 { 20.0 * a.log10() } else { f64::NAN })
-        .collect();
-    let rec: Vec<f64> = f
-        .receptance
-        .iter()
-        .map(|a| if *a > 0.0 { 20.0 * a.log10() } else { f64::NAN })
-        .collect();
+    let db = |v: &[f64]| -> Vec<f64> {
+        v[..shown]
+            .iter()
+            .map(|a| if *a > 0.0 { 20.0 * a.log10() } else { f64::NAN })
+            .collect()
+    };
     let f1 = r
         .summary
         .iter()
@@ -184,18 +192,22 @@ pub fn frf_svg(r: &BarStackResult) -> Result<String> {
     let one = |y: &[f64]| {
         vec![Curve {
             label: String::new(),
-            points: decimate(&fs, y),
+            points: decimate_gaps(&fs, y),
             color: color(0),
         }]
     };
+    let xlabel = format!(
+        "frequency, {fu} (gaps: force spectrum below {} dB of its peak)",
+        super::FRF_FORCE_FLOOR_DB
+    );
     render("frf.svg", (900, 800), |root| {
         let areas = root.split_evenly((2, 1));
         panel_with(
             &areas[0],
             "Frequency response at the excited end (accelerance)",
-            &format!("frequency, {fu}"),
+            &xlabel,
             "|A/F|, dB re 1 (m/s^2)/N",
-            &one(&db),
+            &one(&db(&f.accelerance)),
             &markers,
             PanelOpts {
                 marker_labels: &labels,
@@ -205,9 +217,9 @@ pub fn frf_svg(r: &BarStackResult) -> Result<String> {
         panel_with(
             &areas[1],
             "Receptance at the excited end",
-            &format!("frequency, {fu}"),
+            &xlabel,
             "|X/F|, dB re 1 m/N",
-            &one(&rec),
+            &one(&db(&f.receptance)),
             &markers,
             PanelOpts {
                 marker_labels: &labels,

@@ -13,6 +13,7 @@ pub use files::{bar_stack_files, FRF_HEADER};
 pub use shear::{BarShear, ShearProbeHistory};
 pub use simulate::{
     simulate_bar_stack, simulate_bar_stack_with_progress, BarStackResult, Frf, ProbeHistory,
+    FRF_FORCE_FLOOR_DB,
 };
 pub use waves::WaveHistories;
 
@@ -112,7 +113,9 @@ impl Outcome for BarStackResult {
     }
 
     /// `t`, `force`, `displacement`, `acceleration` (arrays), `gap`, `pressure`, `beta`,
-    /// `stiffness` (interfaces x samples), `frf` (arrays; empty for an incident-wave run),
+    /// `stiffness` (interfaces x samples), `frf` (arrays `frequency`, `receptance`,
+    /// `receptance_phase`, `accelerance`, `force_db`; NaN where the force is below
+    /// [`FRF_FORCE_FLOOR_DB`]; empty for an incident-wave run),
     /// `waves` (arrays or none), `shear` (the transverse field: `gap`, `stress`, `slip`,
     /// `slip_state` (interfaces x samples), `friction_dissipation`, `damage_dissipation`
     /// (J per interface), `waves`; or none), `probes` (name -> arrays, with
@@ -124,7 +127,8 @@ impl Outcome for BarStackResult {
             .with("frequency", self.frf.frequency.clone().into())
             .with("receptance", self.frf.receptance.clone().into())
             .with("receptance_phase", self.frf.phase.clone().into())
-            .with("accelerance", self.frf.accelerance.clone().into());
+            .with("accelerance", self.frf.accelerance.clone().into())
+            .with("force_db", self.frf.force_db.clone().into());
 
         let mut probes = Record::new();
         for p in &self.probes {

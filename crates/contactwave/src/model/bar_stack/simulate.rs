@@ -12,17 +12,45 @@ use crate::scenario::bar_stack::{BarStackScenario, HalfSine};
 use crate::solver::barstack::{End, FdOutput, FdRun, ForceSource, StepProgress};
 use std::sync::Arc;
 
-/// Frequency response of the first node (where the force acts).
+/// Level of the force spectrum, in dB re its peak, below which an FRF bin is masked: there
+/// the force carries almost no energy (near the zeros of a half-sine at (2k+1)/(2 tau),
+/// k >= 1, and above its main lobes) and X/F divides the response by almost nothing.
+pub const FRF_FORCE_FLOOR_DB: f64 = -40.0;
+
+/// Frequency response of the first node (where the force acts). Bins where the force
+/// spectrum is below [`FRF_FORCE_FLOOR_DB`] of its peak are masked: their receptance, phase
+/// and accelerance are NaN (`force_db` says why).
 #[derive(Debug, Clone, Default)]
 pub struct Frf {
     /// Frequencies, Hz.
     pub frequency: Vec<f64>,
-    /// |receptance| = |displacement / force|, m/N.
+    /// |receptance| = |displacement / force|, m/N (NaN where masked).
     pub receptance: Vec<f64>,
-    /// Phase of the receptance, rad.
+    /// Phase of the receptance, rad (NaN where masked).
     pub phase: Vec<f64>,
-    /// |accelerance| = |acceleration / force|, (m/s^2)/N.
+    /// |accelerance| = |acceleration / force|, (m/s^2)/N (NaN where masked).
     pub accelerance: Vec<f64>,
+    /// Level of the force spectrum |F(f)| re its peak, dB (20 log10 |F| / max |F|).
+    pub force_db: Vec<f64>,
+}
+
+impl Frf {
+    /// Whether bin `k` is masked (force below [`FRF_FORCE_FLOOR_DB`]).
+    pub fn masked(&self, k: usize) -> bool {
+        !self
+            .force_db
+            .get(k)
+            .is_some_and(|db| *db >= FRF_FORCE_FLOOR_DB)
+    }
+
+    /// The highest frequency where the force reaches [`FRF_FORCE_FLOOR_DB`], Hz (0 for an
+    /// empty FRF): the FRF holds below it only.
+    pub fn band_limit(&self) -> f64 {
+        (0..self.frequency.len())
+            .rev()
+            .find(|&k| !self.masked(k))
+            .map_or(0.0, |k| self.frequency[k])
+    }
 }
 
 /// Histories at one `[[probe]]` of a bar-stack scenario.
@@ -142,7 +170,8 @@ pub fn simulate_bar_stack_with_progress(
         out.t.iter().map(|&t| s.force.value(t)).collect()
     };
     // FRF (H1 = X F* / |F|^2) over the whole record; regularised where the force spectrum
-    // vanishes (zeros of the half-sine at (2k+1)/(2 tau), k >= 1), where no FRF estimate holds
+    // vanishes, and masked (NaN) where it is below FRF_FORCE_FLOOR_DB of its peak (zeros of
+    // the half-sine at (2k+1)/(2 tau), k >= 1, and above its lobes): no estimate holds there
     let (fx, ff) = with_analyzer(|a| -> Result<_> {
         Ok((a.dft_padded(u, false)?, a.dft_padded(&force, false)?))
     })?;
@@ -155,11 +184,16 @@ pub fn simulate_bar_stack_with_progress(
     for k in 1..kmax {
         let h = fx[k] * ff[k].conj() / (ff[k].norm_sqr() + 1e-8 * fpow_max);
         let f = k as f64 * df;
+        // 0 / 0 (no force at all) is NaN: masked
+        let db = 10.0 * (ff[k].norm_sqr() / fpow_max).log10();
+        let held = db >= FRF_FORCE_FLOOR_DB;
+        let or_nan = |v: f64| if held { v } else { f64::NAN };
         frf.frequency.push(f);
-        frf.receptance.push(h.norm());
-        frf.phase.push(h.arg());
+        frf.receptance.push(or_nan(h.norm()));
+        frf.phase.push(or_nan(h.arg()));
         frf.accelerance
-            .push(h.norm() * (2.0 * std::f64::consts::PI * f).powi(2));
+            .push(or_nan(h.norm() * (2.0 * std::f64::consts::PI * f).powi(2)));
+        frf.force_db.push(db);
     }
     // free response after the pulse: first mode and its second harmonic
     let pulse_end = s.pulse_duration;
