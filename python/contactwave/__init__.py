@@ -308,8 +308,9 @@ class BarStackResult:
     ``acceleration`` (m/s^2). Interfaces (rows in stack order, the obstacle last; columns
     the samples): ``gap`` (m), ``pressure`` (Pa, ``-sigma``), ``beta`` (-), ``stiffness``
     (Pa/m, ``inf`` for a closed rigid branch). ``frf``: dict ``frequency`` (Hz),
-    ``receptance`` (m/N), ``receptance_phase`` (rad), ``accelerance`` ((m/s^2)/N), empty
-    arrays for an incident-wave run. ``waves``: for an incident-wave run a dict
+    ``receptance`` (m/N), ``receptance_phase`` (rad), ``accelerance`` ((m/s^2)/N),
+    ``force_db`` (dB re the force spectrum's peak; the other three are NaN where it is below
+    -40 dB: the force carries no energy there), empty arrays for an incident-wave run. ``waves``: for an incident-wave run a dict
     ``incident``, ``reflected`` and (transparent far end) ``transmitted`` displacements
     (m), else ``None``. ``shear``: for a stack with a transverse field (shear waves,
     docs/model.md section 9.7) a dict ``gap``, ``stress``, ``slip``, ``slip_state`` (one

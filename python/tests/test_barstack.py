@@ -26,6 +26,15 @@ def test_tribobrake_hammer_test_from_a_file():
     assert r.pressure[0, 0] == pytest.approx(r.static_pressure[0], rel=1e-9)
     assert r.waves is None
     assert r.frf["receptance"].shape == r.frf["frequency"].shape
+    # the FRF is masked (NaN) where the force spectrum is below -40 dB of its peak (the
+    # zeros of the half-sine at 1.32, 2.20 kHz...): the largest receptance below 5 kHz is
+    # the first mode, not a division by almost nothing
+    f, h = r.frf["frequency"], r.frf["receptance"]
+    masked = ~(r.frf["force_db"] >= -40.0)
+    assert masked.any() and np.array_equal(np.isnan(h), masked)
+    assert np.array_equal(np.isnan(r.frf["accelerance"]), masked)
+    band = f < 5e3
+    assert f[band][np.nanargmax(h[band])] == pytest.approx(r.summary["first_mode_hz"], rel=0.01)
 
 
 def tribobrake_dict(compression, peak):
