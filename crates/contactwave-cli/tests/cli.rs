@@ -65,6 +65,12 @@ fn run_writes_summary_and_timeseries() {
     let out = d.join("out");
     let o = cli("run", &scenario, &out);
     assert!(o.status.success(), "{}", stderr(&o));
+    let lines: Vec<String> = String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .map(str::to_string)
+        .collect();
+    assert!(lines.iter().any(|l| l.starts_with("wall time")));
+    assert_headline_units(&scenario, &lines);
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     for key in [
@@ -116,8 +122,41 @@ fn run_writes_summary_and_timeseries() {
     let _ = std::fs::remove_dir_all(d);
 }
 
+/// The quantities of a run headline (`contactwave run`) that carry a physical unit, and
+/// the unit that follows their number (friction dissipation: J over a bar stack's area,
+/// J/m^2 on a half-space).
+const HEADLINE_UNITS: [(&str, &str); 7] = [
+    ("static pressure", "Pa"),
+    ("first mode", "Hz"),
+    ("second harmonic", "Hz"),
+    ("guide mode", "Hz"),
+    ("friction dissipation", "J"),
+    ("min contact pressure", "Pa"),
+    ("wall time", "ms"),
+];
+
+/// Issue 24: every number of a run headline with a physical unit is printed with it.
+fn assert_headline_units(file: &Path, lines: &[String]) {
+    for line in lines {
+        for (label, unit) in HEADLINE_UNITS {
+            if !line.starts_with(label) {
+                continue;
+            }
+            let words: Vec<&str> = line[label.len()..].split_whitespace().collect();
+            let number = words.iter().position(|w| w.parse::<f64>().is_ok());
+            let follows = number.and_then(|k| words.get(k + 1));
+            assert!(
+                follows.is_some_and(|w| w.split('/').next() == Some(unit)),
+                "{}: `{line}` has no unit {unit}",
+                file.display()
+            );
+        }
+    }
+}
+
 #[test]
 fn every_example_loads_and_runs() {
+    use contactwave::model::Outcome;
     for entry in std::fs::read_dir(examples()).unwrap() {
         let p = entry.unwrap().path();
         if p.extension().and_then(|e| e.to_str()) != Some("toml") {
@@ -128,6 +167,7 @@ fn every_example_loads_and_runs() {
             let s =
                 contactwave::scenario::bar_stack::BarStackScenario::from_table(table, &p).unwrap();
             let r = contactwave::simulate_bar_stack(&s).unwrap();
+            assert_headline_units(&p, &r.report());
             let key = if s.incident.is_some() {
                 "A1_over_Ainc"
             } else {
@@ -170,9 +210,10 @@ fn every_example_loads_and_runs() {
             // the shear waves on the FD bar stack (model.md section 9.7)
             let s = contactwave::scenario::bar_stack::BarStackScenario::from_table(table, &p)
                 .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
-            let summary = contactwave::simulate_bar_stack(&s)
-                .unwrap_or_else(|e| panic!("{}: {e}", p.display()))
-                .summary;
+            let r = contactwave::simulate_bar_stack(&s)
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            assert_headline_units(&p, &r.report());
+            let summary = r.summary;
             assert!(summary.get("shear_A1_over_Ainc").unwrap().is_finite());
             assert!(summary.get("energy_closure_error").unwrap() < 1e-5);
             continue;

@@ -72,7 +72,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     bar.finish_and_clear();
     let outcome = outcome?;
     let wall = t0.elapsed();
-    let files = recording::apply(outcome.files()?, &recording)?;
+    let files = recording::files(&*outcome, &recording)?;
     output::write_files(out, &files)?;
     println!("scenario               {}", path.display());
     for line in outcome.report() {

@@ -66,7 +66,7 @@ pub use template::{FromSpec, SpecTemplate};
 
 use crate::analysis::Summary;
 use crate::error::Result;
-use crate::render::OutputFile;
+use crate::render::{OutputFile, Rows};
 use crate::scenario::read_table;
 use crate::solver::barstack::StepProgress;
 use std::any::Any;
@@ -306,6 +306,18 @@ pub trait Outcome: Debug + Send + Sync {
     /// std::fs::remove_dir_all(&dir).unwrap();
     /// ```
     fn files(&self) -> Result<Vec<OutputFile>>;
+    /// [`Outcome::files`] with the rows of the time-series files
+    /// ([`crate::render::TIME_SERIES_FILES`]) picked by `rows` (left out for
+    /// [`Rows::None`]), the other files as they are. By default the files are rendered in
+    /// full and the rows picked from their text; a kind with long records renders the
+    /// picked rows only.
+    fn files_with(&self, rows: Rows) -> Result<Vec<OutputFile>> {
+        Ok(self
+            .files()?
+            .into_iter()
+            .filter_map(|f| crate::render::pick_rows(f, rows))
+            .collect())
+    }
     /// The run as plain named values and arrays (what Python receives as numpy arrays).
     ///
     /// ```

@@ -4,7 +4,8 @@
 
 /// (name, SI unit) of a dotted scenario key or a summary/CSV key; unknown keys get their
 /// words (`segment.0.mass` -> `segment 1 mass`) and a unit guessed from the last word
-/// (empty when none is known). Interfaces and segments are numbered from 1 in names.
+/// (empty when none is known). Interfaces and segments are numbered from 0 in names, as in
+/// the keys (`_0`, `interface.0`, `segment.0`): interface 0 is the first in stack order.
 pub fn quantity(key: &str) -> (String, &'static str) {
     if let Some((name, unit)) = known(key) {
         return (name.to_string(), unit);

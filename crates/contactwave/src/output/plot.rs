@@ -217,18 +217,18 @@ pub fn sweep_table(axes: &[(String, bool)], table: &SweepTable) -> Result<String
             ]
         } else {
             vec![
-            ("first_mode_hz", "First mode"),
-            ("A1", "Response at the first mode"),
-            ("A2_over_A1", "Second harmonic"),
-            (
-                "mean_contact_stiffness_0",
-                "Mean contact stiffness, interface 1 (column mean_contact_stiffness_0, eq. 4.2)",
-            ),
-            (
-                "min_contact_pressure",
-                "Minimum contact pressure, all interfaces",
-            ),
-        ]
+                ("first_mode_hz", "First mode"),
+                ("A1", "Response at the first mode"),
+                ("A2_over_A1", "Second harmonic"),
+                (
+                    "mean_contact_stiffness_0",
+                    "Mean contact stiffness, interface 0 (the first in stack order; eq. 4.2)",
+                ),
+                (
+                    "min_contact_pressure",
+                    "Minimum contact pressure, all interfaces",
+                ),
+            ]
         }
         .into_iter()
         .filter(|(c, _)| table.column(c).is_some())
@@ -345,4 +345,52 @@ pub fn convergence(r: &crate::study::convergence::ConvergenceResult) -> Result<S
         )?;
         Ok(())
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 24: one numbering of interfaces (from 0, as the keys `_0`, `_1`,
+    /// `interface.0` and the CLI's `[0]`): the bar-stack sweep.svg's panel title and its
+    /// y-label name the same interface as the column `mean_contact_stiffness_0`.
+    #[test]
+    fn bar_stack_sweep_plot_numbers_interfaces_as_the_keys() {
+        let header = [
+            "excitation.peak",
+            "first_mode_hz",
+            "A1",
+            "A2_over_A1",
+            "mean_contact_stiffness_0",
+            "min_contact_pressure",
+        ];
+        let table = SweepTable {
+            header: header.iter().map(|h| h.to_string()).collect(),
+            rows: (1..=3)
+                .map(|k| {
+                    let k = k as f64;
+                    vec![9.0 * k, 830.0 - k, 10.0 * k, 0.1 * k, 1e12 - 1e10 * k, 2e4]
+                })
+                .collect(),
+        };
+        let svg = sweep_table(&[("excitation.peak".into(), false)], &table).unwrap();
+        let named: Vec<&str> = svg
+            .match_indices("interface ")
+            .map(|(i, m)| {
+                let rest = &svg[i + m.len()..];
+                &rest[..rest
+                    .find(|c: char| !c.is_ascii_digit())
+                    .unwrap_or(rest.len())]
+            })
+            .filter(|n| !n.is_empty())
+            .collect();
+        assert!(
+            named.len() >= 2,
+            "title and y-label name the interface: {named:?}"
+        );
+        assert!(
+            named.iter().all(|n| *n == "0"),
+            "interfaces named {named:?}"
+        );
+    }
 }

@@ -8,7 +8,6 @@ pub mod svg;
 
 use crate::analysis::Summary;
 use serde::ser::{Serialize, SerializeMap, Serializer};
-use std::fmt::Write as _;
 
 /// A rendered output file: its name in the output folder and its contents.
 #[derive(Debug, Clone, PartialEq)]
@@ -30,21 +29,132 @@ impl OutputFile {
 }
 
 /// CSV text from a header and equally long columns (the shortest column sets the length).
+/// Numbers are written in their shortest round-trip form (`zmij`: parsing a cell gives the
+/// same `f64` back), `NaN`, `inf` and `-inf` as Rust writes them.
 pub fn csv_columns(header: &str, columns: &[&[f64]]) -> String {
     let n = columns.iter().map(|c| c.len()).min().unwrap_or(0);
-    let mut s = String::with_capacity(header.len() + 1 + n * columns.len() * 24);
+    csv_rows(header, columns, 0..n)
+}
+
+/// The CSV text of the rows `rows` of `columns` (each index below every column's length).
+fn csv_rows(
+    header: &str,
+    columns: &[&[f64]],
+    rows: impl ExactSizeIterator<Item = usize>,
+) -> String {
+    let mut s = String::with_capacity(header.len() + 1 + rows.len() * columns.len() * 22);
     s.push_str(header);
     s.push('\n');
-    for i in 0..n {
+    let mut buf = zmij::Buffer::new();
+    for i in rows {
         for (k, c) in columns.iter().enumerate() {
             if k > 0 {
                 s.push(',');
             }
-            let _ = write!(s, "{:?}", c[i]);
+            s.push_str(buf.format(c[i]));
         }
         s.push('\n');
     }
     s
+}
+
+/// Files that hold recorded series, one row per time sample (time in s in the first
+/// column): the rows they keep are chosen by [`Rows`].
+pub const TIME_SERIES_FILES: [&str; 5] = [
+    "timeseries.csv",
+    "probe.csv",
+    "probes.csv",
+    "waves.csv",
+    "shear.csv",
+];
+
+/// Which rows of a time-series file ([`TIME_SERIES_FILES`]) are written
+/// (`contactwave run --record`, `--record-step`; `output::recording`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Rows {
+    /// No such file.
+    None,
+    /// Every row.
+    #[default]
+    All,
+    /// Every k-th row from the first, and the last, k the smallest integer that leaves at
+    /// most this many rows.
+    AtMost(usize),
+    /// One row every this many seconds (rounded to a whole number of time steps, at least
+    /// one, the time step read from the first two times), and the last.
+    Every(f64),
+}
+
+impl Rows {
+    /// The indices kept of `t.len()` rows at times `t` (s), in order (none for
+    /// [`Rows::None`]).
+    pub fn pick(self, t: &[f64]) -> impl ExactSizeIterator<Item = usize> {
+        let n = t.len();
+        let k = match self {
+            Rows::None | Rows::All => 1,
+            Rows::AtMost(m) => n.div_ceil(m.max(1)).max(1),
+            Rows::Every(step) => {
+                let dt = match (t.first(), t.get(1)) {
+                    (Some(a), Some(b)) if b > a => b - a,
+                    _ => step,
+                };
+                ((step / dt).round() as usize).max(1)
+            }
+        };
+        let n = if self == Rows::None { 0 } else { n };
+        // every k-th from the first, and the last when the stride misses it
+        let last = usize::from(n > 0 && (n - 1) % k != 0);
+        let count = n.div_ceil(k) + last;
+        (0..count).map(move |j| if j * k < n { j * k } else { n - 1 })
+    }
+}
+
+/// A time-series file: its CSV with the rows picked by `rows` from `columns`, the first
+/// column the time (s); `None` for [`Rows::None`].
+pub fn time_series(name: &str, header: &str, columns: &[&[f64]], rows: Rows) -> Option<OutputFile> {
+    if rows == Rows::None {
+        return None;
+    }
+    let n = columns.iter().map(|c| c.len()).min().unwrap_or(0);
+    let t = columns.first().map_or(&[][..], |c| &c[..n]);
+    Some(OutputFile::new(
+        name,
+        csv_rows(header, columns, rows.pick(t)),
+    ))
+}
+
+/// A rendered file with the rows of a time-series file picked by `rows` (read back from its
+/// text: time in the first column); any other file as it is.
+pub fn pick_rows(file: OutputFile, rows: Rows) -> Option<OutputFile> {
+    if !TIME_SERIES_FILES.contains(&file.name.as_str()) || rows == Rows::All {
+        return Some(file);
+    }
+    if rows == Rows::None {
+        return None;
+    }
+    let mut lines = file.contents.lines();
+    let Some(header) = lines.next() else {
+        return Some(file);
+    };
+    let body: Vec<&str> = lines.collect();
+    let time = |r: &str| {
+        r.split(',')
+            .next()
+            .and_then(|t| t.parse::<f64>().ok())
+            .unwrap_or(f64::NAN)
+    };
+    // the pick needs the number of rows and the first two times only
+    let t: Vec<f64> = (0..body.len())
+        .map(|i| if i < 2 { time(body[i]) } else { f64::NAN })
+        .collect();
+    let mut out = String::with_capacity(file.contents.len() + 64);
+    out.push_str(header);
+    out.push('\n');
+    for i in rows.pick(&t) {
+        out.push_str(body[i]);
+        out.push('\n');
+    }
+    Some(OutputFile::new(&file.name, out))
 }
 
 struct SummaryJson<'a> {

@@ -5,15 +5,20 @@
 
 use super::BarStackResult;
 use crate::error::Result;
-use crate::render::{csv_columns, OutputFile};
+use crate::render::{csv_columns, time_series, OutputFile, Rows};
 
 /// Header of `frf.csv`: frequency (Hz), |X/F| (m/N), its phase (rad), |A/F| ((m/s^2)/N),
 /// and the force spectrum's level re its peak (dB); the three FRF columns are NaN where
 /// `force_db` is below [`super::FRF_FORCE_FLOOR_DB`].
 pub const FRF_HEADER: &str = "frequency,receptance,receptance_phase,accelerance,force_db";
 
-/// The files of a bar-stack run, rendered in memory.
-pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<OutputFile>> {
+/// The files of a bar-stack run, rendered in memory, with the rows of the time-series
+/// files (`timeseries.csv`, `waves.csv`, `shear.csv`, `probes.csv`) picked by `rows`.
+pub fn bar_stack_files(
+    r: &BarStackResult,
+    scenario_file: &str,
+    rows: Rows,
+) -> Result<Vec<OutputFile>> {
     let mut obj = serde_json::Map::new();
     obj.insert("scenario".into(), scenario_file.into());
     let mut per: std::collections::BTreeMap<String, Vec<f64>> = Default::default();
@@ -62,7 +67,7 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
         cols.push(&r.beta[i]);
         cols.push(&r.stiffness[i]);
     }
-    let ts = csv_columns(&header, &cols);
+    let ts = time_series("timeseries.csv", &header, &cols, rows);
     let mut extra = Vec::new();
     if let Some(w) = &r.waves {
         let mut header = String::from("t,incident_displacement,reflected_displacement");
@@ -71,16 +76,10 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
             header.push_str(",transmitted_displacement");
             cols.push(tr);
         }
-        extra.push(OutputFile {
-            name: "waves.csv".into(),
-            contents: csv_columns(&header, &cols),
-        });
+        extra.extend(time_series("waves.csv", &header, &cols, rows));
     }
     if let Some(sh) = &r.shear {
-        extra.push(OutputFile {
-            name: "shear.csv".into(),
-            contents: shear_csv(r, sh),
-        });
+        extra.extend(shear_csv(r, sh, rows));
     }
     if !r.probes.is_empty() {
         let mut header = String::from("t");
@@ -103,10 +102,7 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
                 cols.extend([&q.displacement[..], &q.velocity[..], &q.stress[..]]);
             }
         }
-        extra.push(OutputFile {
-            name: "probes.csv".into(),
-            contents: csv_columns(&header, &cols),
-        });
+        extra.extend(time_series("probes.csv", &header, &cols, rows));
     }
     let mut files = vec![OutputFile {
         name: "summary.json".into(),
@@ -123,10 +119,7 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
             contents: frf_svg(r)?,
         });
     }
-    files.push(OutputFile {
-        name: "timeseries.csv".into(),
-        contents: ts,
-    });
+    files.extend(ts);
     files.extend(extra);
     Ok(files)
 }
@@ -135,7 +128,7 @@ pub fn bar_stack_files(r: &BarStackResult, scenario_file: &str) -> Result<Vec<Ou
 /// interface `i`, the tangential gap `shear_gap_i` (m), the contact shear stress
 /// `shear_stress_i` (Pa), the slip `slip_i` (m) and the slider state `slip_state_i` (0
 /// stick, +1 / -1 slipping, empty when free).
-fn shear_csv(r: &BarStackResult, sh: &super::BarShear) -> String {
+fn shear_csv(r: &BarStackResult, sh: &super::BarShear, rows: Rows) -> Option<OutputFile> {
     let mut header = String::from("t");
     let mut cols: Vec<&[f64]> = vec![&r.t];
     if let Some(w) = &sh.waves {
@@ -157,7 +150,7 @@ fn shear_csv(r: &BarStackResult, sh: &super::BarShear) -> String {
             &sh.state[i][..],
         ]);
     }
-    csv_columns(&header, &cols)
+    time_series("shear.csv", &header, &cols, rows)
 }
 
 /// `frf.svg`: the accelerance `|A/F|` in dB re 1 (m/s^2)/N and the receptance `|X/F|` in

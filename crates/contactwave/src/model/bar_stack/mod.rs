@@ -22,7 +22,7 @@ use super::template::{FromSpec, SpecTemplate};
 use super::{Kind, Model, Outcome, Record, RunControl, Template, Value};
 use crate::analysis::Summary;
 use crate::error::Result;
-use crate::render::OutputFile;
+use crate::render::{OutputFile, Rows};
 use crate::scenario::bar_stack::{BarStackScenario, BarStackSpec};
 use crate::scenario::BuildCache;
 use std::any::Any;
@@ -109,7 +109,11 @@ impl Outcome for BarStackResult {
     }
 
     fn files(&self) -> Result<Vec<OutputFile>> {
-        bar_stack_files(self, &self.file)
+        bar_stack_files(self, &self.file, Rows::All)
+    }
+
+    fn files_with(&self, rows: Rows) -> Result<Vec<OutputFile>> {
+        bar_stack_files(self, &self.file, rows)
     }
 
     /// `t`, `force`, `displacement`, `acceleration` (arrays), `gap`, `pressure`, `beta`,
@@ -249,6 +253,8 @@ impl Outcome for BarStackResult {
             ));
         }
         if shear_wave {
+            // ratios are dimensionless; the dissipation is in J over the area S (summed
+            // over the interfaces), with its fraction of the incident energy
             for (label, key) in [
                 ("shear A1/Ainc (refl.)  ", "shear_A1_over_Ainc"),
                 ("shear A3/A1 (refl.)    ", "shear_A3_over_A1"),
@@ -258,7 +264,13 @@ impl Outcome for BarStackResult {
                 ("energy closure error   ", "energy_closure_error"),
             ] {
                 if let Some(v) = s.get(key) {
-                    lines.push(format!("{label}{v:.6e}"));
+                    lines.push(match key {
+                        "friction_dissipation" => format!(
+                            "{label}{v:.6e} J ({:.4} of incident)",
+                            get("friction_dissipation_fraction")
+                        ),
+                        _ => format!("{label}{v:.6e}"),
+                    });
                 }
             }
         }
