@@ -126,7 +126,7 @@ fn frf_is_masked_where_the_force_has_no_energy() {
     }
     // masked exactly where the force is below the floor: all three FRF columns NaN
     for k in 0..n {
-        let low = !(frf.force_db[k] >= FRF_FORCE_FLOOR_DB);
+        let low = frf.force_db[k] < FRF_FORCE_FLOOR_DB || frf.force_db[k].is_nan();
         assert_eq!(low, frf.masked(k));
         for v in [frf.receptance[k], frf.phase[k], frf.accelerance[k]] {
             assert_eq!(low, v.is_nan(), "bin {} Hz", frf.frequency[k]);
