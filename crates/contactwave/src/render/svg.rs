@@ -74,7 +74,12 @@ pub(crate) fn decimate(x: &[f64], y: &[f64]) -> Vec<(f64, f64)> {
 /// where [`panel_with`] breaks the line: masked values are gaps, not lines across them.
 pub(crate) fn decimate_gaps(x: &[f64], y: &[f64]) -> Vec<(f64, f64)> {
     let n = x.len().min(y.len());
-    let bucket = n.div_ceil(MAX_POINTS / 2).max(1);
+    // as decimate: every point up to MAX_POINTS, else buckets of the whole curve's size
+    let bucket = if n <= MAX_POINTS {
+        1
+    } else {
+        n.div_ceil(MAX_POINTS / 2)
+    };
     let finite = |i: usize| x[i].is_finite() && y[i].is_finite();
     let mut out = Vec::with_capacity(MAX_POINTS + 2);
     let mut i = 0;
