@@ -187,3 +187,44 @@ pub fn summary_json(scenario_file: &str, summary: &Summary) -> String {
     s.push('\n');
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rows rendered from columns are those picked from the full text: every k-th from
+    /// the first and the last, for every row count and choice.
+    #[test]
+    fn rows_from_columns_match_rows_from_text() {
+        for n in [0usize, 1, 2, 3, 7, 20, 21, 40, 41, 100] {
+            let t: Vec<f64> = (0..n).map(|i| i as f64 * 0.25).collect();
+            let x: Vec<f64> = (0..n).map(|i| (i as f64).sqrt()).collect();
+            let full = csv_columns("t,x", &[&t, &x]);
+            for rows in [
+                Rows::None,
+                Rows::All,
+                Rows::AtMost(1),
+                Rows::AtMost(10),
+                Rows::AtMost(1000),
+                Rows::Every(0.25),
+                Rows::Every(1.1),
+                Rows::Every(100.0),
+            ] {
+                let direct = time_series("timeseries.csv", "t,x", &[&t, &x], rows);
+                let picked = pick_rows(OutputFile::new("timeseries.csv", full.clone()), rows);
+                assert_eq!(direct, picked, "{n} rows, {rows:?}");
+                // the rule: every k-th row from the first, and the last
+                if let Some(f) = direct {
+                    let kept = f.contents.lines().count() - 1;
+                    let k = match rows {
+                        Rows::AtMost(m) => n.div_ceil(m).max(1),
+                        Rows::Every(s) => ((s / 0.25f64).round() as usize).max(1),
+                        _ => 1,
+                    };
+                    let want = (0..n).filter(|i| i % k == 0 || i + 1 == n).count();
+                    assert_eq!(kept, want, "{n} rows, {rows:?}");
+                }
+            }
+        }
+    }
+}
