@@ -630,15 +630,16 @@ def sweep(
     ``executor=None``: all local cores (``threads`` to limit them), in Rust with the GIL
     released; Ctrl-C stops the sweep (``KeyboardInterrupt``); ``progress(done, total)``,
     if given, is called on the calling thread as points finish (at most every 50 ms, and
-    once at the end; an exception in it stops the sweep like Ctrl-C); with an executor it
-    is called as the chunks come back, in grid order. Otherwise a
+    with ``(total, total)`` exactly once at the end; an exception in it stops the sweep
+    like Ctrl-C); with an executor it is called as the chunks come back, in grid order. Otherwise a
     ``concurrent.futures.Executor`` or a ``dask.distributed.Client`` (any deployment:
     ``LocalCluster``, ``dask_jobqueue.SLURMCluster``, ...): the points go out as tasks of
     ``chunk_size`` points and come back in grid order. The results are bit-identical to a
     local run.
 
-    Returns a pandas DataFrame if pandas is importable (``as_frame=False``: a dict of
-    numpy arrays): ``point`` (grid index), one column per axis, then the summary keys of
+    Returns a pandas DataFrame if pandas is importable (the ``pandas`` extra: ``pip
+    install "contactwave[pandas]"``; ``as_frame=False``, or no pandas: a dict of numpy
+    arrays; ``as_frame=True`` without pandas raises ``ImportError`` naming the extra): ``point`` (grid index), one column per axis, then the summary keys of
     ``sweep.csv`` (``xi``, ``A1_over_Ainc``, ...). A point whose simulation fails has NaN
     values; a warning names the failed points, and the DataFrame's
     ``attrs["errors"]`` maps them to their messages. The summary columns are those of
@@ -690,9 +691,14 @@ def sweep(
     if as_frame is None or as_frame:
         try:
             import pandas as pd
-        except ImportError:
+        except ImportError as e:
             if as_frame:
-                raise
+                raise ImportError(
+                    "cw.sweep(as_frame=True) needs pandas, which `pip install .` does not "
+                    "install: pip install \"contactwave[pandas]\" (or `pip install "
+                    "\".[pandas]\"` in the repository), or pass as_frame=False for a dict "
+                    "of numpy arrays"
+                ) from e
         else:
             df = pd.DataFrame(columns)
             df.attrs["errors"] = errs

@@ -181,6 +181,8 @@ def test_progress_callback_counts_every_point(tmp_path):
         cw.sweep(base, {"incident.xi": xi}, executor, chunk_size=2,
                  progress=lambda d, n: calls.append((d, n)))
         assert calls[-1] == (len(xi), len(xi))
+        # the end is reported exactly once (it was reported twice, issue 24)
+        assert calls.count((len(xi), len(xi))) == 1, calls
         assert all(a[0] <= b[0] for a, b in zip(calls, calls[1:]))
         assert all(n == len(xi) for _, n in calls)
 
@@ -189,3 +191,22 @@ def test_progress_callback_counts_every_point(tmp_path):
 
     with pytest.raises(RuntimeError, match="stop here"):
         cw.sweep(base, {"incident.xi": xi}, progress=stop)
+
+
+def test_as_frame_without_pandas_names_the_extra(monkeypatch):
+    """`pip install .` brings no pandas: as_frame=True then says which extra to install,
+    and the default returns a dict of numpy arrays."""
+    import builtins
+
+    real_import = builtins.__import__
+
+    def no_pandas(name, *args, **kwargs):
+        if name == "pandas" or name.startswith("pandas."):
+            raise ImportError("No module named 'pandas'")
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", no_pandas)
+    with pytest.raises(ImportError, match=r"contactwave\[pandas\]"):
+        cw.sweep(CHEAP, {"incident.xi": [0.3]}, as_frame=True)
+    cols = cw.sweep(CHEAP, {"incident.xi": [0.3]})
+    assert isinstance(cols, dict) and list(cols["point"]) == [0]

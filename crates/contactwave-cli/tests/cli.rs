@@ -816,3 +816,131 @@ fn bench_prints_every_target_and_rejects_a_missing_file() {
     assert_eq!(stderr(&o).trim().lines().count(), 1, "{}", stderr(&o));
     assert!(stderr(&o).contains("missing.toml"));
 }
+
+/// Issue 24: a shard missing its last row was merged ("merged 5 points", exit 0), and
+/// shard 1 merged alone (no --sweep) was taken for a grid ending at its largest point.
+#[test]
+fn merge_refuses_a_truncated_or_lone_shard_naming_the_missing_points() {
+    let d = tmpdir("merge-truncated");
+    let s = write_sweep(&d, "parameter = \"incident.xi\"\nlinspace = [0.1, 1.1, 6]");
+    let shard = |k: usize| {
+        let out = d.join(format!("s{k}"));
+        let o = bin()
+            .arg("sweep")
+            .arg(&s)
+            .arg("--out")
+            .arg(&out)
+            .args(["--shard", &format!("{k}/2")])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        out.join("sweep.csv")
+    };
+    let (s1, s2) = (shard(1), shard(2));
+    let text = std::fs::read_to_string(&s2).unwrap();
+    let kept: Vec<&str> = text.lines().collect();
+    assert!(kept[3].starts_with("5,"), "{text}");
+    std::fs::write(&s2, kept[..3].join("\n") + "\n").unwrap();
+    let merged = d.join("merged.csv");
+    let merge = |shards: &[&Path], sweep: bool| {
+        let mut c = bin();
+        c.arg("merge").arg(&merged).args(shards);
+        if sweep {
+            c.arg("--sweep").arg(&s);
+        }
+        c.output().unwrap()
+    };
+    for sweep in [false, true] {
+        let o = merge(&[&s1, &s2], sweep);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let err = stderr(&o);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        let lacks = format!("{} (shard 2/2) lacks 1 of its 3 points: 5", s2.display());
+        assert!(
+            err.contains("1 of 6 points") && err.contains(&lacks),
+            "{err}"
+        );
+        assert!(!merged.exists());
+    }
+    let o = merge(&[&s1], false);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains("3 of 6 points")
+            && err.contains("shard 2/2 (not given) lacks 3 of its 3 points: 1, 3, 5"),
+        "{err}"
+    );
+    // the whole shard again: the merge goes through and says so
+    std::fs::write(&s2, &text).unwrap();
+    let o = merge(&[&s1, &s2], false);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("merged 6 points from 2 shards"));
+    let side = std::fs::read_to_string(d.join("merged.csv.shard")).unwrap();
+    assert_eq!(side, "shard = \"1/1\"\npoints = 6\n");
+    let _ = std::fs::remove_dir_all(d);
+}
+
+/// Issue 24: the Tribobrake run then a half-space run into the same folder left the bar
+/// stack's frf.csv/frf.svg beside the new summary.json. The second run removes what the
+/// first wrote (its manifest) and leaves a file of the user's alone, naming it.
+#[test]
+fn a_reused_output_folder_holds_one_runs_files_only() {
+    let d = tmpdir("reused-out");
+    let out = d.join("out");
+    let o = cli("run", examples().join("tribobrake.toml"), &out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.join("frf.csv").is_file() && out.join("frf.svg").is_file());
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    let o = cli("run", examples().join("rccm_0.82MPa.toml"), &out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.join("summary.json").is_file() && out.join("probe.csv").is_file());
+    assert!(!out.join("frf.csv").exists() && !out.join("frf.svg").exists());
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "mine"
+    );
+    let err = stderr(&o);
+    assert!(
+        err.contains("removed 2 file(s)") && err.contains("frf.csv, frf.svg"),
+        "{err}"
+    );
+    assert!(
+        err.contains("did not write (left untouched): notes.txt"),
+        "{err}"
+    );
+    let manifest = std::fs::read_to_string(out.join(".contactwave-manifest.json")).unwrap();
+    assert!(
+        manifest.contains("\"summary.json\"") && !manifest.contains("frf"),
+        "{manifest}"
+    );
+    // a sweep into the same folder, resumed: its files stay, the run's go
+    let s = write_sweep(&d, "parameter = \"incident.xi\"\nvalues = [0.3, 0.6]");
+    for extra in [None, Some("--resume")] {
+        let o = bin()
+            .arg("sweep")
+            .arg(&s)
+            .arg("--out")
+            .arg(&out)
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        let mut names: Vec<String> = std::fs::read_dir(&out)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(
+            names,
+            [
+                ".contactwave-manifest.json",
+                "notes.txt",
+                "sweep.csv",
+                "sweep.csv.hash",
+                "sweep.csv.shard",
+                "sweep.svg"
+            ]
+        );
+    }
+    let _ = std::fs::remove_dir_all(d);
+}

@@ -420,6 +420,15 @@ fn ctrl_c_and_sigterm_stop_run_and_sweep_with_130_and_no_partial_file() {
         !d.join("sw/sweep_errors.csv").exists(),
         "interrupted points are not failures"
     );
+    // the message counts what is on disk (issue 24: it counted the points stopped
+    // mid-run as done)
+    let rows = csv.lines().skip(1).filter(|l| !l.is_empty()).count();
+    assert!(
+        err.contains(&format!(
+            "interrupted: {rows} of 6 points saved in sw/sweep.csv"
+        )),
+        "{rows} rows: {err}"
+    );
     println!(
         "sweep + SIGINT | stopped in {:.1} ms",
         took.as_secs_f64() * 1e3

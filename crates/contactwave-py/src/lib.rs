@@ -95,6 +95,18 @@ impl PyScenario {
             .map_err(|e| PyValueError::new_err(e.to_string()))
     }
 
+    /// Pickle support: `(scenario_from_json, (keys as JSON, path))`, so a scenario (and
+    /// every result holding one) crosses process pools, Dask futures and caches.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (String, String))> {
+        let rebuild = py
+            .import("contactwave._core")?
+            .getattr("scenario_from_json")?;
+        Ok((
+            rebuild,
+            (self.to_json()?, self.path.to_string_lossy().into_owned()),
+        ))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "Scenario(file={:?}, kind={:?}, xi={:?})",
@@ -652,8 +664,12 @@ fn run_interruptibly(
                 break;
             }
         }
+        // the last count once, unless the loop's last poll reported it already
         if let Some(cb) = progress {
-            cb.call1((done.load(Ordering::SeqCst), total))?;
+            let d = done.load(Ordering::SeqCst);
+            if d != reported {
+                cb.call1((d, total))?;
+            }
         }
         py.detach(|| worker.join())
             .map_err(|_| PyRuntimeError::new_err("sweep worker thread panicked"))?

@@ -83,6 +83,24 @@ impl Error {
         }
     }
 
+    /// An error writing a file into the folder `dir` (through a temporary name there):
+    /// names the user's folder, not the temporary file, and says when the folder is not
+    /// writable.
+    pub fn write_in(dir: &std::path::Path, source: std::io::Error) -> Self {
+        let kind = source.kind();
+        let message = if kind == std::io::ErrorKind::PermissionDenied {
+            format!("the output folder is not writable ({source})")
+        } else {
+            format!("cannot write into the output folder: {source}")
+        };
+        let dir = if dir.as_os_str().is_empty() {
+            std::path::Path::new(".")
+        } else {
+            dir
+        };
+        Error::io(dir, std::io::Error::new(kind, message))
+    }
+
     /// Build an [`Error::Numerical`].
     pub fn numerical(time: f64, message: impl Into<String>, state: impl Into<String>) -> Self {
         Error::Numerical {

@@ -118,6 +118,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             output_file("convergence.svg", svg),
         ];
         output::write_files(o, &files)?;
+        super::claim_files(o, "convergence", &files)?;
         println!("wrote 3 files to {}", o.display());
     }
     println!("wall time {:.2} s", t0.elapsed().as_secs_f64());

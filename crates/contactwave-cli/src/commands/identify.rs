@@ -10,7 +10,7 @@
 //!
 //! Everything is validated before the output folder is touched.
 
-use super::{check_out_dir, output_file, write_and_list, EXIT_FAILED, EXIT_OK};
+use super::{check_out_dir, output_file, write_out, EXIT_FAILED, EXIT_OK};
 use contactwave::inverse::{self, synthesize, IdentifySpec, Model};
 use contactwave::Error;
 use std::io::IsTerminal;
@@ -115,7 +115,7 @@ fn identify(
                 output_file("design.json", json + "\n"),
                 output_file("design.csv", report.to_csv()),
             ];
-            write_and_list(out, &files)?;
+            write_out(out, "identify", &files)?;
         }
         return Ok(EXIT_OK);
     }
@@ -148,7 +148,7 @@ fn identify(
         result.forward_runs as f64 / result.wall_seconds.max(1e-9)
     );
     if let Some(out) = out {
-        write_and_list(out, &files)?;
+        write_out(out, "identify", &files)?;
     }
     if result.failed_runs > 0 {
         let what = if tolerate { "warning" } else { "error" };

@@ -5,7 +5,7 @@
 //! per interface with its number before the extension (`law_curve_0.csv`, ...; the
 //! obstacle contact last), each law at its interface's static pressure.
 
-use super::{check_out_dir, write_and_list, EXIT_OK};
+use super::{check_out_dir, EXIT_OK};
 use contactwave::output;
 use contactwave::scenario::bar_stack::BarStackScenario;
 use contactwave::scenario::read_table;
@@ -56,6 +56,6 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         let tangential = scenario.shear.as_ref().map(|s| &*s.tangential);
         output::law_files_with(&scenario.law, tangential)?
     };
-    write_and_list(&args.out, &files)?;
+    super::write_out(&args.out, "law", &files)?;
     Ok(EXIT_OK)
 }

@@ -1,6 +1,7 @@
 //! `contactwave merge OUT SHARD.csv... [--sweep FILE]`: combine the sweep.csv files of the
-//! shards of one sweep (`sweep --shard K/N`) into OUT, rows sorted by point, and OUT.hash,
-//! after checking that the shards agree (same hash file, no point missing or duplicated),
+//! shards of one sweep (`sweep --shard K/N`) into OUT, rows sorted by point, OUT.hash and
+//! OUT.shard, after checking that the shards agree (same hash file and grid size, no point
+//! missing from any shard, none duplicated),
 //! and the merged sweep's plot OUT.svg (`sweep.svg` beside `sweep.csv`).
 
 use super::EXIT_OK;
@@ -10,8 +11,9 @@ use contactwave::Error;
 use std::path::PathBuf;
 
 /// Merge the sweep.csv files of the shards of one sweep (`sweep --shard K/N`) into OUT
-/// (rows sorted by point), OUT.hash and the plot OUT.svg (OUT with the extension .svg), after checking that the shards have the same
-/// hash file and that no point is missing or duplicated.
+/// (rows sorted by point), OUT.hash, OUT.shard and the plot OUT.svg (OUT with the extension
+/// .svg), after checking that the shards have the same hash file and grid size (side files
+/// .hash and .shard) and that no point is missing from any shard or duplicated.
 #[derive(clap::Args)]
 pub struct Args {
     /// Merged CSV to write (its folder is created if needed).
@@ -20,7 +22,7 @@ pub struct Args {
     #[arg(required = true)]
     shards: Vec<PathBuf>,
     /// The sweep file: check the shards against its hash and its whole grid (without
-    /// it, the points must be 0 to the largest point found).
+    /// it, against the grid size and shard in each shard's side file SHARD.csv.shard).
     #[arg(long, value_name = "FILE")]
     sweep: Option<PathBuf>,
 }
@@ -41,6 +43,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     );
     println!("wrote {}", report.csv.display());
     println!("wrote {}", report.hash_file.display());
+    println!("wrote {}", report.shard_file.display());
     // the merged sweep's plot beside it (OUT with the extension .svg)
     if let Some(svg) = output::merged_sweep_svg(sweep.as_ref(), &report.csv)? {
         let svg_path = report.csv.with_extension("svg");

@@ -66,6 +66,55 @@ pub fn write_and_list(out: &Path, files: &[OutputFile]) -> contactwave::Result<(
     Ok(())
 }
 
+/// Write `files` into the output folder `out` of `command` ([`write_and_list`]) and record
+/// them in the folder's manifest ([`claim_out`]).
+pub fn write_out(out: &Path, command: &str, files: &[OutputFile]) -> contactwave::Result<()> {
+    write_and_list(out, files)?;
+    claim_files(out, command, files)
+}
+
+/// [`claim_out`] for the `files` of `command` written into `out`.
+pub fn claim_files(out: &Path, command: &str, files: &[OutputFile]) -> contactwave::Result<()> {
+    let names: Vec<String> = files.iter().map(|f| f.name.clone()).collect();
+    claim_out(out, command, &names)
+}
+
+/// Record that `command` wrote `files` (relative to `out`) into its output folder `out`
+/// (the manifest `.contactwave-manifest.json`): the files an earlier contactwave command
+/// wrote there and this one did not are removed (a note on stderr names them), files no
+/// contactwave command wrote are left untouched and named in a warning.
+pub fn claim_out(out: &Path, command: &str, files: &[String]) -> contactwave::Result<()> {
+    let c = output::manifest::claim(out, command, files)?;
+    let list = |paths: &[std::path::PathBuf]| {
+        let mut s = paths
+            .iter()
+            .take(5)
+            .map(|p| p.strip_prefix(out).unwrap_or(p).display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ");
+        if paths.len() > 5 {
+            s.push_str(&format!(", ... ({} in all)", paths.len()));
+        }
+        s
+    };
+    if !c.removed.is_empty() {
+        eprintln!(
+            "note: removed {} file(s) an earlier contactwave command wrote to {}: {}",
+            c.removed.len(),
+            out.display(),
+            list(&c.removed)
+        );
+    }
+    if !c.foreign.is_empty() {
+        eprintln!(
+            "warning: {} also holds files contactwave did not write (left untouched): {}",
+            out.display(),
+            list(&c.foreign)
+        );
+    }
+    Ok(())
+}
+
 /// Progress-bar template of the step-by-step computations (`run` of a bar stack,
 /// `convergence`).
 pub const STEPS_TEMPLATE: &str = "{bar:40} {pos}/{len}  {elapsed_precise} elapsed, eta {eta}";

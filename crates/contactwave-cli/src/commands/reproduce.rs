@@ -59,6 +59,14 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     bar.finish_and_clear();
     let total = t0.elapsed().as_secs_f64();
     let written = write_report(out, &results, total)?;
+    let names: Vec<String> = written
+        .iter()
+        .map(|p| {
+            let rel = p.strip_prefix(out).unwrap_or(p);
+            rel.to_string_lossy().replace('\\', "/")
+        })
+        .collect();
+    super::claim_out(out, "reproduce", &names)?;
     for r in &results {
         println!(
             "{}: {} figures, {} simulations, {:.1} s",

@@ -74,6 +74,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let wall = t0.elapsed();
     let files = recording::files(&*outcome, &recording)?;
     output::write_files(out, &files)?;
+    super::claim_files(out, "run", &files)?;
     println!("scenario               {}", path.display());
     for line in outcome.report() {
         println!("{line}");

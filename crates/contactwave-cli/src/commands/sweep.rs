@@ -9,14 +9,13 @@
 //! once.
 
 use super::{
-    cancel_on_ctrl_c, check_out_dir, output_file, progress_bar, EXIT_FAILED, EXIT_INTERRUPTED,
-    EXIT_OK,
+    cancel_on_ctrl_c, check_out_dir, claim_out, output_file, progress_bar, EXIT_FAILED,
+    EXIT_INTERRUPTED, EXIT_OK,
 };
 use contactwave::output;
 use contactwave::study::{self, Sweep, SweepOptions};
 use contactwave::Error;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Run a parameter sweep and write DIR/sweep.csv (one row per point: point index,
 /// swept parameters in their SI units, summary values), DIR/sweep.csv.hash and
@@ -47,6 +46,15 @@ pub struct Args {
     tolerate_failures: bool,
 }
 
+/// The files a sweep writes into its folder (those that exist are its manifest).
+const SWEEP_FILES: [&str; 5] = [
+    "sweep.csv",
+    "sweep.csv.hash",
+    "sweep.csv.shard",
+    "sweep.svg",
+    "sweep_errors.csv",
+];
+
 pub fn run(args: Args) -> contactwave::Result<u8> {
     let out = args.out.as_path();
     let sweep = Sweep::load(&args.sweep)?;
@@ -74,16 +82,22 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         "{bar:40} {pos}/{len} points  {elapsed_precise} elapsed, eta {eta}",
         total as u64,
     );
-    let done = AtomicUsize::new(0);
-    let progress = |d: usize, _total: usize| {
-        done.store(d, Ordering::SeqCst);
-        bar.set_position(d as u64);
-    };
+    let progress = |d: usize, _total: usize| bar.set_position(d as u64);
     let csv = out.join("sweep.csv");
     let opts = SweepOptions {
         threads: args.threads,
         resume: args.resume,
         validated: true,
+    };
+    // the folder's manifest: the sweep's files (which --resume keeps); an earlier
+    // command's other files are removed
+    let claim = || {
+        let names: Vec<String> = SWEEP_FILES
+            .iter()
+            .filter(|n| out.join(n).is_file())
+            .map(|n| n.to_string())
+            .collect();
+        claim_out(out, "sweep", &names)
     };
     match study::run_sweep_shard(&sweep, shard, &csv, &opts, &progress, cancel) {
         Ok(report) => {
@@ -93,6 +107,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
                 output::write_files(out, &[output_file("sweep.svg", svg)])?;
                 plotted = true;
             }
+            claim()?;
             println!(
                 "{} points: {} computed, {} already done, {} failed",
                 report.total, report.computed, report.skipped, report.failed
@@ -133,10 +148,12 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         }
         Err(Error::Interrupted) => {
             bar.abandon();
+            claim()?;
+            // what is on disk: the rows of the CSV (points stopped mid-run have none)
+            let saved = study::read_sweep_csv(&csv).map_or(0, |t| t.rows.len());
             eprintln!(
-                "interrupted: {} of {} points done; rerun with --resume",
-                done.load(Ordering::SeqCst),
-                total
+                "interrupted: {saved} of {total} points saved in {}; rerun with --resume",
+                csv.display()
             );
             Ok(EXIT_INTERRUPTED)
         }

@@ -23,6 +23,7 @@
 #[cfg(feature = "identify")]
 pub mod identify;
 pub mod labels;
+pub mod manifest;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod recording;
@@ -161,7 +162,7 @@ pub fn write_files(dir: &Path, files: &[OutputFile]) -> Result<Vec<PathBuf>> {
         let _writing = crate::interrupt::Writing::start();
         let path = dir.join(&f.name);
         let tmp = dir.join(format!(".{}.tmp{}", f.name, std::process::id()));
-        std::fs::write(&tmp, &f.contents).map_err(|e| Error::io(&tmp, e))?;
+        std::fs::write(&tmp, &f.contents).map_err(|e| Error::write_in(dir, e))?;
         std::fs::rename(&tmp, &path).map_err(|e| {
             let _ = std::fs::remove_file(&tmp);
             Error::io(&path, e)
@@ -188,6 +189,36 @@ mod tests {
     use super::*;
     use crate::analysis::Summary;
     use crate::scenario::Scenario;
+
+    /// Issue 24: a folder that cannot take the files was reported under the temporary
+    /// name (`.summary.json.tmp1234: ...`); the error names the user's folder.
+    #[test]
+    fn a_failed_write_names_the_folder_not_the_temporary_file() {
+        let d = std::env::temp_dir().join(format!("contactwave-out-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        // a folder where the temporary file goes: the write fails (even for root)
+        std::fs::create_dir_all(d.join(format!(".a.csv.tmp{}", std::process::id()))).unwrap();
+        let f = OutputFile {
+            name: "a.csv".into(),
+            contents: "x\n".into(),
+        };
+        let e = write_files(&d, &[f]).unwrap_err().to_string();
+        assert!(
+            e.starts_with(&format!(
+                "{}: cannot write into the output folder",
+                d.display()
+            )),
+            "{e}"
+        );
+        assert!(!e.contains(".tmp"), "{e}");
+        let denied = std::io::Error::from(std::io::ErrorKind::PermissionDenied);
+        let e = Error::write_in(Path::new("results/ro"), denied).to_string();
+        assert!(
+            e.starts_with("results/ro: the output folder is not writable"),
+            "{e}"
+        );
+        let _ = std::fs::remove_dir_all(&d);
+    }
 
     #[test]
     fn csv_round_trips_floats() {

@@ -13,6 +13,6 @@ pub mod validation;
 
 pub use sweep::{
     errors_path, grid, hash_path, linspace, logspace, merge_sweep_csvs, point_table,
-    read_sweep_csv, run_sweep, run_sweep_shard, Axis, AxisSpec, MergeReport, Shard, Sweep,
-    SweepOptions, SweepReport, SweepTable,
+    read_sweep_csv, run_sweep, run_sweep_shard, shard_path, Axis, AxisSpec, MergeReport, Shard,
+    ShardFile, Sweep, SweepOptions, SweepReport, SweepTable,
 };

@@ -8,7 +8,7 @@
 
 use super::csv_io::{errors_path, hash_path, parse_sweep_csv, Writer};
 use super::format::Sweep;
-use super::shard::Shard;
+use super::shard::{Shard, ShardFile};
 use crate::analysis::Summary;
 use crate::error::{Error, Result};
 use crate::run::{Executor, Observer};
@@ -212,6 +212,18 @@ pub fn run_sweep_shard(
                 ),
             ));
         }
+        if let Some(f) = ShardFile::read(out_csv)?.filter(|f| f.shard != shard) {
+            return Err(Error::invalid(
+                out_csv.display().to_string(),
+                "shard",
+                f.shard,
+                format!(
+                    "cannot resume: the CSV holds shard {}, not {shard}; resume it with \
+                     --shard {}",
+                    f.shard, f.shard
+                ),
+            ));
+        }
         let text = std::fs::read_to_string(out_csv).map_err(|e| Error::io(out_csv, e))?;
         let table = parse_sweep_csv(&text, out_csv)?;
         if !table.header.is_empty() {
@@ -247,9 +259,14 @@ pub fn run_sweep_shard(
             .map_err(|e| Error::io(out_csv, e))?
     } else {
         std::fs::write(&hash_file, format!("{}\n", sweep.hash))
-            .map_err(|e| Error::io(&hash_file, e))?;
+            .map_err(|e| Error::write_in(out_csv.parent().unwrap_or(Path::new(".")), e))?;
         File::create(out_csv).map_err(|e| Error::io(out_csv, e))?
     };
+    ShardFile {
+        shard,
+        points: grid_total,
+    }
+    .write(out_csv)?;
     if errors_file.exists() {
         std::fs::remove_file(&errors_file).map_err(|e| Error::io(&errors_file, e))?;
     }
@@ -345,7 +362,7 @@ fn sort_rows(csv: &Path) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::super::csv_io::read_sweep_csv;
-    use super::super::shard::merge_sweep_csvs;
+    use super::super::shard::{merge_sweep_csvs, shard_path};
     use super::super::test_support::{setup, tmpdir, BASE};
     use super::*;
 
@@ -523,6 +540,60 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("different sweep"), "{e}");
+        let _ = std::fs::remove_dir_all(d);
+    }
+
+    /// Issue 24: a shard missing its last row was merged ("merged 9 points") and, without
+    /// the sweep file, shard 1 alone was taken for a grid ending at its largest point.
+    #[test]
+    fn merge_refuses_a_truncated_or_lone_shard_with_or_without_the_sweep() {
+        let (d, sweep) = shard_setup("shard-truncated");
+        let cancel = AtomicBool::new(false);
+        let mut parts = vec![];
+        for k in 1..=2 {
+            let p = d.join(format!("shard{k}.csv"));
+            let shard = Shard::new(k, 2).unwrap();
+            run_sweep_shard(&sweep, shard, &p, &opts(), &|_, _| {}, &cancel).unwrap();
+            assert_eq!(
+                ShardFile::read(&p).unwrap(),
+                Some(ShardFile { shard, points: 10 })
+            );
+            parts.push(p);
+        }
+        // drop the last row (point 9) of shard 2/2
+        let text = std::fs::read_to_string(&parts[1]).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[lines.len() - 1].starts_with("9,"));
+        std::fs::write(&parts[1], lines[..lines.len() - 1].join("\n") + "\n").unwrap();
+        let out = d.join("m.csv");
+        for sw in [Some(&sweep), None] {
+            let e = merge_sweep_csvs(&out, &parts, sw).unwrap_err().to_string();
+            let name = format!(
+                "{} (shard 2/2) lacks 1 of its 5 points: 9",
+                parts[1].display()
+            );
+            assert!(e.contains("1 of 10 points") && e.contains(&name), "{e}");
+            assert!(!out.exists());
+        }
+        // shard 1/2 alone: the grid has 10 points, not 9
+        let e = merge_sweep_csvs(&out, &parts[..1], None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("5 of 10 points")
+                && e.contains("shard 2/2 (not given) lacks 5 of its 5 points: 1, 3, 5, 7, 9"),
+            "{e}"
+        );
+        // a shard without side file: its grid is unknown without the sweep file
+        std::fs::remove_file(shard_path(&parts[0])).unwrap();
+        let e = merge_sweep_csvs(&out, &parts[..1], None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("shard1.csv.shard") && e.contains("--sweep"),
+            "{e}"
+        );
+        assert!(!out.exists());
         let _ = std::fs::remove_dir_all(d);
     }
 

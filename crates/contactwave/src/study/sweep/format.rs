@@ -383,6 +383,18 @@ impl Sweep {
             .zip(self.points[i].iter().copied())
             .collect();
         plan.template.build(&values).map_err(|e| {
+            // a key the scenario cannot take is the sweep file's mistake, not the base's
+            if let Some(k) = self.axis_named_by(&e) {
+                return Error::invalid(
+                    self.file.display().to_string(),
+                    format!("axis[{k}].parameter"),
+                    &self.axes[k].parameter,
+                    format!(
+                        "the base scenario {} cannot take this key: {e}",
+                        self.base.display()
+                    ),
+                );
+            }
             let values = self
                 .axes
                 .iter()
@@ -394,6 +406,21 @@ impl Sweep {
                 e,
                 &format!("in sweep {} at point {i}: {values}", self.file.display()),
             )
+        })
+    }
+
+    /// The axis whose key a scenario's parse error (unknown key, wrong type, missing
+    /// field) names: the axis' dotted key itself, or a table that the key created in the
+    /// base (absent from it). A value outside its range is not such an error.
+    fn axis_named_by(&self, e: &Error) -> Option<usize> {
+        let Error::Parse { message, .. } = e else {
+            return None;
+        };
+        let field = message.strip_prefix("field `")?.split('`').next()?;
+        self.axes.iter().position(|a| {
+            a.parameter == field
+                || (a.parameter.starts_with(&format!("{field}."))
+                    && !has_dotted(&self.base_table, field))
         })
     }
 
@@ -460,6 +487,19 @@ pub struct SweepPlan {
     pub template: Arc<dyn Template>,
     /// The parameter of each axis, in axis order.
     pub params: Vec<Param>,
+}
+
+/// Whether the table holds the dotted key `key`.
+fn has_dotted(table: &toml::Table, key: &str) -> bool {
+    let mut parts = key.split('.');
+    let Some(first) = parts.next() else {
+        return false;
+    };
+    let mut v = table.get(first);
+    for p in parts {
+        v = v.and_then(|x| x.as_table()).and_then(|t| t.get(p));
+    }
+    v.is_some()
 }
 
 /// A key error of axis `k`, naming the sweep file and `axis[k].parameter`.
@@ -844,10 +884,24 @@ mod tests {
         assert!(e.contains("base.toml"), "{e}");
         assert!(e.contains("incident.xi"), "{e}");
         assert!(e.contains("point 1"), "{e}");
+        // a typo in the axis' key is the sweep file's (issue 24: it was reported against
+        // base.toml), naming the axis and its key; likewise a table the key creates
         let e = load_err(
             "badkey",
             "base = \"base.toml\"\n[[axis]]\nparameter = \"incident.xii\"\nvalues = [0.3]\n",
         );
-        assert!(e.contains("xii"), "{e}");
+        assert!(
+            e.contains("sweep.toml: field `axis[0].parameter` = incident.xii:"),
+            "{e}"
+        );
+        assert!(e.contains("unknown field `xii`"), "{e}");
+        let e = load_err(
+            "badtable",
+            "base = \"base.toml\"\n[[axis]]\nparameter = \"interface.traction.stifness\"\nvalues = [1e12]\n",
+        );
+        assert!(
+            e.contains("sweep.toml: field `axis[0].parameter` = interface.traction.stifness:"),
+            "{e}"
+        );
     }
 }

@@ -38,6 +38,10 @@
 //! The hash lives in a side file rather than a comment line so that `sweep.csv` stays a
 //! plain CSV for every reader.
 //!
+//! `sweep.csv.shard` (side file, TOML): `shard = "K/N"` (`"1/1"` for a whole sweep) and
+//! `points = TOTAL`, the size of the whole grid ([`ShardFile`]), so that `merge` knows
+//! which points each shard must hold, with or without the sweep file.
+//!
 //! `sweep_errors.csv` (`<stem>_errors.csv` beside the CSV; only when a point failed):
 //! `point,message` for each point whose simulation failed (numerical failure). Failed
 //! points have no row in `sweep.csv`, so `--resume` retries them; the errors file is
@@ -69,4 +73,4 @@ pub use csv_io::{errors_path, hash_path, read_sweep_csv, SweepTable};
 pub use driver::{run_sweep, run_sweep_shard, SweepOptions, SweepReport};
 pub use format::{point_table, Axis, AxisSpec, Sweep};
 pub use grid::{grid, linspace, logspace};
-pub use shard::{merge_sweep_csvs, MergeReport, Shard};
+pub use shard::{merge_sweep_csvs, shard_path, MergeReport, Shard, ShardFile};

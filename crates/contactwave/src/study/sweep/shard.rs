@@ -56,6 +56,71 @@ impl std::fmt::Display for Shard {
     }
 }
 
+/// What a sweep CSV holds of its sweep, from its side file `<csv>.shard`
+/// ([`shard_path`]): which shard, and the size of the whole grid. Every `contactwave
+/// sweep` writes it (`1/1` for a whole sweep) and `merge` writes it for the merged CSV, so
+/// that a merge knows which points each shard must hold even without the sweep file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ShardFile {
+    /// The shard the CSV holds.
+    pub shard: Shard,
+    /// Points of the whole sweep's grid.
+    pub points: usize,
+}
+
+/// Path of the shard side file of a sweep CSV (`<csv>.shard`).
+pub fn shard_path(csv: &Path) -> PathBuf {
+    let mut s = csv.as_os_str().to_owned();
+    s.push(".shard");
+    PathBuf::from(s)
+}
+
+impl ShardFile {
+    /// The side file's text: `shard = "K/N"` and `points = TOTAL` (TOML).
+    fn text(&self) -> String {
+        format!("shard = \"{}\"\npoints = {}\n", self.shard, self.points)
+    }
+
+    /// Write the side file of `csv`.
+    pub fn write(&self, csv: &Path) -> Result<()> {
+        let p = shard_path(csv);
+        std::fs::write(&p, self.text()).map_err(|e| Error::io(&p, e))
+    }
+
+    /// Read the side file of `csv`; `None` when there is none (a CSV written before the
+    /// side file existed).
+    pub fn read(csv: &Path) -> Result<Option<ShardFile>> {
+        let p = shard_path(csv);
+        let text = match std::fs::read_to_string(&p) {
+            Ok(t) => t,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+            Err(e) => return Err(Error::io(&p, e)),
+        };
+        let bad = |field: &str, value: String| {
+            invalid(
+                &p,
+                field,
+                value,
+                "expected `shard = \"K/N\"` and `points = TOTAL`, as `contactwave sweep` \
+                 writes them"
+                    .into(),
+            )
+        };
+        let table: toml::Table = text
+            .parse()
+            .map_err(|_| bad("shard", text.trim().replace('\n', " ")))?;
+        let shard = match table.get("shard") {
+            Some(toml::Value::String(s)) => Shard::parse(s).map_err(|_| bad("shard", s.clone()))?,
+            other => return Err(bad("shard", format!("{other:?}"))),
+        };
+        let points = match table.get("points") {
+            Some(toml::Value::Integer(n)) if *n >= 0 => *n as usize,
+            other => return Err(bad("points", format!("{other:?}"))),
+        };
+        Ok(Some(ShardFile { shard, points }))
+    }
+}
+
 /// What [`merge_sweep_csvs`] wrote.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MergeReport {
@@ -67,6 +132,8 @@ pub struct MergeReport {
     pub csv: PathBuf,
     /// Its hash side file.
     pub hash_file: PathBuf,
+    /// Its shard side file ([`ShardFile`], shard `1/1` of the whole grid).
+    pub shard_file: PathBuf,
 }
 
 fn invalid(file: &Path, field: &str, value: impl std::fmt::Display, allowed: String) -> Error {
@@ -91,12 +158,16 @@ fn brief(points: &[usize]) -> String {
 /// file.
 ///
 /// Checks, each failing with an error that names the file: every shard has a hash side
-/// file and all hashes are equal (and equal to `sweep`'s hash when given); the headers of
-/// all shards with rows are equal; no point appears twice (in one shard or across shards);
-/// no point is missing: with `sweep`, the points are exactly `0..sweep.points.len()`,
-/// without it `0..=max point`. Points missing because their simulation failed are named as
-/// such when a shard's errors file lists them. Rows are copied unchanged (numbers keep
-/// their text, hence their bits). Nothing is written when a check fails.
+/// file and all hashes are equal (and equal to `sweep`'s hash when given); every shard's
+/// side file ([`ShardFile`]) gives the same grid size and shard count (and the size of
+/// `sweep`'s grid when given; without `sweep` a shard without side file is refused, its
+/// grid being unknown); every row belongs to its shard; the headers of all shards with
+/// rows are equal; no point appears twice (in one shard or across shards); no point is
+/// missing: the points are exactly `0..N` for the grid's `N` points, and the error names
+/// the missing points of each shard (given or not). Points missing because their
+/// simulation failed are named as such when a shard's errors file lists them. Rows are
+/// copied unchanged (numbers keep their text, hence their bits). Nothing is written when a
+/// check fails.
 pub fn merge_sweep_csvs(
     out: &Path,
     shards: &[PathBuf],
@@ -114,7 +185,56 @@ pub fn merge_sweep_csvs(
     let mut header: Option<(String, PathBuf)> = None;
     let mut rows: BTreeMap<usize, (String, usize)> = BTreeMap::new();
     let mut failed: BTreeMap<usize, String> = BTreeMap::new();
+    let mut sides: Vec<Option<ShardFile>> = Vec::with_capacity(shards.len());
+    let mut grid: Option<(usize, String)> =
+        sweep.map(|sw| (sw.points.len(), format!("the sweep {}", sw.file.display())));
+    let mut count: Option<(usize, &Path)> = None;
     for (s, path) in shards.iter().enumerate() {
+        let side = ShardFile::read(path)?;
+        match (side, &grid) {
+            (None, None) => {
+                return Err(invalid(
+                    path,
+                    "shard",
+                    "(no side file)",
+                    format!(
+                        "{} is missing, so the size of the sweep is unknown: give the sweep \
+                         file with --sweep, or rerun the shard",
+                        shard_path(path).display()
+                    ),
+                ))
+            }
+            (Some(f), Some((n, from))) if f.points != *n => {
+                return Err(invalid(
+                    path,
+                    "points",
+                    f.points,
+                    format!("{from} has {n} points: the shards come from different sweeps"),
+                ))
+            }
+            (Some(f), None) => {
+                grid = Some((f.points, path.display().to_string()));
+            }
+            _ => {}
+        }
+        if let Some(f) = side {
+            match count {
+                Some((n, p0)) if n != f.shard.count => {
+                    return Err(invalid(
+                        path,
+                        "shard",
+                        f.shard,
+                        format!(
+                            "{} is a shard of {n}: the shards were cut differently",
+                            p0.display()
+                        ),
+                    ))
+                }
+                None => count = Some((f.shard.count, path.as_path())),
+                _ => {}
+            }
+        }
+        sides.push(side);
         let hp = hash_path(path);
         let h = std::fs::read_to_string(&hp).map_err(|e| Error::io(&hp, e))?;
         let h = h.trim().to_string();
@@ -194,6 +314,19 @@ pub fn merge_sweep_csvs(
                 ));
             }
             let p = p as usize;
+            if let Some(f) = side.filter(|f| !f.shard.contains(p)) {
+                return Err(invalid(
+                    path,
+                    "point",
+                    p,
+                    format!(
+                        "does not belong to shard {} (points i with i % {} == {})",
+                        f.shard,
+                        f.shard.count,
+                        f.shard.index - 1
+                    ),
+                ));
+            }
             if let Some((_, other)) = rows.get(&p) {
                 return Err(invalid(
                     path,
@@ -218,10 +351,7 @@ pub fn merge_sweep_csvs(
             }
         }
     }
-    let expected = match sweep {
-        Some(sw) => sw.points.len(),
-        None => rows.keys().next_back().map(|m| m + 1).unwrap_or(0),
-    };
+    let expected = grid.map(|(n, _)| n).unwrap_or(0);
     if let Some((&p, _)) = rows.range(expected..).next() {
         return Err(invalid(
             &shards[rows[&p].1],
@@ -247,8 +377,9 @@ pub fn merge_sweep_csvs(
             "point",
             brief(&missing),
             format!(
-                "missing from the shards: {} of {expected} points have no row{why}",
-                missing.len()
+                "missing from the shards: {} of {expected} points have no row: {}{why}",
+                missing.len(),
+                missing_by_shard(&missing, expected, shards, &sides, count.map(|(n, _)| n))
             ),
         ));
     }
@@ -271,15 +402,69 @@ pub fn merge_sweep_csvs(
         s.push(".merging");
         PathBuf::from(s)
     };
-    std::fs::write(&tmp, text).map_err(|e| Error::io(&tmp, e))?;
+    let folder = out.parent().unwrap_or(Path::new("."));
+    std::fs::write(&tmp, text).map_err(|e| Error::write_in(folder, e))?;
     std::fs::write(&hash_file, format!("{hash}\n")).map_err(|e| Error::io(&hash_file, e))?;
+    let whole = ShardFile {
+        shard: Shard::ALL,
+        points: expected,
+    };
+    whole.write(out)?;
     std::fs::rename(&tmp, out).map_err(|e| Error::io(out, e))?;
     Ok(MergeReport {
         points: rows.len(),
         shards: shards.len(),
         csv: out.to_path_buf(),
         hash_file,
+        shard_file: shard_path(out),
     })
+}
+
+/// The missing points grouped by the shard that should hold them (of a grid of `total`
+/// points): `FILE (shard K/N) lacks 2 of its 40 points: 3, 7` for a shard given, `shard
+/// K/N (not given) lacks ...` for one of `count` shards that is not, `the shards lack
+/// ...` when no side file says.
+fn missing_by_shard(
+    missing: &[usize],
+    total: usize,
+    shards: &[PathBuf],
+    sides: &[Option<ShardFile>],
+    count: Option<usize>,
+) -> String {
+    let mut groups: BTreeMap<(usize, usize), (String, Shard, Vec<usize>)> = BTreeMap::new();
+    for &p in missing {
+        let given = sides
+            .iter()
+            .position(|f| f.is_some_and(|f| f.shard.contains(p)));
+        let (key, name, shard) = match (given, count) {
+            (Some(s), _) => {
+                let f = sides[s].map(|f| f.shard).unwrap_or(Shard::ALL);
+                (
+                    (f.index, 0),
+                    format!("{} (shard {f})", shards[s].display()),
+                    f,
+                )
+            }
+            (None, Some(n)) => {
+                let f = Shard::new(p % n + 1, n).unwrap_or(Shard::ALL);
+                ((f.index, 1), format!("shard {f} (not given)"), f)
+            }
+            (None, None) => ((0, 2), "the shards".to_string(), Shard::ALL),
+        };
+        groups.entry(key).or_insert((name, shard, vec![])).2.push(p);
+    }
+    groups
+        .into_values()
+        .map(|(name, shard, pts)| {
+            let of = (0..total).filter(|&i| shard.contains(i)).count();
+            format!(
+                "{name} lacks {} of its {of} points: {}",
+                pts.len(),
+                brief(&pts)
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 #[cfg(test)]
