@@ -128,15 +128,17 @@ pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
 /// floor key saves a third of each forward run). Every other key is the same.
 pub fn simulate_summary_with(scenario: &Scenario, with_floor: bool) -> Result<Summary> {
     if let Some(sh) = &scenario.shear {
-        let (out, shear) = super::shear::solve(scenario, sh)?;
+        let (out, mut shear) = super::shear::solve(scenario, sh)?;
         if let Some(o) = &scenario.oblique {
             let (analysis, derived) = analyse_oblique(scenario, &out, with_floor)?;
+            analyse_shear_oblique(scenario, sh, &mut shear, &derived)?;
             let mut s = summarise(scenario, &out, None, &analysis);
             super::shear::set_summary(&mut s, scenario, sh, &shear);
             super::oblique::set_summary(&mut s, scenario, o, (&out, &shear), &derived);
             return Ok(s);
         }
         let analysis = analyse(scenario, &out, with_floor)?;
+        analyse_shear(scenario, sh, &mut shear)?;
         let mut s = summarise(scenario, &out, None, &analysis);
         super::shear::set_summary(&mut s, scenario, sh, &shear);
         return Ok(s);
@@ -200,6 +202,35 @@ fn analyse_oblique(
     )
 }
 
+/// The shear wave's harmonics at normal incidence by the scenario's method, with the
+/// derived solves it needs ([`super::shear::derived_solves`]).
+fn analyse_shear(
+    scenario: &Scenario,
+    sh: &crate::scenario::ShearSetup,
+    shear: &mut super::shear::ShearResult,
+) -> Result<()> {
+    let (inverse, linear) = super::shear::derived_solves(scenario, sh)?;
+    super::shear::analyse(scenario, sh, shear, inverse.as_ref(), linear.as_ref())
+}
+
+/// The tangential traction's harmonics at oblique incidence by the scenario's method, from
+/// the derived solves of the wave ([`analyse_oblique`]: the whole wave inverted, the whole
+/// interface linearised).
+fn analyse_shear_oblique(
+    scenario: &Scenario,
+    sh: &crate::scenario::ShearSetup,
+    shear: &mut super::shear::ShearResult,
+    derived: &methods::Derived<super::shear::ShearResult>,
+) -> Result<()> {
+    super::shear::analyse(
+        scenario,
+        sh,
+        shear,
+        derived.inverse.as_ref().map(|d| &d.1),
+        derived.linear.as_ref().map(|d| &d.1),
+    )
+}
+
 fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
     let f0 = scenario.incident.fundamental();
     let f2 = scenario.incident.second_frequency();
@@ -225,7 +256,7 @@ fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
 /// assert!(r.summary.get("A2_over_Ainc").unwrap() > 0.05);
 /// ```
 pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
-    let (out, shear) = match &scenario.shear {
+    let (out, mut shear) = match &scenario.shear {
         Some(sh) => {
             let (out, r) = super::shear::solve(scenario, sh)?;
             (out, Some(r))
@@ -233,10 +264,15 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
         None => (solve(scenario)?, None),
     };
     let inc = bands(scenario, &out.incident_displacement, out.dt);
-    let (analysis, derived) = match (&scenario.oblique, &shear) {
-        (Some(_), Some(_)) => {
+    let (analysis, derived) = match (&scenario.oblique, &scenario.shear, &mut shear) {
+        (Some(_), Some(sh), Some(r)) => {
             let (a, d) = analyse_oblique(scenario, &out, true)?;
+            analyse_shear_oblique(scenario, sh, r, &d)?;
             (a, Some(d))
+        }
+        (_, Some(sh), Some(r)) => {
+            analyse_shear(scenario, sh, r)?;
+            (analyse(scenario, &out, true)?, None)
         }
         _ => (analyse(scenario, &out, true)?, None),
     };
