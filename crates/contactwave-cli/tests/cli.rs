@@ -813,3 +813,49 @@ fn validate_counts_only_real_checks() {
         "{out}"
     );
 }
+
+/// An oblique run's headline shows the outgoing waves (reflected and transmitted P and SV:
+/// A1/Ainc, A2/A1, A3/A1 over the incident wave), the values of `summary.json`, and no
+/// line of the normal traction component (issue 24 item 5: at 45 degrees that read
+/// "A1/Ainc 1.030" where the reflected P wave has 0.529).
+#[test]
+fn oblique_run_headlines_the_outgoing_waves() {
+    let d = tmpdir("oblique-headline");
+    let o = cli(
+        "run",
+        examples().join("oblique/p_45deg.toml"),
+        d.join("out"),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("out/summary.json")).unwrap())
+            .unwrap();
+    assert!(!out.lines().any(|l| l.starts_with("A1/Ainc")), "{out}");
+    for w in [
+        "reflected_P",
+        "reflected_SV",
+        "transmitted_P",
+        "transmitted_SV",
+    ] {
+        let label = w.replace('_', " ");
+        let line = out
+            .lines()
+            .find(|l| l.starts_with(&format!("{label} ")))
+            .unwrap_or_else(|| panic!("no {label} line in\n{out}"));
+        let cols: Vec<f64> = line[label.len()..]
+            .split_whitespace()
+            .map(|v| v.parse().unwrap())
+            .collect();
+        for (i, k) in ["A1_over_Ainc", "A2_over_A1", "A3_over_A1"]
+            .iter()
+            .enumerate()
+        {
+            let v = summary[format!("{w}_{k}")].as_f64().unwrap();
+            assert!((cols[i] / v - 1.0).abs() < 1e-6, "{w}_{k}: {line}");
+        }
+    }
+    let rp = summary["reflected_P_A1_over_Ainc"].as_f64().unwrap();
+    assert!((rp - 0.529).abs() < 0.005, "{rp}");
+    assert_eq!(summary["amplitude"].as_f64(), Some(1e6));
+}

@@ -45,7 +45,8 @@ pub struct RunResult {
     pub fundamental: f64,
     /// Whether the incident wave is a two-tone burst.
     pub two_tone: bool,
-    /// Incident particle-velocity amplitude `A_inc`, m/s.
+    /// Incident particle-velocity amplitude `A_inc`, m/s (at oblique incidence the
+    /// incident wave's, along its polarisation).
     pub a_inc: f64,
     /// Interface histories (x = 0).
     pub interface: HalfSpaceOutput,
@@ -55,9 +56,11 @@ pub struct RunResult {
     pub incident_spectrum: Spectrum,
     /// Amplitude spectrum of the reflected particle velocity.
     pub reflected_spectrum: Spectrum,
-    /// Band amplitudes of the incident velocity, m/s.
+    /// Band amplitudes of the incident velocity (at oblique incidence the incident wave's
+    /// particle velocity along its polarisation), m/s.
     pub incident_bands: BandAmplitudes,
-    /// Band amplitudes of the reflected velocity by the scenario's analysis method, m/s.
+    /// Band amplitudes of the reflected velocity by the scenario's analysis method (at
+    /// oblique incidence its normal component at the interface), m/s.
     pub reflected_bands: BandAmplitudes,
     /// The analysis floor of each component (the method on the linear response), m/s.
     pub floor_bands: BandAmplitudes,
@@ -263,7 +266,11 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
         }
         None => (solve(scenario)?, None),
     };
-    let inc = bands(scenario, &out.incident_displacement, out.dt);
+    // at oblique incidence the incident wave's own bands (along its polarisation)
+    let inc = match (&scenario.oblique, &shear) {
+        (Some(o), Some(r)) => super::oblique::incident_wave_bands(o, &out, &r.interface),
+        _ => bands(scenario, &out.incident_displacement, out.dt),
+    };
     let (analysis, derived) = match (&scenario.oblique, &scenario.shear, &mut shear) {
         (Some(_), Some(sh), Some(r)) => {
             let (a, d) = analyse_oblique(scenario, &out, true)?;
@@ -281,6 +288,7 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
         super::shear::set_summary(&mut summary, scenario, sh, r);
         if let (Some(o), Some(d)) = (&scenario.oblique, &derived) {
             super::oblique::set_summary(&mut summary, scenario, o, (&out, r), d);
+            super::oblique::set_incident(&mut summary, o, &inc);
         }
     }
     let f_max = 6.0 * scenario.incident.highest_frequency();
@@ -297,7 +305,10 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
         file: scenario.file.clone(),
         fundamental: scenario.incident.fundamental(),
         two_tone: scenario.incident.second_frequency().is_some(),
-        a_inc: scenario.incident.peak() / scenario.medium.impedance(),
+        a_inc: match &scenario.oblique {
+            Some(o) => o.burst.peak() / o.geometry.incident.impedance,
+            None => scenario.incident.peak() / scenario.medium.impedance(),
+        },
         interface: out,
         probe,
         incident_spectrum,
