@@ -287,6 +287,14 @@ class Result:
 
     def __repr__(self) -> str:
         s = self.summary
+        if "angle" in s:
+            # oblique incidence: the outgoing waves
+            return (
+                f"Result(scenario={s.get('scenario')!r}, samples={len(self.t)}, "
+                f"angle={s.get('angle'):.6g}, "
+                f"reflected_P_A1_over_Ainc={s.get('reflected_P_A1_over_Ainc'):.6g}, "
+                f"reflected_SV_A1_over_Ainc={s.get('reflected_SV_A1_over_Ainc'):.6g})"
+            )
         if self.shear is not None and "A2_over_Ainc" not in s:
             return (
                 f"Result(scenario={s.get('scenario')!r}, samples={len(self.t)}, "
