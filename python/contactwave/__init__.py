@@ -69,16 +69,19 @@ class HarmonicFloorWarning(UserWarning):
 
 
 def _warn_near_floor(summary: Mapping[str, Any], stacklevel: int = 3) -> None:
+    # at oblique incidence the floors are those of the reflected field's normal component
+    prefix = "reflected_normal_" if "angle" in summary else ""
     near = []
     for n in range(2, 6):
-        a = summary.get(f"A{n}_over_Ainc")
-        f = summary.get(f"A{n}_floor_over_Ainc")
+        a = summary.get(f"{prefix}A{n}_over_Ainc")
+        f = summary.get(f"{prefix}A{n}_floor_over_Ainc")
         if a is not None and f is not None and f > 0 and a < 10 * f:
-            near.append(f"A{n}")
+            near.append(f"{prefix}A{n}")
     if near:
         warnings.warn(
             f"{', '.join(near)} within a factor 10 of the analysis floor "
-            f"(A*_floor_over_Ainc); pulse_inversion or linear_reference remove the leakage floor",
+            f"({prefix}A*_floor_over_Ainc); pulse_inversion or linear_reference remove the "
+            "leakage floor",
             HarmonicFloorWarning,
             stacklevel=stacklevel,
         )

@@ -126,3 +126,9 @@ def test_oblique_keys_are_over_the_incident_wave_and_repr_shows_the_waves():
     assert h["A1_over_Ainc"] == pytest.approx(s["reflected_normal_A1_over_Ainc"], rel=1e-12)
     text = repr(r)
     assert "reflected_P_A1_over_Ainc" in text and "angle=45" in text
+
+
+def test_oblique_floor_warning_names_the_normal_component():
+    """The floor warning at oblique incidence reads the renamed component keys."""
+    with pytest.warns(cw.HarmonicFloorWarning, match="reflected_normal_A"):
+        cw.run(oblique(45.0, method="band_peak"))
