@@ -26,6 +26,19 @@ fn elastic(m: &Material) -> Elastic {
     }
 }
 
+/// Closed-form coefficients of linear springs `kn`, `kt` (Pa/m) at `F0`.
+fn spring_coefficients(
+    g: &Geometry,
+    kn: f64,
+    kt: f64,
+) -> contactwave::analytic::oblique::Coefficients {
+    let bond = Bond::Springs {
+        normal: kn,
+        tangential: kt,
+    };
+    coefficients(g, bond, 2.0 * PI * F0)
+}
+
 /// Linear springs K_N (compression and traction alike: a linear interface) and K_T.
 fn springs(
     wave: WaveType,
@@ -101,14 +114,7 @@ fn spring_interface_matches_closed_form() {
         let (p, g, burst) = springs(wave, deg, cp, kn, kt);
         let out = run(&p, 200, 40.0);
         let m = measured(&out, &g, &*burst);
-        let c = coefficients(
-            &g,
-            Bond::Springs {
-                normal: kn,
-                tangential: kt,
-            },
-            2.0 * PI * F0,
-        );
+        let c = spring_coefficients(&g, kn, kt);
         let err = max_err(&m, &c);
         eprintln!(
             "{} {deg} deg {}: |R_P| {:.6} |R_SV| {:.6} |T_P| {:.6} |T_SV| {:.6}; max error {err:.2e}; closure {:.1e}",
@@ -399,14 +405,7 @@ fn oblique_summary_keys_name_the_wave_and_the_component() {
         45f64.to_radians(),
     )
     .unwrap();
-    let c = coefficients(
-        &g,
-        Bond::Springs {
-            normal: kn,
-            tangential: kt,
-        },
-        2.0 * PI * F0,
-    );
+    let c = spring_coefficients(&g, kn, kt);
     let close = |k: &str, exact: f64| {
         let v = get(k);
         assert!((v / exact - 1.0).abs() < 1e-3, "{k}: {v} vs {exact}");
