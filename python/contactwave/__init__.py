@@ -69,16 +69,19 @@ class HarmonicFloorWarning(UserWarning):
 
 
 def _warn_near_floor(summary: Mapping[str, Any], stacklevel: int = 3) -> None:
+    # at oblique incidence the floors are those of the reflected field's normal component
+    prefix = "reflected_normal_" if "angle" in summary else ""
     near = []
     for n in range(2, 6):
-        a = summary.get(f"A{n}_over_Ainc")
-        f = summary.get(f"A{n}_floor_over_Ainc")
+        a = summary.get(f"{prefix}A{n}_over_Ainc")
+        f = summary.get(f"{prefix}A{n}_floor_over_Ainc")
         if a is not None and f is not None and f > 0 and a < 10 * f:
-            near.append(f"A{n}")
+            near.append(f"{prefix}A{n}")
     if near:
         warnings.warn(
             f"{', '.join(near)} within a factor 10 of the analysis floor "
-            f"(A*_floor_over_Ainc); pulse_inversion or linear_reference remove the leakage floor",
+            f"({prefix}A*_floor_over_Ainc); pulse_inversion or linear_reference remove the "
+            "leakage floor",
             HarmonicFloorWarning,
             stacklevel=stacklevel,
         )
@@ -287,6 +290,14 @@ class Result:
 
     def __repr__(self) -> str:
         s = self.summary
+        if "angle" in s:
+            # oblique incidence: the outgoing waves
+            return (
+                f"Result(scenario={s.get('scenario')!r}, samples={len(self.t)}, "
+                f"angle={s.get('angle'):.6g}, "
+                f"reflected_P_A1_over_Ainc={s.get('reflected_P_A1_over_Ainc'):.6g}, "
+                f"reflected_SV_A1_over_Ainc={s.get('reflected_SV_A1_over_Ainc'):.6g})"
+            )
         if self.shear is not None and "A2_over_Ainc" not in s:
             return (
                 f"Result(scenario={s.get('scenario')!r}, samples={len(self.t)}, "

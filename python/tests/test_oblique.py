@@ -105,3 +105,30 @@ def test_angle_beyond_the_critical_one_is_an_error():
     critical = math.degrees(math.asin(ct / cl))
     with pytest.raises(ValueError, match=r"shear_incident\.angle.*%.6f" % critical):
         cw.run(s)
+
+
+def test_oblique_keys_are_over_the_incident_wave_and_repr_shows_the_waves():
+    """Issue 24 item 5: `amplitude` and `A_inc` are the incident wave's, the interface
+    components are named (`reflected_normal_*`, ...), `harmonics()` agrees with the summary,
+    and the repr shows the outgoing waves."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", cw.HarmonicFloorWarning)
+        r = cw.run(oblique(45.0))
+    s = r.summary
+    c_l, _ = speeds(AL)
+    assert s["amplitude"] == 1e6
+    assert s["A_inc"] == pytest.approx(1e6 / (AL["rho"] * c_l), rel=1e-3)
+    assert s["incident_A1_over_Ainc"] == pytest.approx(1.0, abs=0.01)
+    for gone in ("A1_over_Ainc", "shear_A1_over_Ainc", "wave_A_inc", "shear_A_inc"):
+        assert gone not in s
+    h = r.harmonics()
+    assert h["A_inc"] == pytest.approx(s["A_inc"], rel=1e-12)
+    assert h["A1_over_Ainc"] == pytest.approx(s["reflected_normal_A1_over_Ainc"], rel=1e-12)
+    text = repr(r)
+    assert "reflected_P_A1_over_Ainc" in text and "angle=45" in text
+
+
+def test_oblique_floor_warning_names_the_normal_component():
+    """The floor warning at oblique incidence reads the renamed component keys."""
+    with pytest.warns(cw.HarmonicFloorWarning, match="reflected_normal_A"):
+        cw.run(oblique(45.0, method="band_peak"))

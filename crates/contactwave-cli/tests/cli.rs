@@ -944,3 +944,87 @@ fn a_reused_output_folder_holds_one_runs_files_only() {
     }
     let _ = std::fs::remove_dir_all(d);
 }
+
+/// `validate` counts only real checks: every counted row has a finite tolerance, the
+/// band-peak rows (no criterion) are printed apart as informational and the closing line
+/// says "N of N checks passed; K informational rows" with K of them left out of N.
+#[test]
+fn validate_counts_only_real_checks() {
+    let o = bin().arg("validate").output().unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    let (checks, info) = out
+        .split_once("informational (no criterion, not counted):")
+        .expect("an informational section");
+    let rows = |t: &str| -> Vec<String> {
+        t.lines()
+            .filter(|l| {
+                l.matches(" | ").count() >= 3 && !l.starts_with("check") && !l.starts_with("row")
+            })
+            .map(str::to_owned)
+            .collect()
+    };
+    let (checks, info) = (rows(checks), rows(info));
+    for r in &checks {
+        let tol = r.split(" | ").nth(4).unwrap().trim();
+        assert!(tol.parse::<f64>().unwrap().is_finite(), "{r}");
+        assert!(r.ends_with("| yes"), "{r}");
+    }
+    // the three band-peak weak-nonlinearity rows, and nothing else, are informational
+    assert_eq!(info.len(), 3, "{info:?}");
+    assert!(info.iter().all(|r| r.contains("band_peak")), "{info:?}");
+    assert!(!checks.iter().any(|r| r.contains("band_peak")));
+    let last = out.lines().last().unwrap();
+    let n = checks.len();
+    assert_eq!(
+        last,
+        format!("{n} of {n} checks passed; 3 informational rows"),
+        "{out}"
+    );
+}
+
+/// An oblique run's headline shows the outgoing waves (reflected and transmitted P and SV:
+/// A1/Ainc, A2/A1, A3/A1 over the incident wave), the values of `summary.json`, and no
+/// line of the normal traction component (issue 24 item 5: at 45 degrees that read
+/// "A1/Ainc 1.030" where the reflected P wave has 0.529).
+#[test]
+fn oblique_run_headlines_the_outgoing_waves() {
+    let d = tmpdir("oblique-headline");
+    let o = cli(
+        "run",
+        examples().join("oblique/p_45deg.toml"),
+        d.join("out"),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("out/summary.json")).unwrap())
+            .unwrap();
+    assert!(!out.lines().any(|l| l.starts_with("A1/Ainc")), "{out}");
+    for w in [
+        "reflected_P",
+        "reflected_SV",
+        "transmitted_P",
+        "transmitted_SV",
+    ] {
+        let label = w.replace('_', " ");
+        let line = out
+            .lines()
+            .find(|l| l.starts_with(&format!("{label} ")))
+            .unwrap_or_else(|| panic!("no {label} line in\n{out}"));
+        let cols: Vec<f64> = line[label.len()..]
+            .split_whitespace()
+            .map(|v| v.parse().unwrap())
+            .collect();
+        for (i, k) in ["A1_over_Ainc", "A2_over_A1", "A3_over_A1"]
+            .iter()
+            .enumerate()
+        {
+            let v = summary[format!("{w}_{k}")].as_f64().unwrap();
+            assert!((cols[i] / v - 1.0).abs() < 1e-6, "{w}_{k}: {line}");
+        }
+    }
+    let rp = summary["reflected_P_A1_over_Ainc"].as_f64().unwrap();
+    assert!((rp - 0.529).abs() < 0.005, "{rp}");
+    assert_eq!(summary["amplitude"].as_f64(), Some(1e6));
+}

@@ -26,6 +26,19 @@ fn elastic(m: &Material) -> Elastic {
     }
 }
 
+/// Closed-form coefficients of linear springs `kn`, `kt` (Pa/m) at `F0`.
+fn spring_coefficients(
+    g: &Geometry,
+    kn: f64,
+    kt: f64,
+) -> contactwave::analytic::oblique::Coefficients {
+    let bond = Bond::Springs {
+        normal: kn,
+        tangential: kt,
+    };
+    coefficients(g, bond, 2.0 * PI * F0)
+}
+
 /// Linear springs K_N (compression and traction alike: a linear interface) and K_T.
 fn springs(
     wave: WaveType,
@@ -101,14 +114,7 @@ fn spring_interface_matches_closed_form() {
         let (p, g, burst) = springs(wave, deg, cp, kn, kt);
         let out = run(&p, 200, 40.0);
         let m = measured(&out, &g, &*burst);
-        let c = coefficients(
-            &g,
-            Bond::Springs {
-                normal: kn,
-                tangential: kt,
-            },
-            2.0 * PI * F0,
-        );
+        let c = spring_coefficients(&g, kn, kt);
         let err = max_err(&m, &c);
         eprintln!(
             "{} {deg} deg {}: |R_P| {:.6} |R_SV| {:.6} |T_P| {:.6} |T_SV| {:.6}; max error {err:.2e}; closure {:.1e}",
@@ -361,4 +367,79 @@ fn each_wave_is_analysed_by_the_scenario_method() {
         fit.get("reflected_P_A2_over_A1").unwrap(),
     );
     assert!(a > 1e-3 && (a / b - 1.0).abs() < 0.05, "{a} {b}");
+}
+
+/// The summary of an oblique run names its waves and components and normalises them all by
+/// the incident wave (issue 24 item 5): `amplitude` and `A_inc` are the incident wave's
+/// stress and particle velocity amplitude (what xi refers to), the incident burst's own
+/// `incident_A1_over_Ainc` is its window's band peak (about 1, not the normal traction
+/// component's 1.14), each outgoing wave's `A1/A_inc` is its closed-form coefficient, and
+/// the interface components are `reflected_normal_*` / `reflected_tangential_*` /
+/// `transmitted_tangential_*` over the same `A_inc`: the closed-form normal and tangential
+/// particle velocities of the reflected field (linear springs, P at 45 degrees,
+/// aluminium/steel, plateau fit). The old component keys are gone.
+#[test]
+fn oblique_summary_keys_name_the_wave_and_the_component() {
+    use contactwave::scenario::Scenario;
+    let (kn, kt) = (5e13, 2e13);
+    let text = format!(
+        "[medium]\nmaterial = \"aluminium\"\n[counterpart]\nkind = \"medium\"\n\
+         material = \"steel\"\n[interface]\nstatic_pressure = 50e6\n\
+         compression = {{ law = \"linear\", stiffness = {kn:e} }}\n\
+         traction = {{ law = \"linear\", stiffness = {kn:e} }}\n\
+         tangential = {{ law = \"linear\", stiffness = {kt:e} }}\n[incident]\nangle = 45.0\n\
+         frequency = 1e6\ncycles = 20\namplitude = 1e6\n[solver]\nsamples_per_period = 200\n\
+         [analysis]\nmethod = \"plateau_fit\"\n"
+    );
+    let s = Scenario::from_toml_str(&text, "s.toml").unwrap();
+    let sum = contactwave::simulate(&s).unwrap().summary;
+    let get = |k: &str| sum.get(k).unwrap_or_else(|| panic!("{k} missing"));
+    let a_inc = 1e6 / (AL.density * AL.wave_speed());
+    assert_eq!(get("amplitude"), 1e6);
+    assert!((get("A_inc") / a_inc - 1.0).abs() < 1e-12);
+    assert!((get("incident_A1_over_Ainc") - 1.0).abs() < 0.01);
+    let g = Geometry::new(
+        &elastic(&AL),
+        Some(&elastic(&STEEL)),
+        WaveType::P,
+        45f64.to_radians(),
+    )
+    .unwrap();
+    let c = spring_coefficients(&g, kn, kt);
+    let close = |k: &str, exact: f64| {
+        let v = get(k);
+        assert!((v / exact - 1.0).abs() < 1e-3, "{k}: {v} vs {exact}");
+    };
+    for (k, w) in [
+        "reflected_P",
+        "reflected_SV",
+        "transmitted_P",
+        "transmitted_SV",
+    ]
+    .iter()
+    .enumerate()
+    {
+        close(&format!("{w}_A1_over_Ainc"), c[k].norm());
+    }
+    // the reflected field's particle velocity at the interface, per unit incident w
+    let [rp, rs] = g.reflected;
+    let [tp, ts] = g.transmitted.unwrap();
+    let comp = |i: usize| (c[0] * rp.polarisation[i] + c[1] * rs.polarisation[i]).norm();
+    close("reflected_normal_A1_over_Ainc", comp(0));
+    close("reflected_tangential_A1_over_Ainc", comp(1));
+    let tr = (c[2] * tp.polarisation[1] + c[3] * ts.polarisation[1]).norm();
+    close("transmitted_tangential_A1_over_Ainc", tr);
+    for gone in [
+        "A1_over_Ainc",
+        "A2_over_A1",
+        "beta_star",
+        "shear_A1_over_Ainc",
+        "shear_tr_A1_over_Ainc",
+        "shear_A_inc",
+        "shear_amplitude",
+        "wave_amplitude",
+        "wave_A_inc",
+    ] {
+        assert!(sum.get(gone).is_none(), "{gone}");
+    }
 }

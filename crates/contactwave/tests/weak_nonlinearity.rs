@@ -96,12 +96,17 @@ fn validate_cases_pass() {
     let cases = weak_nonlinearity().unwrap();
     assert_eq!(cases.len(), 12);
     for c in &cases {
-        assert!(c.passed(), "{c:?}");
+        // band_peak is shown, with its (large) error, as an informational row: no
+        // criterion, neither passed nor failed, never counted as a check
+        let band = c.name.contains("band_peak");
+        assert_eq!(c.is_check(), !band, "{c:?}");
+        if band {
+            assert!(c.tolerance.is_none() && c.rel_error > 0.1, "{c:?}");
+            assert!(!c.passed() && !c.failed(), "{c:?}");
+        } else {
+            assert!(c.passed(), "{c:?}");
+        }
     }
-    // band_peak is shown, with its (large) error
-    assert!(cases
-        .iter()
-        .any(|c| c.name.contains("band_peak") && c.rel_error > 0.1));
 }
 
 #[test]

@@ -26,6 +26,18 @@ impl Summary {
     pub fn get(&self, key: &str) -> Option<f64> {
         self.entries.iter().find(|e| e.0 == key).map(|e| e.1)
     }
+    /// Rename `from` to `to` in place (its position kept), its value times `factor`;
+    /// nothing if `from` is absent.
+    pub fn rename(&mut self, from: &str, to: &str, factor: f64) {
+        if let Some(e) = self.entries.iter_mut().find(|e| e.0 == from) {
+            e.0 = to.to_string();
+            e.1 *= factor;
+        }
+    }
+    /// Remove a key, if present.
+    pub fn remove(&mut self, key: &str) {
+        self.entries.retain(|e| e.0 != key);
+    }
     /// Keys in order.
     pub fn keys(&self) -> impl Iterator<Item = &str> {
         self.entries.iter().map(|e| e.0.as_str())
@@ -138,12 +150,17 @@ pub fn set_analysis_keys(
 }
 
 /// Harmonics 2..5 of a summary within a factor 10 of their floor (from the keys of
-/// [`set_analysis_keys`] and `A*_over_Ainc`).
-pub fn harmonics_near_floor(s: &Summary) -> Vec<usize> {
+/// [`set_analysis_keys`] and `A*_over_Ainc`, each after `prefix`: `""`, or
+/// `"reflected_normal_"` at oblique incidence).
+pub fn harmonics_near_floor(s: &Summary, prefix: &str) -> Vec<usize> {
     (2..=5)
         .filter(|n| {
-            let a = s.get(&format!("A{n}_over_Ainc")).unwrap_or(f64::NAN);
-            let f = s.get(&format!("A{n}_floor_over_Ainc")).unwrap_or(f64::NAN);
+            let a = s
+                .get(&format!("{prefix}A{n}_over_Ainc"))
+                .unwrap_or(f64::NAN);
+            let f = s
+                .get(&format!("{prefix}A{n}_floor_over_Ainc"))
+                .unwrap_or(f64::NAN);
             f > 0.0 && a < 10.0 * f
         })
         .collect()

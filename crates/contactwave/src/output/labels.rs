@@ -89,7 +89,8 @@ fn known(key: &str) -> Option<(&'static str, &'static str)> {
     Some(v)
 }
 
-/// `A2_over_Ainc`, `shear_A3_over_A1`, `shear_tr_A3_over_A1`: harmonic ratios.
+/// `A2_over_Ainc`, `shear_A3_over_A1`, `shear_tr_A3_over_A1`, the oblique waves'
+/// `reflected_P_A1_over_Ainc` ...: harmonic ratios.
 fn harmonic(key: &str) -> Option<(&'static str, &'static str)> {
     Some(match key {
         "A1_over_Ainc" => ("A1 / A_inc", ""),
@@ -97,6 +98,10 @@ fn harmonic(key: &str) -> Option<(&'static str, &'static str)> {
         "A3_over_Ainc" => ("A3 / A_inc", ""),
         "shear_A3_over_A1" => ("A3 / A1 (shear, reflected)", ""),
         "shear_tr_A3_over_A1" => ("A3 / A1 (shear, transmitted)", ""),
+        "reflected_P_A1_over_Ainc" => ("A1 / A_inc (reflected P)", ""),
+        "reflected_SV_A1_over_Ainc" => ("A1 / A_inc (reflected SV)", ""),
+        "reflected_P_A2_over_A1" => ("A2 / A1 (reflected P)", ""),
+        "reflected_SV_A2_over_A1" => ("A2 / A1 (reflected SV)", ""),
         _ => return None,
     })
 }

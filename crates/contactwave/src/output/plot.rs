@@ -197,42 +197,66 @@ pub fn sweep_table(axes: &[(String, bool)], table: &SweepTable) -> Result<String
     // half-space sweeps: the reflected harmonics; bar-stack sweeps: the resonance study
     // of thesis chapter 4 (first mode, A1, A2/A1, mean contact stiffness, min pressure)
     // (shear sweeps: the third harmonic and the friction dissipation)
-    let panels: Vec<(&str, &str)> =
-        if table.column("A1_over_Ainc").is_some() || table.column("shear_A1_over_Ainc").is_some() {
-            vec![
-                ("A1_over_Ainc", "Fundamental of the reflected wave"),
-                ("A2_over_Ainc", "Second harmonic of the reflected wave"),
-                (
-                    "shear_A3_over_A1",
-                    "Third harmonic of the reflected shear wave",
-                ),
-                (
-                    "shear_tr_A3_over_A1",
-                    "Third harmonic of the transmitted shear wave",
-                ),
-                (
-                    "friction_dissipation_fraction",
-                    "Energy dissipated by friction",
-                ),
-            ]
-        } else {
-            vec![
-                ("first_mode_hz", "First mode"),
-                ("A1", "Response at the first mode"),
-                ("A2_over_A1", "Second harmonic"),
-                (
-                    "mean_contact_stiffness_0",
-                    "Mean contact stiffness, interface 0 (the first in stack order; eq. 4.2)",
-                ),
-                (
-                    "min_contact_pressure",
-                    "Minimum contact pressure, all interfaces",
-                ),
-            ]
-        }
-        .into_iter()
-        .filter(|(c, _)| table.column(c).is_some())
-        .collect();
+    // (oblique sweeps: the outgoing P and SV waves)
+    let panels: Vec<(&str, &str)> = if table.column("reflected_P_A1_over_Ainc").is_some() {
+        vec![
+            (
+                "reflected_P_A1_over_Ainc",
+                "Fundamental of the reflected P wave",
+            ),
+            (
+                "reflected_SV_A1_over_Ainc",
+                "Fundamental of the reflected SV wave",
+            ),
+            (
+                "reflected_P_A2_over_A1",
+                "Second harmonic of the reflected P wave",
+            ),
+            (
+                "reflected_SV_A2_over_A1",
+                "Second harmonic of the reflected SV wave",
+            ),
+            (
+                "friction_dissipation_fraction",
+                "Energy dissipated by friction",
+            ),
+        ]
+    } else if table.column("A1_over_Ainc").is_some() || table.column("shear_A1_over_Ainc").is_some()
+    {
+        vec![
+            ("A1_over_Ainc", "Fundamental of the reflected wave"),
+            ("A2_over_Ainc", "Second harmonic of the reflected wave"),
+            (
+                "shear_A3_over_A1",
+                "Third harmonic of the reflected shear wave",
+            ),
+            (
+                "shear_tr_A3_over_A1",
+                "Third harmonic of the transmitted shear wave",
+            ),
+            (
+                "friction_dissipation_fraction",
+                "Energy dissipated by friction",
+            ),
+        ]
+    } else {
+        vec![
+            ("first_mode_hz", "First mode"),
+            ("A1", "Response at the first mode"),
+            ("A2_over_A1", "Second harmonic"),
+            (
+                "mean_contact_stiffness_0",
+                "Mean contact stiffness, interface 0 (the first in stack order; eq. 4.2)",
+            ),
+            (
+                "min_contact_pressure",
+                "Minimum contact pressure, all interfaces",
+            ),
+        ]
+    }
+    .into_iter()
+    .filter(|(c, _)| table.column(c).is_some())
+    .collect();
     if panels.is_empty() {
         return Err(plot_error(name, "no known result column to plot".into()));
     }

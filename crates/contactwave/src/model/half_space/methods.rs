@@ -7,8 +7,9 @@ use crate::analysis::{AnalysisMethod, BandAmplitudes};
 use crate::error::{Error, Result};
 use crate::excitation::Scaled;
 use crate::law::compression::{Linear, Rigid};
+use crate::law::tangential::{Coulomb, Linear as LinearTangential};
 use crate::law::traction::{Bonded, Linear as LinearTraction};
-use crate::law::ContactLaw;
+use crate::law::{ContactLaw, TangentialBranch, TangentialLaw};
 use crate::scenario::Scenario;
 use crate::solver::halfspace::HalfSpaceOutput;
 use std::sync::Arc;
@@ -59,11 +60,42 @@ fn linearises_locked(law: &ContactLaw) -> bool {
     law.compression.is_rigid() || law.compression.stiffness_at_rest() == f64::INFINITY
 }
 
-/// The scenario with its interface linearised ([`linearised_law`]).
+/// A tangential law linearised at its static state (normal pressure `p0`, Pa; adhesion 1):
+/// a slider that sticks at rest (`mu > 0`, `p0 > 0`) is its stick stiffness `k_t` in
+/// parallel with the reversible spring `k(1)`, so a linear spring `k(1) + k_t`, or, where
+/// `k_t` is infinite, a rigid stick with `mu = 1e12` (no wave slides it while the interface
+/// is in contact); without a sticking slider, the
+/// spring `k(1)` alone (0: free). The static shear `q0` is kept.
+pub fn linearised_tangential(law: &TangentialLaw, p0: f64) -> TangentialLaw {
+    let br = &*law.branch;
+    let k = br.spring_stiffness(1.0);
+    let sticking = br.friction() > 0.0 && p0 > 0.0;
+    let branch: Box<dyn TangentialBranch> = match (sticking, br.stick_stiffness()) {
+        (true, kt) if kt.is_infinite() => Box::new(Coulomb {
+            // a limit `mu N` no wave reaches while the interface is in contact (finite:
+            // the solvers' stick/slip tests stay in finite numbers)
+            friction: 1e12,
+            stick_stiffness: f64::INFINITY,
+        }),
+        (true, kt) => Box::new(LinearTangential { stiffness: k + kt }),
+        (false, _) => Box::new(LinearTangential { stiffness: k }),
+    };
+    TangentialLaw {
+        static_shear: law.static_shear,
+        branch,
+    }
+}
+
+/// The scenario with its interface linearised ([`linearised_law`]; a tangential part by
+/// [`linearised_tangential`]).
 pub fn linearised(scenario: &Scenario) -> Option<Scenario> {
     let law = linearised_law(&scenario.law)?;
     let mut s = scenario.clone();
     s.law = Arc::new(law);
+    if let Some(sh) = &mut s.shear {
+        let p0 = scenario.law.static_pressure;
+        sh.tangential = Arc::new(linearised_tangential(&sh.tangential, p0));
+    }
     Some(s)
 }
 

@@ -220,7 +220,27 @@ impl Outcome for RunResult {
     fn report(&self) -> Vec<String> {
         let get = |k: &str| self.summary.get(k).unwrap_or(f64::NAN);
         let mut lines = Vec::new();
-        if self.a_inc > 0.0 {
+        let oblique = self.summary.get("angle").is_some();
+        if oblique {
+            // the outgoing waves, over the incident wave's A_inc (not the interface components)
+            lines.push(format!("xi                     {:.6}", get("xi")));
+            lines.push(format!("angle                  {:.6} deg", get("angle")));
+            lines.push(format!(
+                "{:<22} {:>13} {:>13} {:>13}",
+                "wave", "A1/Ainc", "A2/A1", "A3/A1"
+            ));
+            for w in oblique::WAVES {
+                if self.summary.get(&format!("{w}_A1_over_Ainc")).is_some() {
+                    lines.push(format!(
+                        "{:<22} {:>13.6e} {:>13.6e} {:>13.6e}",
+                        w.replace('_', " "),
+                        get(&format!("{w}_A1_over_Ainc")),
+                        get(&format!("{w}_A2_over_A1")),
+                        get(&format!("{w}_A3_over_A1"))
+                    ));
+                }
+            }
+        } else if self.a_inc > 0.0 {
             lines.extend([
                 format!("xi                     {:.6}", get("xi")),
                 format!("A1/Ainc                {:.6e}", get("A1_over_Ainc")),
@@ -233,10 +253,17 @@ impl Outcome for RunResult {
             format!("contact loss fraction  {:.6}", get("contact_loss_fraction")),
         ]);
         if self.shear.is_some() {
+            lines.push(format!(
+                "mu p0 / tau_inc        {:.6}",
+                get("friction_ratio")
+            ));
+            if !oblique {
+                lines.extend([
+                    format!("shear A1/Ainc (refl.)  {:.6e}", get("shear_A1_over_Ainc")),
+                    format!("shear A3/A1 (refl.)    {:.6e}", get("shear_A3_over_A1")),
+                ]);
+            }
             lines.extend([
-                format!("mu p0 / tau_inc        {:.6}", get("friction_ratio")),
-                format!("shear A1/Ainc (refl.)  {:.6e}", get("shear_A1_over_Ainc")),
-                format!("shear A3/A1 (refl.)    {:.6e}", get("shear_A3_over_A1")),
                 format!("slip fraction          {:.6}", get("slip_fraction")),
                 format!(
                     "friction dissipation   {:.6e} J/m^2 ({:.4} of incident)",
@@ -257,11 +284,12 @@ impl Outcome for RunResult {
         ));
         if self.a_inc > 0.0 {
             lines.push(format!("analysis method        {}", self.method.name()));
-            let near = crate::analysis::harmonics_near_floor(&self.summary);
+            let prefix = if oblique { "reflected_normal_" } else { "" };
+            let near = crate::analysis::harmonics_near_floor(&self.summary, prefix);
             if !near.is_empty() {
-                let names: Vec<String> = near.iter().map(|n| format!("A{n}")).collect();
+                let names: Vec<String> = near.iter().map(|n| format!("{prefix}A{n}")).collect();
                 lines.push(format!(
-                    "warning: {} within a factor 10 of the analysis floor ({} on the linear response; A*_floor_over_Ainc); pulse_inversion or linear_reference remove the leakage floor",
+                    "warning: {} within a factor 10 of the analysis floor ({} on the linear response; {prefix}A*_floor_over_Ainc); pulse_inversion or linear_reference remove the leakage floor",
                     names.join(", "),
                     self.method.name()
                 ));

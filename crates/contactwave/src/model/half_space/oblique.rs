@@ -83,8 +83,6 @@ pub fn set_summary(
     s.set("angle", o.angle.to_degrees());
     s.set("slowness", g.slowness);
     let a_inc = o.burst.peak() / g.incident.impedance;
-    s.set("wave_amplitude", o.burst.peak());
-    s.set("wave_A_inc", a_inc);
     let f0 = o.burst.fundamental();
     let sig = Signal {
         dt: normal.dt,
@@ -133,6 +131,83 @@ pub fn set_summary(
         let e = shear.wave_energy[k];
         s.set(&format!("energy_{name}"), e);
         s.set(&format!("energy_{name}_fraction"), ratio(e, incident));
+    }
+    name_components(s, scenario, o, shear.a_inc);
+}
+
+/// At oblique incidence `amplitude` and `A_inc` are the incident wave's (its stress, Pa, and
+/// particle velocity amplitude, m/s: what xi and every wave's ratios refer to), and the
+/// keys of the interface components are named as such and normalised by that `A_inc`: the
+/// normal particle velocity of the reflected field `A*_over_Ainc`, `A2_over_A1`,
+/// `beta_star`, the floors → `reflected_normal_*`; its tangential one `shear_*` →
+/// `reflected_tangential_*`, the transmitted field's `shear_tr_*` →
+/// `transmitted_tangential_*`; the incident tractions `incident_normal_traction`,
+/// `incident_tangential_traction` (Pa). `a_inc_t` is the tangential traction's
+/// `shear_A_inc` (m/s).
+fn name_components(s: &mut Summary, scenario: &Scenario, o: &ObliqueSetup, a_inc_t: f64) {
+    let a_inc = o.burst.peak() / o.geometry.incident.impedance;
+    let a_inc_n = scenario.incident.peak() / scenario.medium.impedance();
+    let (to_n, to_t) = (ratio(a_inc_n, a_inc), ratio(a_inc_t, a_inc));
+    s.set("amplitude", o.burst.peak());
+    s.set("A_inc", a_inc);
+    s.set("incident_normal_traction", scenario.incident.peak());
+    s.rename("shear_amplitude", "incident_tangential_traction", 1.0);
+    s.remove("shear_A_inc");
+    s.remove("shear_frequency");
+    let mut normal: Vec<String> = ["Asub", "Af2", "Asum", "Adiff"]
+        .iter()
+        .map(|a| format!("{a}_over_Ainc"))
+        .collect();
+    for n in 1..=5 {
+        normal.push(format!("A{n}_over_Ainc"));
+        normal.push(format!("A{n}_floor_over_Ainc"));
+    }
+    for k in &normal {
+        s.rename(k, &format!("reflected_normal_{k}"), to_n);
+    }
+    for k in ["A2_over_A1", "beta_star"] {
+        s.rename(k, &format!("reflected_normal_{k}"), 1.0);
+    }
+    for (from, to) in [
+        ("shear_", "reflected_tangential_"),
+        ("shear_tr_", "transmitted_tangential_"),
+    ] {
+        for n in 1..=5 {
+            let k = format!("A{n}_over_Ainc");
+            s.rename(&format!("{from}{k}"), &format!("{to}{k}"), to_t);
+        }
+        for k in ["A2_over_A1", "A3_over_A1", "A3_over_A1_cubed"] {
+            s.rename(&format!("{from}{k}"), &format!("{to}{k}"), 1.0);
+        }
+    }
+}
+
+/// The band amplitudes (m/s) of the incident wave's particle velocity along its
+/// polarisation, from the normal and tangential face displacements of the incident wave.
+pub fn incident_wave_bands(
+    o: &ObliqueSetup,
+    normal: &HalfSpaceOutput,
+    shear: &HalfSpaceOutput,
+) -> BandAmplitudes {
+    let pol = o.geometry.incident.polarisation;
+    let along: Vec<f64> = normal
+        .incident_displacement
+        .iter()
+        .zip(&shear.incident_displacement)
+        .map(|(n, t)| pol[0] * n + pol[1] * t)
+        .collect();
+    crate::analysis::velocity_bands(&along, normal.dt, o.burst.fundamental(), None)
+}
+
+/// The incident wave's own harmonics at oblique incidence, `incident_A1_over_Ainc` ...
+/// `incident_A5_over_Ainc` over `A_inc` (`run` only), from [`incident_wave_bands`].
+pub fn set_incident(s: &mut Summary, o: &ObliqueSetup, bands: &BandAmplitudes) {
+    let a_inc = o.burst.peak() / o.geometry.incident.impedance;
+    for n in 1..=5 {
+        s.set(
+            &format!("incident_A{n}_over_Ainc"),
+            ratio(bands.harmonic[n], a_inc),
+        );
     }
 }
 

@@ -1,16 +1,20 @@
 //! Runs with a tangential degree of freedom (model.md section 13): the scenario's coupled
 //! problem on the exact 2-DOF solver (or, with `solver.method = "fd"`, the FD scheme with
 //! a shear field, model.md section 9.6), the harmonics of the reflected and transmitted shear
-//! waves, friction dissipation and slip.
+//! waves by the scenario's analysis method, friction dissipation and slip.
 
-use crate::analysis::{set_shear_harmonics, velocity_bands, BandAmplitudes, Summary};
-use crate::error::Result;
+use super::methods;
+use crate::analysis::methods::{method_bands, plateau, Records, Signal};
+use crate::analysis::{set_shear_harmonics, AnalysisMethod, BandAmplitudes, Summary};
+use crate::error::{Error, Result};
+use crate::excitation::Scaled;
 use crate::scenario::spec::Method;
 use crate::scenario::{Scenario, ShearSetup};
 use crate::solver::coupled::{CoupledHalfSpace, CoupledOutput, CoupledSolver};
 use crate::solver::halfspace::{HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
 use crate::solver::halfspace_fd_shear::FdCoupledSolver;
 use crate::solver::Solver;
+use std::sync::Arc;
 
 /// The tangential results of a run.
 #[derive(Debug, Clone, Default)]
@@ -27,9 +31,11 @@ pub struct ShearResult {
     pub slip_state: Vec<f64>,
     /// Incident shear velocity amplitude `A_inc,T = max|tau_inc| / Z1T`, m/s.
     pub a_inc: f64,
-    /// Band amplitudes of the reflected shear velocity, m/s.
+    /// Band amplitudes of the reflected shear velocity by the scenario's analysis method
+    /// (zero until [`analyse`]), m/s.
     pub reflected_bands: BandAmplitudes,
-    /// Band amplitudes of the transmitted shear velocity (zero for a rigid wall), m/s.
+    /// Band amplitudes of the transmitted shear velocity by the scenario's analysis method
+    /// (zero for a rigid wall, and until [`analyse`]), m/s.
     pub transmitted_bands: BandAmplitudes,
     /// Energy dissipated by friction, J/m^2.
     pub friction_dissipation: f64,
@@ -84,19 +90,12 @@ pub fn solve(scenario: &Scenario, shear: &ShearSetup) -> Result<(HalfSpaceOutput
         }
         .solve(&problem)?,
     };
-    let f0 = shear.incident.fundamental();
-    let sh = &out.shear;
-    let reflected_bands = velocity_bands(&sh.reflected_displacement, sh.dt, f0, None);
-    let transmitted_bands = if shear.z2t.is_finite() {
-        velocity_bands(&sh.transmitted_displacement, sh.dt, f0, None)
-    } else {
-        BandAmplitudes::default()
-    };
     let closure_error = out.closure_error();
     let result = ShearResult {
         a_inc: shear.incident.peak() / shear.z1t,
-        reflected_bands,
-        transmitted_bands,
+        // filled by `analyse`, by the scenario's analysis method
+        reflected_bands: BandAmplitudes::default(),
+        transmitted_bands: BandAmplitudes::default(),
         friction_dissipation: out.friction_dissipation,
         closure_error,
         slip_time_in_burst: out.slip_time_in_burst,
@@ -108,6 +107,100 @@ pub fn solve(scenario: &Scenario, shear: &ShearSetup) -> Result<(HalfSpaceOutput
         interface: out.shear,
     };
     Ok((out.normal, result))
+}
+
+/// The scenario with its shear burst phase-inverted (the normal burst kept): the second
+/// record of pulse inversion for the shear wave at normal incidence.
+fn shear_inverted(scenario: &Scenario) -> Scenario {
+    let mut s = scenario.clone();
+    if let Some(sh) = &mut s.shear {
+        sh.incident = Arc::new(Scaled::negated(sh.incident.clone()));
+    }
+    s
+}
+
+/// The derived solves the scenario's analysis method needs for the shear wave at normal
+/// incidence, `(inverse, linear)`: the response to the phase-inverted shear burst (pulse
+/// inversion) and the response of the interface linearised at its static state (linear
+/// reference; [`methods::linearised`], or only the tangential law linearised where the
+/// normal one has no linearisation). None for a run without a shear wave.
+pub fn derived_solves(
+    scenario: &Scenario,
+    shear: &ShearSetup,
+) -> Result<(Option<ShearResult>, Option<ShearResult>)> {
+    if shear.incident.peak() <= 0.0 {
+        return Ok((None, None));
+    }
+    let solved = |s: Scenario| -> Result<ShearResult> {
+        let sh = s.shear.as_ref().unwrap_or(shear);
+        Ok(solve(&s, sh)?.1)
+    };
+    let inverse = match scenario.spec.analysis.method {
+        AnalysisMethod::PulseInversion => Some(solved(shear_inverted(scenario))?),
+        _ => None,
+    };
+    let linear = match scenario.spec.analysis.method {
+        AnalysisMethod::LinearReference => {
+            let s = methods::linearised(scenario).unwrap_or_else(|| {
+                let mut s = scenario.clone();
+                let p0 = scenario.law.static_pressure;
+                if let Some(sh) = &mut s.shear {
+                    sh.tangential = Arc::new(methods::linearised_tangential(&sh.tangential, p0));
+                }
+                s
+            });
+            Some(solved(s)?)
+        }
+        _ => None,
+    };
+    Ok((inverse, linear))
+}
+
+/// Fill the band amplitudes of the reflected and transmitted shear velocities of `r` by the
+/// scenario's analysis method (model.md section 6.1), from the derived solves' tangential
+/// results `inverse` (pulse inversion) and `linear` (linear reference). A run without a
+/// shear wave is analysed by band peak (its ratios are 0: no incident amplitude).
+pub fn analyse(
+    scenario: &Scenario,
+    shear: &ShearSetup,
+    r: &mut ShearResult,
+    inverse: Option<&ShearResult>,
+    linear: Option<&ShearResult>,
+) -> Result<()> {
+    let inc = &shear.incident;
+    let f0 = inc.fundamental();
+    let method = if inc.peak() > 0.0 {
+        scenario.spec.analysis.method
+    } else {
+        AnalysisMethod::BandPeak
+    };
+    let o = &r.interface;
+    let sig = Signal {
+        dt: o.dt,
+        t0: o.t.first().copied().unwrap_or(0.0),
+        f0,
+        f2: None,
+        plateau: if method == AnalysisMethod::PlateauFit {
+            plateau(|t| inc.stress(t), inc.duration(), f0)
+        } else {
+            (0.0, inc.duration())
+        },
+    };
+    let bands = |record: fn(&HalfSpaceOutput) -> &[f64]| {
+        let records = Records {
+            response: record(o),
+            inverse: inverse.map(|d| record(&d.interface)),
+            linear: linear.map(|d| record(&d.interface)),
+        };
+        method_bands(method, &records, &sig).ok_or_else(|| {
+            Error::numerical(0.0, "a record of the shear wave's analysis is missing", "")
+        })
+    };
+    r.reflected_bands = bands(|o| &o.reflected_displacement)?;
+    if shear.z2t.is_finite() {
+        r.transmitted_bands = bands(|o| &o.transmitted_displacement)?;
+    }
+    Ok(())
 }
 
 fn ratio(a: f64, b: f64) -> f64 {

@@ -45,7 +45,8 @@ pub struct RunResult {
     pub fundamental: f64,
     /// Whether the incident wave is a two-tone burst.
     pub two_tone: bool,
-    /// Incident particle-velocity amplitude `A_inc`, m/s.
+    /// Incident particle-velocity amplitude `A_inc`, m/s (at oblique incidence the
+    /// incident wave's, along its polarisation).
     pub a_inc: f64,
     /// Interface histories (x = 0).
     pub interface: HalfSpaceOutput,
@@ -55,9 +56,11 @@ pub struct RunResult {
     pub incident_spectrum: Spectrum,
     /// Amplitude spectrum of the reflected particle velocity.
     pub reflected_spectrum: Spectrum,
-    /// Band amplitudes of the incident velocity, m/s.
+    /// Band amplitudes of the incident velocity (at oblique incidence the incident wave's
+    /// particle velocity along its polarisation), m/s.
     pub incident_bands: BandAmplitudes,
-    /// Band amplitudes of the reflected velocity by the scenario's analysis method, m/s.
+    /// Band amplitudes of the reflected velocity by the scenario's analysis method (at
+    /// oblique incidence its normal component at the interface), m/s.
     pub reflected_bands: BandAmplitudes,
     /// The analysis floor of each component (the method on the linear response), m/s.
     pub floor_bands: BandAmplitudes,
@@ -128,15 +131,17 @@ pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
 /// floor key saves a third of each forward run). Every other key is the same.
 pub fn simulate_summary_with(scenario: &Scenario, with_floor: bool) -> Result<Summary> {
     if let Some(sh) = &scenario.shear {
-        let (out, shear) = super::shear::solve(scenario, sh)?;
+        let (out, mut shear) = super::shear::solve(scenario, sh)?;
         if let Some(o) = &scenario.oblique {
             let (analysis, derived) = analyse_oblique(scenario, &out, with_floor)?;
+            analyse_shear_oblique(scenario, sh, &mut shear, &derived)?;
             let mut s = summarise(scenario, &out, None, &analysis);
             super::shear::set_summary(&mut s, scenario, sh, &shear);
             super::oblique::set_summary(&mut s, scenario, o, (&out, &shear), &derived);
             return Ok(s);
         }
         let analysis = analyse(scenario, &out, with_floor)?;
+        analyse_shear(scenario, sh, &mut shear)?;
         let mut s = summarise(scenario, &out, None, &analysis);
         super::shear::set_summary(&mut s, scenario, sh, &shear);
         return Ok(s);
@@ -200,6 +205,35 @@ fn analyse_oblique(
     )
 }
 
+/// The shear wave's harmonics at normal incidence by the scenario's method, with the
+/// derived solves it needs ([`super::shear::derived_solves`]).
+fn analyse_shear(
+    scenario: &Scenario,
+    sh: &crate::scenario::ShearSetup,
+    shear: &mut super::shear::ShearResult,
+) -> Result<()> {
+    let (inverse, linear) = super::shear::derived_solves(scenario, sh)?;
+    super::shear::analyse(scenario, sh, shear, inverse.as_ref(), linear.as_ref())
+}
+
+/// The tangential traction's harmonics at oblique incidence by the scenario's method, from
+/// the derived solves of the wave ([`analyse_oblique`]: the whole wave inverted, the whole
+/// interface linearised).
+fn analyse_shear_oblique(
+    scenario: &Scenario,
+    sh: &crate::scenario::ShearSetup,
+    shear: &mut super::shear::ShearResult,
+    derived: &methods::Derived<super::shear::ShearResult>,
+) -> Result<()> {
+    super::shear::analyse(
+        scenario,
+        sh,
+        shear,
+        derived.inverse.as_ref().map(|d| &d.1),
+        derived.linear.as_ref().map(|d| &d.1),
+    )
+}
+
 fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
     let f0 = scenario.incident.fundamental();
     let f2 = scenario.incident.second_frequency();
@@ -225,18 +259,27 @@ fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
 /// assert!(r.summary.get("A2_over_Ainc").unwrap() > 0.05);
 /// ```
 pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
-    let (out, shear) = match &scenario.shear {
+    let (out, mut shear) = match &scenario.shear {
         Some(sh) => {
             let (out, r) = super::shear::solve(scenario, sh)?;
             (out, Some(r))
         }
         None => (solve(scenario)?, None),
     };
-    let inc = bands(scenario, &out.incident_displacement, out.dt);
-    let (analysis, derived) = match (&scenario.oblique, &shear) {
-        (Some(_), Some(_)) => {
+    // at oblique incidence the incident wave's own bands (along its polarisation)
+    let inc = match (&scenario.oblique, &shear) {
+        (Some(o), Some(r)) => super::oblique::incident_wave_bands(o, &out, &r.interface),
+        _ => bands(scenario, &out.incident_displacement, out.dt),
+    };
+    let (analysis, derived) = match (&scenario.oblique, &scenario.shear, &mut shear) {
+        (Some(_), Some(sh), Some(r)) => {
             let (a, d) = analyse_oblique(scenario, &out, true)?;
+            analyse_shear_oblique(scenario, sh, r, &d)?;
             (a, Some(d))
+        }
+        (_, Some(sh), Some(r)) => {
+            analyse_shear(scenario, sh, r)?;
+            (analyse(scenario, &out, true)?, None)
         }
         _ => (analyse(scenario, &out, true)?, None),
     };
@@ -245,6 +288,7 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
         super::shear::set_summary(&mut summary, scenario, sh, r);
         if let (Some(o), Some(d)) = (&scenario.oblique, &derived) {
             super::oblique::set_summary(&mut summary, scenario, o, (&out, r), d);
+            super::oblique::set_incident(&mut summary, o, &inc);
         }
     }
     let f_max = 6.0 * scenario.incident.highest_frequency();
@@ -261,7 +305,10 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
         file: scenario.file.clone(),
         fundamental: scenario.incident.fundamental(),
         two_tone: scenario.incident.second_frequency().is_some(),
-        a_inc: scenario.incident.peak() / scenario.medium.impedance(),
+        a_inc: match &scenario.oblique {
+            Some(o) => o.burst.peak() / o.geometry.incident.impedance,
+            None => scenario.incident.peak() / scenario.medium.impedance(),
+        },
         interface: out,
         probe,
         incident_spectrum,
