@@ -608,3 +608,75 @@ pub fn figure(name: &str, width: u32, panels: &[Panel]) -> Result<String> {
         Ok(())
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_are_in_engineering_notation_without_si_letters() {
+        // log axes (the Pa/m of a stiffness sweep): powers of ten in multiples of 3
+        let log = tick_label(&(9.0..16.0), 6, true);
+        let labels: Vec<String> = [10.0, 12.0, 13.0, 14.0, 15.0, -4.0 + 0.39794]
+            .iter()
+            .map(|v| log(v))
+            .collect();
+        assert_eq!(
+            labels,
+            ["10e9", "1e12", "10e12", "100e12", "1e15", "250e-6"]
+        );
+        assert_eq!(log(&-0.30103), "0.5");
+        // linear axes beyond 10^4: one power of ten on every tick, never `940G` or `20k`
+        let lin = tick_label(&(0.0..9.4e11), 5, false);
+        assert_eq!(lin(&9.4e11), "940e9");
+        assert_eq!(lin(&0.0), "0");
+        assert_eq!(tick_label(&(0.0..6e4), 4, false)(&2e4), "20e3");
+        assert_eq!(tick_label(&(0.0..2.0), 4, false)(&1.5), "1.5");
+    }
+
+    #[test]
+    fn coinciding_curves_get_point_markers() {
+        let x: Vec<f64> = (0..30).map(|i| i as f64 / 29.0).collect();
+        let y: Vec<f64> = x.iter().map(|v| v * v).collect();
+        let y2: Vec<f64> = y.iter().map(|v| v + 1e-4).collect();
+        let apart: Vec<f64> = x.iter().map(|v| 1.0 - v).collect();
+        let fig = |series: Vec<Series>| {
+            figure(
+                "t.svg",
+                600,
+                &[Panel {
+                    series,
+                    ..Default::default()
+                }],
+            )
+            .unwrap()
+        };
+        let distinct = fig(vec![Series::new("a", &x, &y), Series::new("b", &x, &apart)]);
+        assert!(!distinct.contains("<circle") && !distinct.contains("<polygon"));
+        let same = fig(vec![
+            Series::new("a", &x, &y),
+            Series::new("b", &x, &y2),
+            Series::new("c", &x, &apart),
+        ]);
+        // the first coinciding curve: circles; the second: squares (rect); none for "c"
+        assert!(
+            same.matches("<circle").count() >= 12,
+            "{}",
+            same.matches("<circle").count()
+        );
+        assert!(same.matches("<rect").count() >= 12 + 1);
+        let marked = coinciding(&[
+            Curve {
+                label: "a".into(),
+                points: x.iter().copied().zip(y.iter().copied()).collect(),
+                color: color(0),
+            },
+            Curve {
+                label: "c".into(),
+                points: x.iter().copied().zip(apart.iter().copied()).collect(),
+                color: color(1),
+            },
+        ]);
+        assert_eq!(marked, [false, false]);
+    }
+}

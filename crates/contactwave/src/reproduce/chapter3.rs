@@ -110,7 +110,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             format!(
                 "Incident amplitude A = {mpa} MPa: blocked stress peak sigma_i^max = 2A = {} \
                      MPa at the wall, xi = p0 / sigma_i^max = {} (the thesis names its case \
-                     by its value {mpa} MPa, docs/model.md sections 1 and 7). PMMA, p0 = 0.082 \
+                     by its value {mpa} MPa, docs/model.md sections 1 and 10). PMMA, p0 = 0.082 \
                      MPa, 1 MHz, 15 cycles (smooth rectangular window); RCCM C_N = 2e13 Pa/m, w \
                      = 0.1 J/m², b = 1e-8 J s/m²; interface histories from the exact solver. \
                      beta_end = {}.",

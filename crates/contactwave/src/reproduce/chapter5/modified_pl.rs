@@ -96,7 +96,7 @@ pub(super) fn contact_loss_ratio(setup: &Setup, und: &Undamaged, out: &mut Colle
         "ch5_fig91_contact_loss_ratio_vs_xi",
         "Figure 91: ratio of contact-loss to contact durations against xi",
         "Open time over closed time during the burst (contact_loss_fraction f: f/(1-f)); \
-         laws as in Figures 89-90, p0 = 0.14 MPa, 5 kHz, 15-cycle Hann-ramped burst."
+         laws as in thesis Figures 89-90, p0 = 0.14 MPa, 5 kHz, 15-cycle Hann-ramped burst."
             .into(),
         vec![panel(
             "contact loss / contact",
