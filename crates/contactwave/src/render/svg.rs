@@ -619,13 +619,13 @@ mod tests {
         let log = tick_label(&(9.0..16.0), 6, true);
         let labels: Vec<String> = [10.0, 12.0, 13.0, 14.0, 15.0, -4.0 + 0.39794]
             .iter()
-            .map(|v| log(v))
+            .map(&log)
             .collect();
         assert_eq!(
             labels,
             ["10e9", "1e12", "10e12", "100e12", "1e15", "250e-6"]
         );
-        assert_eq!(log(&-0.30103), "0.5");
+        assert_eq!(log(&-std::f64::consts::LOG10_2), "0.5");
         // linear axes beyond 10^4: one power of ten on every tick, never `940G` or `20k`
         let lin = tick_label(&(0.0..9.4e11), 5, false);
         assert_eq!(lin(&9.4e11), "940e9");
@@ -664,7 +664,7 @@ mod tests {
             "{}",
             same.matches("<circle").count()
         );
-        assert!(same.matches("<rect").count() >= 12 + 1);
+        assert!(same.matches("<rect").count() > 12);
         let marked = coinciding(&[
             Curve {
                 label: "a".into(),
