@@ -157,6 +157,23 @@ fn shear_chapter_matches_the_clipping_closed_form_and_friction_takes_over_from_a
     }
     assert!(value(&c, "oblique_pulse_inversion_vs_plateau_fit") < 0.05);
     assert!(value(&c, "oblique_energy_closure_error") < 1e-6);
+    // Figure 37(b) readable: a few loops (at most 8) on one colour ramp, light to dark
+    let loops = &c
+        .figures
+        .iter()
+        .find(|f| f.id == "shear_rccm_adhesion_friction")
+        .expect("figure shear_rccm_adhesion_friction")
+        .panels[1]
+        .series;
+    assert!((2..=8).contains(&loops.len()), "{} loops", loops.len());
+    let lum: Vec<u32> = loops
+        .iter()
+        .map(|s| {
+            let (r, g, b) = s.color.expect("a ramp colour");
+            r as u32 + g as u32 + b as u32
+        })
+        .collect();
+    assert!(lum.windows(2).all(|w| w[1] < w[0]), "not one ramp: {lum:?}");
     for f in &c.figures {
         assert!(!f.caption.is_empty(), "{}", f.id);
         assert!(
@@ -167,5 +184,156 @@ fn shear_chapter_matches_the_clipping_closed_form_and_friction_takes_over_from_a
             f.id
         );
         f.svg().unwrap();
+    }
+}
+
+/// The first `Figure N` of a text that is not the thesis' (`thesis Figure 81`), and the
+/// number of such.
+fn own_figure_numbers(text: &str) -> usize {
+    let mut n = 0;
+    for (i, _) in text.match_indices("Figure") {
+        let before = text[..i].to_lowercase();
+        let after = text[i..]
+            .trim_start_matches("Figures")
+            .trim_start_matches("Figure");
+        if after.trim_start().starts_with(|c: char| c.is_ascii_digit())
+            && !before.ends_with("thesis ")
+            && !before.ends_with("thesis chapter 1, ")
+        {
+            n += 1;
+        }
+    }
+    n
+}
+
+#[test]
+fn report_opens_with_a_summary_and_labels_figures_units_and_amplitudes_consistently() {
+    let chapters: Vec<ChapterResult> = [Chapter::Three, Chapter::Four, Chapter::Five]
+        .into_iter()
+        .map(|c| run_chapter(c, &|_, _, _| {}).unwrap())
+        .collect();
+    let dir = std::env::temp_dir().join(format!("contactwave-report-{}", std::process::id()));
+    write_report(&dir, &chapters, 1.0).unwrap();
+    let html = std::fs::read_to_string(dir.join("report.html")).unwrap();
+    let findings: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("findings.json")).unwrap()).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+
+    // item 13: the summary before the first figure, the findings table after the last
+    let summary = html.find("id=\"summary\"").expect("a summary section");
+    let first_fig = html.find("<figure").unwrap();
+    let last_fig = html.rfind("</figure>").unwrap();
+    let table = html.find("id=\"findings\"").expect("a findings table");
+    assert!(summary < first_fig && table > last_fig);
+    assert!(
+        first_fig - summary < 6000,
+        "summary of {} bytes",
+        first_fig - summary
+    );
+    // every finding has a verdict; informational rows say why
+    let n_findings: usize = chapters.iter().map(|c| c.findings.len()).sum();
+    let rows: Vec<&str> = html[table..].split("<tr id=\"f-").skip(1).collect();
+    assert_eq!(rows.len(), n_findings);
+    for r in &rows {
+        let v = ["agrees", "differs", "informational"]
+            .into_iter()
+            .find(|v| r.contains(&format!("<td>{v}</td>")))
+            .unwrap_or_else(|| panic!("no verdict: {r}"));
+        if v == "informational" {
+            assert!(r.contains("informational: "), "unexplained: {r}");
+        }
+    }
+    let d = &findings["_details"]["weak_beta_error_pct_band_peak_15c_10MPa"];
+    assert_eq!(d["verdict"], "informational");
+    assert_eq!(d["informational"], true);
+
+    // item 14: one figure number each (the report's own; the thesis' cited as "thesis ...")
+    for cap in html.split("<figcaption>").skip(1) {
+        let cap = &cap[..cap.find("<div class=\"cmp\">").unwrap_or(cap.len())];
+        let cap = &cap[..cap.find("</figcaption>").unwrap_or(cap.len())];
+        assert_eq!(own_figure_numbers(cap), 1, "{cap}");
+    }
+    // no amplitude shown as a negative or round-off number: "below the floor"
+    for key in [
+        "ch5_rigid_a2_at_xi_1_5",
+        "ch5_unilateral_a2_at_xi_1_5",
+        "ch5_linear_a2_at_xi_1_5",
+    ] {
+        let row = rows.iter().find(|r| r.starts_with(key)).unwrap();
+        assert!(row.contains("below the floor"), "{row}");
+        assert!(findings["_details"][key]["shown"]
+            .as_str()
+            .unwrap()
+            .starts_with("below the floor"));
+    }
+    assert!(!html.contains("e-16"), "a round-off value is shown");
+    // one unit for A2/A_inc (and A1/A_inc) across chapters 3 and 5: a fraction
+    for c in &chapters {
+        for f in &c.figures {
+            for p in &f.panels {
+                if p.ylabel.starts_with("A2/A_inc") || p.ylabel.starts_with("A1/A_inc") {
+                    assert!(
+                        p.ylabel == "A2/A_inc" || p.ylabel == "A1/A_inc",
+                        "{}: {}",
+                        f.id,
+                        p.ylabel
+                    );
+                    let top = p
+                        .series
+                        .iter()
+                        .flat_map(|s| s.points.iter().map(|q| q.1))
+                        .fold(0.0f64, f64::max);
+                    assert!(top <= 1.5, "{}: {} up to {top}", f.id, p.ylabel);
+                }
+            }
+        }
+    }
+
+    // item 4: one sigma_i^max (the blocked stress peak 2A at the wall): the chapter 3 cases
+    // are labelled by A with the run's xi = p0 / (2A)
+    for (a, xi) in [
+        ("0.8200", "0.05000"),
+        ("1.600", "0.02562"),
+        ("8.200", "0.005000"),
+    ] {
+        let id = format!("ch3_case_{}MPa_time", a.replace('.', "_"));
+        let f = chapters[0].figures.iter().find(|f| f.id == id).unwrap();
+        assert!(
+            f.title.contains(&format!("A = {a} MPa (xi = {xi})")),
+            "{}",
+            f.title
+        );
+        assert!(!f.title.contains("sigma_i^max = "), "{}", f.title);
+    }
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let ex = std::fs::read_to_string(root.join("examples/thesis/ch3_rccm.toml")).unwrap();
+    assert!(ex.contains("sigma_i^max = 2A = 1.64 MPa, xi = p0/sigma_i^max = 0.05"));
+
+    // the thesis cited in full in the report, README.md and docs/model.md
+    assert!(html.contains("Dorra Nouira") && html.contains("2020"));
+    for doc in ["README.md", "docs/model.md"] {
+        let t = std::fs::read_to_string(root.join(doc)).unwrap();
+        assert!(
+            t.contains("Dorra Nouira")
+                && t.contains("Université de Bordeaux")
+                && t.contains("2020"),
+            "{doc} does not cite the thesis"
+        );
+    }
+
+    // item 15: the README's figures are what reproduce draws now (regenerate them with
+    // python3 scripts/readme_figures.py)
+    for id in ["ch3_fig32_stiffness_xi", "ch4_fig69_71_73_trends"] {
+        let f = chapters
+            .iter()
+            .flat_map(|c| &c.figures)
+            .find(|f| f.id == id)
+            .unwrap();
+        let committed =
+            std::fs::read_to_string(root.join("docs/figures").join(format!("{id}.svg"))).unwrap();
+        assert!(
+            committed == f.svg().unwrap(),
+            "docs/figures/{id}.svg is stale: run python3 scripts/readme_figures.py"
+        );
     }
 }

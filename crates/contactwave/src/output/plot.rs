@@ -4,7 +4,7 @@
 use crate::error::Result;
 use crate::law::ContactLaw;
 pub(crate) use crate::render::svg::{color, plot_error};
-pub use crate::render::svg::{figure, Panel, Series};
+pub use crate::render::svg::{figure, ramp, Panel, Series};
 use crate::render::svg::{panel, render, scaled, short, Curve};
 use crate::study::{AxisSpec, Sweep, SweepTable};
 use plotters::prelude::*;

@@ -203,6 +203,40 @@ pub(crate) struct Curve {
     pub color: RGBColor,
 }
 
+/// Draw the point marker of the `rank`-th marked curve of a panel at pixel `at` of `area`
+/// (its legend): circle, square, triangle, cross (in that order, repeating).
+fn legend_marker(area: &Area, at: (i32, i32), rank: usize, style: ShapeStyle) -> PlotResult<()> {
+    let e = EmptyElement::at(at);
+    match rank % 4 {
+        0 => area.draw(&(e + Circle::new((0, 0), 4, style)))?,
+        1 => area.draw(&(e + Rectangle::new([(-4, -4), (4, 4)], style)))?,
+        2 => area.draw(&(e + TriangleMarker::new((0, 0), 5, style)))?,
+        _ => area.draw(&(e + Cross::new((0, 0), 4, style)))?,
+    }
+    Ok(())
+}
+
+/// Which curves coincide with another one of the panel (same x, largest |dy| within 1% of
+/// the panel's y span): these get point markers so that they can be told apart.
+pub(crate) fn coinciding(curves: &[Curve]) -> Vec<bool> {
+    let ys = curves.iter().flat_map(|c| c.points.iter().map(|p| p.1));
+    let (lo, hi) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+        (l.min(v), h.max(v))
+    });
+    let tol = 0.01 * (hi - lo);
+    let same = |a: &Curve, b: &Curve| {
+        a.points.len() == b.points.len()
+            && a.points.len() > 1
+            && a.points
+                .iter()
+                .zip(&b.points)
+                .all(|(p, q)| p.0 == q.0 && (p.1 - q.1).abs() <= tol)
+    };
+    (0..curves.len())
+        .map(|i| (0..curves.len()).any(|j| j != i && same(&curves[i], &curves[j])))
+        .collect()
+}
+
 /// The i-th colour of the palette shared by every plot (10 colours; curves 10 and beyond
 /// reuse them with another line style, see [`dash`]).
 pub(crate) fn color(i: usize) -> RGBColor {
@@ -232,17 +266,19 @@ pub(crate) fn dash(i: usize) -> Option<(u32, u32)> {
     }
 }
 
-/// Tick labels of an axis over `r` with about `n` ticks: engineering notation that stays
+/// Tick labels of an axis over `r` with about `n` ticks, in engineering notation that stays
 /// short (at most about 7 characters): plain decimals with as many digits as the tick
-/// step needs between 0.01 and 10^4, else an SI prefix on every tick (`940G`, `12.5µ`).
-/// On a log10 axis (`log`) the tick at `v` is labelled with `10^v` (3 significant digits).
+/// step needs between 0.01 and 10^4, else one power of ten, a multiple of 3, on every tick
+/// (`940e9`, `12.5e-6`; the axis label names the unit). On a log10 axis (`log`) the tick
+/// at `v` is labelled with `10^v` ([`eng`]: `1e12`, `10e12`, `100e12`).
 pub(crate) fn tick_label(r: &std::ops::Range<f64>, n: usize, log: bool) -> impl Fn(&f64) -> String {
     let span = (r.end - r.start).abs();
     let m = r.start.abs().max(r.end.abs());
     let (k, p) = if m.is_finite() && (m >= 1e4 || (m > 0.0 && m < 1e-2)) {
-        prefix(m)
+        let e3 = (m.log10() / 3.0).floor() as i32 * 3;
+        (10f64.powi(-e3), format!("e{e3}"))
     } else {
-        (1.0, "")
+        (1.0, String::new())
     };
     let step = span * k / n.max(1) as f64;
     let decimals = if step.is_finite() && step > 0.0 {
@@ -260,37 +296,36 @@ pub(crate) fn tick_label(r: &std::ops::Range<f64>, n: usize, log: bool) -> impl 
         } else {
             s
         };
-        let s = if s == "-0" { "0".to_string() } else { s };
-        format!("{s}{p}")
+        match s.as_str() {
+            "0" | "-0" => "0".to_string(),
+            _ => format!("{s}{p}"),
+        }
     }
 }
 
-/// A value with 3 significant digits and an SI prefix from f to P (`1.5M`, `250µ`, `0`);
-/// beyond, scientific notation (`1e18`).
+/// A value in engineering notation: 3 significant digits and a power of ten that is a
+/// multiple of 3 (`1e12`, `10e12`, `250e-6`); plain between 0.01 and 10^4 (`0.5`, `1000`).
+/// Log-axis ticks: the axis label names the unit (`C_N, Pa/m (log scale)`).
 pub(crate) fn eng(v: f64) -> String {
-    if !v.is_finite() || v == 0.0 {
-        return if v == 0.0 { "0".into() } else { format!("{v}") };
+    let a = v.abs();
+    if !v.is_finite() || v == 0.0 || (1e-2..1e4).contains(&a) {
+        return if v.is_finite() {
+            short(v)
+        } else {
+            format!("{v}")
+        };
     }
-    const P: [&str; 11] = ["f", "p", "n", "µ", "m", "", "k", "M", "G", "T", "P"];
-    let e3 = (v.abs().log10() / 3.0).floor() as i32;
-    if !(-5..=5).contains(&e3) {
-        return short(v);
-    }
-    let x = v / 10f64.powi(3 * e3);
-    let d = if x.abs() >= 99.95 {
-        0
-    } else if x.abs() >= 9.995 {
-        1
+    let e3 = (a.log10() / 3.0).floor() as i32 * 3;
+    let m = v / 10f64.powi(e3);
+    let m = if m.abs() >= 999.5 { m / 1000.0 } else { m };
+    let e3 = if (v / 10f64.powi(e3)).abs() >= 999.5 {
+        e3 + 3
     } else {
-        2
+        e3
     };
-    let s = format!("{x:.d$}");
-    let s = if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    };
-    format!("{s}{}", P[(e3 + 5) as usize])
+    let s = format!("{m:.3}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    format!("{s}e{e3}")
 }
 
 /// Options of a [`panel_with`].
@@ -302,6 +337,8 @@ pub(crate) struct PanelOpts<'a> {
     pub marker_labels: &'a [String],
     /// Fixed y range (default: the curves' padded range).
     pub fixed_y: Option<std::ops::Range<f64>>,
+    /// Curves drawn with point markers too (by index; missing ones without).
+    pub marked: &'a [bool],
 }
 
 /// One panel: curves, optional vertical marker lines, labels, legend when labelled.
@@ -407,6 +444,12 @@ pub(crate) fn panel_with(
             }
         }
     }
+    // the rank of each marked curve (its marker shape) and its first marked point, staggered
+    // so that the markers of coinciding curves do not hide each other
+    let rank = |i: usize| -> Option<usize> {
+        (opts.marked.get(i) == Some(&true)).then(|| opts.marked[..i].iter().filter(|m| **m).count())
+    };
+    let n_marked = opts.marked.iter().filter(|m| **m).count().max(1);
     for (i, c) in curves.iter().enumerate() {
         let style = c.color.stroke_width(2);
         // a non-finite point breaks the line (see decimate_gaps)
@@ -427,6 +470,20 @@ pub(crate) fn panel_with(
                     chart.draw_series(DashedLineSeries::new(piece.iter().copied(), d, g, style))?;
                 }
             }
+        }
+        if let Some(r) = rank(i) {
+            let every = (c.points.len() / 12).max(1);
+            let first = r * every / n_marked;
+            let pts = c.points.iter().skip(first).step_by(every).copied();
+            let st = c.color.stroke_width(2);
+            let at = EmptyElement::at;
+            match r % 4 {
+                0 => chart.draw_series(pts.map(|p| at(p) + Circle::new((0, 0), 4, st)))?,
+                1 => chart
+                    .draw_series(pts.map(|p| at(p) + Rectangle::new([(-4, -4), (4, 4)], st)))?,
+                2 => chart.draw_series(pts.map(|p| at(p) + TriangleMarker::new((0, 0), 5, st)))?,
+                _ => chart.draw_series(pts.map(|p| at(p) + Cross::new((0, 0), 4, st)))?,
+            };
         }
     }
     if let Some(la) = legend_area {
@@ -449,6 +506,9 @@ pub(crate) fn panel_with(
                     g,
                     style,
                 ))?,
+            }
+            if let Some(r) = rank(*i) {
+                legend_marker(&la, (19, y), r, c.color.stroke_width(2))?;
             }
             la.draw(&Text::new(
                 c.label.clone(),
@@ -490,6 +550,8 @@ pub struct Series {
     pub label: String,
     /// Points, in the units of the panel's axis labels.
     pub points: Vec<(f64, f64)>,
+    /// Line colour (RGB; default: the palette's colour of the series' index).
+    pub color: Option<(u8, u8, u8)>,
 }
 
 impl Series {
@@ -503,8 +565,30 @@ impl Series {
                 .map(|(a, b)| (*a, *b))
                 .filter(|p| p.0.is_finite() && p.1.is_finite())
                 .collect(),
+            color: None,
         }
     }
+
+    /// The same series drawn in `rgb`.
+    pub fn colored(mut self, rgb: (u8, u8, u8)) -> Series {
+        self.color = Some(rgb);
+        self
+    }
+}
+
+/// `n` colours of one ramp, light to dark blue (for curves ordered in time or amplitude).
+pub fn ramp(n: usize) -> Vec<(u8, u8, u8)> {
+    (0..n)
+        .map(|i| {
+            let t = if n > 1 {
+                i as f64 / (n - 1) as f64
+            } else {
+                1.0
+            };
+            let mix = |a: f64, b: f64| (a + (b - a) * t).round() as u8;
+            (mix(158.0, 8.0), mix(202.0, 48.0), mix(225.0, 107.0))
+        })
+        .collect()
 }
 
 /// One panel of a [`figure`].
@@ -545,7 +629,10 @@ pub fn figure(name: &str, width: u32, panels: &[Panel]) -> Result<String> {
                         } else {
                             stride(&x, &y)
                         },
-                        color: color(i),
+                        color: s
+                            .color
+                            .map(|(r, g, b)| RGBColor(r, g, b))
+                            .unwrap_or_else(|| color(i)),
                     }
                 })
                 .filter(|c| !c.points.is_empty())
@@ -559,8 +646,92 @@ pub fn figure(name: &str, width: u32, panels: &[Panel]) -> Result<String> {
             if c.is_empty() {
                 continue;
             }
-            panel(area, &p.title, &p.xlabel, &p.ylabel, c, &p.markers, None)?;
+            let marked = coinciding(c);
+            panel_with(
+                area,
+                &p.title,
+                &p.xlabel,
+                &p.ylabel,
+                c,
+                &p.markers,
+                PanelOpts {
+                    marked: &marked,
+                    ..Default::default()
+                },
+            )?;
         }
         Ok(())
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_are_in_engineering_notation_without_si_letters() {
+        // log axes (the Pa/m of a stiffness sweep): powers of ten in multiples of 3
+        let log = tick_label(&(9.0..16.0), 6, true);
+        let labels: Vec<String> = [10.0, 12.0, 13.0, 14.0, 15.0, -4.0 + 0.39794]
+            .iter()
+            .map(&log)
+            .collect();
+        assert_eq!(
+            labels,
+            ["10e9", "1e12", "10e12", "100e12", "1e15", "250e-6"]
+        );
+        assert_eq!(log(&-std::f64::consts::LOG10_2), "0.5");
+        // linear axes beyond 10^4: one power of ten on every tick, never `940G` or `20k`
+        let lin = tick_label(&(0.0..9.4e11), 5, false);
+        assert_eq!(lin(&9.4e11), "940e9");
+        assert_eq!(lin(&0.0), "0");
+        assert_eq!(tick_label(&(0.0..6e4), 4, false)(&2e4), "20e3");
+        assert_eq!(tick_label(&(0.0..2.0), 4, false)(&1.5), "1.5");
+    }
+
+    #[test]
+    fn coinciding_curves_get_point_markers() {
+        let x: Vec<f64> = (0..30).map(|i| i as f64 / 29.0).collect();
+        let y: Vec<f64> = x.iter().map(|v| v * v).collect();
+        let y2: Vec<f64> = y.iter().map(|v| v + 1e-4).collect();
+        let apart: Vec<f64> = x.iter().map(|v| 1.0 - v).collect();
+        let fig = |series: Vec<Series>| {
+            figure(
+                "t.svg",
+                600,
+                &[Panel {
+                    series,
+                    ..Default::default()
+                }],
+            )
+            .unwrap()
+        };
+        let distinct = fig(vec![Series::new("a", &x, &y), Series::new("b", &x, &apart)]);
+        assert!(!distinct.contains("<circle") && !distinct.contains("<polygon"));
+        let same = fig(vec![
+            Series::new("a", &x, &y),
+            Series::new("b", &x, &y2),
+            Series::new("c", &x, &apart),
+        ]);
+        // the first coinciding curve: circles; the second: squares (rect); none for "c"
+        assert!(
+            same.matches("<circle").count() >= 12,
+            "{}",
+            same.matches("<circle").count()
+        );
+        assert!(same.matches("<rect").count() > 12);
+        let marked = coinciding(&[
+            Curve {
+                label: "a".into(),
+                points: x.iter().copied().zip(y.iter().copied()).collect(),
+                color: color(0),
+            },
+            Curve {
+                label: "c".into(),
+                points: x.iter().copied().zip(apart.iter().copied()).collect(),
+                color: color(1),
+            },
+        ]);
+        assert_eq!(marked, [false, false]);
+    }
 }

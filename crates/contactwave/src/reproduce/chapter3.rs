@@ -86,6 +86,15 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
     let scale = |v: &[f64], k: f64| v.iter().map(|x| x * k).collect::<Vec<f64>>();
     let c_n = 2e13;
     let mut beta_end = [0.0; 3];
+    // the case's amplitude A, and its load ratio xi = p0 / sigma_i^max with the blocked
+    // stress peak sigma_i^max = 2A at the wall (as the run computes it)
+    let case_label = |i: usize| {
+        format!(
+            "A = {} MPa (xi = {})",
+            fmt_value(CASES[i] / 1e6),
+            fmt_value(runs[2 * i].summary.get("xi").unwrap_or(f64::NAN))
+        )
+    };
     for (i, amp) in CASES.iter().enumerate() {
         let (r, u) = (&runs[2 * i].interface, &runs[2 * i + 1].interface);
         beta_end[i] = runs[2 * i].summary.get("beta_end").unwrap_or(f64::NAN);
@@ -94,13 +103,19 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         figures.push(Figure::new(
             &format!("ch3_case_{}MPa_time", mpa.replace('.', "_")),
             &format!(
-                "RCCM against unilateral contact, sigma_i^max = {mpa} MPa (thesis Figures {})",
+                "RCCM against unilateral contact, {} (thesis Figures {})",
+                case_label(i),
                 ["23-24", "25-27", "28-30"][i]
             ),
             format!(
-                "PMMA, p0 = 0.082 MPa, 1 MHz, 15 cycles (smooth rectangular window); RCCM \
-                     C_N = 2e13 Pa/m, w = 0.1 J/m², b = 1e-8 J s/m²; interface histories from \
-                     the exact solver. beta_end = {}.",
+                "Incident amplitude A = {mpa} MPa: blocked stress peak sigma_i^max = 2A = {} \
+                     MPa at the wall, xi = p0 / sigma_i^max = {} (the thesis names its case \
+                     by its value {mpa} MPa, docs/model.md sections 1 and 10). PMMA, p0 = 0.082 \
+                     MPa, 1 MHz, 15 cycles (smooth rectangular window); RCCM C_N = 2e13 Pa/m, w \
+                     = 0.1 J/m², b = 1e-8 J s/m²; interface histories from the exact solver. \
+                     beta_end = {}.",
+                fmt_value(2.0 * amp / 1e6),
+                fmt_value(runs[2 * i].summary.get("xi").unwrap_or(f64::NAN)),
                 fmt_value(beta_end[i])
             ),
             vec![
@@ -141,7 +156,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         .map(|i| {
             let (r, u) = (&runs[2 * i].interface, &runs[2 * i + 1].interface);
             Panel {
-                title: format!("sigma_i^max = {} MPa", fmt_value(CASES[i] / 1e6)),
+                title: case_label(i),
                 xlabel: "[u], nm".into(),
                 ylabel: "sigma, MPa".into(),
                 series: vec![
@@ -182,10 +197,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             let (rx, ry) = sp(&runs[2 * i]);
             let (ux, uy) = sp(&runs[2 * i + 1]);
             Panel {
-                title: format!(
-                    "Reflected wave spectrum, sigma_i^max = {} MPa",
-                    fmt_value(CASES[i] / 1e6)
-                ),
+                title: format!("Reflected wave spectrum, {}", case_label(i)),
                 xlabel: "f / f0".into(),
                 ylabel: "log10 |V_r(f)| (m)".into(),
                 series: vec![
@@ -245,6 +257,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             unit: String::new(),
             thesis: (*text).into(),
             agrees: Some(agrees),
+            floor: None,
             note: if agrees { String::new() } else { note },
         });
     }
@@ -279,15 +292,11 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             Series::new(
                 format!("FD, dx = {:.2e} m, dt = {:.1e} s", l.dx, l.dt),
                 &conv.xi,
-                &scale(&l.efficiency, 100.0),
+                &l.efficiency,
             )
         })
         .collect();
-    eff.push(Series::new(
-        "exact solver",
-        &conv.xi,
-        &scale(&conv.exact, 100.0),
-    ));
+    eff.push(Series::new("exact solver", &conv.xi, &conv.exact));
     let lg = |v: &[f64]| v.iter().map(|x| x.log10()).collect::<Vec<f64>>();
     let dts: Vec<f64> = conv.levels.iter().map(|l| l.dt).collect();
     let e_exact: Vec<f64> = conv.levels.iter().map(|l| 100.0 * l.error_exact).collect();
@@ -306,7 +315,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
                 conv.order_exact, conv.order_finest
             ),
             vec![
-                xi_panel("A2/A_inc per resolution", "A2/A_inc, %", eff),
+                xi_panel("A2/A_inc per resolution", "A2/A_inc", eff),
                 Panel {
                     title: "Error (eq. 2.43) against the time step".into(),
                     xlabel: "log10(dt / s)".into(),
@@ -331,6 +340,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: String::new(),
         thesis: "the scheme converges in time and space (Figure 22)".into(),
         agrees: Some(conv.order_exact > 0.5),
+        floor: None,
         note: "the average interface update is second order; contact switches at step ends \
                (first order) bound the order where the contact claps, and the exact \
                solver's tolerance is the floor at the finest resolutions"
@@ -352,8 +362,8 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
     let labels: Vec<String> = STIFFNESS.iter().map(|c| label_c(*c)).collect();
     let n = xi.len();
     let xs: Vec<f64> = STIFFNESS.iter().flat_map(|_| xi.clone()).collect();
-    let a1 = scale(&column(&s, "A1_over_Ainc"), 100.0);
-    let a2 = scale(&column(&s, "A2_over_Ainc"), 100.0);
+    let a1 = column(&s, "A1_over_Ainc");
+    let a2 = column(&s, "A2_over_Ainc");
     let a21 = column(&s, "A2_over_A1");
     let uc_a2 = &a2[..n];
     let uc_a1 = &a1[..n];
@@ -368,23 +378,22 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         .iter()
         .zip(uc_a2.iter().zip(lin_a2))
         .filter(|(x, _)| **x > 1.0 + 1e-9)
-        .fold(0.0f64, |m, (_, (a, l))| m.max((a - l).abs() / 100.0));
-    let window_level = lin_a2[n - 1] / 100.0;
+        .fold(0.0f64, |m, (_, (a, l))| m.max((a - l).abs()));
+    let window_level = lin_a2[n - 1];
     figures.push(
         Figure::new(
             "ch3_fig32_stiffness_xi",
             "Harmonics against xi for C_N from 0 to 1e15 Pa/m (thesis Figures 32b, 36)",
             "Undamaged interface (rigid compression, linear traction of stiffness C_N; C_N = 0 \
              is unilateral contact), PMMA, p0 = 0.082 MPa, 1 MHz, 15 cycles; xi = p0 / \
-             sigma_i^max from 0.05 to 1.2."
+             sigma_i^max (sigma_i^max = 2A, the blocked stress peak at the wall) from 0.05 to \
+             1.2. The curves of C_N = 0 (unilateral), 1e10 and 1e11 Pa/m coincide (below \
+             about 1e11 Pa/m the interface acts as unilateral contact): their point markers \
+             tell them apart."
                 .into(),
             vec![
-                xi_panel(
-                    "Second harmonic",
-                    "A2/A_inc, %",
-                    curves(&labels, &xs, &a2, n),
-                ),
-                xi_panel("Fundamental", "A1/A_inc, %", curves(&labels, &xs, &a1, n)),
+                xi_panel("Second harmonic", "A2/A_inc", curves(&labels, &xs, &a2, n)),
+                xi_panel("Fundamental", "A1/A_inc", curves(&labels, &xs, &a1, n)),
             ],
         )
         .compare(format!(
@@ -393,9 +402,14 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             xi_opt, xi_a1_min
         ))
         .compare(format!(
-            "thesis: no harmonics for xi >= 1 (unilateral) / here: generated A2/A_inc <= {:.1e} \
-             for xi > 1 (above the burst's own {:.1e} in the 2 f0 band)",
-            a2_above_1, window_level
+            "thesis: no harmonics for xi >= 1 (unilateral) / here: generated A2/A_inc for xi > 1 \
+             {} (above the burst's own {:.1e} in the 2 f0 band)",
+            if a2_above_1 < super::AMPLITUDE_FLOOR {
+                format!("below the floor (< {:.0e})", super::AMPLITUDE_FLOOR)
+            } else {
+                format!("<= {a2_above_1:.1e}")
+            },
+            window_level
         )),
     );
     figures.push(Figure::new(
@@ -403,7 +417,8 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         "A2/A1 against xi for identification (thesis Figure 61)",
         "Ratio of the second harmonic to the fundamental of the reflected wave, undamaged \
          interface, C_N from 0 (unilateral) to 1e15 Pa/m: the curve that an experiment \
-         measures without knowing A_inc."
+         measures without knowing A_inc. C_N = 0, 1e10 and 1e11 Pa/m coincide (point \
+         markers)."
             .into(),
         vec![xi_panel("A2/A1", "A2/A1", curves(&labels, &xs, &a21, n))],
     ));
@@ -413,6 +428,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: String::new(),
         thesis: "xi ~ 0.35 (accepted 0.32-0.38)".into(),
         agrees: Some((xi_opt - 0.35).abs() <= 0.03),
+        floor: None,
         note: String::new(),
     });
     findings.push(Finding {
@@ -421,6 +437,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: String::new(),
         thesis: "A1/A_inc minimum at the xi of the A2 maximum (~0.35)".into(),
         agrees: Some((xi_a1_min - 0.35).abs() <= 0.03),
+        floor: None,
         note: String::new(),
     });
     findings.push(Finding {
@@ -429,6 +446,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: String::new(),
         thesis: "no harmonics for xi >= 1 (here: largest generated A2/A_inc for xi > 1)".into(),
         agrees: Some(a2_above_1 < 1e-3),
+        floor: Some(super::AMPLITUDE_FLOOR),
         note: String::new(),
     });
 
@@ -444,7 +462,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         })
         .collect();
     let s33 = ctx.summaries("chapter 3: A2 against C_N (Fig 33)", &base, &pts)?;
-    let a2c = scale(&column(&s33, "A2_over_Ainc"), 100.0);
+    let a2c = column(&s33, "A2_over_Ainc");
     let low = a2c[0];
     let peak = a2c.iter().cloned().fold(0.0f64, f64::max);
     // stiffness-sensitive range: from the first C_N that moves A2 by 2% from the unilateral
@@ -471,7 +489,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             vec![Panel {
                 title: "Second harmonic against log10 C_N".into(),
                 xlabel: "log10(C_N / (Pa/m))".into(),
-                ylabel: "A2/A_inc, %".into(),
+                ylabel: "A2/A_inc".into(),
                 series: vec![Series::new("xi = 0.1", &lc, &a2c)],
                 markers: vec![lo_range, hi_range],
             }],
@@ -488,6 +506,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: "log10 Pa/m".into(),
         thesis: "1e11 Pa/m (accepted within half a decade)".into(),
         agrees: Some((lo_range - 11.0).abs() <= 0.5),
+        floor: None,
         note: "first C_N moving A2/A_inc by 2% from the unilateral value (the thesis reads \
                the range off its Figure 33)"
             .into(),
@@ -498,6 +517,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: "log10 Pa/m".into(),
         thesis: "1e15 Pa/m (accepted within half a decade)".into(),
         agrees: Some((hi_range - 15.0).abs() <= 0.5),
+        floor: None,
         note: "last C_N where A2/A_inc is still 5% of its largest value".into(),
     });
 
@@ -518,7 +538,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         }
     }
     let sn = ctx.summaries("chapter 3: normalised frequency (Figs 34-43)", &base, &pts)?;
-    let a2n = scale(&column(&sn, "A2_over_Ainc"), 100.0);
+    let a2n = column(&sn, "A2_over_Ainc");
     let m = lcn.len();
     let mut panels = Vec::new();
     let mut peak_pos = Vec::new();
@@ -543,7 +563,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         panels.push(Panel {
             title: format!("xi = {x}"),
             xlabel: "log10(omega Z / C_N)".into(),
-            ylabel: "A2/A_inc, %".into(),
+            ylabel: "A2/A_inc".into(),
             series,
             markers: vec![0.0],
         });
@@ -572,6 +592,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: "log10".into(),
         thesis: "near 0 (normalised frequency 1), accepted within half a decade".into(),
         agrees: Some(mean_peak.abs() <= 0.5),
+        floor: None,
         note: "the thesis attributes its offset to damping and to the rigid compression \
                branch, which the normalised frequency ignores"
             .into(),
@@ -609,8 +630,8 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
     let nd = xi_d.len();
     let nw = energies.len() * nd;
     let be = column(&sd, "beta_end");
-    let a1d = scale(&column(&sd, "A1_over_Ainc"), 100.0);
-    let a2d = scale(&column(&sd, "A2_over_Ainc"), 100.0);
+    let a1d = column(&sd, "A1_over_Ainc");
+    let a2d = column(&sd, "A2_over_Ainc");
     let a21d = column(&sd, "A2_over_A1");
     let xs_w: Vec<f64> = energies.iter().flat_map(|_| xi_d.clone()).collect();
     let lw: Vec<String> = energies
@@ -618,7 +639,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         .map(|w| format!("w = {w:.0e} J/m²"))
         .collect();
     let k_end = |range: std::ops::Range<usize>, cn: f64| -> Vec<f64> {
-        be[range].iter().map(|b| b * b * cn / 1e13).collect()
+        be[range].iter().map(|b| b * b * cn / 1e12).collect()
     };
     // damage onset: the largest xi at which beta_end < 0.99
     let onset = |b: &[f64]| {
@@ -643,11 +664,11 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
                 xi_panel("Adhesion at the end", "beta_end", curves(&lw, &xs_w, &be[..nw], nd)),
                 xi_panel(
                     "Traction stiffness at the end",
-                    "beta_end² C_N, 1e13 Pa/m",
+                    "beta_end² C_N, 10^12 Pa/m",
                     curves(&lw, &xs_w, &k_end(0..nw, 2e13), nd),
                 ),
-                xi_panel("Second harmonic", "A2/A_inc, %", curves(&lw, &xs_w, &a2d[..nw], nd)),
-                xi_panel("Fundamental", "A1/A_inc, %", curves(&lw, &xs_w, &a1d[..nw], nd)),
+                xi_panel("Second harmonic", "A2/A_inc", curves(&lw, &xs_w, &a2d[..nw], nd)),
+                xi_panel("Fundamental", "A1/A_inc", curves(&lw, &xs_w, &a1d[..nw], nd)),
             ],
         )
         .compare(format!(
@@ -663,6 +684,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: String::new(),
         thesis: "higher w: damage starts at lower xi".into(),
         agrees: Some(onsets.windows(2).all(|p| p[1] <= p[0]) && onsets[0] > onsets[3]),
+        floor: None,
         note: if onsets[3] > 0.0 {
             format!("onset at xi = {} for w = 1 J/m²", fmt_value(onsets[3]))
         } else {
@@ -696,12 +718,12 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
                 ),
                 xi_panel(
                     "Second harmonic",
-                    "A2/A_inc, %",
+                    "A2/A_inc",
                     curves(&lb, &xs_b, &a2d[v0..v1], nd),
                 ),
                 xi_panel(
                     "Fundamental",
-                    "A1/A_inc, %",
+                    "A1/A_inc",
                     curves(&lb, &xs_b, &a1d[v0..v1], nd),
                 ),
             ],
@@ -728,6 +750,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             "higher b: slower damage (mean beta_end at the largest b minus at the smallest > 0)"
                 .into(),
         agrees: Some(b_low.windows(2).all(|p| p[1] >= p[0] - 1e-9) && b_low[3] > b_low[0]),
+        floor: None,
         note: String::new(),
     });
     figures.push(Figure::new(
@@ -744,7 +767,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             ),
             xi_panel(
                 "Traction stiffness at the end",
-                "beta_end² C_N, 1e13 Pa/m",
+                "beta_end² C_N, 10^12 Pa/m",
                 curves(&lb, &xs_b, &k_end(v1..v2, 1e15), nd),
             ),
             xi_panel("A2/A1", "A2/A1", curves(&lb, &xs_b, &a21d[v1..v2], nd)),
@@ -754,8 +777,9 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         chapter: Chapter::Three,
         title: "Chapter 3: RCCM adhesion at 1 MHz".into(),
         intro: "Plane longitudinal wave in PMMA (E = 5 GPa, rho = 1190 kg/m³) at normal \
-                incidence on an interface with a rigid (Signorini) compression branch, p0 = \
-                0.082 MPa, 15-cycle 1 MHz burst with a smooth rectangular window; RCCM adhesion \
+                incidence on an interface with a rigid (Signorini) compression branch (a wall: \
+                the blocked stress peak is sigma_i^max = 2A for an incident amplitude A, and xi \
+                = p0 / sigma_i^max), p0 = 0.082 MPa, 15-cycle 1 MHz burst with a smooth rectangular window; RCCM adhesion \
                 with damage in traction (C_N = 2e13 Pa/m, w = 0.1 J/m², b = 1e-8 J s/m² unless \
                 varied); exact half-space solver; harmonics of the reflected particle velocity \
                 at x = -0.03 m (examples/thesis/ch3_rccm.toml)."

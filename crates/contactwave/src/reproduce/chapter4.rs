@@ -187,6 +187,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         Series {
             label: String::new(),
             points: pts,
+            color: None,
         }
     };
     let fit_pts: Vec<f64> = (1..=60).map(|i| i as f64 * 0.02e6).collect();
@@ -211,6 +212,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             .zip(&tk)
             .map(|(p, k)| (p / 1e6, k / 1e12))
             .collect(),
+        color: None,
     };
     let mut g1 = mpa(&c_mpl, 1);
     g1.label = "modified PL".into();
@@ -257,6 +259,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: "Pa^(1-m)/m".into(),
         thesis: "C = 1.81e10 (eq. 4.4), tolerance 2%".into(),
         agrees: Some((fit.c / 1.81e10 - 1.0).abs() <= 0.02),
+        floor: None,
         note: String::new(),
     });
     findings.push(Finding {
@@ -265,6 +268,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: String::new(),
         thesis: "m = 0.35 (eq. 4.4), tolerance 0.01".into(),
         agrees: Some((fit.m - 0.35).abs() <= 0.01),
+        floor: None,
         note: String::new(),
     });
 
@@ -273,6 +277,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
     let frf_series = |label: String, r: &Run| Series {
         label,
         points: r.frf.iter().map(|(fr, h)| (*fr, h.log10())).collect(),
+        color: None,
     };
     let f1_32 = get(m32, "first_mode_hz");
     let f1_lin = get(l32, "first_mode_hz");
@@ -356,6 +361,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: "Hz".into(),
         thesis: "mass-spring mode near 800 Hz (accepted 780-900 Hz)".into(),
         agrees: Some((780.0..=900.0).contains(&f1_32)),
+        floor: None,
         note: String::new(),
     });
     findings.push(Finding {
@@ -364,6 +370,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: "Hz".into(),
         thesis: "a constant 8.5e11 Pa/m gives the same first mode as the modified PL".into(),
         agrees: Some((f1_lin / f1_32 - 1.0).abs() < 0.06),
+        floor: None,
         note: format!(
             "{:+.1}% from the modified PL at 32 N",
             100.0 * (f1_lin / f1_32 - 1.0)
@@ -375,6 +382,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: "Hz".into(),
         thesis: "guide longitudinal mode near 11 kHz".into(),
         agrees: Some((get(m32, "guide_mode_hz") / 11e3 - 1.0).abs() < 0.1),
+        floor: None,
         note: String::new(),
     });
     findings.push(Finding {
@@ -386,6 +394,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
             .static_pressure
             .first()
             .map(|p| (p / 0.137e6 - 1.0).abs() < 0.01),
+        floor: None,
         note: String::new(),
     });
 
@@ -501,6 +510,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: "%".into(),
         thesis: "about 5% from 9 N to 32 N (accepted 3-8%, and larger than PL)".into(),
         agrees: Some((3.0..=8.0).contains(&d_mpl) && d_mpl > d_pl),
+        floor: None,
         note: "the thesis draws the modified PL branch below 0.2 MPa without numbers; \
                contactwave's cubic branch (K(0) = 0.2 K(0.2 MPa)) is its own choice, so the \
                size of the drop is indicative"
@@ -516,6 +526,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: "%".into(),
         thesis: "about 2% from 9 N to 32 N (accepted 0.5-3%, smaller than modified PL)".into(),
         agrees: Some((0.5..=3.0).contains(&d_pl) && d_pl < d_mpl),
+        floor: None,
         note: match pl_opens {
             Some(fo) => format!(
                 "with the plain power law (K -> 0 at p -> 0) the contacts open from {fo} N on, \
@@ -533,6 +544,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: String::new(),
         thesis: "A2/A1 grows with the force (ratio 32 N / 9 N > 1)".into(),
         agrees: Some(a2a1_ratio > 1.0),
+        floor: None,
         note: String::new(),
     });
 
@@ -570,6 +582,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: "Pa".into(),
         thesis: "near 0.025 MPa, contacts closed (Figure 70; accepted 0.02-0.03 MPa)".into(),
         agrees: Some((0.02e6..=0.03e6).contains(&pmin32)),
+        floor: None,
         note: "the value depends on the pulse duration and on the modified PL branch: the \
                thesis' measured hammer force is not given, and the default half-sine duration \
                (1.135 ms) is the one that gives this minimum at 32 N; the 9 N run, not \
@@ -583,6 +596,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
         unit: "Pa".into(),
         thesis: "about 0.078 MPa (Figure 70; accepted 0.06-0.095 MPa)".into(),
         agrees: Some((0.06e6..=0.095e6).contains(&pmin9)),
+        floor: None,
         note: "not calibrated: the same pulse duration as at 32 N".into(),
     });
     Ok(ChapterResult {

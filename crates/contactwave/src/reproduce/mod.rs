@@ -23,7 +23,7 @@ mod oblique;
 mod report;
 mod shear;
 
-pub use report::{findings_json, report_html, write_report};
+pub use report::{findings_json, report_html, write_report, THESIS_CITATION};
 
 use crate::analysis::Summary;
 use crate::error::{Error, Result};
@@ -127,7 +127,9 @@ impl Chapter {
 pub struct Figure {
     /// File stem, unique in the report (`ch3_fig32_a2_vs_xi`): `<id>.svg`, `<id>.csv`.
     pub id: String,
-    /// Title (with the thesis figure numbers it reproduces).
+    /// Title, with the thesis figures it reproduces as `... (thesis Figures 23-24)` or
+    /// `Figure 81: ...` (the report moves them into the caption: its own number is the
+    /// figure's only one).
     pub title: String,
     /// Caption: what is plotted and the parameters.
     pub caption: String,
@@ -147,6 +149,31 @@ impl Figure {
             panels,
             comparisons: Vec::new(),
         }
+    }
+
+    /// The title without the thesis figure numbers, and these (`Figures 23-24`,
+    /// `chapter 1, Figure 5`), from a title `... (thesis Figures 23-24)` or
+    /// `Figures 78 and 80: ...`.
+    pub fn title_and_thesis(&self) -> (String, Option<String>) {
+        let t = self.title.trim();
+        if let Some(rest) = t.strip_suffix(')') {
+            if let Some(i) = rest.rfind(" (thesis ") {
+                return (rest[..i].to_string(), Some(rest[i + 9..].to_string()));
+            }
+        }
+        if t.starts_with("Figure") {
+            if let Some((refs, rest)) = t.split_once(": ") {
+                if refs.chars().any(|c| c.is_ascii_digit()) {
+                    let mut c = rest.chars();
+                    let title = match c.next() {
+                        Some(f) => f.to_uppercase().chain(c).collect(),
+                        None => String::new(),
+                    };
+                    return (title, Some(refs.to_string()));
+                }
+            }
+        }
+        (t.to_string(), None)
     }
 
     /// Add a "thesis: ... / here: ..." line.
@@ -199,21 +226,69 @@ pub struct Finding {
     pub agrees: Option<bool>,
     /// Where it differs: by how much and why.
     pub note: String,
+    /// For an amplitude (or an amplitude above a floor): the resolution of the analysis.
+    /// A value below it (round-off, or a negative difference to the floor) is reported as
+    /// "below the floor", never as a number.
+    pub floor: Option<f64>,
 }
 
+/// The resolution of harmonic amplitude ratios (`A_n/A_inc`, `A_n/A_1`, and these above the
+/// incident burst's own content): values below it are round-off of the analysis.
+pub const AMPLITUDE_FLOOR: f64 = 1e-6;
+
 impl Finding {
+    /// Mark the value as an amplitude with resolution `floor` (see [`Finding::floor`]).
+    pub fn with_floor(mut self, floor: f64) -> Finding {
+        self.floor = Some(floor);
+        self
+    }
+
+    /// Informational: the thesis gives no number to compare with (no verdict).
+    pub fn informational(&self) -> bool {
+        self.agrees.is_none()
+    }
+
+    /// `agrees`, `differs` or `informational`.
+    pub fn verdict(&self) -> &'static str {
+        match self.agrees {
+            Some(true) => "agrees",
+            Some(false) => "differs",
+            None => "informational",
+        }
+    }
+
+    /// Why an informational finding has no verdict (empty for the others).
+    pub fn why_informational(&self) -> &'static str {
+        if !self.informational() {
+            ""
+        } else if self.thesis.starts_with("(not in the thesis)") {
+            "beyond the thesis: shown for context, no thesis value to compare with"
+        } else if self.thesis.starts_with("(no thesis value)") {
+            "a property of the analysis (no thesis value), used by other findings"
+        } else {
+            "the thesis states a trend without a number; the value is shown for context"
+        }
+    }
+
+    /// The value as the report shows it: 4 significant digits and the unit, or "below the
+    /// floor (< f)" for an amplitude under its resolution.
+    pub fn shown_value(&self) -> String {
+        match self.floor {
+            Some(fl) if self.value.is_finite() && self.value < fl => {
+                format!("below the floor (< {fl:.0e})")
+            }
+            _ if self.unit.is_empty() => fmt_value(self.value),
+            _ => format!("{} {}", fmt_value(self.value), self.unit),
+        }
+    }
+
     /// The "thesis: ... / here: ..." line of the report.
     pub fn line(&self) -> String {
-        let mut s = format!(
-            "thesis: {} / here: {} {}",
-            self.thesis,
-            fmt_value(self.value),
-            self.unit
-        );
+        let mut s = format!("thesis: {} / here: {}", self.thesis, self.shown_value());
         match self.agrees {
             Some(true) => s.push_str(" (agrees)"),
             Some(false) => s.push_str(" (differs)"),
-            None => {}
+            None => s.push_str(" (informational)"),
         }
         if !self.note.is_empty() {
             s.push_str(" — ");
@@ -421,6 +496,7 @@ fn finding(key: &str, value: f64, unit: &str, thesis: &str, agrees: Option<bool>
         thesis: thesis.into(),
         agrees,
         note: String::new(),
+        floor: None,
     }
 }
 

@@ -20,7 +20,7 @@
 
 use super::{
     argmax_refined, column, f, finding, fmt_value, lin, panel, tv, Chapter, ChapterResult, Ctx,
-    Edits, Figure, Finding,
+    Edits, Figure, Finding, AMPLITUDE_FLOOR,
 };
 use crate::analysis::projection::period_harmonics;
 use crate::analysis::{velocity_bands, Summary};
@@ -393,7 +393,8 @@ fn harmonics(s: &Setup, rect: &[RectRun], hann: &[(Summary, f64)], out: &mut Col
             "",
             "(not in the thesis) no slip above mu p0 / tau_inc = 1: transmitted A3/A1 and reflected A1/A_inc are 0",
             Some(rect_above < 1e-9),
-        ),
+        )
+.with_floor(AMPLITUDE_FLOOR),
         finding(
             "shear_band_A3_over_floor_above_ratio_1",
             band_over_floor,
@@ -712,11 +713,45 @@ fn rccm(ctx: &Ctx, s: &Setup, out: &mut Collected) -> Result<()> {
         .zip(&traces)
         .map(|(&a, t)| Series::new(label(a), &um(&t.t, 1e6), &t.beta))
         .collect();
-    let loops: Vec<Series> = RCCM_TRACE_AMPS
+    // (b) the loops of the example's amplitude, one every other cycle of the shear burst,
+    // light to dark: from the adhesive, leaning loops to the flat Coulomb ones
+    let shear_start = s
+        .rccm
+        .get("shear_incident")
+        .and_then(|v| v.get("delay"))
+        .and_then(|v| v.as_float())
+        .unwrap_or(0.0);
+    let case = RCCM_TRACE_AMPS
         .iter()
-        .zip(&traces)
-        .map(|(&a, t)| Series::new(label(a), &um(&t.gap, 1e9), &um(&t.tau, 1e-6)))
-        .collect();
+        .position(|&a| a == RCCM_CASE_AMP)
+        .and_then(|i| traces.get(i));
+    let cycles: Vec<usize> = (1..=15).step_by(2).collect();
+    let colours = crate::output::plot::ramp(cycles.len());
+    let loops: Vec<Series> = case
+        .map(|t| {
+            cycles
+                .iter()
+                .zip(&colours)
+                .map(|(&k, &rgb)| {
+                    let (a, b) = (
+                        shear_start + (k - 1) as f64 / F0,
+                        shear_start + k as f64 / F0,
+                    );
+                    let idx: Vec<usize> = (0..t.t.len())
+                        .filter(|&i| t.t[i] >= a && t.t[i] <= b)
+                        .collect();
+                    let pick =
+                        |v: &[f64], s: f64| idx.iter().map(|&i| v[i] * s).collect::<Vec<_>>();
+                    Series::new(
+                        format!("cycle {k}"),
+                        &pick(&t.gap, 1e9),
+                        &pick(&t.tau, 1e-6),
+                    )
+                    .colored(rgb)
+                })
+                .collect()
+        })
+        .unwrap_or_default();
     let at = |k: usize, key: &str, amp: f64| {
         RCCM_AMPS
             .iter()
@@ -782,17 +817,19 @@ fn rccm(ctx: &Ctx, s: &Setup, out: &mut Collected) -> Result<()> {
                  = {} (friction limit mu p0 = {} MPa while in contact); a 15-cycle 1 MHz \
                  normal burst of 3 MPa (it opens the interface) and a 15-cycle 1 MHz shear \
                  burst two periods later, amplitude tau_inc. (a) adhesion beta against time, \
-                 (b) tau against [u]_T: at small tau_inc the adhesive spring beta^2 C_T [u]_T \
-                 carries the load beside friction (an elastic, leaning loop), at larger \
-                 tau_inc the normal and tangential gaps together damage beta to 0 and the loop \
-                 becomes the flat Coulomb one at +-mu N. (c) beta at the end and (d) \
+                 (b) tau against [u]_T at tau_inc = {} MPa, one loop every other cycle of the \
+                 shear burst (light to dark): while beta is large the adhesive spring beta^2 \
+                 C_T [u]_T carries the load beside friction (leaning loops); the normal and \
+                 tangential gaps together damage beta towards 0 and the loops become the flat \
+                 Coulomb ones at +-mu N, drifting as the interface slips. (c) beta at the end and (d) \
                  transmitted A3/A1 (band peak) against tau_inc, with the shear burst alone \
                  (no normal burst: damage needs a larger shear) and with no adhesion at all \
                  (traction-free Coulomb friction: the limit beta = 0; the damaged RCCM \
                  interface still differs over the burst's first, adhesive cycles).",
                 fmt_value(p0 / 1e6),
                 fmt_value(mu),
-                fmt_value(mu * p0 / 1e6)
+                fmt_value(mu * p0 / 1e6),
+                fmt_value(RCCM_CASE_AMP / 1e6)
             ),
             vec![
                 panel("(a) adhesion", "t (us)", "beta", beta_t),

@@ -9,7 +9,7 @@ use super::{
 use crate::analysis::Summary;
 use crate::error::Result;
 use crate::output::plot::{Panel, Series};
-use crate::reproduce::{column, tv, Ctx, Edits, Figure, Finding};
+use crate::reproduce::{column, tv, Ctx, Edits, Figure, Finding, AMPLITUDE_FLOOR};
 
 /// The laws of Figures 96-101 and their summaries over the xi grid.
 pub(super) struct Damage {
@@ -96,7 +96,8 @@ pub(super) fn findings(setup: &Setup, d: &Damage, floor: f64) -> Vec<Finding> {
             "",
             "damaged interface: the modified PL dominates at high xi",
             Some(mpl_d15 > rig_d15),
-        ),
+        )
+.with_floor(AMPLITUDE_FLOOR),
         finding(
             "ch5_damaged_rigid_over_mpl_a2_at_xi_0_1",
             rig_d01,

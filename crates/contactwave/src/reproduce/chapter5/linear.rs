@@ -9,7 +9,9 @@ use super::{
 use crate::analysis::Summary;
 use crate::error::Result;
 use crate::output::plot::{Panel, Series};
-use crate::reproduce::{argmax_refined, column, f, fmt_value, tv, Ctx, Edits, Figure};
+use crate::reproduce::{
+    argmax_refined, column, f, fmt_value, tv, Ctx, Edits, Figure, AMPLITUDE_FLOOR,
+};
 
 /// The compression stiffnesses C_N1 of the bilinear laws, Pa/m.
 const KCS: [f64; 3] = [2e11, 3e11, 6e11];
@@ -124,14 +126,17 @@ pub(super) fn a2_vs_xi(setup: &Setup, lin: &LinearSweep, floor: f64, out: &mut C
         .filter(|&i| xis[i] > 1.05)
         .map(|i| a2[1][i] - floor)
         .fold(0.0f64, f64::max);
-    lin_findings.push(finding(
-        "ch5_linear_a2_above_xi_1",
-        lin_above1,
-        "",
-        "no second harmonic for xi > 1 with linear compression (C_N1 = 3e11); here \
+    lin_findings.push(
+        finding(
+            "ch5_linear_a2_above_xi_1",
+            lin_above1,
+            "",
+            "no second harmonic for xi > 1 with linear compression (C_N1 = 3e11); here \
          A2/A_inc above the burst's floor",
-        Some(lin_above1 < 1e-3),
-    ));
+            Some(lin_above1 < 1e-3),
+        )
+        .with_floor(AMPLITUDE_FLOOR),
+    );
     let bl6_u = at(xis, &a2[2], 0.1) / at(xis, &a2[4], 0.1);
     let (imax6, imaxu) = (argmax_refined(xis, &a2[2]), argmax_refined(xis, &a2[4]));
     lin_findings.push(finding(

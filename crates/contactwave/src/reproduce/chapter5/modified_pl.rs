@@ -9,7 +9,7 @@ use super::{
 use crate::analysis::Summary;
 use crate::error::Result;
 use crate::output::plot::Series;
-use crate::reproduce::{column, tv, Ctx, Edits, Figure};
+use crate::reproduce::{column, tv, Ctx, Edits, Figure, AMPLITUDE_FLOOR};
 
 /// The laws of Figures 89-92 and their summaries over the xi grid.
 pub(super) struct Undamaged {
@@ -96,7 +96,7 @@ pub(super) fn contact_loss_ratio(setup: &Setup, und: &Undamaged, out: &mut Colle
         "ch5_fig91_contact_loss_ratio_vs_xi",
         "Figure 91: ratio of contact-loss to contact durations against xi",
         "Open time over closed time during the burst (contact_loss_fraction f: f/(1-f)); \
-         laws as in Figures 89-90, p0 = 0.14 MPa, 5 kHz, 15-cycle Hann-ramped burst."
+         laws as in thesis Figures 89-90, p0 = 0.14 MPa, 5 kHz, 15-cycle Hann-ramped burst."
             .into(),
         vec![panel(
             "contact loss / contact",
@@ -149,28 +149,32 @@ pub(super) fn a1_a2_vs_xi(setup: &Setup, und: &Undamaged, floor: f64, out: &mut 
             "",
             "with the modified PL in compression A2 does not vanish for xi > 1",
             Some(mpl15 > 1e-3),
-        ),
+        )
+        .with_floor(AMPLITUDE_FLOOR),
         finding(
             "ch5_rigid_a2_at_xi_1_5",
             rig15,
             "",
             "rigid compression (RCCM): no second harmonic for xi > 1",
             Some(rig15 < 1e-3),
-        ),
+        )
+        .with_floor(AMPLITUDE_FLOOR),
         finding(
             "ch5_unilateral_a2_at_xi_1_5",
             uni15,
             "",
             "unilateral contact: no second harmonic for xi > 1",
             Some(uni15 < 1e-3),
-        ),
+        )
+        .with_floor(AMPLITUDE_FLOOR),
         finding(
             "ch5_linear_a2_at_xi_1_5",
             lin15,
             "",
             "linear compression (C_N1 = 3e11): no second harmonic for xi > 1",
             Some(lin15 < 1e-3),
-        ),
+        )
+        .with_floor(AMPLITUDE_FLOOR),
         finding(
             "ch5_rigid_over_mpl_a2_at_xi_0_1",
             low,
@@ -248,7 +252,8 @@ pub(super) fn traction_stiffness(
         "",
         "for xi > 1 the curves of all C_N2 overlap (only the modified PL acts)",
         Some(spread < 0.05),
-    );
+    )
+    .with_floor(AMPLITUDE_FLOOR);
     out.figures.push(
         Figure::new(
             "ch5_fig94_mpl_a2_vs_xi_traction_stiffness",
