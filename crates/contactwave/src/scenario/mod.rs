@@ -6,12 +6,14 @@ pub mod bar_stack;
 pub mod budget;
 mod cache;
 mod oblique;
+mod plausible;
 pub mod spec;
 pub mod units;
 mod value;
 
 pub use cache::{BuildCache, Columns};
 pub use oblique::ObliqueSetup;
+pub use plausible::Warning;
 pub use value::{apply_set, parse_toml, read_table, set_dotted, table_to_spec};
 
 use crate::error::{Error, Result};
@@ -309,6 +311,29 @@ impl Scenario {
         self.counterpart
             .map(|m| m.impedance())
             .unwrap_or(f64::INFINITY)
+    }
+
+    /// The wave speeds (m/s) and impedances (Pa s/m) the run uses, named as in
+    /// `summary.json`: `medium_wave_speed`, `medium_impedance` (the longitudinal wave: the
+    /// P wave in a half-space built from a preset), `medium_shear_wave_speed`,
+    /// `medium_shear_impedance` (with a shear modulus), and the same of `counterpart_`
+    /// (none for a rigid wall).
+    pub fn wave_table(&self) -> Vec<(String, f64)> {
+        let mut out = Vec::new();
+        let sides = [
+            ("medium", Some(&self.medium)),
+            ("counterpart", self.counterpart.as_ref()),
+        ];
+        for (side, m) in sides {
+            let Some(m) = m else { continue };
+            out.push((format!("{side}_wave_speed"), m.wave_speed()));
+            out.push((format!("{side}_impedance"), m.impedance()));
+            if let (Some(c), Some(z)) = (m.shear_wave_speed(), m.shear_impedance()) {
+                out.push((format!("{side}_shear_wave_speed"), c));
+                out.push((format!("{side}_shear_impedance"), z));
+            }
+        }
+        out
     }
 
     /// Ratio of blocked stress to incident stress, `2 Z2 / (Z1 + Z2)` (2 for a rigid wall).
