@@ -431,6 +431,8 @@ def run(scenario: ScenarioLike) -> Union[Result, BarStackResult]:
     scenario and :class:`SimulationError` for a numerical failure.
     """
     s = _as_scenario(scenario)
+    for w in s.warnings:  # legal values that are almost surely a unit slip
+        warnings.warn(w, UserWarning, stacklevel=2)
     raw = _core.run(s)
     result = _RESULTS[raw["kind"]](raw, s)
     if raw["kind"] == "half_space":
@@ -557,6 +559,12 @@ def _axes(axes: Union[Mapping[str, Any], Sequence[Tuple[str, Any]]]) -> List[Tup
     items = axes.items() if isinstance(axes, Mapping) else axes
     out = []
     for key, values in items:
+        if isinstance(values, str) or (
+            isinstance(values, (list, tuple)) and any(isinstance(x, str) for x in values)
+        ):
+            # unit strings ("1 MHz") converted to SI for the key
+            seq = [values] if isinstance(values, str) else values
+            values = [_core.si_value(str(key), x) for x in seq]
         v = np.asarray(values, dtype=np.float64)
         if v.ndim > 1:
             raise ValueError(f"axis `{key}`: values must be one-dimensional, not shape {v.shape}")

@@ -89,6 +89,16 @@ impl PyScenario {
         self.path.clone()
     }
 
+    /// Values that are legal but almost surely a unit slip (`frequency = 1` meant as
+    /// 1 MHz), one line each (`FILE: FIELD = VALUE: reason`); `run` warns with them.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.template
+            .base()
+            .map(|m| m.warnings().iter().map(|w| w.to_string()).collect())
+            .unwrap_or_default()
+    }
+
     /// The scenario's keys as given (no defaults filled in), as JSON text.
     fn to_json(&self) -> PyResult<String> {
         serde_json::to_string(self.template.table())
@@ -358,6 +368,22 @@ fn fit_power_law<'py>(
     d.set_item("m", f.m)?;
     d.set_item("r2", f.r2)?;
     Ok(d)
+}
+
+/// The SI value of `value` for the scenario key `key`: a number as it is, a unit string
+/// (`"1 MHz"`) converted; an unknown or mismatched unit is a `ValueError` naming the key.
+#[pyfunction]
+fn si_value(key: &str, value: &Bound<'_, PyAny>) -> PyResult<f64> {
+    if let Ok(text) = value.extract::<String>() {
+        let dim = contactwave::scenario::units::dimension_of_key(key).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "field `{key}` = {text:?}: expected a number (this key takes no unit)"
+            ))
+        })?;
+        return contactwave::scenario::units::parse(&text, dim)
+            .map_err(|why| PyValueError::new_err(format!("field `{key}` = {text:?}: {why}")));
+    }
+    value.extract::<f64>()
 }
 
 /// What one sweep point gave: its summary or its error message.
@@ -735,6 +761,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(bench_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(law_curve, m)?)?;
     m.add_function(wrap_pyfunction!(fit_power_law, m)?)?;
+    m.add_function(wrap_pyfunction!(si_value, m)?)?;
     m.add_function(wrap_pyfunction!(identify, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_plan, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_local, m)?)?;

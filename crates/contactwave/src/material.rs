@@ -3,12 +3,18 @@
 
 use serde::{Deserialize, Serialize};
 
-/// A linear elastic material: the longitudinal modulus of the 1D model (Young's modulus
-/// E for bars; `rho c_L^2` when built from a wave speed), the density and, for shear waves,
-/// the shear modulus G.
+/// A linear elastic material as a solver sees it: the longitudinal modulus of its 1D
+/// model, the density and, for shear waves, the shear modulus G.
+///
+/// The longitudinal modulus depends on the geometry: Young's modulus E for a bar (the
+/// presets, and `Material::PMMA` etc. here), the P-wave modulus
+/// `M = E (1 - nu) / ((1 + nu) (1 - 2 nu))` for a plane wave in a half-space built from a
+/// preset ([`Material::half_space`]), `rho c_L^2` when built from a wave speed, or the
+/// modulus a scenario states (the thesis' 1D convention: E in a half-space).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Material {
-    /// Young's modulus E, Pa.
+    /// Longitudinal modulus of the 1D model, Pa: Young's modulus E for a bar, the P-wave
+    /// modulus for a half-space built from a preset (see the type's doc).
     pub youngs_modulus: f64,
     /// Mass density rho, kg/m^3.
     pub density: f64,
@@ -50,7 +56,27 @@ impl Material {
         }
     }
 
-    /// Longitudinal bar wave speed c = sqrt(E/rho), m/s.
+    /// Poisson's ratio `nu = E / (2 G) - 1` of a material whose longitudinal modulus is
+    /// Young's modulus (a preset, a bar), `None` without a shear modulus.
+    pub fn poisson_ratio(&self) -> Option<f64> {
+        self.shear_modulus
+            .map(|g| self.youngs_modulus / (2.0 * g) - 1.0)
+    }
+
+    /// The material of a plane wave in a half-space: the longitudinal modulus becomes the
+    /// P-wave modulus `M = E (1 - nu) / ((1 + nu) (1 - 2 nu))` (Pa) of Young's modulus E
+    /// and Poisson's ratio `nu` in (-1, 0.5); density and shear modulus are kept. `self`
+    /// holds Young's modulus (a preset).
+    pub fn half_space(&self, nu: f64) -> Material {
+        let e = self.youngs_modulus;
+        Material {
+            youngs_modulus: e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+            ..*self
+        }
+    }
+
+    /// Longitudinal wave speed `c = sqrt(E/rho)` of the modulus in effect, m/s (the bar
+    /// speed for a bar, the P-wave speed in a half-space built from a preset).
     pub fn wave_speed(&self) -> f64 {
         (self.youngs_modulus / self.density).sqrt()
     }
@@ -90,6 +116,24 @@ mod tests {
         // rho c = sqrt(E rho)
         assert!((z - (5e9f64 * 1190.0).sqrt()).abs() < 1e-6 * z);
         assert!((Material::PMMA.wave_speed() - 2049.80).abs() < 0.01);
+    }
+    #[test]
+    fn half_space_presets_carry_the_p_wave_speed() {
+        // aluminium: E = 71 GPa, nu = 0.33, rho = 2710: c_P = 6230 m/s, not the bar
+        // speed 5118 m/s; the shear speed is unchanged
+        let al = Material::ALUMINIUM;
+        let nu = al.poisson_ratio().unwrap();
+        assert!((nu - 0.33).abs() < 1e-12);
+        let hs = al.half_space(nu);
+        let m = 71e9 * 0.67 / (1.33 * 0.34);
+        assert!((hs.wave_speed() - (m / 2710.0f64).sqrt()).abs() < 1e-9);
+        assert!(
+            (hs.wave_speed() - 6230.4).abs() < 0.1,
+            "{}",
+            hs.wave_speed()
+        );
+        assert!((al.wave_speed() - 5118.5).abs() < 0.5);
+        assert_eq!(hs.shear_wave_speed(), al.shear_wave_speed());
     }
     #[test]
     fn aluminium_shear_speed() {

@@ -177,13 +177,21 @@ fn synthesize_data(
         .iter()
         .map(|p| {
             let (k, v) = p.split_once('=').unwrap_or((p, ""));
+            // a number (SI) or a unit string of the key ("2 MHz")
+            let unit = contactwave::scenario::units::dimension_of_key(k.trim());
             v.trim()
                 .parse::<f64>()
                 .ok()
+                .or_else(|| unit.and_then(|d| contactwave::scenario::units::parse(v, d).ok()))
                 .filter(|x| x.is_finite())
                 .map(|x| (k.trim().to_string(), x))
                 .ok_or_else(|| {
-                    Error::invalid("--synthesize", k, v, "KEY=VALUE with a finite number")
+                    Error::invalid(
+                        "--synthesize",
+                        k,
+                        v,
+                        "KEY=VALUE with a finite number (SI) or a unit string such as 2MHz",
+                    )
                 })
         })
         .collect::<contactwave::Result<Vec<_>>>()?;

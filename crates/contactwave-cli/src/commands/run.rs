@@ -57,6 +57,10 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     };
     recording.validate()?;
     let template = model::plan_valid(read_table(path)?, path)?;
+    // values that are legal but almost surely a unit slip: one line each, the run goes on
+    for w in template.base()?.warnings() {
+        eprintln!("warning: {w}");
+    }
     check_out_dir(out)?;
     let t0 = Instant::now();
     // long runs report progress on a terminal

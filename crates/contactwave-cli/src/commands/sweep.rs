@@ -73,6 +73,12 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let validated = sweep.validate_with(&checked);
     setup.finish_and_clear();
     validated?;
+    // the base scenario's likely unit slips (one line each; the sweep goes on)
+    if let Ok(base) = contactwave::model::plan(sweep.base_table.clone(), &sweep.base).base() {
+        for w in base.warnings() {
+            eprintln!("warning: {w}");
+        }
+    }
     let cancel = cancel_on_ctrl_c();
     let shard = args.shard.unwrap_or(study::Shard::ALL);
     let total = (0..sweep.points.len())

@@ -40,11 +40,23 @@ pub struct PowerLawFit {
 /// assert!(fit_power_law(&[1e6, 2e6], &[1e12, 0.0]).is_err());
 /// ```
 pub fn fit_power_law(pressure: &[f64], stiffness: &[f64]) -> Result<PowerLawFit> {
-    if pressure.len() != stiffness.len() || pressure.len() < 2 {
+    if pressure.len() != stiffness.len() {
+        return Err(Error::invalid(
+            "<data>",
+            "pressure, stiffness",
+            format!(
+                "{} pressures, {} stiffnesses",
+                pressure.len(),
+                stiffness.len()
+            ),
+            "give one stiffness per pressure (the two lists must have the same length)",
+        ));
+    }
+    if pressure.len() < 2 {
         return Err(Error::invalid(
             "<data>",
             "pressure",
-            format!("{} points (stiffness: {})", pressure.len(), stiffness.len()),
+            format!("{} points", pressure.len()),
             "need at least 2 (pressure, stiffness) pairs",
         ));
     }
@@ -101,5 +113,17 @@ mod tests {
         let k: Vec<f64> = p.iter().map(|v: &f64| 2e10 * v.powf(0.4)).collect();
         let f = fit_power_law(&p, &k).unwrap();
         assert!((f.c / 2e10 - 1.0).abs() < 1e-9 && (f.m - 0.4).abs() < 1e-12 && f.r2 > 1.0 - 1e-12);
+    }
+    #[test]
+    fn a_length_mismatch_says_so() {
+        // three pressures, two stiffnesses: the lengths differ (there are 2 pairs and more)
+        let e = fit_power_law(&[1.0, 2.0, 3.0], &[1.0, 2.0])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("3 pressures, 2 stiffnesses"), "{e}");
+        assert!(e.contains("same length"), "{e}");
+        assert!(!e.contains("at least 2"), "{e}");
+        let e = fit_power_law(&[1.0], &[1.0]).unwrap_err().to_string();
+        assert!(e.contains("at least 2"), "{e}");
     }
 }

@@ -23,6 +23,11 @@ fn number(v: &toml::Value) -> Option<f64> {
     }
 }
 
+/// A value of scenario key `key`, in SI: a number or a unit string (`"1 MHz"`).
+fn quantity(v: &toml::Value, key: &str) -> Option<f64> {
+    crate::scenario::units::si_number(v, key).ok()
+}
+
 /// The number at a dotted key of a table (`interface.0.compression.c` indexes arrays).
 pub fn get_dotted(table: &toml::Table, key: &str) -> Option<f64> {
     let mut parts = key.split('.');
@@ -169,6 +174,7 @@ impl IdentifySpec {
             };
             apply_set(&mut base_table, set, &file)?;
         }
+        crate::scenario::units::to_si(&mut base_table, &base_file)?;
         default_analysis(&mut base_table);
         // the base (with overrides) must be a valid scenario
         model::plan_valid(base_table.clone(), &base)?;
@@ -412,17 +418,17 @@ fn parse_parameters(
             }
         };
         let bounds = match t.get("bounds") {
-            Some(toml::Value::Array(a)) if a.len() == 2 => match (number(&a[0]), number(&a[1])) {
-                (Some(l), Some(u)) if l.is_finite() && u.is_finite() && l < u => (l, u),
-                _ => {
-                    return Err(Error::invalid(
+            Some(toml::Value::Array(a)) if a.len() == 2 => {
+                match (quantity(&a[0], &key), quantity(&a[1], &key)) {
+                    (Some(l), Some(u)) if l.is_finite() && u.is_finite() && l < u => (l, u),
+                    _ => return Err(Error::invalid(
                         file,
                         f("bounds"),
                         show(&t["bounds"]),
-                        "[lower, upper], finite numbers with lower < upper",
-                    ))
+                        "[lower, upper], finite numbers (SI) or unit strings with lower < upper",
+                    )),
                 }
-            },
+            }
             other => {
                 return Err(Error::invalid(
                     file,
@@ -453,7 +459,7 @@ fn parse_parameters(
             }
         }
         let initial = match t.get("initial") {
-            Some(v) => match number(v) {
+            Some(v) => match quantity(v, &key) {
                 Some(x) if x >= bounds.0 && x <= bounds.1 => x,
                 _ => return Err(Error::invalid(file, f("initial"), show(v), range)),
             },
@@ -505,14 +511,31 @@ fn parse_design(v: Option<&toml::Value>, file: &str) -> Result<Option<DesignSpec
     let toml::Value::Table(t) = v else {
         return Err(Error::invalid(file, "design", show(v), "a table"));
     };
+    // the design values take the unit of the design key (a frequency by default)
+    let design_key = t
+        .get("key")
+        .and_then(|v| v.as_str())
+        .unwrap_or("incident.frequency");
     let nums = |name: &str, v: &toml::Value| -> Result<Vec<f64>> {
+        let unit_key = if name == "values" || name == "frequencies" {
+            design_key
+        } else {
+            ""
+        };
         match v {
             toml::Value::Array(a) if !a.is_empty() => a
                 .iter()
                 .map(|x| {
-                    number(x).filter(|x| x.is_finite()).ok_or_else(|| {
-                        Error::invalid(file, format!("design.{name}"), show(v), "finite numbers")
-                    })
+                    quantity(x, unit_key)
+                        .filter(|x| x.is_finite())
+                        .ok_or_else(|| {
+                            Error::invalid(
+                                file,
+                                format!("design.{name}"),
+                                show(v),
+                                "finite numbers",
+                            )
+                        })
                 })
                 .collect(),
             _ => Err(Error::invalid(
@@ -608,7 +631,7 @@ fn parse_data(
                 let col = a
                     .iter()
                     .map(|x| {
-                        number(x).ok_or_else(|| {
+                        quantity(x, k).ok_or_else(|| {
                             Error::invalid(file, format!("data.{k}"), show(x), "a number")
                         })
                     })

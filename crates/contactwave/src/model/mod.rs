@@ -237,6 +237,11 @@ pub trait Model: Debug + Send + Sync {
         let _ = keys;
         self.summary()
     }
+    /// Values of the scenario that are allowed but almost surely a unit slip (the run goes
+    /// on; the CLI prints them on stderr, Python warns). None by default.
+    fn warnings(&self) -> Vec<crate::scenario::Warning> {
+        Vec::new()
+    }
     /// Run fully: signals, spectra, summary.
     ///
     /// ```

@@ -6,11 +6,14 @@ pub mod bar_stack;
 pub mod budget;
 mod cache;
 mod oblique;
+mod plausible;
 pub mod spec;
+pub mod units;
 mod value;
 
 pub use cache::{BuildCache, Columns};
 pub use oblique::ObliqueSetup;
+pub use plausible::Warning;
 pub use value::{apply_set, parse_toml, read_table, set_dotted, table_to_spec};
 
 use crate::error::{Error, Result};
@@ -143,7 +146,7 @@ impl Scenario {
         base_dir: &Path,
         cache: &BuildCache,
     ) -> Result<Scenario> {
-        let medium = material_of(&spec.medium, file, "medium")?;
+        let medium = material_of(&spec.medium, file, "medium", Geometry::HalfSpace)?;
         let counterpart = match spec.counterpart.kind {
             CounterpartKind::Rigid => {
                 let c = &spec.counterpart;
@@ -178,6 +181,7 @@ impl Scenario {
                     },
                     file,
                     "counterpart",
+                    Geometry::HalfSpace,
                 )?)
             }
         };
@@ -309,6 +313,29 @@ impl Scenario {
             .unwrap_or(f64::INFINITY)
     }
 
+    /// The wave speeds (m/s) and impedances (Pa s/m) the run uses, named as in
+    /// `summary.json`: `medium_wave_speed`, `medium_impedance` (the longitudinal wave: the
+    /// P wave in a half-space built from a preset), `medium_shear_wave_speed`,
+    /// `medium_shear_impedance` (with a shear modulus), and the same of `counterpart_`
+    /// (none for a rigid wall).
+    pub fn wave_table(&self) -> Vec<(String, f64)> {
+        let mut out = Vec::new();
+        let sides = [
+            ("medium", Some(&self.medium)),
+            ("counterpart", self.counterpart.as_ref()),
+        ];
+        for (side, m) in sides {
+            let Some(m) = m else { continue };
+            out.push((format!("{side}_wave_speed"), m.wave_speed()));
+            out.push((format!("{side}_impedance"), m.impedance()));
+            if let (Some(c), Some(z)) = (m.shear_wave_speed(), m.shear_impedance()) {
+                out.push((format!("{side}_shear_wave_speed"), c));
+                out.push((format!("{side}_shear_impedance"), z));
+            }
+        }
+        out
+    }
+
     /// Ratio of blocked stress to incident stress, `2 Z2 / (Z1 + Z2)` (2 for a rigid wall).
     pub fn blocked_factor(&self) -> f64 {
         blocked_factor(self.medium.impedance(), self.z2())
@@ -335,7 +362,23 @@ pub fn xi_factor(law: &ContactLaw, z1: f64, z2: f64, frequency: f64) -> f64 {
     (1.0 + (omega / omega1).powi(2)).sqrt()
 }
 
-pub(crate) fn material_of(spec: &MaterialSpec, file: &str, prefix: &str) -> Result<Material> {
+/// Where a material carries its longitudinal wave: what its preset's modulus becomes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Geometry {
+    /// A bar (thesis chapter 4, the bar stack): Young's modulus E.
+    Bar,
+    /// A half-space with a plane wave: a preset's P-wave modulus
+    /// `E (1 - nu) / ((1 + nu) (1 - 2 nu))`; a stated `youngs_modulus` is used as given
+    /// (the thesis' 1D convention), `cl` as `rho cl^2`.
+    HalfSpace,
+}
+
+pub(crate) fn material_of(
+    spec: &MaterialSpec,
+    file: &str,
+    prefix: &str,
+    geometry: Geometry,
+) -> Result<Material> {
     let key = |k: &str| format!("{prefix}.{k}");
     let preset = match &spec.material {
         Some(name) => Some(Material::preset(name).ok_or_else(|| {
@@ -380,6 +423,8 @@ pub(crate) fn material_of(spec: &MaterialSpec, file: &str, prefix: &str) -> Resu
     let both = |a: &str, b: &str, v: f64| {
         Error::invalid(file, key(b), v, format!("give `{a}` or `{b}`, not both"))
     };
+    // the modulus is the preset's Young's modulus E when neither key states one
+    let from_preset = spec.youngs_modulus.is_none() && spec.cl.is_none();
     let youngs = match (spec.youngs_modulus, spec.cl) {
         (Some(_), Some(cl)) => return Err(both("youngs_modulus", "cl", cl)),
         (Some(e), None) => finite_pos("youngs_modulus", e)?,
@@ -425,6 +470,16 @@ pub(crate) fn material_of(spec: &MaterialSpec, file: &str, prefix: &str) -> Resu
         youngs_modulus: youngs,
         density,
         shear_modulus: shear,
+    };
+    // a preset in a half-space: the plane P wave travels with the P-wave modulus
+    let m = match (geometry, preset) {
+        (Geometry::HalfSpace, Some(p)) if from_preset => {
+            match spec.poisson_ratio.or_else(|| p.poisson_ratio()) {
+                Some(nu) => m.half_space(nu),
+                None => m,
+            }
+        }
+        _ => m,
     };
     check_derived(&m, file, prefix)?;
     Ok(m)

@@ -32,11 +32,13 @@ pub fn parse_toml(text: &str, file: &str) -> Result<toml::Table> {
 }
 
 /// Deserialize a table into a [`ScenarioSpec`], naming the field path on failure.
-pub fn table_to_spec(table: toml::Table, file: &str) -> Result<ScenarioSpec> {
+/// Unit strings (`frequency = "1 MHz"`) are converted to SI first ([`super::units`]).
+pub fn table_to_spec(mut table: toml::Table, file: &str) -> Result<ScenarioSpec> {
+    super::units::to_si(&mut table, file)?;
     let value = toml::Value::Table(table);
     serde_path_to_error::deserialize::<_, ScenarioSpec>(value).map_err(|e| {
         let path = e.path().to_string();
-        let inner = e.into_inner().to_string().replace('\n', " ");
+        let inner = super::units::plain_serde_message(&e.into_inner().to_string());
         Error::Parse {
             file: file.to_string(),
             message: if path.is_empty() || path == "." {
@@ -116,9 +118,20 @@ pub fn set_dotted(table: &mut toml::Table, key: &str, value: toml::Value) -> Res
 
 /// Write the `[set]` table of a sweep or identification file (dotted keys, any TOML value)
 /// into a base scenario table. Errors name `file` and the field `set."<key>"`.
+/// A unit string at a key with a dimension (`"incident.frequency" = "2 MHz"`) is converted
+/// to SI.
 pub fn apply_set(table: &mut toml::Table, set: &toml::Table, file: &str) -> Result<()> {
     for (key, value) in set {
-        set_dotted(table, key, value.clone()).map_err(|e| match e {
+        let value = match value {
+            toml::Value::String(s) => match super::units::dimension_of_key(key) {
+                Some(dim) => toml::Value::Float(super::units::parse(s, dim).map_err(|why| {
+                    Error::invalid(file, format!("set.\"{key}\""), format!("\"{s}\""), why)
+                })?),
+                None => value.clone(),
+            },
+            _ => value.clone(),
+        };
+        set_dotted(table, key, value).map_err(|e| match e {
             Error::Invalid { value, allowed, .. } => Error::Invalid {
                 file: file.to_string(),
                 field: format!("set.\"{key}\""),

@@ -2,7 +2,7 @@
 //!
 //! | file | content |
 //! |---|---|
-//! | `summary.json` | `scenario` (file name) then the [`crate::analysis::Summary`] keys in order (non-finite values as `null`) |
+//! | `summary.json` | `scenario` (file name) then the [`crate::analysis::Summary`] keys in order (non-finite values as `null`), then the wave speeds (m/s) and impedances (Pa s/m) used: `medium_wave_speed`, `medium_impedance`, `medium_shear_wave_speed`, `medium_shear_impedance` and the same of `counterpart_` (none for a rigid wall) |
 //! | `timeseries.csv` | `t,gap,contact_stress,beta,incident_stress,reflected_stress,transmitted_stress` at the interface: s, m, Pa, -, Pa, Pa, Pa |
 //! | `probe.csv` | `t,incident_stress,reflected_stress,incident_velocity,reflected_velocity,displacement` at the probe: s, Pa, Pa, m/s, m/s, m |
 //! | `spectrum.csv` | `frequency,incident,reflected`: Hz and amplitude spectra of the incident and reflected particle velocity, m/s |
@@ -101,10 +101,23 @@ pub fn spectrum_csv(result: &RunResult) -> String {
     )
 }
 
+/// The summary of `summary.json`: the run's summary keys, then the wave speeds and
+/// impedances it used (`medium_wave_speed`, `medium_impedance`, ...).
+fn summary_with_waves(result: &RunResult) -> crate::analysis::Summary {
+    let mut s = result.summary.clone();
+    for (k, v) in &result.waves {
+        s.set(k, *v);
+    }
+    s
+}
+
 /// Every file of a run, rendered in memory (see the module doc for the list).
 pub fn run_files(result: &RunResult) -> Result<Vec<OutputFile>> {
     let mut files = vec![
-        OutputFile::new("summary.json", summary_json(&result.file, &result.summary)),
+        OutputFile::new(
+            "summary.json",
+            summary_json(&result.file, &summary_with_waves(result)),
+        ),
         OutputFile::new("timeseries.csv", timeseries_csv(result)),
         OutputFile::new("probe.csv", probe_csv(result)),
         OutputFile::new("spectrum.csv", spectrum_csv(result)),

@@ -87,6 +87,10 @@ impl Model for Scenario {
         simulate::simulate_summary_with(self, keys.iter().any(|k| k.contains("floor")))
     }
 
+    fn warnings(&self) -> Vec<crate::scenario::Warning> {
+        Scenario::warnings(self)
+    }
+
     fn run(&self, _control: &RunControl) -> Result<Box<dyn Outcome>> {
         crate::scenario::budget::check_half_space_run(self)?;
         Ok(Box::new(simulate(self)?))
@@ -220,6 +224,25 @@ impl Outcome for RunResult {
     fn report(&self) -> Vec<String> {
         let get = |k: &str| self.summary.get(k).unwrap_or(f64::NAN);
         let mut lines = Vec::new();
+        // the wave speeds and impedances used, one line per side
+        for side in ["medium", "counterpart"] {
+            let w = |k: &str| {
+                let key = format!("{side}_{k}");
+                self.waves.iter().find(|(n, _)| *n == key).map(|(_, v)| *v)
+            };
+            let Some(c) = w("wave_speed") else {
+                lines.push(format!("{side:<23}rigid wall"));
+                continue;
+            };
+            let mut line = format!(
+                "{side:<23}c {c:.1} m/s, Z {:.4e} Pa s/m",
+                w("impedance").unwrap_or(f64::NAN)
+            );
+            if let (Some(ct), Some(zt)) = (w("shear_wave_speed"), w("shear_impedance")) {
+                line.push_str(&format!("; shear c {ct:.1} m/s, Z {zt:.4e} Pa s/m"));
+            }
+            lines.push(line);
+        }
         let oblique = self.summary.get("angle").is_some();
         if oblique {
             // the outgoing waves, over the incident wave's A_inc (not the interface components)

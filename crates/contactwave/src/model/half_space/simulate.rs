@@ -70,6 +70,9 @@ pub struct RunResult {
     pub summary: Summary,
     /// The tangential results, for scenarios with a tangential part (model.md section 13).
     pub shear: Option<super::shear::ShearResult>,
+    /// The wave speeds (m/s) and impedances (Pa s/m) used ([`Scenario::wave_table`]),
+    /// written to `summary.json` after the summary keys (not sweep columns).
+    pub waves: Vec<(String, f64)>,
 }
 
 /// The half-space problem of a scenario.
@@ -319,6 +322,7 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
         method: analysis.method,
         summary,
         shear,
+        waves: scenario.wave_table(),
     })
 }
 

@@ -67,6 +67,7 @@ pub(super) fn build_segments(specs: &[SegmentSpec], area: f64, file: &str) -> Re
             },
             file,
             &format!("segment[{i}]"),
+            crate::scenario::Geometry::Bar,
         )?;
         if let Some(mass) = s.mass {
             pos(file, &key("mass"), mass)?;

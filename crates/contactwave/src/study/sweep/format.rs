@@ -675,9 +675,9 @@ fn parse_axis(a: &toml::Value, i: usize, file: &str) -> Result<Axis> {
         }
         let mut v = Vec::with_capacity(arr.len());
         for x in arr {
-            match number(x) {
-                Some(y) if y.is_finite() => v.push(y),
-                _ => {
+            match crate::scenario::units::si_number(x, &parameter) {
+                Ok(y) if y.is_finite() => v.push(y),
+                Ok(_) => {
                     return Err(Error::invalid(
                         file,
                         field,
@@ -685,6 +685,7 @@ fn parse_axis(a: &toml::Value, i: usize, file: &str) -> Result<Axis> {
                         "every value must be a finite number",
                     ))
                 }
+                Err(why) => return Err(Error::invalid(file, field, show(x), why)),
             }
         }
         AxisSpec::Values(v)
@@ -702,8 +703,13 @@ fn parse_axis(a: &toml::Value, i: usize, file: &str) -> Result<Axis> {
                 format!("must be {what} with n an integer >= 1"),
             ));
         }
-        let a = number(&arr[0]).filter(|x| x.is_finite() && x.abs() <= limit);
-        let b = number(&arr[1]).filter(|x| x.is_finite() && x.abs() <= limit);
+        // linspace ends take the parameter's unit; logspace exponents are plain numbers
+        let end = |v: &toml::Value| match key {
+            "linspace" => crate::scenario::units::si_number(v, &parameter).ok(),
+            _ => number(v),
+        };
+        let a = end(&arr[0]).filter(|x| x.is_finite() && x.abs() <= limit);
+        let b = end(&arr[1]).filter(|x| x.is_finite() && x.abs() <= limit);
         let n = count(&arr[2]);
         match (a, b, n) {
             (Some(a), Some(b), Some(n)) => {

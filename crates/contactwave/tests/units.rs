@@ -1,0 +1,302 @@
+//! Issue 24 items 3, 6 and 12: unit strings everywhere a number with a unit is read,
+//! plausibility warnings for likely unit slips (and none for the shipped examples),
+//! presets that give a half-space its P-wave speed, and error messages in plain words.
+
+use contactwave::model;
+use contactwave::scenario::Scenario;
+use std::path::{Path, PathBuf};
+
+fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+const SI: &str = r#"
+[medium]
+material = "aluminium"
+youngs_modulus = 71e9
+[interface]
+static_pressure = 0.082e6
+traction = { law = "rccm", stiffness = 2e13, energy = 0.1, viscosity = 1e-8 }
+[incident]
+frequency = 1e6
+cycles = 15
+amplitude = 0.5e6
+delay = 2e-6
+[probe]
+x = -0.03
+"#;
+
+/// The same scenario with every number that has a unit written as a unit string.
+const WITH_UNITS: &str = r#"
+[medium]
+material = "aluminium"
+youngs_modulus = "71 GPa"
+[interface]
+static_pressure = "0.082 MPa"
+traction = { law = "rccm", stiffness = "20 TPa/m", energy = "0.1 J/m^2", viscosity = "10 nJ s/m^2" }
+[incident]
+frequency = "1 MHz"
+cycles = 15
+amplitude = "0.5MPa"
+delay = "2 us"
+[probe]
+x = "-30 mm"
+"#;
+
+#[test]
+fn unit_strings_read_as_their_si_values() {
+    let a = Scenario::from_toml_str(SI, "si.toml").unwrap();
+    let b = Scenario::from_toml_str(WITH_UNITS, "units.toml").unwrap();
+    let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * y.abs();
+    assert!(close(b.spec.interface.static_pressure, 0.082e6));
+    assert!(close(b.medium.youngs_modulus, a.medium.youngs_modulus));
+    assert!(close(b.incident.fundamental(), 1e6));
+    assert!(close(b.incident.peak(), 0.5e6));
+    assert!(close(b.incident.duration(), a.incident.duration()));
+    assert!(close(b.probe_x, -0.03));
+    assert!(close(b.xi, a.xi));
+    let (sa, sb) = (
+        contactwave::simulate_summary(&a).unwrap(),
+        contactwave::simulate_summary(&b).unwrap(),
+    );
+    let key = "A2_over_Ainc";
+    assert!(close(sb.get(key).unwrap(), sa.get(key).unwrap()));
+}
+
+#[test]
+fn unknown_or_mismatched_units_are_errors_naming_file_field_value_and_unit() {
+    let bad = WITH_UNITS.replace("\"1 MHz\"", "\"0.082 MPa\"");
+    let e = Scenario::from_toml_str(&bad, "slip.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("slip.toml: field `incident.frequency` = \"0.082 MPa\": `MPa` is a unit of"),
+        "{e}"
+    );
+    assert!(e.contains("Hz") && e.contains("\"1 MHz\""), "{e}");
+    let bad = WITH_UNITS.replace("\"71 GPa\"", "\"71 Gpa\"");
+    let e = Scenario::from_toml_str(&bad, "slip.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("field `medium.youngs_modulus` = \"71 Gpa\": unknown unit `Gpa`"),
+        "{e}"
+    );
+    assert!(e.contains("Pa"), "{e}");
+}
+
+#[test]
+fn a_string_for_a_number_says_a_number_not_f64() {
+    let bad = SI.replace("cycles = 15", "cycles = \"15\"");
+    let e = Scenario::from_toml_str(&bad, "s.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("field `incident.cycles`"), "{e}");
+    assert!(e.contains("expected a number"), "{e}");
+    assert!(!e.contains("f64"), "{e}");
+    // a bar stack likewise
+    let stack = r#"
+[model]
+kind = "bar_stack"
+area = 1.0
+static_force = "82 kN"
+[[segment]]
+name = "a"
+length = "5 mm"
+material = "pmma"
+damping = "0"
+"#;
+    let e = model::from_toml_str(stack, "stack.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("segment[0].damping") || e.contains("damping"),
+        "{e}"
+    );
+    assert!(e.contains("expected a number") && !e.contains("f64"), "{e}");
+}
+
+#[test]
+fn sweeps_and_identifications_take_unit_strings() {
+    let d = std::env::temp_dir().join(format!("contactwave-units-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    std::fs::write(d.join("base.toml"), SI).unwrap();
+    std::fs::write(
+        d.join("sweep.toml"),
+        "base = \"base.toml\"\n[set]\n\"incident.delay\" = \"0 s\"\n\
+         [[axis]]\nparameter = \"incident.frequency\"\nvalues = [\"0.5 MHz\", 1e6, \"2MHz\"]\n\
+         [[axis]]\nparameter = \"interface.static_pressure\"\nlinspace = [\"0.1 MPa\", \"0.3 MPa\", 3]\n",
+    )
+    .unwrap();
+    let s = contactwave::study::Sweep::load(&d.join("sweep.toml")).unwrap();
+    assert_eq!(s.axes[0].values, vec![0.5e6, 1e6, 2e6]);
+    assert_eq!(s.axes[1].values, vec![0.1e6, 0.2e6, 0.3e6]);
+    // a mismatched unit in a sweep names the file, the axis and the unit expected
+    std::fs::write(
+        d.join("bad.toml"),
+        "base = \"base.toml\"\n[[axis]]\nparameter = \"incident.frequency\"\nvalues = [\"1 mm\"]\n",
+    )
+    .unwrap();
+    let e = contactwave::study::Sweep::load(&d.join("bad.toml"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("bad.toml: field `axis[0].values` = \"1 mm\": `mm` is a unit of a length"),
+        "{e}"
+    );
+    // an identification file: bounds, initial and design values with units
+    std::fs::write(
+        d.join("identify.toml"),
+        "base = \"base.toml\"\nobserved = [\"A1_over_Ainc\"]\n\
+         [data]\n\"incident.xi\" = [0.2, 0.4]\nA1_over_Ainc = [0.9, 0.95]\n\
+         [[parameter]]\nkey = \"interface.traction.stiffness\"\n\
+         bounds = [\"1 TPa/m\", \"100 TPa/m\"]\nscale = \"log\"\ninitial = \"20 TPa/m\"\n\
+         [design]\nvalues = [\"1 MHz\", \"2 MHz\"]\n",
+    )
+    .unwrap();
+    let spec = contactwave::inverse::IdentifySpec::load(&d.join("identify.toml")).unwrap();
+    assert_eq!(
+        (spec.parameters[0].lower, spec.parameters[0].upper),
+        (1e12, 1e14)
+    );
+    assert_eq!(spec.parameters[0].initial, 2e13);
+    assert_eq!(spec.design.unwrap().values, vec![1e6, 2e6]);
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// The two reproductions of the issue: `frequency = 1` (meant 1 MHz) and
+/// `static_pressure = 0.082` (meant MPa) run, with a warning each.
+#[test]
+fn likely_unit_slips_warn() {
+    let base = std::fs::read_to_string(examples().join("rccm_0.82MPa.toml")).unwrap();
+    let slow = base.replacen("frequency = 1e6 ", "frequency = 1 ", 1);
+    assert_ne!(slow, base);
+    let s = Scenario::from_toml_str(&slow, "slow.toml").unwrap();
+    let w: Vec<String> = s.warnings().iter().map(|w| w.to_string()).collect();
+    assert!(
+        w.iter()
+            .any(|w| w.starts_with("slow.toml: incident.frequency = 1 Hz: below the audio range")),
+        "{w:?}"
+    );
+    assert!(w.iter().any(|w| w.contains("15.000 s")), "{w:?}");
+    let soft = base.replacen("static_pressure = 0.082e6 ", "static_pressure = 0.082 ", 1);
+    assert_ne!(soft, base);
+    let s = Scenario::from_toml_str(&soft, "soft.toml").unwrap();
+    let w: Vec<String> = s.warnings().iter().map(|w| w.to_string()).collect();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].starts_with("soft.toml: interface.static_pressure = 0.082 Pa: below 1 kPa"));
+    // a modulus below 1 MPa and a density in g/cm^3
+    let s = Scenario::from_toml_str(
+        &SI.replace(
+            "youngs_modulus = 71e9",
+            "youngs_modulus = 71\ndensity = 2.71",
+        ),
+        "m.toml",
+    )
+    .unwrap();
+    let w: Vec<String> = s.warnings().iter().map(|w| w.to_string()).collect();
+    assert!(
+        w.iter()
+            .any(|w| w.starts_with("m.toml: medium.youngs_modulus = 71 Pa")),
+        "{w:?}"
+    );
+    assert!(
+        w.iter()
+            .any(|w| w.starts_with("m.toml: medium.density = 2.71 kg/m^3")),
+        "{w:?}"
+    );
+    // the model (what the CLI and Python ask) reports the same
+    let m = model::from_toml_str(&soft, "soft.toml")
+        .unwrap()
+        .base()
+        .unwrap();
+    assert_eq!(m.warnings().len(), 1);
+}
+
+fn scenario_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap().flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            scenario_files(&p, out);
+        } else if p.extension().is_some_and(|x| x == "toml") {
+            out.push(p);
+        }
+    }
+}
+
+/// No false positives: no shipped scenario (nor the base of a shipped sweep) warns.
+#[test]
+fn shipped_examples_do_not_warn() {
+    let mut files = Vec::new();
+    scenario_files(&examples(), &mut files);
+    let mut checked = 0;
+    for p in files {
+        let table = contactwave::scenario::read_table(&p).unwrap();
+        if table.contains_key("axis") || table.contains_key("observed") {
+            continue; // sweeps and identifications: their bases are examples too
+        }
+        let m = model::plan_valid(table, &p)
+            .and_then(|t| t.base())
+            .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+        let w: Vec<String> = m.warnings().iter().map(|w| w.to_string()).collect();
+        assert!(w.is_empty(), "{}: {w:?}", p.display());
+        checked += 1;
+    }
+    assert!(checked >= 15, "{checked}");
+}
+
+/// A preset in a half-space carries the P-wave modulus (aluminium c_P = 6230 m/s, not the
+/// bar speed 5118 m/s); the same preset in a bar stack keeps E; the thesis' scenarios
+/// state E and keep the bar speed of the 1D model.
+#[test]
+fn presets_give_a_half_space_the_p_wave_speed() {
+    let s = Scenario::from_toml_str(&SI.replace("youngs_modulus = 71e9\n", ""), "al.toml").unwrap();
+    let (e, nu, rho) = (71e9, 0.33, 2710.0);
+    let m = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    let c = s.medium.wave_speed();
+    assert!((c / (m / rho as f64).sqrt() - 1.0).abs() < 1e-12, "{c}");
+    assert!((c - 6230.4).abs() < 0.1, "{c}");
+    // the shear wave keeps G = E / (2 (1 + nu))
+    let ct = s.medium.shear_wave_speed().unwrap();
+    assert!((ct - (e / (2.0 * (1.0 + nu)) / rho).sqrt()).abs() < 1e-9);
+    // the wave table names what the run used
+    let t = s.wave_table();
+    assert_eq!(t[0], ("medium_wave_speed".to_string(), c));
+    assert_eq!(t[1].0, "medium_impedance");
+    assert!((t[1].1 - rho * c).abs() < 1e-6 * rho * c);
+    // a stated modulus is used as given (the thesis' 1D convention)
+    let stated = Scenario::from_toml_str(SI, "si.toml").unwrap();
+    assert!((stated.medium.wave_speed() - (e / rho).sqrt()).abs() < 1e-9);
+    let thesis = Scenario::load(&examples().join("thesis/ch3_rccm.toml")).unwrap();
+    assert!((thesis.medium.wave_speed() - 2049.80).abs() < 0.01);
+    // a bar keeps Young's modulus
+    let stack = r#"
+[model]
+kind = "bar_stack"
+area = 1.0
+first_end = "transparent"
+last_end = "transparent"
+[[segment]]
+name = "a"
+length = 0.01
+material = "aluminium"
+[[segment]]
+name = "b"
+length = 0.01
+material = "aluminium"
+[[interface]]
+between = ["a", "b"]
+traction = { law = "bonded" }
+[incident]
+frequency = 1e6
+cycles = 5
+amplitude = 1e6
+"#;
+    let p = std::env::temp_dir().join(format!("contactwave-bar-{}.toml", std::process::id()));
+    std::fs::write(&p, stack).unwrap();
+    let table = contactwave::scenario::read_table(&p).unwrap();
+    let b = contactwave::scenario::bar_stack::BarStackScenario::from_table(table, &p).unwrap();
+    std::fs::remove_file(&p).unwrap();
+    let cb = b.stack.segments[0].material.wave_speed();
+    assert!((cb - (e / rho).sqrt()).abs() < 1e-9, "{cb}");
+}
