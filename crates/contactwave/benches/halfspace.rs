@@ -35,6 +35,7 @@ use std::time::Duration;
 const RCCM: &str = r#"
 [medium]
 material = "pmma"
+youngs_modulus = 5e9             # the thesis' E (its 1D convention)
 [interface]
 static_pressure = 0.082e6
 traction = { law = "rccm", stiffness = 2e13, energy = 0.1, viscosity = 1e-8 }
@@ -48,6 +49,7 @@ amplitude = 0.82e6
 const UNILATERAL: &str = r#"
 [medium]
 material = "pmma"
+youngs_modulus = 5e9             # the thesis' E (its 1D convention)
 [interface]
 static_pressure = 0.1e6
 [incident]

@@ -251,10 +251,10 @@ fn shipped_examples_do_not_warn() {
 #[test]
 fn presets_give_a_half_space_the_p_wave_speed() {
     let s = Scenario::from_toml_str(&SI.replace("youngs_modulus = 71e9\n", ""), "al.toml").unwrap();
-    let (e, nu, rho) = (71e9, 0.33, 2710.0);
+    let (e, nu, rho): (f64, f64, f64) = (71e9, 0.33, 2710.0);
     let m = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
     let c = s.medium.wave_speed();
-    assert!((c / (m / rho as f64).sqrt() - 1.0).abs() < 1e-12, "{c}");
+    assert!((c / (m / rho).sqrt() - 1.0).abs() < 1e-12, "{c}");
     assert!((c - 6230.4).abs() < 0.1, "{c}");
     // the shear wave keeps G = E / (2 (1 + nu))
     let ct = s.medium.shear_wave_speed().unwrap();

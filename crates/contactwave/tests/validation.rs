@@ -15,7 +15,7 @@ const P0_CH5: f64 = 0.14e6;
 fn bilinear_with_contact_loss_matches_analytical_solution() {
     let (kc, kt, f, amp) = (3e11, 1e10, 5e3, 0.25e6);
     let text = format!(
-        "[medium]\nmaterial = \"pmma\"\n[interface]\nstatic_pressure = {P0_CH5}\ncompression = {{ law = \"linear\", stiffness = {kc} }}\ntraction = {{ law = \"linear\", stiffness = {kt} }}\n[incident]\nfrequency = {f}\ncycles = 40\namplitude = {amp}\nwindow = \"rectangular\"\n[solver]\ntail_periods = 1\n"
+        "[medium]\nmaterial = \"pmma\"\nyoungs_modulus = 5e9\n[interface]\nstatic_pressure = {P0_CH5}\ncompression = {{ law = \"linear\", stiffness = {kc} }}\ntraction = {{ law = \"linear\", stiffness = {kt} }}\n[incident]\nfrequency = {f}\ncycles = 40\namplitude = {amp}\nwindow = \"rectangular\"\n[solver]\ntail_periods = 1\n"
     );
     let r = run(&text);
     assert!(
@@ -55,7 +55,7 @@ fn linear_spring_amplitude_and_phase() {
     // chapter-5 values: the transient decays at w1 = K/Z = 1.2e5 /s, fast against 5 kHz
     let (kc, f, amp) = (3e11, 5e3, 0.01e6);
     let text = format!(
-        "[medium]\nmaterial = \"pmma\"\n[interface]\nstatic_pressure = {P0_CH5}\ncompression = {{ law = \"linear\", stiffness = {kc} }}\n[incident]\nfrequency = {f}\ncycles = 30\namplitude = {amp}\nwindow = \"rectangular\"\n[solver]\ntail_periods = 1\n"
+        "[medium]\nmaterial = \"pmma\"\nyoungs_modulus = 5e9\n[interface]\nstatic_pressure = {P0_CH5}\ncompression = {{ law = \"linear\", stiffness = {kc} }}\n[incident]\nfrequency = {f}\ncycles = 30\namplitude = {amp}\nwindow = \"rectangular\"\n[solver]\ntail_periods = 1\n"
     );
     let r = run(&text);
     assert_eq!(get(&r, "contact_loss_fraction"), 0.0);

@@ -26,7 +26,7 @@ struct Run {
     /// (frequency Hz, |receptance| m/N) up to F_PLOT; NaN where the FRF is masked (force
     /// spectrum below FRF_FORCE_FLOOR_DB of its peak), drawn as a gap.
     frf: Vec<(f64, f64)>,
-    /// Time (s), acceleration (m/s^2), force (N), pressure of interface 1 (Pa), decimated.
+    /// Time (s), acceleration (m/s^2), force (N), pressure of interface 0 (Pa), decimated.
     t: Vec<f64>,
     acc: Vec<f64>,
     load: Vec<f64>,
@@ -89,7 +89,7 @@ fn table2() -> Result<(Vec<f64>, Vec<f64>)> {
     Ok((p, k))
 }
 
-/// (pressure Pa, stiffness Pa/m, gap m) along the compression branch of interface 1 of
+/// (pressure Pa, stiffness Pa/m, gap m) along the compression branch of interface 0 of
 /// `s`, from contact loss to `p_max`.
 fn law_curve(s: &BarStackScenario, p_max: f64) -> Vec<(f64, f64, f64)> {
     let Some(law) = s.stack.interfaces.first() else {
@@ -449,7 +449,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
              the free acceleration response (after the pulse); A1: its amplitude at f1 (the \
              equivalent steady sinusoid over the Hann-windowed free response); A2: the same \
              near 2 f1; mean contact stiffness of \
-             interface 1 over the closed instants of the response (eq. 4.2); minimum contact \
+             interface 0 over the closed instants of the response (eq. 4.2); minimum contact \
              pressure reached at either interface (0: the contact opened)."
                 .into(),
             vec![
@@ -475,7 +475,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
                     markers: vec![],
                 },
                 Panel {
-                    title: "Mean contact stiffness, interface 1 (eq. 4.2)".into(),
+                    title: "Mean contact stiffness, interface 0 (eq. 4.2)".into(),
                     xlabel: "F, N".into(),
                     ylabel: "K, 10^12 Pa/m".into(),
                     series: vec![
@@ -560,7 +560,7 @@ pub(crate) fn run(ctx: &Ctx) -> Result<ChapterResult> {
              pressure is 0.137 MPa; the interfaces stay closed when the minimum stays above 0."
                 .into(),
             vec![Panel {
-                title: "Contact pressure, interface 1".into(),
+                title: "Contact pressure, interface 0".into(),
                 xlabel: "t, ms".into(),
                 ylabel: "p, MPa".into(),
                 series: vec![

@@ -99,7 +99,7 @@ impl Scenario {
     /// use contactwave::scenario::Scenario;
     /// let s = Scenario::from_toml_str(r#"
     ///     [medium]
-    ///     material = "pmma"           # E = 5 GPa, rho = 1190 kg/m^3
+    ///     material = "pmma"           # E = 5 GPa, nu = 0.35, rho = 1190 kg/m^3
     ///     [interface]
     ///     static_pressure = 0.1e6     # p0, Pa; rigid compression, free traction (defaults)
     ///     [incident]
@@ -107,8 +107,10 @@ impl Scenario {
     ///     cycles = 10
     ///     xi = 0.5                    # load ratio instead of an amplitude
     /// "#, "example.toml").unwrap();
-    /// // Z1 = sqrt(E rho), Pa s/m; the counterpart is a rigid wall by default
-    /// assert!((s.medium.impedance() - (5e9_f64 * 1190.0).sqrt()).abs() < 1e-6);
+    /// // a plane wave in a half-space: the P-wave modulus M = E (1 - nu) / ((1 + nu) (1 - 2 nu)),
+    /// // Z1 = sqrt(M rho), Pa s/m; the counterpart is a rigid wall by default
+    /// let m = 5e9 * 0.65 / (1.35 * 0.3);
+    /// assert!((s.medium.impedance() / (m * 1190.0_f64).sqrt() - 1.0).abs() < 1e-12);
     /// assert_eq!(s.blocked_factor(), 2.0);
     /// // rigid compression against a rigid wall: xi = p0 / (2 A), so A = 0.1 MPa;
     /// // 10 cycles at 1 MHz last 10 µs

@@ -129,14 +129,14 @@ pub fn unilateral_extrema() -> Result<[ValidationCase; 2]> {
     ])
 }
 
-/// Bilinear law with contact loss (chapter 5: PMMA, p0 = 0.14 MPa, K_c = 3e11, K_t = 1e10,
+/// Bilinear law with contact loss (chapter 5: PMMA with the thesis' E = 5 GPa, p0 = 0.14 MPa, K_c = 3e11, K_t = 1e10,
 /// 5 kHz, rectangular 40-cycle burst): largest gap over the last 20 cycles against the
 /// closed-form solution, and the largest gap error relative to it.
 pub fn bilinear() -> Result<[ValidationCase; 2]> {
     let (kc, kt, f, amp, p0) = (3e11, 1e10, 5e3, 0.25e6, 0.14e6);
     let s = Scenario::from_toml_str(
         &format!(
-            "[medium]\nmaterial = \"pmma\"\n[interface]\nstatic_pressure = {p0:?}\ncompression = {{ law = \"linear\", stiffness = {kc:?} }}\ntraction = {{ law = \"linear\", stiffness = {kt:?} }}\n[incident]\nfrequency = {f:?}\ncycles = 40\namplitude = {amp:?}\nwindow = \"rectangular\"\n[solver]\ntail_periods = 1\n"
+            "[medium]\nmaterial = \"pmma\"\nyoungs_modulus = 5e9\n[interface]\nstatic_pressure = {p0:?}\ncompression = {{ law = \"linear\", stiffness = {kc:?} }}\ntraction = {{ law = \"linear\", stiffness = {kt:?} }}\n[incident]\nfrequency = {f:?}\ncycles = 40\namplitude = {amp:?}\nwindow = \"rectangular\"\n[solver]\ntail_periods = 1\n"
         ),
         "<validation: bilinear>",
     )?;
@@ -181,7 +181,7 @@ pub fn bilinear() -> Result<[ValidationCase; 2]> {
 pub fn linear_spring() -> Result<ValidationCase> {
     let (kc, f, amp) = (3e11, 5e3, 0.01e6);
     let s = Scenario::from_toml_str(
-        &format!("[medium]\nmaterial = \"pmma\"\n[interface]\nstatic_pressure = 0.14e6\ncompression = {{ law = \"linear\", stiffness = {kc:?} }}\n[incident]\nfrequency = {f:?}\ncycles = 30\namplitude = {amp:?}\nwindow = \"rectangular\"\n[solver]\ntail_periods = 1\n"),
+        &format!("[medium]\nmaterial = \"pmma\"\nyoungs_modulus = 5e9\n[interface]\nstatic_pressure = 0.14e6\ncompression = {{ law = \"linear\", stiffness = {kc:?} }}\n[incident]\nfrequency = {f:?}\ncycles = 30\namplitude = {amp:?}\nwindow = \"rectangular\"\n[solver]\ntail_periods = 1\n"),
         "<validation: linear spring>",
     )?;
     let r = simulate(&s)?;
