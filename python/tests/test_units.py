@@ -17,7 +17,7 @@ def _dict(frequency, static_pressure, youngs_modulus="5 GPa"):
             "traction": {"law": "free"},
         },
         "incident": {"frequency": frequency, "cycles": 5, "xi": 0.35},
-        "numerics": {"samples_per_period": 100},
+        "solver": {"samples_per_period": 100},
     }
 
 

@@ -103,7 +103,7 @@ pub fn spectrum_csv(result: &RunResult) -> String {
 
 /// The summary of `summary.json`: the run's summary keys, then the wave speeds and
 /// impedances it used (`medium_wave_speed`, `medium_impedance`, ...).
-fn summary_with_waves(result: &RunResult) -> crate::analysis::Summary {
+pub(super) fn summary_with_waves(result: &RunResult) -> crate::analysis::Summary {
     let mut s = result.summary.clone();
     for (k, v) in &result.waves {
         s.set(k, *v);

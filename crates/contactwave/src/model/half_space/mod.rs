@@ -169,7 +169,7 @@ impl Outcome for RunResult {
             .with("probe_displacement", p.displacement.clone().into())
             .with(
                 "summary",
-                summary_record(Some(&self.file), &self.summary).into(),
+                summary_record(Some(&self.file), &files::summary_with_waves(self)).into(),
             )
             .with(
                 "spectrum",
