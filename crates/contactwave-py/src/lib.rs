@@ -644,7 +644,9 @@ thread_local! {
     /// A fresh thread per call made every Python run a cold run (2.6 ms against 1.6 ms for
     /// the chapter-3 RCCM run, docs/performance.md). One helper per calling thread, so
     /// Python threads still run in parallel.
-    static RUN_HELPER: std::cell::RefCell<Option<std::sync::mpsc::Sender<Job>>> =
+    /// With the process id that started it: a child made by `fork` (a process pool) has a
+    /// copy of the sender but no helper thread, and starts its own.
+    static RUN_HELPER: std::cell::RefCell<Option<(u32, std::sync::mpsc::Sender<Job>)>> =
         const { std::cell::RefCell::new(None) };
 }
 
@@ -663,8 +665,13 @@ fn on_run_helper<T: Send + 'static>(
     });
     RUN_HELPER.with(|h| -> PyResult<()> {
         let mut h = h.borrow_mut();
+        let pid = std::process::id();
+        if h.as_ref().is_some_and(|(owner, _)| *owner != pid) {
+            // forked: the helper thread stayed in the parent; leave its channel untouched
+            std::mem::forget(h.take());
+        }
         let job = match h.as_ref() {
-            Some(helper) => match helper.send(job) {
+            Some((_, helper)) => match helper.send(job) {
                 Ok(()) => return Ok(()),
                 Err(mpsc::SendError(job)) => job,
             },
@@ -678,7 +685,7 @@ fn on_run_helper<T: Send + 'static>(
             .map_err(|e| PyOSError::new_err(format!("cannot start a run thread: {e}")))?;
         jobs.send(job)
             .map_err(|_| PyRuntimeError::new_err("the run thread is gone"))?;
-        *h = Some(jobs);
+        *h = Some((pid, jobs));
         Ok(())
     })?;
     let mut rx = rx;
