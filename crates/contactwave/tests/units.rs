@@ -300,3 +300,45 @@ amplitude = 1e6
     let cb = b.stack.segments[0].material.wave_speed();
     assert!((cb - (e / rho).sqrt()).abs() < 1e-9, "{cb}");
 }
+
+/// A bar stack's unit slips warn too: a segment length in mm, a modulus in GPa, a density
+/// in g/cm^3 (what the CLI and Python ask of the model).
+#[test]
+fn bar_stack_unit_slips_warn() {
+    let read = |f: &str| std::fs::read_to_string(examples().join(f)).unwrap();
+    let warnings = |text: &str| -> Vec<String> {
+        model::from_toml_str(text, "bars.toml")
+            .unwrap()
+            .base()
+            .unwrap()
+            .warnings()
+            .iter()
+            .map(|w| w.to_string())
+            .collect()
+    };
+    let (hammer, burst) = (read("tribobrake.toml"), read("bar_stack_incident.toml"));
+    assert!(warnings(&hammer).is_empty() && warnings(&burst).is_empty());
+    let long = hammer.replacen("length = 0.229 ", "length = 229 ", 1);
+    assert_ne!(long, hammer);
+    let w = warnings(&long);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(
+        w[0].starts_with(
+            "bars.toml: segment[0].length = 229 m: a bar longer than 10 m; a length in mm?"
+        ),
+        "{w:?}"
+    );
+    let light = burst.replacen(
+        "material = \"pmma\" ",
+        "material = \"pmma\"\ndensity = 1.19\nshear_modulus = 2 ",
+        1,
+    );
+    assert_ne!(light, burst);
+    let w = warnings(&light);
+    for start in [
+        "bars.toml: segment[0].density = 1.19 kg/m^3: lighter than any solid",
+        "bars.toml: segment[0].shear_modulus = 2 Pa: below 1 MPa",
+    ] {
+        assert!(w.iter().any(|w| w.starts_with(start)), "{start}: {w:?}");
+    }
+}

@@ -75,6 +75,10 @@ impl Model for BarStackScenario {
         KIND.name()
     }
 
+    fn warnings(&self) -> Vec<crate::scenario::Warning> {
+        BarStackScenario::warnings(self)
+    }
+
     fn file(&self) -> &str {
         &self.file
     }
