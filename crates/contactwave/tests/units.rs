@@ -117,7 +117,7 @@ damping = "0"
 }
 
 #[test]
-fn sweeps_and_identifications_take_unit_strings() {
+fn sweeps_take_unit_strings() {
     let d = std::env::temp_dir().join(format!("contactwave-units-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
     std::fs::write(d.join("base.toml"), SI).unwrap();
@@ -144,7 +144,16 @@ fn sweeps_and_identifications_take_unit_strings() {
         e.contains("bad.toml: field `axis[0].values` = \"1 mm\": `mm` is a unit of a length"),
         "{e}"
     );
-    // an identification file: bounds, initial and design values with units
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// An identification file takes unit strings in bounds, initial and design values.
+#[cfg(feature = "identify")]
+#[test]
+fn identifications_take_unit_strings() {
+    let d = std::env::temp_dir().join(format!("contactwave-units-id-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    std::fs::write(d.join("base.toml"), SI).unwrap();
     std::fs::write(
         d.join("identify.toml"),
         "base = \"base.toml\"\nobserved = [\"A1_over_Ainc\"]\n\
