@@ -92,3 +92,25 @@ proptest! {
         prop_assert!(r.summary.get("energy_closure_error").unwrap() < 1e-2, "closure\n{}", text);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+    /// A unit string of any text is a value or an error, never a panic; a number with an
+    /// SI prefix on a unit of the key's dimension is that number times the prefix.
+    #[test]
+    fn unit_strings_parse_or_refuse_without_panicking(
+        text in "\\PC{0,12}",
+        x in -1e6f64..1e6,
+        prefix in prop::sample::select(vec![("k", 1e3), ("M", 1e6), ("G", 1e9), ("m", 1e-3), ("u", 1e-6), ("", 1.0)]),
+    ) {
+        use contactwave::scenario::units::{parse, Dimension};
+        for dim in Dimension::ALL {
+            let _ = parse(&text, dim);
+        }
+        let (p, f) = prefix;
+        let v = parse(&format!("{x} {p}Pa"), Dimension::Pressure).unwrap();
+        prop_assert!((v - x * f).abs() <= 1e-12 * (x * f).abs());
+        let wrong = format!("{x} {p}Hz");
+        prop_assert!(parse(&wrong, Dimension::Pressure).is_err());
+    }
+}
