@@ -175,6 +175,18 @@ pub trait TangentialBranch: Debug + Send + Sync {
     fn spring_stiffness_d_adhesion(&self, _adhesion: f64) -> f64 {
         0.0
     }
+    /// Energy of the reversible spring, `k(beta) [u]_T^2 / 2`, J/m^2, at adhesion `beta`
+    /// and tangential gap `u_t` (m).
+    fn spring_energy(&self, adhesion: f64, u_t: f64) -> f64 {
+        0.5 * self.spring_stiffness(adhesion) * u_t * u_t
+    }
+    /// The spring's share of the energy released per unit decrease of beta,
+    /// `(dk/dbeta) [u]_T^2 / 2`, J/m^2, at adhesion `beta` and tangential gap `u_t` (m):
+    /// added to the traction branch's damage driving force in the coupled RCCM law
+    /// (model.md section 13).
+    fn spring_energy_d_adhesion(&self, adhesion: f64, u_t: f64) -> f64 {
+        0.5 * self.spring_stiffness_d_adhesion(adhesion) * u_t * u_t
+    }
     /// Coulomb friction coefficient mu (0: no slider).
     fn friction(&self) -> f64 {
         0.0
@@ -226,8 +238,7 @@ impl TangentialLaw {
             if normal.traction.has_damage() && br.needs_adhesion() {
                 // rate-independent damage, interface closed (d = 0): phi affine in beta
                 let phi = |b: f64| {
-                    normal.traction.damage_driving_force(0.0, b)
-                        - 0.5 * br.spring_stiffness_d_adhesion(b) * u * u
+                    normal.traction.damage_driving_force(0.0, b) - br.spring_energy_d_adhesion(b, u)
                 };
                 let (a0, a1) = (phi(0.0), phi(beta));
                 if a1 < 0.0 && beta > 0.0 {

@@ -420,8 +420,8 @@ fn assemble(
         out.slip_state.push(rec.state[i + lag]);
         if k > 0 {
             let d = (g - uc).max(0.0);
-            let psi_beta = law.traction.energy_d_adhesion(d, b)
-                + 0.5 * br.spring_stiffness_d_adhesion(b) * ut * ut;
+            let psi_beta =
+                law.traction.energy_d_adhesion(d, b) + br.spring_energy_d_adhesion(b, ut);
             damage += psi_beta * (rec.beta[i - 1] - b);
             friction += rec.slider[i] * (rec.slip[i] - rec.slip[i - 1]);
             let (was, is) = (rec.gap[0][i - 1] > uc, g > uc);
@@ -455,7 +455,7 @@ fn assemble(
     out.normal.energy.damage = damage;
     out.normal.energy.adhesion_decrease =
         law.traction.adhesion_energy(1.0) - law.traction.adhesion_energy(b);
-    out.shear.energy.stored = 0.5 * br.spring_stiffness(b) * ut * ut + series;
+    out.shear.energy.stored = br.spring_energy(b, ut) + series;
     out.friction_dissipation = friction;
     out.static_shear_work = q0 * rec.slip[last];
     out.normal.open_time_in_burst = open_time;

@@ -51,9 +51,7 @@ pub fn adhesion_update(
     if ut == 0.0 || !br.needs_adhesion() {
         return tr.update_adhesion(opening, beta_old, dt);
     }
-    let phi = |b: f64| {
-        tr.damage_driving_force(opening, b) - 0.5 * br.spring_stiffness_d_adhesion(b) * ut * ut
-    };
+    let phi = |b: f64| tr.damage_driving_force(opening, b) - br.spring_energy_d_adhesion(b, ut);
     if phi(beta_old) >= 0.0 {
         return beta_old;
     }

@@ -191,8 +191,8 @@ pub(super) fn update(
     let b = upd.normal.adhesion;
     if b != st.beta {
         let d = (upd.normal.gap - law.critical_gap()).max(0.0);
-        let psi_beta = law.traction.energy_d_adhesion(d, b)
-            + 0.5 * tl.branch.spring_stiffness_d_adhesion(b) * new.gap * new.gap;
+        let psi_beta =
+            law.traction.energy_d_adhesion(d, b) + tl.branch.spring_energy_d_adhesion(b, new.gap);
         st.damage += psi_beta * (st.beta - b);
     }
     st.t_prev = st.t_cur;

@@ -719,7 +719,7 @@ impl<'a> Runner<'a> {
             incident: acc.e_inc[1],
             reflected: acc.e_ref[1],
             transmitted: acc.e_tr[1],
-            stored: 0.5 * tl.branch.spring_stiffness(e.beta) * y[2] * y[2] + series,
+            stored: tl.branch.spring_energy(e.beta, y[2]) + series,
             damage: 0.0,
             adhesion_decrease: 0.0,
         };

@@ -139,7 +139,7 @@ impl Interface<'_> {
             (
                 self.phi(d, y[2], s.beta),
                 self.law.traction.energy_d_adhesion(d, s.beta)
-                    + 0.5 * br.spring_stiffness_d_adhesion(s.beta) * y[2] * y[2],
+                    + br.spring_energy_d_adhesion(s.beta, y[2]),
             )
         } else {
             (f64::INFINITY, 0.0)

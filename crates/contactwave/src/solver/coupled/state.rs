@@ -117,7 +117,7 @@ impl Interface<'_> {
     /// Damage driving force at opening `d >= 0`, tangential gap and adhesion.
     pub(super) fn phi(&self, d: f64, ut: f64, beta: f64) -> f64 {
         self.law.traction.damage_driving_force(d, beta)
-            - 0.5 * self.tangential.branch.spring_stiffness_d_adhesion(beta) * ut * ut
+            - self.tangential.branch.spring_energy_d_adhesion(beta, ut)
     }
 
     /// Adhesion in effect: the state's, or on the damage surface `phi = 0` (driving
@@ -206,7 +206,7 @@ impl Interface<'_> {
             (
                 self.phi(d, y[2], beta),
                 self.law.traction.energy_d_adhesion(d, beta)
-                    + 0.5 * br.spring_stiffness_d_adhesion(beta) * y[2] * y[2],
+                    + br.spring_energy_d_adhesion(beta, y[2]),
             )
         } else {
             (f64::INFINITY, 0.0)
