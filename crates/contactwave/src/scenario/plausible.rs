@@ -68,16 +68,17 @@ impl<'a> Warnings<'a> {
         })
     }
 
-    /// A tone burst's frequencies (`prefix.frequency`, `prefix.frequency2`), Hz, against
-    /// the bottom of the audio range; `speed` (m/s) gives the wavelength in the message.
-    fn frequencies(&mut self, prefix: &str, freqs: [Option<f64>; 2], speed: f64, into: &str) {
+    /// A tone burst's frequencies into a half-space (`prefix.frequency`,
+    /// `prefix.frequency2`), Hz, against the bottom of the audio range; `speed` (m/s) gives
+    /// the wavelength in the message.
+    fn frequencies(&mut self, prefix: &str, freqs: [Option<f64>; 2], speed: f64) {
         for (key, f) in ["frequency", "frequency2"].into_iter().zip(freqs) {
             match f {
                 Some(f) if f < LOWEST_FREQUENCY => self.warn(
                     format!("{prefix}.{key}"),
                     format!("{f} Hz"),
                     format!(
-                        "below the audio range for a burst into {into} (wavelength {:.3e} m); \
+                        "below the audio range for a burst into a half-space (wavelength {:.3e} m); \
                          a frequency in MHz? write \"{f} MHz\" or {f}e6",
                         speed / f
                     ),
@@ -159,7 +160,7 @@ impl Scenario {
         ];
         for (prefix, inc) in waves {
             if let Some(inc) = inc.filter(|i| !i.is_absent()) {
-                w.frequencies(prefix, [inc.frequency, inc.frequency2], c, "a half-space");
+                w.frequencies(prefix, [inc.frequency, inc.frequency2], c);
             }
         }
         w.duration(
