@@ -8,7 +8,7 @@ use contactwave::law::{compression::Rigid, traction::Free, ContactLaw};
 use contactwave::material::Material;
 use contactwave::model::bar_stack::simulate_bar_stack;
 use contactwave::scenario::bar_stack::BarStackScenario;
-use contactwave::solver::barstack::{BarStack, End, FdRun, InterfaceScheme, Segment};
+use contactwave::solver::bar_stack::{BarStack, End, FdRun, InterfaceScheme, Segment};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::path::Path;
 use std::sync::Arc;

@@ -25,7 +25,7 @@
 use contactwave::model::half_space::methods::forget_locked_floors;
 use contactwave::scenario::Scenario;
 use contactwave::simulate_summary;
-use contactwave::solver::halfspace::forget_incident_table;
+use contactwave::solver::half_space::forget_incident_table;
 use criterion::{criterion_group, criterion_main, Criterion};
 use rayon::prelude::*;
 use std::hint::black_box;

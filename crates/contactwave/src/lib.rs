@@ -3,7 +3,7 @@
 //! Nonlinear interaction of elastic waves with contact interfaces (closed cracks, kissing
 //! bonds, rough and adhesive joints): contact laws built from any compression branch and
 //! any traction branch ([`law`]), an exact solver of the half-space problem
-//! ([`solver::halfspace`]), incident waves ([`excitation`]), the harmonic analysis of the
+//! ([`solver::half_space`]), incident waves ([`excitation`]), the harmonic analysis of the
 //! thesis ([`analysis`]), scenario files ([`scenario`]), parameter studies ([`study`]) and
 //! result files ([`output`]).
 //!

@@ -375,7 +375,7 @@ fn bar_stack_runs_report_progress() {
     let s = load(&text).unwrap();
     let seen = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
     let sink = seen.clone();
-    let p = contactwave::solver::barstack::StepProgress(std::sync::Arc::new(
+    let p = contactwave::solver::bar_stack::StepProgress(std::sync::Arc::new(
         move |done: usize, total: usize| sink.lock().unwrap().push((done, total)),
     ));
     let r = contactwave::simulate_bar_stack_with_progress(&s, Some(p)).unwrap();

@@ -5,7 +5,7 @@ mod common;
 use common::*;
 use contactwave::excitation::{ToneBurst, Window};
 use contactwave::material::Material;
-use contactwave::solver::barstack::{BarStack, End, FdRun, Segment};
+use contactwave::solver::bar_stack::{BarStack, End, FdRun, Segment};
 use std::sync::Arc;
 
 /// At Courant number 1 a pulse crosses a uniform bar unchanged (to 1e-12).

@@ -8,7 +8,7 @@ use contactwave::law::registry::{build_law, build_tangential};
 use contactwave::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 use contactwave::material::Material;
 use contactwave::solver::coupled::{CoupledHalfSpace, CoupledOutput, CoupledSolver};
-use contactwave::solver::halfspace::HalfSpaceSettings;
+use contactwave::solver::half_space::HalfSpaceSettings;
 use contactwave::solver::Solver;
 use rustfft::num_complex::Complex64;
 use std::f64::consts::PI;
@@ -180,7 +180,7 @@ fn normal_incidence(wave: WaveType) -> (CoupledHalfSpace, CoupledHalfSpace) {
         WaveType::Sv => (silent, burst),
     };
     let mut normal = oblique.clone();
-    normal.normal = contactwave::solver::halfspace::HalfSpace::new(
+    normal.normal = contactwave::solver::half_space::HalfSpace::new(
         AL,
         Some(STEEL),
         normal.normal.law.clone(),

@@ -6,7 +6,7 @@ use contactwave::law::registry::{build_law, build_tangential};
 use contactwave::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 use contactwave::material::Material;
 use contactwave::solver::coupled::{CoupledHalfSpace, CoupledSolver};
-use contactwave::solver::halfspace::{ExactSolver, HalfSpace, HalfSpaceSettings};
+use contactwave::solver::half_space::{ExactSolver, HalfSpace, HalfSpaceSettings};
 use contactwave::solver::Solver;
 use std::sync::Arc;
 

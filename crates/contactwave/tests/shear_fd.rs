@@ -6,11 +6,11 @@ use contactwave::excitation::{Excitation, ToneBurst, Window};
 use contactwave::law::registry::{build_law, build_tangential};
 use contactwave::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 use contactwave::material::Material;
-use contactwave::solver::barstack::InterfaceScheme;
+use contactwave::solver::bar_stack::InterfaceScheme;
 use contactwave::solver::coupled::{CoupledHalfSpace, CoupledOutput, CoupledSolver};
-use contactwave::solver::halfspace::{HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
-use contactwave::solver::halfspace_fd::FdSolver;
-use contactwave::solver::halfspace_fd_shear::FdCoupledSolver;
+use contactwave::solver::half_space::{HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
+use contactwave::solver::half_space_fd::FdSolver;
+use contactwave::solver::half_space_fd_shear::FdCoupledSolver;
 use contactwave::solver::Solver;
 use std::sync::Arc;
 

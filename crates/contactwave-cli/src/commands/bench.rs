@@ -11,7 +11,7 @@ use contactwave::model;
 use contactwave::model::half_space::methods::forget_locked_floors;
 use contactwave::run::Executor;
 use contactwave::scenario::parse_toml;
-use contactwave::solver::halfspace::forget_incident_table;
+use contactwave::solver::half_space::forget_incident_table;
 use contactwave::study;
 use std::path::Path;
 use std::time::Instant;

@@ -10,7 +10,7 @@ use contactwave::output;
 use contactwave::scenario::bar_stack::BarStackScenario;
 use contactwave::scenario::read_table;
 use contactwave::scenario::Scenario;
-use contactwave::solver::barstack::End;
+use contactwave::solver::bar_stack::End;
 use std::path::PathBuf;
 
 /// Write the contact law of a scenario as law_curve.csv (gap m, stress Pa) and

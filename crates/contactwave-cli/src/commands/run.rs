@@ -8,7 +8,7 @@ use super::{check_out_dir, progress_bar, read_table, EXIT_OK, STEPS_TEMPLATE};
 use contactwave::model::{self, RunControl};
 use contactwave::output;
 use contactwave::output::recording::{self, Recording, Series};
-use contactwave::solver::barstack::StepProgress;
+use contactwave::solver::bar_stack::StepProgress;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;

@@ -68,7 +68,7 @@ use crate::analysis::Summary;
 use crate::error::Result;
 use crate::render::{OutputFile, Rows};
 use crate::scenario::read_table;
-use crate::solver::barstack::StepProgress;
+use crate::solver::bar_stack::StepProgress;
 use std::any::Any;
 use std::fmt::Debug;
 use std::path::Path;

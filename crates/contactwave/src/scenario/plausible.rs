@@ -195,7 +195,7 @@ impl Scenario {
 impl BarStackScenario {
     /// Values of this bar stack that are allowed but almost surely a unit slip: a
     /// segment's moduli and density (as for a half-space) and a segment longer than
-    /// [`LONGEST_SEGMENT`] (a length in mm?). Empty for every shipped example. (A burst
+    /// 10 m (a length in mm?). Empty for every shipped example. (A burst
     /// frequency in MHz given in Hz needs cells longer than the bars: the scenario is
     /// refused with the key to change before any warning.)
     pub fn warnings(&self) -> Vec<Warning> {

@@ -271,11 +271,11 @@ pub enum InterfaceUpdate {
     Backward,
 }
 
-impl From<InterfaceUpdate> for crate::solver::barstack::InterfaceScheme {
+impl From<InterfaceUpdate> for crate::solver::bar_stack::InterfaceScheme {
     fn from(u: InterfaceUpdate) -> Self {
         match u {
-            InterfaceUpdate::Average => crate::solver::barstack::InterfaceScheme::Average,
-            InterfaceUpdate::Backward => crate::solver::barstack::InterfaceScheme::Backward,
+            InterfaceUpdate::Average => crate::solver::bar_stack::InterfaceScheme::Average,
+            InterfaceUpdate::Backward => crate::solver::bar_stack::InterfaceScheme::Backward,
         }
     }
 }

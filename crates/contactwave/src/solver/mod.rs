@@ -3,17 +3,17 @@
 //!
 //! | solver | problem | output |
 //! |---|---|---|
-//! | [`halfspace::ExactSolver`] (gap ODE with located events, model.md section 4) | [`halfspace::HalfSpace`] | [`HalfSpaceOutput`] |
-//! | [`halfspace_fd::FdSolver`] (the bar-stack scheme on the same problem) | [`halfspace::HalfSpace`] | [`HalfSpaceOutput`] |
-//! | [`halfspace_fd_shear::FdCoupledSolver`] (the bar-stack scheme with a shear field, model.md section 13) | [`coupled::CoupledHalfSpace`] | [`coupled::CoupledOutput`] |
-//! | [`barstack::FdRun`] (explicit FD bar stack, model.md section 5) | [`barstack::BarStack`] | [`FdOutput`] |
+//! | [`half_space::ExactSolver`] (gap ODE with located events, model.md section 4) | [`half_space::HalfSpace`] | [`HalfSpaceOutput`] |
+//! | [`half_space_fd::FdSolver`] (the bar-stack scheme on the same problem) | [`half_space::HalfSpace`] | [`HalfSpaceOutput`] |
+//! | [`half_space_fd_shear::FdCoupledSolver`] (the bar-stack scheme with a shear field, model.md section 13) | [`coupled::CoupledHalfSpace`] | [`coupled::CoupledOutput`] |
+//! | [`bar_stack::FdRun`] (explicit FD bar stack, model.md section 5) | [`bar_stack::BarStack`] | [`FdOutput`] |
 //!
 //! ```
 //! use contactwave::excitation::{ToneBurst, Window};
 //! use contactwave::law::registry::build_law;
 //! use contactwave::law::spec::{CompressionSpec, TractionSpec};
 //! use contactwave::material::Material;
-//! use contactwave::solver::{halfspace::{ExactSolver, HalfSpace}, Solver};
+//! use contactwave::solver::{half_space::{ExactSolver, HalfSpace}, Solver};
 //! use std::sync::Arc;
 //! let law = build_law(1e5, &CompressionSpec::Rigid, &TractionSpec::Free, "<code>", "interface").unwrap();
 //! let pmma = Material::preset("pmma").unwrap();
@@ -25,11 +25,11 @@
 //! assert!(out.energy.closure_error() < 1e-6);
 //! ```
 
-pub mod barstack;
+pub mod bar_stack;
 pub mod coupled;
-pub mod halfspace;
-pub mod halfspace_fd;
-pub mod halfspace_fd_shear;
+pub mod half_space;
+pub mod half_space_fd;
+pub mod half_space_fd_shear;
 pub mod interface;
 pub mod interface_shear;
 pub mod output;

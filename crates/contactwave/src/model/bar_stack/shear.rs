@@ -7,7 +7,7 @@
 use super::waves::{wave_analysis, WaveHistories};
 use crate::analysis::{set_shear_harmonics, Summary};
 use crate::scenario::bar_stack::BarStackScenario;
-use crate::solver::barstack::{End, FdOutput, Mesh};
+use crate::solver::bar_stack::{End, FdOutput, Mesh};
 
 /// The transverse field of a bar-stack run.
 #[derive(Debug, Clone, Default)]

@@ -9,7 +9,7 @@ use super::waves::{wave_analysis, WaveHistories};
 use crate::analysis::{spectral_peak, with_analyzer, Summary};
 use crate::error::Result;
 use crate::scenario::bar_stack::{BarStackScenario, HalfSine};
-use crate::solver::barstack::{End, FdOutput, FdRun, ForceSource, StepProgress};
+use crate::solver::bar_stack::{End, FdOutput, FdRun, ForceSource, StepProgress};
 use std::sync::Arc;
 
 /// Level of the force spectrum, in dB re its peak, below which an FRF bin is masked: there

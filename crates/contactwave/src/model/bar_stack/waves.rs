@@ -5,7 +5,7 @@
 use crate::excitation::Excitation;
 use crate::numeric::gauss4;
 use crate::scenario::bar_stack::BarStackScenario;
-use crate::solver::barstack::End;
+use crate::solver::bar_stack::End;
 use std::sync::Arc;
 
 /// The waves of an `[incident]` run, displacements in m at the ends of the stack.

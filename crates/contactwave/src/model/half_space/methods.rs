@@ -11,7 +11,7 @@ use crate::law::tangential::{Coulomb, Linear as LinearTangential};
 use crate::law::traction::{Bonded, Linear as LinearTraction};
 use crate::law::{ContactLaw, TangentialBranch, TangentialLaw};
 use crate::scenario::Scenario;
-use crate::solver::halfspace::HalfSpaceOutput;
+use crate::solver::half_space::HalfSpaceOutput;
 use std::sync::Arc;
 
 /// Harmonic amplitudes of the reflected velocity by the scenario's method, and its floor.

@@ -8,7 +8,7 @@ use crate::analysis::methods::{method_bands, plateau, Records, Signal};
 use crate::analysis::{AnalysisMethod, BandAmplitudes, Summary};
 use crate::analytic::oblique::{inv2, PlaneWave};
 use crate::scenario::{ObliqueSetup, Scenario};
-use crate::solver::halfspace::HalfSpaceOutput;
+use crate::solver::half_space::HalfSpaceOutput;
 
 /// Names of the four outgoing waves, in the order of the solver's `wave_energy`.
 pub const WAVES: [&str; 4] = [

@@ -11,8 +11,8 @@ use crate::excitation::Scaled;
 use crate::scenario::spec::Method;
 use crate::scenario::{Scenario, ShearSetup};
 use crate::solver::coupled::{CoupledHalfSpace, CoupledOutput, CoupledSolver};
-use crate::solver::halfspace::{HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
-use crate::solver::halfspace_fd_shear::FdCoupledSolver;
+use crate::solver::half_space::{HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
+use crate::solver::half_space_fd_shear::FdCoupledSolver;
 use crate::solver::Solver;
 use std::sync::Arc;
 

@@ -8,8 +8,8 @@ use crate::analysis::{
 use crate::error::Result;
 use crate::scenario::spec::Method;
 use crate::scenario::Scenario;
-use crate::solver::halfspace::{ExactSolver, HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
-use crate::solver::halfspace_fd::FdSolver;
+use crate::solver::half_space::{ExactSolver, HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
+use crate::solver::half_space_fd::FdSolver;
 use crate::solver::Solver;
 
 /// Signals at the probe x < 0 (pure delays of the interface signals; model.md section 4).

@@ -25,7 +25,7 @@ pub use spec::{
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::scenario::BuildCache;
-use crate::solver::barstack::{BarStack, InterfaceScheme, Signal};
+use crate::solver::bar_stack::{BarStack, InterfaceScheme, Signal};
 use std::path::Path;
 use std::sync::Arc;
 

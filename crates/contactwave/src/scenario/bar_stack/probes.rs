@@ -3,7 +3,7 @@
 use super::inv;
 use super::spec::ProbeSpec;
 use crate::error::Result;
-use crate::solver::barstack::{BarStack, Mesh};
+use crate::solver::bar_stack::{BarStack, Mesh};
 
 /// A probe resolved to the mesh.
 #[derive(Debug, Clone)]

@@ -5,7 +5,7 @@ use super::spec::{AnalysisSpec, ModelSpec, DEFAULT_HAMMER_DURATION, DEFAULT_INCI
 use super::{inv, pos};
 use crate::error::Result;
 use crate::excitation::Excitation;
-use crate::solver::barstack::Segment;
+use crate::solver::bar_stack::Segment;
 use std::sync::Arc;
 
 /// The time step, s: `model.cell_size` (default: the shortest segment / 4) over the

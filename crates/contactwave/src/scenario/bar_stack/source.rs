@@ -8,7 +8,7 @@ use crate::excitation::{Delayed, Excitation};
 use crate::law::ContactLaw;
 use crate::numeric::pchip::Pchip;
 use crate::scenario::BuildCache;
-use crate::solver::barstack::{BarStack, End, Segment, Signal};
+use crate::solver::bar_stack::{BarStack, End, Segment, Signal};
 use std::path::Path;
 use std::sync::Arc;
 

@@ -10,7 +10,7 @@ use crate::law::registry::build_tangential;
 use crate::law::ContactLaw;
 use crate::scenario::spec::{MaterialSpec, TangentialSpec};
 use crate::scenario::BuildCache;
-use crate::solver::barstack::{End, Segment, ShearStack};
+use crate::solver::bar_stack::{End, Segment, ShearStack};
 use std::sync::Arc;
 
 /// Validate the model keys read before the segments: the cross-section, gravity and the

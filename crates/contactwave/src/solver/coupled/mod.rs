@@ -26,7 +26,7 @@ pub mod stepper;
 
 use self::state::{Eval, Interface, Normal, Phase, Scales, Tangential};
 use self::stepper::N;
-use super::halfspace::{HalfSpace, HalfSpaceSettings};
+use super::half_space::{HalfSpace, HalfSpaceSettings};
 use super::output::{EnergyAudit, HalfSpaceOutput};
 use super::radau::{B, C};
 use super::Solver;

@@ -12,7 +12,7 @@ use crate::model::half_space::oblique::transfer_at;
 use crate::model::half_space::shear::coupled_problem;
 use crate::scenario::Scenario;
 use crate::solver::coupled::{CoupledOutput, CoupledSolver};
-use crate::solver::halfspace::HalfSpaceSettings;
+use crate::solver::half_space::HalfSpaceSettings;
 use crate::solver::Solver;
 
 const F0: f64 = 1e6;

@@ -8,8 +8,8 @@
 //! crosses the bar unchanged, so this equals the reflection at any probe, delayed. Results
 //! come back in the same form as the exact solver's, so the two solvers check each other.
 
-use super::barstack::{BarStack, End, FdRun, InterfaceScheme, Segment};
-use super::halfspace::{HalfSpace, HalfSpaceOutput};
+use super::bar_stack::{BarStack, End, FdRun, InterfaceScheme, Segment};
+use super::half_space::{HalfSpace, HalfSpaceOutput};
 use super::Solver;
 use crate::error::Result;
 use crate::numeric::gauss4;

@@ -18,7 +18,7 @@
 //! Stresses of compliant branches are those of the new level (the `Average` scheme's
 //! trapezoidal rule); a rigid-stick slider's stress is its constraint reaction, the force
 //! of the centred scheme at the level where the step starts, and is recorded there (the
-//! normal Signorini reaction keeps [`super::halfspace_fd::FdSolver`]'s labelling, one
+//! normal Signorini reaction keeps [`super::half_space_fd::FdSolver`]'s labelling, one
 //! level later, so that the normal histories are that solver's).
 //!
 //! The energy audit is the discrete one: fluxes are `Z sum (Delta u)^2 / dt` of the
@@ -26,7 +26,7 @@
 //! `sum (dpsi/dbeta) (-Delta beta)` and the friction `sum tau_f Delta s` per step; it
 //! closes to the time discretisation error (first order at switches).
 
-use super::barstack::InterfaceScheme;
+use super::bar_stack::InterfaceScheme;
 use super::coupled::{CoupledHalfSpace, CoupledOutput};
 use super::interface_shear::{coupled_step, CoupledStepInput, ShearState};
 use super::output::HalfSpaceOutput;
