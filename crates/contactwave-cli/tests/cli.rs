@@ -1,29 +1,13 @@
 //! End-to-end tests of the `contactwave` binary: outputs of `run`, one-line errors with
 //! exit code 2 and no output folder on bad input, resumable sweeps.
 
+mod common;
+use common::{examples, tmpdir};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 fn bin() -> Command {
     Command::new(env!("CARGO_BIN_EXE_contactwave"))
-}
-
-/// A fresh, unique temporary folder.
-fn tmpdir(name: &str) -> PathBuf {
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let d = std::env::temp_dir().join(format!(
-        "contactwave-cli-{name}-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::SeqCst)
-    ));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn examples() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
 }
 
 /// `contactwave CMD FILE --out OUT`.

@@ -7,31 +7,16 @@
 //! depend on the machine. `cargo test --release -p contactwave-cli --test hostile --
 //! --nocapture` prints each case's time to refusal.
 
-use std::path::{Path, PathBuf};
+mod common;
+use common::{examples, tmpdir};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 fn bin() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_contactwave"));
     c.env("CONTACTWAVE_MEMORY_BUDGET", "2G");
     c
-}
-
-fn tmpdir(name: &str) -> PathBuf {
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let d = std::env::temp_dir().join(format!(
-        "contactwave-hostile-{name}-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::SeqCst)
-    ));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn examples() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
 }
 
 const HALF_SPACE: &str = r#"[medium]
@@ -574,5 +559,52 @@ fn a_bar_stack_incident_file_is_read_over_the_simulated_window_only() {
         "bar-stack incident file of 10^7 rows, no model.duration | exit 2 in {:.1} ms",
         took.as_secs_f64() * 1e3
     );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// The one CSV reader (issue 25, item 7): `fit` and an excitation file refuse a cell that
+/// is not a number with one line naming the file, its line (comments counted) and column.
+#[test]
+fn csv_cells_that_are_not_numbers_name_their_line_and_column() {
+    let d = tmpdir("csv");
+    let data = d.join("k.csv");
+    std::fs::write(&data, "# Table\npressure,stiffness\n1e6,2e13\n2e6,n/a\n").unwrap();
+    let o = bin()
+        .arg("fit")
+        .arg("power-law")
+        .arg(&data)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr).to_string();
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("k.csv: field `line 4, column stiffness` = n/a: a number"),
+        "{err}"
+    );
+    let wave = d.join("wave.csv");
+    std::fs::write(&wave, "time,stress\n0,0\n1e-6,1e5\n\n2e-6,x\n").unwrap();
+    let scenario = d.join("s.toml");
+    std::fs::write(
+        &scenario,
+        "[medium]\nmaterial = \"pmma\"\n[interface]\nstatic_pressure = 0.1e6\n\
+         [incident]\nkind = \"file\"\npath = \"wave.csv\"\nfrequency = 1e6\n",
+    )
+    .unwrap();
+    let out = d.join("out");
+    let o = bin()
+        .arg("run")
+        .arg(&scenario)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr).to_string();
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("wave.csv: field `line 5, column stress` = x: a number"),
+        "{err}"
+    );
+    assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&d);
 }

@@ -12,7 +12,7 @@
 //! `KeyboardInterrupt`.
 
 use contactwave::model::{self, Record, RunControl, Template, Value};
-use contactwave::run::{Executor, Progress, Quiet};
+use contactwave::run::{Executor, Progress, Quiet, Workspaces};
 use contactwave::scenario::Scenario;
 use contactwave::study::Sweep;
 use contactwave::Error;
@@ -250,8 +250,10 @@ fn run<'py>(py: Python<'py>, scenario: &PyScenario) -> PyResult<Bound<'py, PyDic
     contactwave::interrupt::clear();
     // the run goes on a helper thread while this one watches for Ctrl-C: a long bar-stack
     // run stops at its next time-step check and raises KeyboardInterrupt
-    let record = on_run_helper(py, move || {
-        m.run(&RunControl::default()).map(|o| o.record())
+    let record = detach_interruptibly(py, move || {
+        WORKSPACES
+            .with(|ws| m.run_in(&RunControl::default(), ws))
+            .map(|o| o.record())
     })?;
     record_to_py(py, record)
 }
@@ -633,83 +635,12 @@ fn detach_interruptibly<T: Send>(
     })
 }
 
-/// Work for a [`RUN_HELPER`] thread.
-type Job = Box<dyn FnOnce() + Send + 'static>;
-
-thread_local! {
-    /// The calling thread's run helper: a thread that lives as long as the calling one
-    /// (its channel closes when the caller's thread ends), so that the per-thread state of
-    /// the solver (the locked interface's floors, the kept incident table: model.md
-    /// sections 4 and 6.1) carries from one `cw.run` to the next, as in a Rust loop.
-    /// A fresh thread per call made every Python run a cold run (2.6 ms against 1.6 ms for
-    /// the chapter-3 RCCM run, docs/performance.md). One helper per calling thread, so
-    /// Python threads still run in parallel.
-    /// With the process id that started it: a child made by `fork` (a process pool) has a
-    /// copy of the sender but no helper thread, and starts its own.
-    static RUN_HELPER: std::cell::RefCell<Option<(u32, std::sync::mpsc::Sender<Job>)>> =
-        const { std::cell::RefCell::new(None) };
-}
-
-/// Run `f` on this thread's run helper while this thread, GIL released between polls,
-/// checks for signals every [`SIGNAL_POLL`]; on a signal, request the interruption, wait
-/// for `f` and return the signal's exception (KeyboardInterrupt for Ctrl-C).
-fn on_run_helper<T: Send + 'static>(
-    py: Python<'_>,
-    f: impl FnOnce() -> Result<T, Error> + Send + 'static,
-) -> PyResult<T> {
-    use std::sync::mpsc;
-    let (tx, rx) = mpsc::channel();
-    let job: Job = Box::new(move || {
-        let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
-        let _ = tx.send(out);
-    });
-    RUN_HELPER.with(|h| -> PyResult<()> {
-        let mut h = h.borrow_mut();
-        let pid = std::process::id();
-        if h.as_ref().is_some_and(|(owner, _)| *owner != pid) {
-            // forked: the helper thread stayed in the parent; leave its channel untouched
-            std::mem::forget(h.take());
-        }
-        let job = match h.as_ref() {
-            Some((_, helper)) => match helper.send(job) {
-                Ok(()) => return Ok(()),
-                Err(mpsc::SendError(job)) => job,
-            },
-            None => job,
-        };
-        // no helper yet (or it is gone): start one
-        let (jobs, queue) = mpsc::channel::<Job>();
-        std::thread::Builder::new()
-            .name("contactwave-run".into())
-            .spawn(move || queue.into_iter().for_each(|job| job()))
-            .map_err(|e| PyOSError::new_err(format!("cannot start a run thread: {e}")))?;
-        jobs.send(job)
-            .map_err(|_| PyRuntimeError::new_err("the run thread is gone"))?;
-        *h = Some((pid, jobs));
-        Ok(())
-    })?;
-    let mut rx = rx;
-    let out = loop {
-        let (got, back) = py.detach(move || (rx.recv_timeout(SIGNAL_POLL), rx));
-        rx = back;
-        match got {
-            Ok(out) => break out,
-            Err(mpsc::RecvTimeoutError::Disconnected) => {
-                return Err(PyRuntimeError::new_err("run thread panicked"))
-            }
-            Err(mpsc::RecvTimeoutError::Timeout) => {
-                if let Err(e) = py.check_signals() {
-                    contactwave::interrupt::request();
-                    let _ = py.detach(move || rx.recv());
-                    contactwave::interrupt::clear();
-                    return Err(e);
-                }
-            }
-        }
-    };
-    out.map_err(|_| PyRuntimeError::new_err("run thread panicked"))?
-        .map_err(to_py)
-}
+/// The workspaces of this process's runs (one per run at a time, kept from run to run:
+/// the locked interface's floors and the kept incident table, model.md sections 4 and
+/// 6.1), so that a `cw.run` or a sweep point after the first is a warm run, as in a Rust
+/// loop, whichever Python thread calls. Owned by the module, not by a thread: each call
+/// may run on a fresh thread.
+static WORKSPACES: Workspaces<contactwave::model::Workspace> = Workspaces::new();
 
 /// Run `models` on the executor in a helper thread while this thread (GIL released
 /// between polls) checks for signals every [`SIGNAL_POLL`] and calls the Python
@@ -735,7 +666,11 @@ fn run_interruptibly(
                 report: &count,
                 cancel: Some(&cancel),
             };
-            let out = executor.map(models, |m| m.summary(), &observer);
+            let out = executor.map(
+                models,
+                |m| WORKSPACES.with(|ws| m.summary_in(ws)),
+                &observer,
+            );
             let (m, cv) = &finished;
             *m.lock().unwrap_or_else(|p| p.into_inner()) = true;
             cv.notify_all();
@@ -817,7 +752,8 @@ fn run_points<'py>(
                 .collect::<Result<Vec<_>, Error>>()?;
             let run = |values: &Vec<f64>| {
                 let v: Vec<_> = params.iter().zip(values.iter().copied()).collect();
-                template.build(&v)?.summary()
+                let m = template.build(&v)?;
+                WORKSPACES.with(|ws| m.summary_in(ws))
             };
             // one task runs its points one after the other (the cluster runs the tasks)
             Ok(outcomes(

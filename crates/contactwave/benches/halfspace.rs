@@ -4,16 +4,17 @@
 //!   (PMMA, p0 = 0.082 MPa, C_N = 2e13 Pa/m, w = 0.1 J/m^2, b = 1e-8, 1 MHz, 15 cycles,
 //!   amplitude 0.82 MPa), solver plus harmonic analysis, one thread;
 //! - `simulate_summary/unilateral_xi0.35`: unilateral contact (rigid x free) at xi = 0.35;
-//!   (both repeat one scenario: from the second run on, the analysis floor of the locked
-//!   interface comes from the thread's cache, as in every sweep point after the first,
-//!   docs/model.md section 6.1, and the incident wave's table on the solver's grid is the
-//!   one the thread kept from its last run, as in every run of an identification or of a
-//!   sweep over the interface, docs/model.md section 4)
-//! - `simulate_summary_cold/*`: the same runs with the floor cache and the kept table
-//!   emptied before each, so that each run also solves and analyses the locked interface
-//!   and tabulates its burst (a first run);
+//!   (both repeat one scenario on one workspace: from the second run on, the analysis
+//!   floor of the locked interface comes from the workspace, as in every sweep point
+//!   after the first, docs/model.md section 6.1, and the incident wave's table on the
+//!   solver's grid is the one the workspace kept from its last run, as in every run of an
+//!   identification or of a sweep over the interface, docs/model.md section 4)
+//! - `simulate_summary_cold/*`: the same runs with the workspace emptied before each, so
+//!   that each run also solves and analyses the locked interface and tabulates its burst
+//!   (a first run);
 //! - `xi_sweep/rccm_100_points`: 100 load ratios xi in [0.05, 1.2] of the RCCM scenario,
-//!   scenarios built beforehand, run with rayon `par_iter` on all cores;
+//!   scenarios built beforehand, run with rayon `par_iter` on all cores (a workspace per
+//!   rayon job, `map_init`);
 //! - `shear_sweep/friction_ratio_100_points`: the coupled normal/tangential solver on 100
 //!   static pressures (mu p0 / tau_inc from 0.03 to 1.2) of a rigid-stick Coulomb interface
 //!   between aluminium half-spaces hit by a 15-cycle, 5 MPa, 1 MHz shear burst
@@ -22,10 +23,9 @@
 //! Sample sizes are small so that `cargo bench -p contactwave` finishes in a few minutes on
 //! two cores.
 
-use contactwave::model::half_space::methods::forget_locked_floors;
+use contactwave::model::Workspace;
 use contactwave::scenario::Scenario;
-use contactwave::simulate_summary;
-use contactwave::solver::half_space::forget_incident_table;
+use contactwave::simulate_summary_in;
 use criterion::{criterion_group, criterion_main, Criterion};
 use rayon::prelude::*;
 use std::hint::black_box;
@@ -76,11 +76,12 @@ fn single_runs(c: &mut Criterion) {
     let unilateral = scenario(UNILATERAL, "unilateral.toml");
     let mut g = c.benchmark_group("simulate_summary");
     g.sample_size(20).measurement_time(Duration::from_secs(5));
+    let mut ws = Workspace::new();
     g.bench_function("rccm_0.82MPa", |b| {
-        b.iter(|| simulate_summary(black_box(&rccm)).expect("run succeeds"))
+        b.iter(|| simulate_summary_in(black_box(&rccm), &mut ws).expect("run succeeds"))
     });
     g.bench_function("unilateral_xi0.35", |b| {
-        b.iter(|| simulate_summary(black_box(&unilateral)).expect("run succeeds"))
+        b.iter(|| simulate_summary_in(black_box(&unilateral), &mut ws).expect("run succeeds"))
     });
     g.finish();
     let mut g = c.benchmark_group("simulate_summary_cold");
@@ -88,9 +89,8 @@ fn single_runs(c: &mut Criterion) {
     for (name, s) in [("rccm_0.82MPa", &rccm), ("unilateral_xi0.35", &unilateral)] {
         g.bench_function(name, |b| {
             b.iter(|| {
-                forget_locked_floors();
-                forget_incident_table();
-                simulate_summary(black_box(s)).expect("run succeeds")
+                ws.clear();
+                simulate_summary_in(black_box(s), &mut ws).expect("run succeeds")
             })
         });
     }
@@ -108,7 +108,9 @@ fn xi_sweep(c: &mut Criterion) {
         b.iter(|| {
             scenarios
                 .par_iter()
-                .map(|s| simulate_summary(s).expect("run succeeds"))
+                .map_init(Workspace::new, |ws, s| {
+                    simulate_summary_in(s, ws).expect("run succeeds")
+                })
                 .collect::<Vec<_>>()
         })
     });
@@ -149,7 +151,9 @@ fn shear_sweep(c: &mut Criterion) {
         b.iter(|| {
             scenarios
                 .par_iter()
-                .map(|s| simulate_summary(s).expect("run succeeds"))
+                .map_init(Workspace::new, |ws, s| {
+                    simulate_summary_in(s, ws).expect("run succeeds")
+                })
                 .collect::<Vec<_>>()
         })
     });

@@ -15,7 +15,7 @@
 //! A program that embeds only the solvers can depend on the library with
 //! `default-features = false`.
 //!
-//! Conventions (model.md section 2): SI units; stress tension-positive; the static
+//! Conventions (model.md section 1): SI units; stress tension-positive; the static
 //! pre-stress is a compression `p0 >= 0`; the gap `[u] = u(0+) - u(0-)` is opening-positive
 //! and measured from the pre-loaded equilibrium.
 //!
@@ -72,5 +72,6 @@ pub use model::bar_stack::{
     FRF_FORCE_FLOOR_DB,
 };
 pub use model::half_space::{
-    half_space, settings, simulate, simulate_summary, ProbeSeries, RunResult,
+    half_space, settings, simulate, simulate_in, simulate_summary, simulate_summary_in,
+    ProbeSeries, RunResult,
 };

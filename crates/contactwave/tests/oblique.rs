@@ -62,7 +62,7 @@ fn springs(
     )
     .unwrap();
     let tl = build_tangential(
-        &TangentialSpec::Linear { stiffness: kt },
+        &TangentialSpec::Linear(contactwave::law::tangential::linear::Spec { stiffness: kt }),
         0.0,
         &law,
         "<test>",
@@ -227,19 +227,19 @@ fn energy_audit_closes_with_clapping_friction_and_damage() {
             "Signorini + Coulomb (rigid stick)",
             CompressionSpec::Rigid,
             TractionSpec::Free,
-            TangentialSpec::Coulomb {
+            TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                 friction: 0.3,
                 stiffness: None,
-            },
+            }),
         ),
         (
             "linear + Coulomb (elastic stick)",
             CompressionSpec::Linear { stiffness: 5e14 },
             TractionSpec::Free,
-            TangentialSpec::Coulomb {
+            TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                 friction: 0.3,
                 stiffness: Some(2e14),
-            },
+            }),
         ),
         (
             "Signorini + RCCM (damage, friction)",
@@ -249,10 +249,10 @@ fn energy_audit_closes_with_clapping_friction_and_damage() {
                 energy: 0.02,
                 viscosity: 0.0,
             },
-            TangentialSpec::Rccm {
+            TangentialSpec::Rccm(contactwave::law::tangential::rccm::Spec {
                 stiffness: 5e13,
                 friction: 0.3,
-            },
+            }),
         ),
     ];
     for (name, comp, trac, tang) in cases {

@@ -114,3 +114,94 @@ proptest! {
         prop_assert!(parse(&wrong, Dimension::Pressure).is_err());
     }
 }
+
+/// A TOML value of any type, nested up to two levels, with numbers, unit strings and
+/// garbage.
+fn toml_value() -> impl Strategy<Value = toml::Value> {
+    let leaf = prop_oneof![
+        any::<i64>().prop_map(toml::Value::Integer),
+        prop_oneof![
+            Just(0.3),
+            Just(f64::NAN),
+            Just(-1.0),
+            Just(1e300),
+            -10.0f64..10.0
+        ]
+        .prop_map(toml::Value::Float),
+        prop_oneof![
+            Just("incident.xi".to_string()),
+            Just("1 MHz".to_string()),
+            Just("log".to_string()),
+            Just("rccm_0.82MPa.toml".to_string()),
+            "\\PC{0,8}",
+        ]
+        .prop_map(toml::Value::String),
+        any::<bool>().prop_map(toml::Value::Boolean),
+    ];
+    leaf.prop_recursive(2, 16, 4, |inner| {
+        prop_oneof![
+            prop::collection::vec(inner.clone(), 0..4).prop_map(toml::Value::Array),
+            prop::collection::btree_map(file_key(), inner, 0..4)
+                .prop_map(|m| toml::Value::Table(m.into_iter().collect())),
+        ]
+    })
+}
+
+/// Keys of sweep and identification files, and some that are not.
+fn file_key() -> impl Strategy<Value = String> {
+    prop::sample::select(vec![
+        "base",
+        "axis",
+        "set",
+        "parameter",
+        "values",
+        "linspace",
+        "logspace",
+        "data",
+        "observed",
+        "fit",
+        "design",
+        "key",
+        "bounds",
+        "scale",
+        "initial",
+        "also",
+        "particles",
+        "seed",
+        "frequencies",
+        "control",
+        "incident.xi",
+        "A2_over_A1",
+        "foo",
+    ])
+    .prop_map(str::to_string)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+    /// Random tables read as a sweep file or an identification file give a sweep, a spec or
+    /// an error naming the file, never a panic (issue 25, item 7: the derived formats and
+    /// their validation pass).
+    #[test]
+    fn garbage_sweep_and_identification_files_are_errors_not_panics(
+        entries in prop::collection::btree_map(file_key(), toml_value(), 0..6),
+    ) {
+        use contactwave::{study::Sweep, Error};
+        let table: toml::Table = entries.into_iter().collect();
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+        let path = dir.join("garbage.toml");
+        let named = |e: &Error| match e {
+            Error::Invalid { file, field, .. } => !file.is_empty() && !field.is_empty(),
+            Error::Parse { file, .. } => !file.is_empty(),
+            Error::Io { .. } => true,
+            _ => false,
+        };
+        if let Err(e) = Sweep::from_table(table.clone(), &path) {
+            prop_assert!(named(&e), "{e:?}");
+        }
+        #[cfg(feature = "identify")]
+        if let Err(e) = contactwave::inverse::IdentifySpec::from_table(table, &path) {
+            prop_assert!(named(&e), "{e:?}");
+        }
+    }
+}

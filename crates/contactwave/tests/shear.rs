@@ -47,10 +47,10 @@ fn rigid_stick_clipping_matches_closed_form() {
         p0,
         CompressionSpec::Rigid,
         TractionSpec::Free,
-        TangentialSpec::Coulomb {
+        TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
             friction: mu,
             stiffness: None,
-        },
+        }),
         0.0,
         silent(f),
         burst.clone(),
@@ -130,10 +130,10 @@ fn no_shear_reproduces_the_normal_solver() {
         0.82e6,
         CompressionSpec::Rigid,
         trac,
-        TangentialSpec::Rccm {
+        TangentialSpec::Rccm(contactwave::law::tangential::rccm::Spec {
             stiffness: 1e13,
             friction: 0.5,
-        },
+        }),
         0.0,
         burst,
         silent(f),
@@ -197,10 +197,10 @@ fn energy_audit_closes_on_combined_loading() {
                 energy: 0.1,
                 viscosity: 0.0,
             },
-            TangentialSpec::Rccm {
+            TangentialSpec::Rccm(contactwave::law::tangential::rccm::Spec {
                 stiffness: 1e13,
                 friction: 0.4,
-            },
+            }),
             0.0,
             3e6,
             2e6,
@@ -214,10 +214,10 @@ fn energy_audit_closes_on_combined_loading() {
                 energy: 0.1,
                 viscosity: 1e-7,
             },
-            TangentialSpec::Rccm {
+            TangentialSpec::Rccm(contactwave::law::tangential::rccm::Spec {
                 stiffness: 1e13,
                 friction: 0.4,
-            },
+            }),
             0.0,
             3e6,
             2e6,
@@ -227,10 +227,10 @@ fn energy_audit_closes_on_combined_loading() {
             5e6,
             CompressionSpec::Power { c: 4e9, m: 0.5 },
             TractionSpec::Free,
-            TangentialSpec::Coulomb {
+            TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                 friction: 0.5,
                 stiffness: Some(5e12),
-            },
+            }),
             1e6,
             4e6,
             2e6,
@@ -240,10 +240,10 @@ fn energy_audit_closes_on_combined_loading() {
             1e6,
             CompressionSpec::Linear { stiffness: 1e13 },
             TractionSpec::Free,
-            TangentialSpec::Coulomb {
+            TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                 friction: 0.6,
                 stiffness: None,
-            },
+            }),
             0.2e6,
             3e6,
             1e6,
@@ -253,7 +253,7 @@ fn energy_audit_closes_on_combined_loading() {
             1e6,
             CompressionSpec::Rigid,
             TractionSpec::Free,
-            TangentialSpec::Linear { stiffness: 1e13 },
+            TangentialSpec::Linear(contactwave::law::tangential::linear::Spec { stiffness: 1e13 }),
             0.5e6,
             0.5e6,
             1e6,
@@ -307,19 +307,22 @@ fn static_shear_alone_keeps_the_interface_at_rest() {
     // carry q0: a spring (linear), a sticking slider (coulomb, |q0| < mu p0)
     let f = 1e6;
     for (tang, q0) in [
-        (TangentialSpec::Linear { stiffness: 1e13 }, 0.5e6),
         (
-            TangentialSpec::Coulomb {
+            TangentialSpec::Linear(contactwave::law::tangential::linear::Spec { stiffness: 1e13 }),
+            0.5e6,
+        ),
+        (
+            TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                 friction: 0.5,
                 stiffness: Some(5e12),
-            },
+            }),
             1e6,
         ),
         (
-            TangentialSpec::Coulomb {
+            TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                 friction: 0.5,
                 stiffness: None,
-            },
+            }),
             -1e6,
         ),
     ] {

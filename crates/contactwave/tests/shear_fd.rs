@@ -108,10 +108,10 @@ fn rigid_stick_clipping_fd_matches_exact() {
         p0,
         CompressionSpec::Rigid,
         TractionSpec::Free,
-        TangentialSpec::Coulomb {
+        TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
             friction: mu,
             stiffness: None,
-        },
+        }),
         0.0,
         silent(f),
         burst.clone(),
@@ -178,10 +178,10 @@ fn full_rccm_fd_matches_exact_to_one_percent() {
             energy: 0.1,
             viscosity: 0.0,
         },
-        TangentialSpec::Rccm {
+        TangentialSpec::Rccm(contactwave::law::tangential::rccm::Spec {
             stiffness: 1e13,
             friction: 0.4,
-        },
+        }),
         0.0,
         hann(3e6, f, 15.0),
         hann(2e6, f, 15.0),
@@ -254,10 +254,10 @@ fn fd_energy_audit_closes() {
                     energy: 0.1,
                     viscosity: 0.0,
                 },
-                TangentialSpec::Rccm {
+                TangentialSpec::Rccm(contactwave::law::tangential::rccm::Spec {
                     stiffness: 1e13,
                     friction: 0.4,
-                },
+                }),
                 0.0,
                 hann(3e6, f, 15.0),
                 hann(2e6, f, 15.0),
@@ -270,10 +270,10 @@ fn fd_energy_audit_closes() {
                 5e6,
                 CompressionSpec::Power { c: 4e9, m: 0.5 },
                 TractionSpec::Free,
-                TangentialSpec::Coulomb {
+                TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                     friction: 0.3,
                     stiffness: Some(5e12),
-                },
+                }),
                 1e6,
                 hann(4e6, f, 15.0),
                 hann(4e6, f, 15.0),
@@ -323,10 +323,10 @@ fn friction_limits_free_and_bonded() {
             1e6,
             CompressionSpec::Linear { stiffness: 1e13 },
             TractionSpec::Free,
-            TangentialSpec::Coulomb {
+            TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                 friction: mu,
                 stiffness: None,
-            },
+            }),
             0.0,
             silent(f),
             hann(a, f, 10.0),
@@ -384,10 +384,10 @@ fn no_shear_reproduces_the_normal_fd() {
             energy: 0.1,
             viscosity: 1e-8,
         },
-        TangentialSpec::Coulomb {
+        TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
             friction: 0.5,
             stiffness: None,
-        },
+        }),
         0.0,
         hann(1.6e6, f, 15.0),
         silent(f),

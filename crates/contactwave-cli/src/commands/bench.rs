@@ -1,17 +1,15 @@
 //! `contactwave bench`: time one simulation of the thesis' chapter-3 RCCM scenario (median
-//! of `--runs` runs on one thread; warm, the analysis floor of the locked interface cached
-//! after the first run as in a sweep and the burst's table kept from the last run, and
-//! cold), an in-memory sweep of `--points` load ratios on all
+//! of `--runs` runs on one thread; warm, on one workspace whose analysis floor of the
+//! locked interface is kept after the first run as in a sweep and the burst's table kept
+//! from the last run, and cold), an in-memory sweep of `--points` load ratios on all
 //! cores, the Tribobrake hammer test of `examples/tribobrake.toml`, and with `--identify`
 //! an identification, and print the timings (docs/performance.md). Writes no files.
 
 use super::EXIT_OK;
 use contactwave::inverse::{identify, IdentifySpec};
-use contactwave::model;
-use contactwave::model::half_space::methods::forget_locked_floors;
-use contactwave::run::Executor;
+use contactwave::model::{self, Workspace};
+use contactwave::run::{Executor, Workspaces};
 use contactwave::scenario::parse_toml;
-use contactwave::solver::half_space::forget_incident_table;
 use contactwave::study;
 use std::path::Path;
 use std::time::Instant;
@@ -87,8 +85,9 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let template = model::plan_valid(table, Path::new(file))?;
     let scenario = template.base()?;
     // (a) one simulation, single thread, median of `runs`
+    let mut ws = Workspace::new();
     let (median, min, max) = timed(runs, || {
-        std::hint::black_box(scenario.summary()?);
+        std::hint::black_box(scenario.summary_in(&mut ws)?);
         Ok(())
     })?;
     print_timing(
@@ -101,9 +100,8 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     // (a') the same as a first run: the locked interface's floor solved and the burst
     // tabulated every time
     let cold = timed(runs, || {
-        forget_locked_floors();
-        forget_incident_table();
-        std::hint::black_box(scenario.summary()?);
+        ws.clear();
+        std::hint::black_box(scenario.summary_in(&mut ws)?);
         Ok(())
     })?;
     print_timing(
@@ -121,7 +119,8 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         .map(|&v| template.build(&[(&xi, v)]))
         .collect::<contactwave::Result<Vec<_>>>()?;
     let t0 = Instant::now();
-    let results = Executor::new().try_map(&models, |m| m.summary())?;
+    let workspaces = Workspaces::new();
+    let results = Executor::new().try_map(&models, |m| workspaces.with(|ws| m.summary_in(ws)))?;
     let sweep_s = t0.elapsed().as_secs_f64();
     std::hint::black_box(results);
     println!(

@@ -3,6 +3,7 @@
 //! print C, m and R^2 (as text, or as a JSON object with `--json`). Writes no files.
 
 use super::EXIT_OK;
+use contactwave::numeric::table::{CsvReader, Header};
 use contactwave::Error;
 use std::path::{Path, PathBuf};
 
@@ -40,17 +41,8 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
 /// `fit power-law`: least squares of K = C p^m in log-log on two columns of a CSV file.
 fn power_law(path: &Path, columns: Option<&str>, json: bool) -> contactwave::Result<u8> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-    let mut rdr = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
-    let header: Vec<String> = rdr
-        .headers()
-        .map_err(|e| Error::invalid(&file, "header", "?", format!("CSV error: {e}")))?
-        .iter()
-        .map(str::to_string)
-        .collect();
+    let mut rdr = CsvReader::open(path, Header::Required)?;
+    let header = rdr.header().to_vec();
     let (ip, ik) = match columns {
         None => (0, 1),
         Some(c) => {
@@ -80,29 +72,10 @@ fn power_law(path: &Path, columns: Option<&str>, json: bool) -> contactwave::Res
         }
     };
     let (mut p, mut k) = (Vec::new(), Vec::new());
-    for (row, rec) in rdr.records().enumerate() {
-        let rec = rec.map_err(|e| {
-            Error::invalid(
-                &file,
-                format!("row {}", row + 1),
-                "?",
-                format!("CSV error: {e}"),
-            )
-        })?;
-        let val = |i: usize, name: &str| -> contactwave::Result<f64> {
-            rec.get(i)
-                .and_then(|v| v.parse::<f64>().ok())
-                .ok_or_else(|| {
-                    Error::invalid(
-                        &file,
-                        format!("row {} {name}", row + 1),
-                        rec.get(i).unwrap_or(""),
-                        "a number",
-                    )
-                })
-        };
-        p.push(val(ip, "pressure")?);
-        k.push(val(ik, "stiffness")?);
+    let mut row = Vec::with_capacity(2);
+    while rdr.next_row(&[ip, ik], &mut row)?.is_some() {
+        p.push(row[0]);
+        k.push(row[1]);
     }
     let fit = contactwave::analysis::fit::fit_power_law(&p, &k).map_err(|e| e.in_file(&file))?;
     if json {

@@ -10,7 +10,10 @@ use rustfft::FftPlanner;
 use std::cell::RefCell;
 
 thread_local! {
-    /// One analyser per thread: its plans serve every run of a sweep on that thread.
+    /// One analyser per thread: its plans serve every run of a sweep on that thread. A
+    /// plan cache (RustFFT's planners and their scratch buffers, keyed by length): what a
+    /// run gets from it does not depend on the runs before, so it stays per thread rather
+    /// than in the caller's `model::Workspace` (which holds the solver's kept state).
     static ANALYZER: RefCell<Analyzer> = RefCell::new(Analyzer::new());
 }
 

@@ -4,6 +4,7 @@
 use super::Excitation;
 use crate::error::{Error, Result};
 use crate::numeric::pchip::Pchip;
+use crate::numeric::table::{CsvReader, Header};
 use std::path::Path;
 
 /// Waveform from samples.
@@ -17,8 +18,10 @@ pub struct FileWaveform {
 }
 
 impl FileWaveform {
-    /// Read `path` (two columns: time, stress; an optional header line). Times must be
-    /// strictly increasing and finite; the waveform is shifted so it starts at t = 0.
+    /// Read `path` (two columns: time, stress; an optional header line; `#` comments; more
+    /// columns are ignored) with the one CSV reader ([`crate::numeric::table`]): errors
+    /// name the file's line and column. Times must be strictly increasing and finite; the
+    /// waveform is shifted so it starts at t = 0.
     pub fn read(path: &Path, field: &str) -> Result<(Vec<f64>, Vec<f64>)> {
         // parsed rows and their interpolant take a few times the text in memory
         crate::budget::check_file(path, field, 4.0)?;
@@ -35,69 +38,49 @@ impl FileWaveform {
         window: Option<f64>,
     ) -> Result<(Vec<f64>, Vec<f64>)> {
         let shown = path.display().to_string();
-        let mut rdr = csv::ReaderBuilder::new()
-            .has_headers(false)
-            .comment(Some(b'#'))
-            .flexible(true)
-            .from_path(path)
-            .map_err(|e| Error::invalid(&shown, field, &shown, format!("cannot read CSV: {e}")))?;
+        let mut rdr = CsvReader::open(path, Header::Optional).map_err(|e| {
+            // the file cannot be opened: the scenario's field names it
+            Error::invalid(&shown, field, &shown, e.expected)
+        })?;
         let (mut t, mut s) = (Vec::new(), Vec::new());
-        for (i, rec) in rdr.records().enumerate() {
-            let rec =
-                rec.map_err(|e| Error::invalid(&shown, field, &shown, format!("CSV error: {e}")))?;
-            if rec.len() < 2 {
-                return Err(Error::invalid(
-                    &shown,
-                    format!("row {}", i + 1),
-                    rec.len(),
-                    "need two columns: time (s), stress (Pa)",
-                ));
+        let mut row = Vec::with_capacity(2);
+        while let Some(line) = rdr.next_row(&[0, 1], &mut row)? {
+            let (a, b) = (row[0], row[1]);
+            if !a.is_finite() || !b.is_finite() {
+                return Err(rdr
+                    .error(
+                        line,
+                        None,
+                        format!("{a}, {b}"),
+                        "time and stress must be finite",
+                    )
+                    .into());
             }
-            let (a, b) = (rec[0].trim().parse::<f64>(), rec[1].trim().parse::<f64>());
-            match (a, b) {
-                (Ok(a), Ok(b)) => {
-                    if !a.is_finite() || !b.is_finite() {
-                        return Err(Error::invalid(
-                            &shown,
-                            format!("row {}", i + 1),
-                            format!("{a}, {b}"),
-                            "time and stress must be finite",
-                        ));
-                    }
-                    if let Some(&last) = t.last() {
-                        if !(a > last) {
-                            return Err(Error::invalid(
-                                &shown,
-                                format!("row {} time", i + 1),
-                                a,
-                                "times must be strictly increasing",
-                            ));
-                        }
-                    }
-                    t.push(a);
-                    s.push(b);
-                    if t.len() % (1 << 20) == 0 {
-                        crate::budget::check(
-                            &shown,
-                            field,
-                            &shown,
-                            t.len() as f64 * 64.0,
-                            &format!("{} rows read", t.len()),
-                        )?;
-                    }
-                    if window.is_some_and(|w| a - t[0] > w) {
-                        break;
-                    }
+            if let Some(&last) = t.last() {
+                if !(a > last) {
+                    return Err(rdr
+                        .error(
+                            line,
+                            Some(rdr.column_name(0)),
+                            a,
+                            "times must be strictly increasing",
+                        )
+                        .into());
                 }
-                _ if i == 0 => continue, // header
-                _ => {
-                    return Err(Error::invalid(
-                        &shown,
-                        format!("row {}", i + 1),
-                        format!("{}, {}", &rec[0], &rec[1]),
-                        "time and stress must be numbers",
-                    ));
-                }
+            }
+            t.push(a);
+            s.push(b);
+            if t.len() % (1 << 20) == 0 {
+                crate::budget::check(
+                    &shown,
+                    field,
+                    &shown,
+                    t.len() as f64 * 64.0,
+                    &format!("{} rows read", t.len()),
+                )?;
+            }
+            if window.is_some_and(|w| a - t[0] > w) {
+                break;
             }
         }
         if t.len() < 2 {

@@ -8,7 +8,7 @@ use super::spec::IdentifySpec;
 use crate::analysis::Summary;
 use crate::error::{Error, Result};
 use crate::model::{self, Model as ForwardModel, Param, Template};
-use crate::run::Executor;
+use crate::run::{Executor, Workspaces};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
@@ -30,6 +30,8 @@ pub struct Model<'a> {
     template: Arc<dyn Template>,
     /// Keys resolved to parameters of the template so far.
     params: Mutex<Vec<(String, Param)>>,
+    /// The forward runs' workspaces, one per worker, kept from run to run.
+    workspaces: Workspaces<model::Workspace>,
 }
 
 impl<'a> Model<'a> {
@@ -42,6 +44,7 @@ impl<'a> Model<'a> {
             first_failure: Mutex::new(None),
             template: model::plan(spec.base_table.clone(), &spec.base),
             params: Mutex::new(Vec::new()),
+            workspaces: Workspaces::new(),
         }
     }
 
@@ -168,7 +171,7 @@ impl<'a> Model<'a> {
             .iter()
             .map(|o| o.key.as_str())
             .collect();
-        let summary = s.summary_for(&keys);
+        let summary = self.workspaces.with(|ws| s.summary_for_in(&keys, ws));
         if let Err(e @ Error::Numerical { .. }) = &summary {
             self.record_failure(i, e);
         }

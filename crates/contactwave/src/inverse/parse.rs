@@ -8,20 +8,9 @@ use super::model::{toml_number, Model};
 use super::spec::{DesignSpec, FitOptions, IdentifySpec, Measured, Observed, Parameter, Scale};
 use crate::error::{Error, Result};
 use crate::model;
-use crate::scenario::{apply_set, parse_toml, set_dotted};
+use crate::numeric::table::{read_table, CsvReader, Header};
+use crate::scenario::{deserialize_format, parse_toml, read_base, set_dotted, FieldProblem};
 use std::path::{Path, PathBuf};
-
-fn show(v: &toml::Value) -> String {
-    v.to_string()
-}
-
-fn number(v: &toml::Value) -> Option<f64> {
-    match v {
-        toml::Value::Float(x) => Some(*x),
-        toml::Value::Integer(i) => Some(*i as f64),
-        _ => None,
-    }
-}
 
 /// A value of scenario key `key`, in SI: a number or a unit string (`"1 MHz"`).
 fn quantity(v: &toml::Value, key: &str) -> Option<f64> {
@@ -39,7 +28,7 @@ pub fn get_dotted(table: &toml::Table, key: &str) -> Option<f64> {
             _ => return None,
         };
     }
-    number(cur)
+    crate::scenario::units::si_number(cur, "").ok()
 }
 
 /// Summary keys an observed column may name, with whether they must be >= 0.
@@ -117,72 +106,25 @@ impl IdentifySpec {
     /// ```
     pub fn from_table(table: toml::Table, path: &Path) -> Result<IdentifySpec> {
         let file = path.display().to_string();
-        const KEYS: &[&str] = &[
-            "base",
-            "data",
-            "observed",
-            "set",
-            "parameter",
-            "fit",
-            "design",
-        ];
-        for key in table.keys() {
-            if !KEYS.contains(&key.as_str()) {
-                return Err(Error::invalid(
-                    &file,
-                    key,
-                    show(&table[key]),
-                    format!(
-                        "unknown key; an identification file has {}",
-                        KEYS.join(", ")
-                    ),
-                ));
-            }
-        }
+        let f: IdentifyFile = deserialize_format(&table, &file, allowed)?;
         let dir = path.parent().unwrap_or(Path::new("."));
-        let base_rel = match table.get("base") {
-            Some(toml::Value::String(s)) if !s.trim().is_empty() => s.clone(),
-            Some(v) => {
-                return Err(Error::invalid(
-                    &file,
-                    "base",
-                    show(v),
-                    "the path of the base scenario file, relative to this file",
-                ))
-            }
-            None => {
-                return Err(Error::invalid(
-                    &file,
-                    "base",
-                    "(missing)",
-                    "required: the path of the base scenario file, relative to this file",
-                ))
-            }
-        };
-        let base = dir.join(&base_rel);
-        let base_text = std::fs::read_to_string(&base).map_err(|e| Error::io(&base, e))?;
+        let (base, mut base_table) = read_base(
+            &file,
+            dir,
+            &f.base,
+            f.set.as_ref(),
+            allowed("base", FieldProblem::Wrong),
+        )?;
         let base_file = base.display().to_string();
-        let mut base_table = parse_toml(&base_text, &base_file)?;
-        if let Some(set) = table.get("set") {
-            let toml::Value::Table(set) = set else {
-                return Err(Error::invalid(
-                    &file,
-                    "set",
-                    show(set),
-                    "a table of dotted scenario keys and values",
-                ));
-            };
-            apply_set(&mut base_table, set, &file)?;
-        }
         crate::scenario::units::to_si(&mut base_table, &base_file)?;
         default_analysis(&mut base_table);
         // the base (with overrides) must be a valid scenario
         model::plan_valid(base_table.clone(), &base)?;
 
-        let fit = parse_fit(table.get("fit"), &file)?;
-        let (measured, data_file) = parse_data(&table, dir, &file, &fit)?;
-        let parameters = parse_parameters(table.get("parameter"), &file, &base_table)?;
-        let design = parse_design(table.get("design"), &file)?;
+        let fit = f.fit.check(&file)?;
+        let (measured, data_file) = parse_data(&f.data, f.observed.as_deref(), dir, &file, &fit)?;
+        let parameters = parse_parameters(f.parameter, &file, &base_table)?;
+        let design = f.design.map(|d| d.check(&file)).transpose()?;
 
         if measured.residual_count() < parameters.len() {
             return Err(Error::invalid(
@@ -275,127 +217,202 @@ impl IdentifySpec {
     }
 }
 
-fn parse_fit(v: Option<&toml::Value>, file: &str) -> Result<FitOptions> {
-    let mut o = FitOptions::default();
-    let Some(v) = v else { return Ok(o) };
-    let toml::Value::Table(t) = v else {
-        return Err(Error::invalid(file, "fit", show(v), "a table"));
-    };
-    for (k, v) in t {
-        let field = format!("fit.{k}");
-        let x = number(v).ok_or_else(|| Error::invalid(file, &field, show(v), "a number"))?;
-        let count = |max: f64| -> Result<u64> {
-            if x.is_finite() && x.fract() == 0.0 && x >= 0.0 && x <= max {
-                Ok(x as u64)
-            } else {
-                Err(Error::invalid(
-                    file,
-                    &field,
-                    show(v),
-                    format!("an integer in [0, {max}]"),
-                ))
-            }
-        };
-        match k.as_str() {
-            "relative_noise" | "absolute_noise" => {
-                if !(x >= 0.0 && x.is_finite()) {
-                    return Err(Error::invalid(file, &field, show(v), "finite, >= 0"));
-                }
-                if k == "relative_noise" {
-                    o.relative_noise = x
-                } else {
-                    o.absolute_noise = x
-                }
-            }
-            "particles" => o.particles = count(10_000.0)? as usize,
-            "iterations" => o.iterations = count(1e6)?,
-            "local_iterations" => o.local_iterations = count(1e6)?,
-            "local_starts" => o.local_starts = count(1000.0)?.max(1) as usize,
-            "bootstrap" => o.bootstrap = count(10_000.0)? as usize,
-            "bootstrap_iterations" => o.bootstrap_iterations = count(1e6)?,
-            "seed" => o.seed = count(9e15)?,
-            _ => {
-                return Err(Error::invalid(
-                    file,
-                    &field,
-                    show(v),
-                    "unknown key; [fit] has relative_noise, absolute_noise, particles, \
-                     iterations, local_iterations, local_starts, bootstrap, bootstrap_iterations, seed",
-                ))
-            }
+/// An identification file as written: the serde shape of the format (the `inverse` module
+/// doc describes it); [`IdentifySpec::from_table`] checks it. Numbers that take the unit
+/// of a key (bounds, initial values, design values) stay TOML values until the check.
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct IdentifyFile {
+    base: String,
+    data: toml::Value,
+    observed: Option<Vec<String>>,
+    set: Option<toml::Table>,
+    parameter: Vec<ParameterFile>,
+    #[serde(default)]
+    fit: FitFile,
+    design: Option<DesignFile>,
+}
+
+/// A `[[parameter]]` table as written.
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ParameterFile {
+    key: String,
+    bounds: Vec<toml::Value>,
+    scale: Option<ScaleFile>,
+    initial: Option<toml::Value>,
+    #[serde(default)]
+    also: Vec<String>,
+}
+
+/// `scale = "log"` or `"linear"`.
+#[derive(Debug, Clone, Copy, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum ScaleFile {
+    Log,
+    Linear,
+}
+
+/// `[fit]` as written (counts as numbers: `particles = 8.0` is accepted, as before).
+#[derive(Debug, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FitFile {
+    relative_noise: Option<f64>,
+    absolute_noise: Option<f64>,
+    particles: Option<f64>,
+    iterations: Option<f64>,
+    local_iterations: Option<f64>,
+    local_starts: Option<f64>,
+    bootstrap: Option<f64>,
+    bootstrap_iterations: Option<f64>,
+    seed: Option<f64>,
+}
+
+/// `[design]` as written.
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DesignFile {
+    key: Option<String>,
+    values: Option<Vec<toml::Value>>,
+    frequencies: Option<Vec<toml::Value>>,
+    control: Option<Vec<toml::Value>>,
+    control_linspace: Option<Vec<toml::Value>>,
+}
+
+/// What an identification file allows at `key` (array indices dropped), for the errors of
+/// [`deserialize_format`] and of the checks.
+fn allowed(key: &str, problem: FieldProblem) -> String {
+    let unknown = problem == FieldProblem::Unknown;
+    let missing = problem == FieldProblem::Missing;
+    match key {
+        "" => "an identification file has base, data, observed, set, parameter, fit, design",
+        "parameter" if unknown => "a [[parameter]] has key, bounds, scale, initial, also",
+        "fit" if unknown => {
+            "[fit] has relative_noise, absolute_noise, particles, iterations, \
+             local_iterations, local_starts, bootstrap, bootstrap_iterations, seed"
         }
+        "design" if unknown => {
+            "[design] has key, values (or frequencies), control, control_linspace"
+        }
+        "base" => "the path of the base scenario file, relative to this file",
+        "data" => "the measured CSV file (relative to this file) or an inline table of columns",
+        "observed" => "a non-empty list of observed column names",
+        "set" => "a table of dotted scenario keys and values",
+        "parameter" if missing => "one or more [[parameter]] tables with key, bounds, scale",
+        "parameter" => "one or more [[parameter]] tables",
+        "parameter.key" => "a dotted scenario key such as `interface.traction.stiffness`",
+        "parameter.bounds" if missing => "[lower, upper] in the key's unit",
+        "parameter.bounds" => {
+            "[lower, upper], finite numbers (SI) or unit strings with lower < upper"
+        }
+        "parameter.scale" => "\"log\" or \"linear\"",
+        "parameter.initial" => "a number within the bounds",
+        "parameter.also" => "a list of dotted scenario keys set to the same value",
+        "fit" | "design" => "a table",
+        "design.key" => "a dotted scenario key such as `incident.frequency`",
+        "design.values" if missing => "the candidate values of design.key",
+        k if k.starts_with("design.") => "a non-empty list of numbers",
+        _ => "a number",
     }
-    if o.particles == 1 {
-        return Err(Error::invalid(
-            file,
-            "fit.particles",
-            1,
-            "0 (no global stage) or >= 2",
-        ));
+    .to_string()
+}
+
+/// A TOML value as the user wrote it.
+fn show(v: &toml::Value) -> String {
+    v.to_string()
+}
+
+impl FitFile {
+    /// Check the options against their ranges; unset ones keep their defaults.
+    fn check(&self, file: &str) -> Result<FitOptions> {
+        let mut o = FitOptions::default();
+        let noise = |name: &str, v: Option<f64>, default: f64| match v {
+            None => Ok(default),
+            Some(x) if x >= 0.0 && x.is_finite() => Ok(x),
+            Some(x) => Err(Error::invalid(
+                file,
+                format!("fit.{name}"),
+                x,
+                "finite, >= 0",
+            )),
+        };
+        let count = |name: &str, v: Option<f64>, max: f64, default: u64| match v {
+            None => Ok(default),
+            Some(x) if x.is_finite() && x.fract() == 0.0 && x >= 0.0 && x <= max => Ok(x as u64),
+            Some(x) => Err(Error::invalid(
+                file,
+                format!("fit.{name}"),
+                x,
+                format!("an integer in [0, {max}]"),
+            )),
+        };
+        o.relative_noise = noise("relative_noise", self.relative_noise, o.relative_noise)?;
+        o.absolute_noise = noise("absolute_noise", self.absolute_noise, o.absolute_noise)?;
+        o.particles = count("particles", self.particles, 10_000.0, o.particles as u64)? as usize;
+        o.iterations = count("iterations", self.iterations, 1e6, o.iterations)?;
+        o.local_iterations = count(
+            "local_iterations",
+            self.local_iterations,
+            1e6,
+            o.local_iterations,
+        )?;
+        o.local_starts = count(
+            "local_starts",
+            self.local_starts,
+            1000.0,
+            o.local_starts as u64,
+        )?
+        .max(1) as usize;
+        o.bootstrap = count("bootstrap", self.bootstrap, 10_000.0, o.bootstrap as u64)? as usize;
+        o.bootstrap_iterations = count(
+            "bootstrap_iterations",
+            self.bootstrap_iterations,
+            1e6,
+            o.bootstrap_iterations,
+        )?;
+        o.seed = count("seed", self.seed, 9e15, o.seed)?;
+        if o.particles == 1 {
+            return Err(Error::invalid(
+                file,
+                "fit.particles",
+                1,
+                "0 (no global stage) or >= 2",
+            ));
+        }
+        Ok(o)
     }
-    Ok(o)
+}
+
+/// A dotted key: non-empty parts.
+fn dotted(s: &str) -> bool {
+    !s.is_empty() && s.split('.').all(|p| !p.is_empty())
 }
 
 fn parse_parameters(
-    v: Option<&toml::Value>,
+    items: Vec<ParameterFile>,
     file: &str,
     base: &toml::Table,
 ) -> Result<Vec<Parameter>> {
-    let items = match v {
-        Some(toml::Value::Array(a)) if !a.is_empty() => a,
-        Some(v) => {
-            return Err(Error::invalid(
-                file,
-                "parameter",
-                show(v),
-                "one or more [[parameter]] tables",
-            ))
-        }
-        None => {
-            return Err(Error::invalid(
-                file,
-                "parameter",
-                "(missing)",
-                "required: one or more [[parameter]] tables with key, bounds, scale",
-            ))
-        }
-    };
+    if items.is_empty() {
+        return Err(Error::invalid(
+            file,
+            "parameter",
+            "[]",
+            allowed("parameter", FieldProblem::Wrong),
+        ));
+    }
     let mut out: Vec<Parameter> = Vec::new();
-    for (k, item) in items.iter().enumerate() {
+    for (k, t) in items.into_iter().enumerate() {
         let f = |name: &str| format!("parameter[{k}].{name}");
-        let toml::Value::Table(t) = item else {
+        let key = t.key;
+        if !dotted(&key) {
             return Err(Error::invalid(
                 file,
-                format!("parameter[{k}]"),
-                show(item),
-                "a table",
+                f("key"),
+                format!("\"{key}\""),
+                allowed("parameter.key", FieldProblem::Wrong),
             ));
-        };
-        for key in t.keys() {
-            if !["key", "bounds", "scale", "initial", "also"].contains(&key.as_str()) {
-                return Err(Error::invalid(
-                    file,
-                    f(key),
-                    show(&t[key]),
-                    "unknown key; a [[parameter]] has key, bounds, scale, initial, also",
-                ));
-            }
         }
-        let key = match t.get("key") {
-            Some(toml::Value::String(s))
-                if !s.is_empty() && s.split('.').all(|p| !p.is_empty()) =>
-            {
-                s.clone()
-            }
-            other => {
-                return Err(Error::invalid(
-                    file,
-                    f("key"),
-                    other.map(show).unwrap_or_else(|| "(missing)".into()),
-                    "a dotted scenario key such as `interface.traction.stiffness`",
-                ))
-            }
-        };
         if out.iter().any(|p| p.key == key) {
             return Err(Error::invalid(
                 file,
@@ -404,37 +421,29 @@ fn parse_parameters(
                 "each key at most once",
             ));
         }
-        let scale = match t.get("scale") {
-            None => Scale::Linear,
-            Some(toml::Value::String(s)) if s == "log" => Scale::Log,
-            Some(toml::Value::String(s)) if s == "linear" => Scale::Linear,
-            Some(v) => {
-                return Err(Error::invalid(
-                    file,
-                    f("scale"),
-                    show(v),
-                    "\"log\" or \"linear\"",
-                ))
-            }
+        let scale = match t.scale {
+            Some(ScaleFile::Log) => Scale::Log,
+            None | Some(ScaleFile::Linear) => Scale::Linear,
         };
-        let bounds = match t.get("bounds") {
-            Some(toml::Value::Array(a)) if a.len() == 2 => {
-                match (quantity(&a[0], &key), quantity(&a[1], &key)) {
-                    (Some(l), Some(u)) if l.is_finite() && u.is_finite() && l < u => (l, u),
-                    _ => return Err(Error::invalid(
+        let shown = show(&toml::Value::Array(t.bounds.clone()));
+        let bounds = match t.bounds.as_slice() {
+            [l, u] => match (quantity(l, &key), quantity(u, &key)) {
+                (Some(l), Some(u)) if l.is_finite() && u.is_finite() && l < u => (l, u),
+                _ => {
+                    return Err(Error::invalid(
                         file,
                         f("bounds"),
-                        show(&t["bounds"]),
-                        "[lower, upper], finite numbers (SI) or unit strings with lower < upper",
-                    )),
+                        shown,
+                        allowed("parameter.bounds", FieldProblem::Wrong),
+                    ))
                 }
-            }
-            other => {
+            },
+            _ => {
                 return Err(Error::invalid(
                     file,
                     f("bounds"),
-                    other.map(show).unwrap_or_else(|| "(missing)".into()),
-                    "required: [lower, upper] in the key's unit",
+                    shown,
+                    allowed("parameter.bounds", FieldProblem::Wrong),
                 ))
             }
         };
@@ -442,7 +451,7 @@ fn parse_parameters(
             return Err(Error::invalid(
                 file,
                 f("bounds"),
-                show(&t["bounds"]),
+                shown,
                 "both bounds > 0 for scale = \"log\"",
             ));
         }
@@ -453,12 +462,12 @@ fn parse_parameters(
                 return Err(Error::invalid(
                     file,
                     f("bounds"),
-                    show(&t["bounds"]),
+                    shown,
                     format!("must contain the base scenario's value {key} = {b:e}"),
                 ));
             }
         }
-        let initial = match t.get("initial") {
+        let initial = match &t.initial {
             Some(v) => match quantity(v, &key) {
                 Some(x) if x >= bounds.0 && x <= bounds.1 => x,
                 _ => return Err(Error::invalid(file, f("initial"), show(v), range)),
@@ -471,152 +480,117 @@ fn parse_parameters(
                 },
             },
         };
-        let also = match t.get("also") {
-            None => vec![],
-            Some(toml::Value::Array(a)) => a
-                .iter()
-                .map(|x| match x {
-                    toml::Value::String(s) if s.split('.').all(|p| !p.is_empty()) => Ok(s.clone()),
-                    _ => Err(Error::invalid(
-                        file,
-                        f("also"),
-                        show(x),
-                        "dotted scenario keys set to the same value",
-                    )),
-                })
-                .collect::<Result<_>>()?,
-            Some(v) => {
-                return Err(Error::invalid(
-                    file,
-                    f("also"),
-                    show(v),
-                    "a list of dotted scenario keys set to the same value",
-                ))
-            }
-        };
+        if let Some(a) = t.also.iter().find(|a| !dotted(a)) {
+            return Err(Error::invalid(
+                file,
+                f("also"),
+                format!("\"{a}\""),
+                allowed("parameter.also", FieldProblem::Wrong),
+            ));
+        }
         out.push(Parameter {
             key,
             lower: bounds.0,
             upper: bounds.1,
             scale,
             initial,
-            also,
+            also: t.also,
         });
     }
     Ok(out)
 }
 
-fn parse_design(v: Option<&toml::Value>, file: &str) -> Result<Option<DesignSpec>> {
-    let Some(v) = v else { return Ok(None) };
-    let toml::Value::Table(t) = v else {
-        return Err(Error::invalid(file, "design", show(v), "a table"));
-    };
-    // the design values take the unit of the design key (a frequency by default)
-    let design_key = t
-        .get("key")
-        .and_then(|v| v.as_str())
-        .unwrap_or("incident.frequency");
-    let nums = |name: &str, v: &toml::Value| -> Result<Vec<f64>> {
-        let unit_key = if name == "values" || name == "frequencies" {
-            design_key
-        } else {
-            ""
-        };
-        match v {
-            toml::Value::Array(a) if !a.is_empty() => a
-                .iter()
+impl DesignFile {
+    /// Check the candidates; their values take the unit of the design key (a frequency by
+    /// default).
+    fn check(self, file: &str) -> Result<DesignSpec> {
+        let key = self.key.unwrap_or_else(|| "incident.frequency".into());
+        if !key.contains('.') {
+            return Err(Error::invalid(
+                file,
+                "design.key",
+                format!("\"{key}\""),
+                allowed("design.key", FieldProblem::Wrong),
+            ));
+        }
+        let nums = |name: &str, a: &[toml::Value], unit_key: &str| -> Result<Vec<f64>> {
+            let field = format!("design.{name}");
+            let shown = || show(&toml::Value::Array(a.to_vec()));
+            if a.is_empty() {
+                return Err(Error::invalid(
+                    file,
+                    &field,
+                    shown(),
+                    allowed(&field, FieldProblem::Wrong),
+                ));
+            }
+            a.iter()
                 .map(|x| {
                     quantity(x, unit_key)
                         .filter(|x| x.is_finite())
-                        .ok_or_else(|| {
-                            Error::invalid(
-                                file,
-                                format!("design.{name}"),
-                                show(v),
-                                "finite numbers",
-                            )
-                        })
+                        .ok_or_else(|| Error::invalid(file, &field, shown(), "finite numbers"))
                 })
-                .collect(),
-            _ => Err(Error::invalid(
-                file,
-                format!("design.{name}"),
-                show(v),
-                "a non-empty list of numbers",
-            )),
-        }
-    };
-    let mut d = DesignSpec {
-        key: "incident.frequency".into(),
-        values: vec![],
-        control_values: None,
-    };
-    for (k, v) in t {
-        match k.as_str() {
-            "key" => match v {
-                toml::Value::String(s) if s.contains('.') => d.key = s.clone(),
-                _ => {
-                    return Err(Error::invalid(
-                        file,
-                        "design.key",
-                        show(v),
-                        "a dotted scenario key such as `incident.frequency`",
-                    ))
-                }
-            },
-            "values" | "frequencies" => d.values = nums(k, v)?,
-            "control" => d.control_values = Some(nums(k, v)?),
-            "control_linspace" => {
-                let a = nums(k, v)?;
+                .collect()
+        };
+        let (name, values) = match (&self.values, &self.frequencies) {
+            (Some(v), _) => ("values", v),
+            (None, Some(v)) => ("frequencies", v),
+            (None, None) => {
+                return Err(Error::invalid(
+                    file,
+                    "design.values",
+                    "(missing)",
+                    format!(
+                        "required: {}",
+                        allowed("design.values", FieldProblem::Missing)
+                    ),
+                ))
+            }
+        };
+        let values = nums(name, values, &key)?;
+        let control_values = match (&self.control_linspace, &self.control) {
+            (Some(a), _) => {
+                let a = nums("control_linspace", a, "")?;
                 if a.len() != 3 || !(a[2] >= 2.0 && a[2].fract() == 0.0 && a[2] <= 1e5) {
                     return Err(Error::invalid(
                         file,
                         "design.control_linspace",
-                        show(v),
+                        show(&toml::Value::Array(
+                            a.iter().map(|x| toml::Value::Float(*x)).collect(),
+                        )),
                         "[start, end, n] with an integer n >= 2",
                     ));
                 }
-                d.control_values = Some(crate::study::linspace(a[0], a[1], a[2] as usize));
+                Some(crate::study::linspace(a[0], a[1], a[2] as usize))
             }
-            _ => {
-                return Err(Error::invalid(
-                    file,
-                    format!("design.{k}"),
-                    show(v),
-                    "unknown key; [design] has key, values (or frequencies), control, \
-                     control_linspace",
-                ))
-            }
-        }
+            (None, Some(c)) => Some(nums("control", c, "")?),
+            (None, None) => None,
+        };
+        Ok(DesignSpec {
+            key,
+            values,
+            control_values,
+        })
     }
-    if d.values.is_empty() {
-        return Err(Error::invalid(
-            file,
-            "design.values",
-            "(missing)",
-            "required: the candidate values of design.key",
-        ));
-    }
-    Ok(Some(d))
 }
 
 /// Raw columns: (header, columns of numbers as text-parsed f64), from a CSV file or an
 /// inline table.
 fn parse_data(
-    table: &toml::Table,
+    data: &toml::Value,
+    observed: Option<&[String]>,
     dir: &Path,
     file: &str,
     fit: &FitOptions,
 ) -> Result<(Measured, Option<PathBuf>)> {
-    let (header, rows, data_name, data_file) = match table.get("data") {
-        Some(toml::Value::String(s)) if !s.trim().is_empty() => {
+    let (header, rows, data_name, data_file) = match data {
+        toml::Value::String(s) if !s.trim().is_empty() => {
             let p = dir.join(s);
             let name = p.display().to_string();
-            let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
-            let (h, r) = read_csv(&text, &name)?;
-            (h, r, name, Some(p))
+            let t = read_table(CsvReader::open(&p, Header::Required)?)?;
+            (t.header, t.rows, name, Some(p))
         }
-        Some(toml::Value::Table(t)) => {
+        toml::Value::Table(t) => {
             let mut header = Vec::new();
             let mut cols: Vec<Vec<f64>> = Vec::new();
             for (k, v) in t {
@@ -657,30 +631,21 @@ fn parse_data(
             return Err(Error::invalid(
                 file,
                 "data",
-                other.map(show).unwrap_or_else(|| "(missing)".into()),
-                "required: the measured CSV file (relative to this file) or an inline table \
-                 of columns",
+                show(other),
+                allowed("data", FieldProblem::Wrong),
             ))
         }
     };
-    let observed_filter: Option<Vec<String>> = match table.get("observed") {
-        None => None,
-        Some(toml::Value::Array(a)) if !a.is_empty() => Some(
-            a.iter()
-                .map(|x| match x {
-                    toml::Value::String(s) => Ok(s.clone()),
-                    _ => Err(Error::invalid(file, "observed", show(x), "column names")),
-                })
-                .collect::<Result<_>>()?,
-        ),
-        Some(v) => {
+    let observed_filter: Option<&[String]> = match observed {
+        Some([]) => {
             return Err(Error::invalid(
                 file,
                 "observed",
-                show(v),
-                "a non-empty list of observed column names",
+                "[]",
+                allowed("observed", FieldProblem::Wrong),
             ))
         }
+        other => other,
     };
     let mut conditions = Vec::new();
     let mut cond_cols = Vec::new();
@@ -706,7 +671,7 @@ fn parse_data(
             }
         }
     }
-    if let Some(f) = &observed_filter {
+    if let Some(f) = observed_filter {
         for name in f {
             if !header.contains(name) {
                 return Err(Error::invalid(
@@ -815,55 +780,6 @@ fn parse_data(
         },
         data_file,
     ))
-}
-
-/// Parse CSV text (header line, `#` comments) into header and numeric rows; a cell that
-/// is not a number is an error naming the row and column (`NaN` parses, and is refused by
-/// the caller).
-fn read_csv(text: &str, name: &str) -> Result<(Vec<String>, Vec<Vec<f64>>)> {
-    let mut rdr = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
-    let header: Vec<String> = rdr
-        .headers()
-        .map_err(|e| Error::invalid(name, "header", "?", format!("CSV error: {e}")))?
-        .iter()
-        .map(str::to_string)
-        .collect();
-    let mut rows = Vec::new();
-    for (i, rec) in rdr.records().enumerate() {
-        let rec = rec.map_err(|e| {
-            Error::invalid(
-                name,
-                format!("row {}", i + 1),
-                "?",
-                format!("CSV error: {e}"),
-            )
-        })?;
-        if rec.len() != header.len() {
-            return Err(Error::invalid(
-                name,
-                format!("row {}", i + 1),
-                rec.len(),
-                format!("{} cells, as the header", header.len()),
-            ));
-        }
-        let row = rec
-            .iter()
-            .enumerate()
-            .map(|(c, v)| {
-                v.parse::<f64>().map_err(|_| {
-                    Error::invalid(name, format!("row {} {}", i + 1, header[c]), v, "a number")
-                })
-            })
-            .collect::<Result<Vec<f64>>>()?;
-        rows.push(row);
-    }
-    if rows.is_empty() {
-        return Err(Error::invalid(name, "rows", 0, "at least one data row"));
-    }
-    Ok((header, rows))
 }
 
 /// Identification defaults to a leakage-free analysis (model.md section 6.1) for a

@@ -9,7 +9,10 @@
 //! one new file plus one line in [`registry`].
 
 pub mod compression;
+pub mod contact;
+pub mod param;
 pub mod registry;
+pub mod scheme;
 pub mod spec;
 pub mod tangential;
 pub mod traction;
@@ -187,9 +190,16 @@ pub trait TangentialBranch: Debug + Send + Sync {
     fn spring_energy_d_adhesion(&self, adhesion: f64, u_t: f64) -> f64 {
         0.5 * self.spring_stiffness_d_adhesion(adhesion) * u_t * u_t
     }
-    /// Coulomb friction coefficient mu (0: no slider).
+    /// Coulomb friction coefficient mu (0: no slider); with a slip-dependent coefficient,
+    /// its value before any slip (the static coefficient).
     fn friction(&self) -> f64 {
         0.0
+    }
+    /// Friction coefficient after a slip path `path = integral |ds|` (m): constant by
+    /// default ([`TangentialBranch::friction`]); a branch whose coefficient evolves with
+    /// slip (slip weakening) overrides it. Such a branch sticks rigidly.
+    fn friction_at(&self, _path: f64) -> f64 {
+        self.friction()
     }
     /// Stick stiffness `k_t` of the slider, Pa/m (`f64::INFINITY`: rigid stick).
     fn stick_stiffness(&self) -> f64 {
@@ -227,7 +237,7 @@ impl TangentialLaw {
     pub fn curve(&self, normal: &ContactLaw, gap_max: f64, n: usize) -> (Vec<f64>, Vec<f64>) {
         let n = n.max(2);
         let br = &*self.branch;
-        let limit = self.friction_limit(normal.static_pressure);
+        let p0 = normal.static_pressure;
         let kt = br.stick_stiffness();
         let slider = br.friction() > 0.0;
         let mut gaps = vec![0.0];
@@ -245,6 +255,13 @@ impl TangentialLaw {
                     beta = (a0 * beta / (a0 - a1)).clamp(0.0, beta);
                 }
             }
+            // slip path: the gap past the static limit (all of it for a rigid stick)
+            let path = if kt.is_finite() {
+                (u - (self.friction_limit(p0, 0.0) - self.static_shear) / kt).max(0.0)
+            } else {
+                u
+            };
+            let limit = self.friction_limit(p0, path);
             let tau_f = if !slider {
                 self.static_shear
             } else if kt.is_finite() {
@@ -252,7 +269,7 @@ impl TangentialLaw {
             } else {
                 if i == 1 {
                     gaps.push(0.0);
-                    stress.push(limit);
+                    stress.push(self.friction_limit(p0, 0.0));
                 }
                 limit
             };
@@ -267,7 +284,7 @@ impl TangentialLaw {
     pub fn curve_gap_range(&self, normal: &ContactLaw) -> f64 {
         let br = &*self.branch;
         let s = self
-            .friction_limit(normal.static_pressure)
+            .friction_limit(normal.static_pressure, 0.0)
             .max(self.static_shear.abs())
             .max(normal.static_pressure)
             .max(1e5);
@@ -289,9 +306,10 @@ impl TangentialLaw {
         }
     }
 
-    /// Friction limit `mu N`, Pa, at normal contact pressure `N` (Pa, >= 0).
-    pub fn friction_limit(&self, pressure: f64) -> f64 {
-        let mu = self.branch.friction();
+    /// Friction limit `mu(path) N`, Pa, at normal contact pressure `N` (Pa, >= 0) after a
+    /// slip path `path` (m; see [`TangentialBranch::friction_at`]).
+    pub fn friction_limit(&self, pressure: f64, path: f64) -> f64 {
+        let mu = self.branch.friction_at(path);
         if mu == 0.0 {
             0.0
         } else {

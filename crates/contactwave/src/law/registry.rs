@@ -1,37 +1,14 @@
-//! The one place where law names meet law types: scenario specs become boxed branches.
-//! Adding a law = one new file in `compression/` or `traction/` + one match arm here.
+//! Where law names meet law types: scenario specs become boxed branches. Adding a
+//! compression or traction law = one new file in `compression/` or `traction/` + one match
+//! arm here (and its spec variant and parameter names); a tangential law registers itself
+//! in the table of `tangential/mod.rs`.
 
 use super::compression::{self, ModifiedPower, StiffnessCurve};
+use super::param::{non_negative, positive};
 use super::spec::{CompressionSpec, TangentialSpec, TractionSpec};
-use super::{tangential, traction};
+use super::traction;
 use super::{CompressionBranch, ContactLaw, TangentialBranch, TangentialLaw, TractionBranch};
 use crate::error::{Error, Result};
-
-fn positive(file: &str, field: &str, v: f64) -> Result<()> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(Error::invalid(
-            file,
-            field,
-            v,
-            "must be a finite number > 0",
-        ))
-    }
-}
-
-fn non_negative(file: &str, field: &str, v: f64) -> Result<()> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(())
-    } else {
-        Err(Error::invalid(
-            file,
-            field,
-            v,
-            "must be a finite number >= 0",
-        ))
-    }
-}
 
 fn exponent(file: &str, field: &str, v: f64) -> Result<()> {
     if v.is_finite() && v > 0.0 && v < 1.0 {
@@ -213,46 +190,14 @@ pub fn build_law(
     })
 }
 
-/// Build a tangential branch, validating its parameters.
+/// Build a tangential branch, validating its parameters (each law's own
+/// [`crate::law::tangential::TangentialLawSpec::build`]).
 pub fn build_tangential_branch(
     spec: &TangentialSpec,
     file: &str,
     prefix: &str,
 ) -> Result<Box<dyn TangentialBranch>> {
-    let key = |k: &str| format!("{prefix}.{k}");
-    Ok(match spec {
-        TangentialSpec::Free => Box::new(tangential::Free),
-        TangentialSpec::Linear { stiffness } => {
-            positive(file, &key("stiffness"), *stiffness)?;
-            Box::new(tangential::Linear {
-                stiffness: *stiffness,
-            })
-        }
-        TangentialSpec::Coulomb {
-            friction,
-            stiffness,
-        } => {
-            non_negative(file, &key("friction"), *friction)?;
-            if let Some(k) = stiffness {
-                positive(file, &key("stiffness"), *k)?;
-            }
-            Box::new(tangential::Coulomb {
-                friction: *friction,
-                stick_stiffness: stiffness.unwrap_or(f64::INFINITY),
-            })
-        }
-        TangentialSpec::Rccm {
-            stiffness,
-            friction,
-        } => {
-            non_negative(file, &key("stiffness"), *stiffness)?;
-            non_negative(file, &key("friction"), *friction)?;
-            Box::new(tangential::Rccm {
-                stiffness: *stiffness,
-                friction: *friction,
-            })
-        }
-    })
+    spec.build(file, prefix)
 }
 
 /// Build the tangential part of a law for static shear `q0` (Pa), checking it against the
@@ -265,9 +210,10 @@ pub fn build_tangential_branch(
 /// use contactwave::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 /// let normal = build_law(10e6, &CompressionSpec::Rigid, &TractionSpec::Free, "<doc>", "interface")
 ///     .unwrap();
-/// let coulomb = TangentialSpec::Coulomb { friction: 0.3, stiffness: None };
+/// use contactwave::law::tangential::coulomb;
+/// let coulomb = TangentialSpec::Coulomb(coulomb::Spec { friction: 0.3, stiffness: None });
 /// let t = build_tangential(&coulomb, 1e6, &normal, "<doc>", "interface").unwrap();
-/// assert_eq!(t.friction_limit(10e6), 3e6); // mu N
+/// assert_eq!(t.friction_limit(10e6, 0.0), 3e6); // mu N (no slip path yet)
 /// // a static shear above mu p0 cannot be carried at rest
 /// let err = build_tangential(&coulomb, 4e6, &normal, "<doc>", "interface").unwrap_err();
 /// assert!(err.to_string().contains("interface.static_shear"));

@@ -93,32 +93,4 @@ pub enum TractionSpec {
     Bonded,
 }
 
-/// Tangential branch of the contact law (model.md section 13).
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "law", rename_all = "snake_case", deny_unknown_fields)]
-pub enum TangentialSpec {
-    /// No shear stress (free sliding).
-    #[default]
-    Free,
-    /// `tau - q0 = C_T [u]_T`, open or closed.
-    Linear {
-        /// C_T, Pa/m.
-        stiffness: f64,
-    },
-    /// Coulomb friction `|tau| <= mu N`; rigid stick, or elastic stick with `stiffness`.
-    Coulomb {
-        /// Friction coefficient mu (>= 0).
-        friction: f64,
-        /// Stick stiffness k_t, Pa/m (default: rigid stick).
-        #[serde(default)]
-        stiffness: Option<f64>,
-    },
-    /// Full RCCM: adhesive spring `beta^2 C_T [u]_T` and Coulomb friction; needs the RCCM
-    /// traction branch (its `C_N`, `w`, `b` and adhesion).
-    Rccm {
-        /// C_T, Pa/m (>= 0).
-        stiffness: f64,
-        /// Friction coefficient mu (>= 0).
-        friction: f64,
-    },
-}
+pub use super::tangential::TangentialSpec;

@@ -2,6 +2,7 @@
 //! and identification use on a planned template (no TOML round trip per point).
 
 use crate::error::{Error, Result};
+use crate::law::param::ParamMut;
 use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 use crate::scenario::spec::{
     CounterpartSpec, IncidentSpec, InterfaceSpec, MaterialSpec, ProbeSpec, ScenarioSpec, SolverSpec,
@@ -145,17 +146,12 @@ impl Fields for TractionSpec {
 
 impl Fields for TangentialSpec {
     fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
-        match self {
-            TangentialSpec::Free => None,
-            TangentialSpec::Linear { stiffness } => leaf!(path; F64 "stiffness" => stiffness),
-            TangentialSpec::Coulomb {
-                friction,
-                stiffness,
-            } => leaf!(path; F64 "friction" => friction, OptF64 "stiffness" => stiffness),
-            TangentialSpec::Rccm {
-                stiffness,
-                friction,
-            } => leaf!(path; F64 "stiffness" => stiffness, F64 "friction" => friction),
+        match path {
+            [name] => self.param_mut(name).map(|p| match p {
+                ParamMut::F64(x) => Slot::F64(x),
+                ParamMut::OptF64(x) => Slot::OptF64(x),
+            }),
+            _ => None,
         }
     }
 }
@@ -208,18 +204,16 @@ mod tests {
             compression: CompressionSpec::Power { c: 1.0, m: 0.5 },
             traction: TractionSpec::Free,
             static_shear: 0.0,
-            tangential: TangentialSpec::Coulomb {
+            tangential: TangentialSpec::Coulomb(crate::law::tangential::coulomb::Spec {
                 friction: 0.3,
                 stiffness: None,
-            },
+            }),
         };
         i.slot(&["tangential", "friction"])
             .unwrap()
             .set(0.5, "f", "k")
             .unwrap();
-        assert!(
-            matches!(i.tangential, TangentialSpec::Coulomb { friction, .. } if friction == 0.5)
-        );
+        assert!(matches!(i.tangential, TangentialSpec::Coulomb(s) if s.friction == 0.5));
         i.slot(&["compression", "m"])
             .unwrap()
             .set(0.3, "f", "k")

@@ -217,6 +217,31 @@ pub trait Template: Debug + Send + Sync {
     fn build(&self, values: &[(&Param, f64)]) -> Result<Arc<dyn Model>>;
 }
 
+/// What a worker keeps from one run to the next, owned by the caller (one per worker:
+/// [`crate::run::Workspaces`]): the exact solver's incident table and the analysis floors
+/// of locked interfaces. Plan caches: a run on a used workspace gives what it gives on a
+/// new one.
+#[derive(Debug, Default)]
+pub struct Workspace {
+    /// The exact half-space solver's.
+    pub(crate) solver: crate::solver::half_space::Workspace,
+    /// The locked interfaces' floors at unit peak.
+    pub(crate) floors: half_space::methods::Floors,
+}
+
+impl Workspace {
+    /// A new workspace (its first run is a cold run).
+    pub fn new() -> Self {
+        Workspace::default()
+    }
+
+    /// Forget what it keeps: the next run on it is a cold run (for benchmarks).
+    pub fn clear(&mut self) {
+        self.solver.clear();
+        self.floors.clear();
+    }
+}
+
 /// A runnable model: solver inputs ready.
 pub trait Model: Debug + Send + Sync {
     /// Name of the kind.
@@ -236,6 +261,16 @@ pub trait Model: Debug + Send + Sync {
     fn summary_for(&self, keys: &[&str]) -> Result<Summary> {
         let _ = keys;
         self.summary()
+    }
+    /// [`Self::summary`] on the caller's workspace (the default ignores it).
+    fn summary_in(&self, ws: &mut Workspace) -> Result<Summary> {
+        let _ = ws;
+        self.summary()
+    }
+    /// [`Self::summary_for`] on the caller's workspace (the default ignores it).
+    fn summary_for_in(&self, keys: &[&str], ws: &mut Workspace) -> Result<Summary> {
+        let _ = ws;
+        self.summary_for(keys)
     }
     /// Values of the scenario that are allowed but almost surely a unit slip (the run goes
     /// on; the CLI prints them on stderr, Python warns). None by default.
@@ -270,6 +305,11 @@ pub trait Model: Debug + Send + Sync {
     /// assert!((a2 - s.get("incident_A2_over_Ainc").unwrap()).abs() < 1e-6);
     /// ```
     fn run(&self, control: &RunControl) -> Result<Box<dyn Outcome>>;
+    /// [`Self::run`] on the caller's workspace (the default ignores it).
+    fn run_in(&self, control: &RunControl, ws: &mut Workspace) -> Result<Box<dyn Outcome>> {
+        let _ = ws;
+        self.run(control)
+    }
     /// The concrete model, for callers that need kind-specific inputs.
     fn as_any(&self) -> &dyn Any;
 }

@@ -1,9 +1,11 @@
 //! Small numerical building blocks of the physics kernels: a bracketing root-finder,
 //! monotone cubic interpolation, Gauss-Legendre quadrature and a tiny dense solver.
-//! They are ours because they sit inside the hot loops and must not allocate.
+//! They are ours because they sit inside the hot loops and must not allocate. Beside them,
+//! [`table`]: the one reader of numeric CSV tables (measured and tabulated data).
 
 pub mod pchip;
 pub mod root;
+pub mod table;
 
 /// 4-point Gauss-Legendre nodes on [0, 1].
 pub const GL4_NODES: [f64; 4] = [

@@ -93,6 +93,51 @@ pub fn check_threads(n: usize) -> Result<()> {
     }
 }
 
+/// The workspaces of the workers of a map or of a run loop: plan caches that a point
+/// reuses from the points run before it on the same workspace (the exact solver's incident
+/// table, the locked interfaces' analysis floors: [`crate::model::Workspace`]), never a
+/// result. A point takes one for its run and gives it back after ([`Workspaces::with`]),
+/// so a map on `n` threads makes at most `n`, and a pool that outlives one map (an
+/// identification's forward model, the Python module) keeps them warm from map to map.
+/// No thread-local state: the owner of the pool owns the workspaces.
+///
+/// ```
+/// use contactwave::run::Workspaces;
+/// let pool: Workspaces<Vec<f64>> = Workspaces::new();
+/// pool.with(|w| w.push(1.0));
+/// // the next point gets the workspace the last one gave back
+/// assert_eq!(pool.with(|w| w.len()), 1);
+/// ```
+#[derive(Debug, Default)]
+pub struct Workspaces<W> {
+    idle: std::sync::Mutex<Vec<W>>,
+}
+
+impl<W: Default> Workspaces<W> {
+    /// An empty pool.
+    pub const fn new() -> Self {
+        Workspaces {
+            idle: std::sync::Mutex::new(Vec::new()),
+        }
+    }
+
+    /// Run `f` on an idle workspace (a new one when none is idle) and give it back. The
+    /// pool's lock is only tried, never waited for: when another point holds it (for the
+    /// time of a push or a pop) or it is poisoned, `f` runs on a new workspace (a cold run,
+    /// the same result).
+    pub fn with<R>(&self, f: impl FnOnce(&mut W) -> R) -> R {
+        let mut w = match self.idle.try_lock() {
+            Ok(mut idle) => idle.pop().unwrap_or_default(),
+            Err(_) => W::default(),
+        };
+        let r = f(&mut w);
+        if let Ok(mut idle) = self.idle.try_lock() {
+            idle.push(w);
+        }
+        r
+    }
+}
+
 /// Runs maps over points on a thread pool.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Executor {

@@ -14,7 +14,10 @@ mod value;
 pub use cache::{BuildCache, Columns};
 pub use oblique::ObliqueSetup;
 pub use plausible::Warning;
-pub use value::{apply_set, parse_toml, read_table, set_dotted, table_to_spec};
+pub use value::{
+    apply_set, deserialize_format, parse_toml, read_base, read_table, set_dotted, table_to_spec,
+    FieldProblem,
+};
 
 use crate::error::{Error, Result};
 use crate::excitation::{Excitation, FileWaveform, ToneBurst, TwoTone, Window};
@@ -244,7 +247,7 @@ impl Scenario {
         let request = oblique::requested(&spec, file)?;
         let i = &spec.interface;
         let shear = if shear_wave.is_some()
-            || i.tangential != TangentialSpec::Free
+            || !matches!(i.tangential, TangentialSpec::Free(_))
             || i.static_shear != 0.0
             || request.is_some()
         {

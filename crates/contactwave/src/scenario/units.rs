@@ -11,6 +11,7 @@
 //! lack compound units such as `Pa/m` and `J/m^2`.
 
 use crate::error::{Error, Result};
+use crate::law::spec::TangentialSpec;
 
 /// The physical dimension of a scenario key.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -135,6 +136,14 @@ impl Dimension {
         }
     }
 
+    /// The dimension whose SI unit is `symbol` (`"m"` -> length).
+    pub fn of_si_unit(symbol: &str) -> Option<Dimension> {
+        Dimension::ALL
+            .iter()
+            .copied()
+            .find(|d| d.units().first().is_some_and(|u| u.0 == symbol))
+    }
+
     /// Units of the dimension: symbol, factor to SI, and whether an SI prefix may precede
     /// it. The first is the SI unit.
     fn units(self) -> &'static [(&'static str, f64, bool)] {
@@ -203,7 +212,8 @@ pub fn dimension_of_key(key: &str) -> Option<Dimension> {
         "k1" => Dimension::StiffnessPerLength,
         "energy" => Dimension::EnergyPerArea,
         "viscosity" => Dimension::Viscosity,
-        _ => return None,
+        // a parameter of a tangential law, in the SI unit its file declares
+        _ => return TangentialSpec::unit(last).and_then(Dimension::of_si_unit),
     })
 }
 

@@ -143,3 +143,131 @@ pub fn apply_set(table: &mut toml::Table, set: &toml::Table, file: &str) -> Resu
     }
     Ok(())
 }
+
+/// The base scenario of a sweep or identification file `file`: `base` (a path relative to
+/// `dir`, the file's folder) read and parsed, with the file's `[set]` overrides written in.
+/// An empty `base` is an error naming `file` and saying what `base` must be (`allowed`).
+pub fn read_base(
+    file: &str,
+    dir: &Path,
+    base: &str,
+    set: Option<&toml::Table>,
+    allowed: String,
+) -> Result<(std::path::PathBuf, toml::Table)> {
+    if base.trim().is_empty() {
+        return Err(Error::invalid(file, "base", "\"\"", allowed));
+    }
+    let base = dir.join(base);
+    let text = std::fs::read_to_string(&base).map_err(|e| Error::io(&base, e))?;
+    let mut table = parse_toml(&text, &base.display().to_string())?;
+    // `[set]`: fixed overrides of the base (any TOML value, e.g. another contact law);
+    // `interface.0.compression` indexes an array of tables
+    if let Some(set) = set {
+        apply_set(&mut table, set, file)?;
+    }
+    Ok((base, table))
+}
+
+/// What went wrong at a field of a file read by [`deserialize_format`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FieldProblem {
+    /// A required field is absent.
+    Missing,
+    /// A key the format does not have (the field is the unknown key; describe its table).
+    Unknown,
+    /// The value has the wrong shape (a string for a number, a number for a table, ...).
+    Wrong,
+}
+
+/// Deserialize the table of a sweep or identification file into its format type `T`
+/// (serde structs with `deny_unknown_fields`). A failure becomes an [`Error::Invalid`]
+/// naming `file`, the field (`axis[1].values`), the value as written (or `(missing)`) and
+/// what is allowed there: `allowed(key, problem)`, where `key` is the field without its
+/// array indices (`axis.values`; for an unknown key, the table that holds it: `axis`,
+/// or `""` at the top).
+pub fn deserialize_format<T: serde::de::DeserializeOwned>(
+    table: &toml::Table,
+    file: &str,
+    allowed: impl Fn(&str, FieldProblem) -> String,
+) -> Result<T> {
+    let value = toml::Value::Table(table.clone());
+    serde_path_to_error::deserialize::<_, T>(value).map_err(|e| {
+        let mut path: Vec<String> = Vec::new();
+        let mut key: Vec<String> = Vec::new();
+        for s in e.path().iter() {
+            match s {
+                serde_path_to_error::Segment::Seq { index } => {
+                    if let Some(last) = path.last_mut() {
+                        last.push_str(&format!("[{index}]"));
+                    }
+                }
+                serde_path_to_error::Segment::Map { key: k }
+                | serde_path_to_error::Segment::Enum { variant: k } => {
+                    path.push(k.clone());
+                    key.push(k.clone());
+                }
+                serde_path_to_error::Segment::Unknown => {}
+            }
+        }
+        let message = e.into_inner().to_string();
+        let quoted = |prefix: &str| {
+            message
+                .strip_prefix(prefix)
+                .and_then(|m| m.split('`').next())
+                .map(str::to_string)
+        };
+        let join = |v: &[String]| v.join(".");
+        if let Some(name) = quoted("missing field `") {
+            path.push(name.clone());
+            key.push(name);
+            return Error::invalid(
+                file,
+                join(&path),
+                "(missing)",
+                format!("required: {}", allowed(&join(&key), FieldProblem::Missing)),
+            );
+        }
+        let shown = value_at(table, &path)
+            .map(|v| v.to_string())
+            .unwrap_or_else(|| "?".into());
+        if message.starts_with("unknown field `") {
+            // serde's path ends at the unknown key itself
+            key.pop();
+            return Error::invalid(
+                file,
+                join(&path),
+                shown,
+                format!(
+                    "unknown key; {}",
+                    allowed(&join(&key), FieldProblem::Unknown)
+                ),
+            );
+        }
+        let why = super::units::plain_serde_message(&message);
+        Error::invalid(
+            file,
+            join(&path),
+            shown,
+            format!("{} ({why})", allowed(&join(&key), FieldProblem::Wrong)),
+        )
+    })
+}
+
+/// The value at a path of `deserialize_format` (`axis[1]`, `values`): keys, each with
+/// optional `[i]` indices.
+fn value_at<'a>(table: &'a toml::Table, path: &[String]) -> Option<&'a toml::Value> {
+    let mut cur: Option<&toml::Value> = None;
+    for part in path {
+        let mut pieces = part.split('[');
+        let name = pieces.next()?;
+        let mut v = match cur {
+            None => table.get(name)?,
+            Some(c) => c.get(name)?,
+        };
+        for idx in pieces {
+            v = v.get(idx.trim_end_matches(']').parse::<usize>().ok()?)?;
+        }
+        cur = Some(v);
+    }
+    cur
+}

@@ -1,6 +1,9 @@
-//! The coupled half-space problem (normal and shear waves, model.md section 13) solved by
-//! the bar-stack finite-difference scheme: the FD counterpart of [`super::coupled`], so
-//! that the two solvers check each other.
+//! The coupled half-space problem (normal and shear waves, model.md sections 9.6 and 13)
+//! solved by the bar-stack finite-difference scheme: the FD counterpart of
+//! [`super::coupled`], so that the two solvers check each other. It is a configuration of
+//! the bar stack's field (`Field::courant_one` in `solver/bar_stack/field.rs`) run by the
+//! FD time loop (`solver/stepping.rs`); what is specific here is the interface update and
+//! the reading of the waves into interface-time histories and the energy audit.
 //!
 //! Each wave type is a scalar field on its own bars: the longitudinal displacement with
 //! impedance `Z = rho c_L`, the transverse displacement with `Z_T = rho c_T`, both at the
@@ -10,7 +13,7 @@
 //! `chi = 2 dt / Z`: the cell size drops out and the scheme depends on the impedances
 //! only. Medium 1 is 16 cells ending in a transparent boundary that injects the incident
 //! wave; medium 2 is 16 cells with a transparent far end (or a rigid wall). The interface
-//! is updated each step by [`super::interface_shear::coupled_step`]: the normal law (damage
+//! is updated each step by [`crate::law::contact::coupled_step`]: the normal law (damage
 //! driven by both gaps) and the tangential return mapping (spring, Coulomb slider on the
 //! contact pressure of the same step), iterated to a fixed point. Reflected and
 //! transmitted displacements are read where the waves leave the bars, 16 steps later.
@@ -26,13 +29,16 @@
 //! `sum (dpsi/dbeta) (-Delta beta)` and the friction `sum tau_f Delta s` per step; it
 //! closes to the time discretisation error (first order at switches).
 
-use super::bar_stack::InterfaceScheme;
+use super::bar_stack::{Field, InterfaceScheme, Joint};
 use super::coupled::{CoupledHalfSpace, CoupledOutput};
-use super::interface_shear::{coupled_step, CoupledStepInput, ShearState};
 use super::output::HalfSpaceOutput;
+use super::stepping::{self, Recorder, Schedule, Scheme};
 use super::Solver;
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
+use crate::law::contact::{coupled_step, CoupledStepInput};
+use crate::law::tangential::coulomb::ShearState;
+use crate::law::{ContactLaw, TangentialLaw};
 use crate::numeric::gauss4;
 
 /// Cells per bar.
@@ -67,163 +73,166 @@ impl Solver for FdCoupledSolver {
     }
 }
 
-/// One scalar wave field on medium 1 (and medium 2 unless it is a rigid wall), at
-/// Courant 1.
-struct Line<'a> {
-    u_prev: Vec<f64>,
-    u: Vec<f64>,
-    u_next: Vec<f64>,
-    /// Interface node of medium 1.
-    a: usize,
-    /// Whether medium 2 is a bar (else a rigid wall).
-    two: bool,
-    chi_a: f64,
-    chi_b: f64,
-    z1: f64,
-    inc: &'a dyn Excitation,
-    /// Incident displacement at the left end, `F(tau) = -(1/Z1) int_0^tau s_inc`, at
-    /// `tau = (m - 1, m, m + 1) dt`.
-    f: [f64; 3],
-    m: usize,
+/// The interface nodes of a field of [`CELLS`]-cell bars: the end of medium 1 and the
+/// start of medium 2 (`None`: a rigid wall).
+fn interface_nodes(two: bool) -> Joint {
+    Joint {
+        a: Some(CELLS),
+        b: two.then_some(CELLS + 1),
+    }
+}
+
+/// The fields of one wave type: medium 1 (and medium 2 unless it is a rigid wall) as
+/// [`CELLS`]-cell bars at Courant 1 with impedances `z1`, `z2` (Pa s/m), the incident
+/// wave entering through the transparent far end of medium 1.
+fn field(z1: f64, z2: f64, inc: &dyn Excitation, dt: f64, levels: usize) -> (Field, Joint) {
+    let two = z2.is_finite();
+    let bars = if two { 2 } else { 1 };
+    let (cells, z) = ([CELLS; 2], [z1, z2]);
+    (
+        Field::courant_one(dt, &cells[..bars], &z[..bars], inc, levels),
+        interface_nodes(two),
+    )
+}
+
+/// Outgoing displacement at the far end of medium 1 and displacement at the far end of
+/// medium 2 (0 for a wall), current level, m.
+fn ends(field: &Field, joint: Joint) -> (f64, f64) {
+    let right = if joint.b.is_some() {
+        field.u[field.u.len() - 1]
+    } else {
+        0.0
+    };
+    (field.outgoing_first().unwrap_or(f64::NAN), right)
+}
+
+/// The coupled problem in the time loop: both fields and the interface state.
+struct CoupledFd<'a> {
+    law: &'a ContactLaw,
+    tl: &'a TangentialLaw,
+    scheme: InterfaceScheme,
     dt: f64,
+    normal: Field,
+    shear: Field,
+    /// The interface nodes (the same in both fields).
+    joint: Joint,
+    /// Adhesion of the current level.
+    beta: f64,
+    /// Normal gap of the current level, m.
+    gap: f64,
+    /// Normal dynamic stress of the previous and the current level, Pa.
+    s_prev: f64,
+    s_cur: f64,
+    /// Tangential dynamic stress of the previous and the current level, Pa.
+    t_prev: f64,
+    t_cur: f64,
+    /// Tangential state of the current level.
+    sh: ShearState,
+    /// Friction limit of the current level, Pa.
+    limit: f64,
 }
 
-impl<'a> Line<'a> {
-    fn new(z1: f64, z2: f64, inc: &'a dyn Excitation, dt: f64) -> Self {
-        let two = z2.is_finite();
-        let n = if two { 2 * (CELLS + 1) } else { CELLS + 1 };
-        let mut line = Line {
-            u_prev: vec![0.0; n],
-            u: vec![0.0; n],
-            u_next: vec![0.0; n],
-            a: CELLS,
-            two,
-            chi_a: 2.0 * dt / z1,
-            chi_b: if two { 2.0 * dt / z2 } else { 0.0 },
-            z1,
-            inc,
-            f: [0.0; 3],
-            m: 0,
-            dt,
+impl Scheme for CoupledFd<'_> {
+    fn step(&mut self, t: f64, t1: f64) -> Result<()> {
+        let joint = self.joint;
+        for f in [&mut self.normal, &mut self.shear] {
+            f.bulk();
+            f.transparent_first(t, t1);
+            if joint.b.is_some() {
+                f.transparent_last();
+            }
+        }
+        let chi_n = joint.compliances(&self.normal);
+        let chi_t = joint.compliances(&self.shear);
+        let input = CoupledStepInput {
+            scheme: self.scheme,
+            chi_n: chi_n.0 + chi_n.1,
+            chi_t: chi_t.0 + chi_t.1,
+            beta_old: self.beta,
+            s_old: self.s_prev,
+            t_old: self.t_prev,
+            dt: self.dt,
+            t: t1,
         };
-        line.f[2] = line.f_step(0);
-        line
-    }
-
-    /// `F((m + 1) dt) - F(m dt)` (4 Gauss-Legendre panels per step).
-    fn f_step(&self, m: usize) -> f64 {
-        let h = 0.25 * self.dt;
-        let t0 = m as f64 * self.dt;
-        let mut s = 0.0;
-        for i in 0..4 {
-            let a = t0 + i as f64 * h;
-            s += gauss4(a, a + h, |x| self.inc.stress(x));
-        }
-        -s / self.z1
-    }
-
-    /// Bulk step and boundary nodes with no interface force; returns the predicted gap.
-    fn predict(&mut self) -> f64 {
-        let n = self.u.len();
-        let (up, u, un) = (&self.u_prev, &self.u, &mut self.u_next);
-        for j in 1..n - 1 {
-            un[j] = u[j + 1] + u[j - 1] - up[j];
-        }
-        // left end: transparent, injecting the incident wave; w = u - u_inc outgoing
-        un[0] = self.f[2] + u[1] - self.f[0];
-        let a = self.a;
-        un[a] = 2.0 * u[a - 1] - up[a];
-        if self.two {
-            let b = a + 1;
-            un[b] = 2.0 * u[b + 1] - up[b];
-            // right end: transparent
-            un[n - 1] = u[n - 2];
-            un[b] - un[a]
+        let (gn, gt) = (
+            joint.gap(&self.normal.u_next),
+            joint.gap(&self.shear.u_next),
+        );
+        let upd = coupled_step(self.law, self.tl, gn, gt, &self.sh, &input)?;
+        joint.apply(&mut self.normal.u_next, chi_n, upd.normal_applied);
+        joint.apply(&mut self.shear.u_next, chi_t, upd.shear.applied);
+        self.s_prev = self.s_cur;
+        self.s_cur = upd.normal.dynamic_stress;
+        self.t_prev = self.t_cur;
+        self.t_cur = upd.shear.new.dynamic_stress;
+        self.beta = upd.normal.adhesion;
+        self.gap = upd.normal.gap;
+        // the limit this step applied: at the slip path of the level it started from
+        let path = self.sh.path;
+        self.sh = upd.shear.new;
+        let pressure = if self.tl.branch.stick_stiffness().is_infinite() {
+            upd.pressure_applied
         } else {
-            -un[a]
-        }
-    }
-
-    /// Compliance of the gap, m/Pa.
-    fn chi(&self) -> f64 {
-        self.chi_a + self.chi_b
-    }
-
-    /// Apply the dynamic interface stress `s` (Pa) over the step.
-    fn apply(&mut self, s: f64) {
-        let a = self.a;
-        self.u_next[a] += self.chi_a * s;
-        if self.two {
-            self.u_next[a + 1] -= self.chi_b * s;
-        }
-    }
-
-    /// Outgoing displacement at the left end and displacement at the right end, new level.
-    fn ends(&self) -> (f64, f64) {
-        let right = if self.two {
-            self.u_next[self.u_next.len() - 1]
-        } else {
-            0.0
+            upd.pressure
         };
-        (self.u_next[0] - self.f[2], right)
+        self.limit = self.tl.friction_limit(pressure, path);
+        if !(self.gap.is_finite() && self.sh.gap.is_finite()) {
+            return Err(Error::numerical(
+                t1,
+                "coupled FD: non-finite gap",
+                format!(
+                    "gaps = ({:e}, {:e}) m, beta = {}",
+                    self.gap, self.sh.gap, self.beta
+                ),
+            ));
+        }
+        Ok(())
     }
 
-    fn rotate(&mut self) {
-        std::mem::swap(&mut self.u_prev, &mut self.u);
-        std::mem::swap(&mut self.u, &mut self.u_next);
-        self.m += 1;
-        let next = self.f[2] + self.f_step(self.m);
-        self.f = [self.f[1], self.f[2], next];
+    fn check_finite(&self, t1: f64) -> Result<()> {
+        if self.normal.finite() && self.shear.finite() {
+            return Ok(());
+        }
+        Err(Error::numerical(
+            t1,
+            "coupled FD: non-finite displacement",
+            format!("gaps = ({:e}, {:e}) m", self.gap, self.sh.gap),
+        ))
+    }
+
+    fn advance(&mut self) {
+        self.normal.rotate();
+        self.shear.rotate();
     }
 }
 
-/// Recorded histories at every level.
+/// The interface histories and the displacements where the waves leave the bars, at
+/// every level (the recorder of the time loop; [`assemble`] turns them into the output).
 #[derive(Default)]
-struct Rec {
+struct Histories {
     t: Vec<f64>,
+    /// Normal and tangential gap, m.
     gap: [Vec<f64>; 2],
+    /// Normal and tangential dynamic stress, Pa.
     stress: [Vec<f64>; 2],
     beta: Vec<f64>,
+    /// Slip, m, and slider stress, Pa.
     slip: Vec<f64>,
     slider: Vec<f64>,
+    /// Friction limit, Pa.
     limit: Vec<f64>,
+    /// Slider state (0 stick, +-1 slip, NaN free).
     state: Vec<f64>,
+    /// Outgoing displacement at the far end of medium 1 (normal, shear), m.
     left: [Vec<f64>; 2],
+    /// Displacement at the far end of medium 2 (normal, shear), m.
     right: [Vec<f64>; 2],
 }
 
-impl Rec {
-    #[allow(clippy::too_many_arguments)]
-    fn push(
-        &mut self,
-        t: f64,
-        gap: f64,
-        stress: f64,
-        beta: f64,
-        sh: &ShearState,
-        limit: f64,
-        normal_ends: (f64, f64),
-        shear_ends: (f64, f64),
-    ) {
-        self.t.push(t);
-        self.gap[0].push(gap);
-        self.gap[1].push(sh.gap);
-        self.stress[0].push(stress);
-        self.stress[1].push(sh.dynamic_stress);
-        self.beta.push(beta);
-        self.slip.push(sh.slip);
-        self.slider.push(sh.slider);
-        self.limit.push(limit);
-        self.state.push(sh.state);
-        self.left[0].push(normal_ends.0);
-        self.left[1].push(shear_ends.0);
-        self.right[0].push(normal_ends.1);
-        self.right[1].push(shear_ends.1);
-    }
-
+impl Histories {
     fn with_capacity(n: usize) -> Self {
         let v = || Vec::with_capacity(n);
-        Rec {
+        Histories {
             t: v(),
             gap: [v(), v()],
             stress: [v(), v()],
@@ -235,6 +244,28 @@ impl Rec {
             left: [v(), v()],
             right: [v(), v()],
         }
+    }
+}
+
+impl Recorder<CoupledFd<'_>> for Histories {
+    fn record(&mut self, t: f64, s: &CoupledFd<'_>) {
+        let sh = &s.sh;
+        let normal_ends = ends(&s.normal, s.joint);
+        let shear_ends = ends(&s.shear, s.joint);
+        self.t.push(t);
+        self.gap[0].push(s.gap);
+        self.gap[1].push(sh.gap);
+        self.stress[0].push(s.s_cur);
+        self.stress[1].push(sh.dynamic_stress);
+        self.beta.push(s.beta);
+        self.slip.push(sh.slip);
+        self.slider.push(sh.slider);
+        self.limit.push(s.limit);
+        self.state.push(sh.state);
+        self.left[0].push(normal_ends.0);
+        self.left[1].push(shear_ends.0);
+        self.right[0].push(normal_ends.1);
+        self.right[1].push(shear_ends.1);
     }
 }
 
@@ -267,83 +298,42 @@ fn solve(p: &CoupledHalfSpace, settings: &FdCoupledSolver) -> Result<CoupledOutp
     let n_out = ((duration + tail) / dt).ceil() as usize;
     let steps = n_out + 2 * CELLS;
     let t0 = -(CELLS as f64) * dt;
-    let mut normal = Line::new(hs.z1, hs.z2, &*hs.incident, dt);
-    let mut shear = Line::new(p.z1t, p.z2t, &*p.shear_incident, dt);
+    let (normal, joint) = field(hs.z1, hs.z2, &*hs.incident, dt, steps + 1);
+    let (shear, _) = field(p.z1t, p.z2t, &*p.shear_incident, dt, steps + 1);
     let p0 = law.static_pressure;
-    let mut rec = Rec::with_capacity(steps + 1);
-    let mut beta = 1.0;
-    let kt = tl.branch.stick_stiffness();
-    let mut sh = ShearState::at_rest(tl, p0);
-    let (mut s_prev, mut s_cur) = (0.0, 0.0);
-    let (mut t_prev, mut t_cur) = (0.0, 0.0);
-    rec.push(
+    let mut scheme = CoupledFd {
+        law,
+        tl,
+        scheme: settings.interface_scheme,
+        dt,
+        normal,
+        shear,
+        joint,
+        beta: 1.0,
+        gap: 0.0,
+        s_prev: 0.0,
+        s_cur: 0.0,
+        t_prev: 0.0,
+        t_cur: 0.0,
+        sh: ShearState::at_rest(tl, p0),
+        limit: tl.friction_limit(p0, 0.0),
+    };
+    let mut rec = Histories::with_capacity(steps + 1);
+    let schedule = Schedule {
         t0,
-        0.0,
-        0.0,
-        beta,
-        &sh,
-        tl.friction_limit(p0),
-        (0.0, 0.0),
-        (0.0, 0.0),
-    );
-    for step in 0..steps {
-        if step % 4096 == 4095 {
-            crate::interrupt::check()?;
-        }
-        let t1 = t0 + (step + 1) as f64 * dt;
-        let gn = normal.predict();
-        let gt = shear.predict();
-        let input = CoupledStepInput {
-            scheme: settings.interface_scheme,
-            chi_n: normal.chi(),
-            chi_t: shear.chi(),
-            beta_old: beta,
-            s_old: s_prev,
-            t_old: t_prev,
-            dt,
-            t: t1,
-        };
-        let upd = coupled_step(law, tl, gn, gt, &sh, &input)?;
-        normal.apply(upd.normal_applied);
-        shear.apply(upd.shear.applied);
-        s_prev = s_cur;
-        s_cur = upd.normal.dynamic_stress;
-        t_prev = t_cur;
-        t_cur = upd.shear.new.dynamic_stress;
-        beta = upd.normal.adhesion;
-        let gap_n = upd.normal.gap;
-        sh = upd.shear.new;
-        rec.push(
-            t1,
-            gap_n,
-            s_cur,
-            beta,
-            &sh,
-            tl.friction_limit(if kt.is_infinite() {
-                upd.pressure_applied
-            } else {
-                upd.pressure
-            }),
-            normal.ends(),
-            shear.ends(),
-        );
-        if !(gap_n.is_finite() && sh.gap.is_finite()) {
-            return Err(Error::numerical(
-                t1,
-                "coupled FD: non-finite gap",
-                format!("gaps = ({gap_n:e}, {:e}) m, beta = {beta}", sh.gap),
-            ));
-        }
-        normal.rotate();
-        shear.rotate();
-    }
+        dt,
+        steps,
+        record_every: 1,
+        progress: None,
+    };
+    stepping::run(&schedule, &mut scheme, &mut rec)?;
     Ok(assemble(p, &rec, dt, duration, n_out))
 }
 
 /// Interface-time histories and the energy audit from the recorded levels.
 fn assemble(
     p: &CoupledHalfSpace,
-    rec: &Rec,
+    rec: &Histories,
     dt: f64,
     duration: f64,
     n_out: usize,

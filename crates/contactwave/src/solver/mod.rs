@@ -4,9 +4,15 @@
 //! | solver | problem | output |
 //! |---|---|---|
 //! | [`half_space::ExactSolver`] (gap ODE with located events, model.md section 4) | [`half_space::HalfSpace`] | [`HalfSpaceOutput`] |
-//! | [`half_space_fd::FdSolver`] (the bar-stack scheme on the same problem) | [`half_space::HalfSpace`] | [`HalfSpaceOutput`] |
-//! | [`half_space_fd_shear::FdCoupledSolver`] (the bar-stack scheme with a shear field, model.md section 13) | [`coupled::CoupledHalfSpace`] | [`coupled::CoupledOutput`] |
-//! | [`bar_stack::FdRun`] (explicit FD bar stack, model.md section 5) | [`bar_stack::BarStack`] | [`FdOutput`] |
+//! | [`half_space_fd::FdSolver`] (the bar-stack scheme on the same problem, model.md section 9.4) | [`half_space::HalfSpace`] | [`HalfSpaceOutput`] |
+//! | [`coupled::CoupledSolver`] (coupled normal and tangential gap ODEs with located events, model.md sections 13.3 and 14) | [`coupled::CoupledHalfSpace`] | [`coupled::CoupledOutput`] |
+//! | [`half_space_fd_shear::FdCoupledSolver`] (the bar-stack scheme with a shear field, model.md sections 9.6 and 13) | [`coupled::CoupledHalfSpace`] | [`coupled::CoupledOutput`] |
+//! | [`bar_stack::FdRun`] (explicit FD bar stack, model.md section 9) | [`bar_stack::BarStack`] | [`FdOutput`] |
+//!
+//! The three finite-difference solvers share one field type (`bar_stack::field`: the
+//! bar stack's fields at any Courant number, the half-space cross-checks' bars at
+//! Courant 1) and one time loop (`stepping`: interrupt checks, progress, finiteness
+//! checks and a recorder observing the levels).
 //!
 //! ```
 //! use contactwave::excitation::{ToneBurst, Window};
@@ -27,13 +33,13 @@
 
 pub mod bar_stack;
 pub mod coupled;
+mod exact_loop;
 pub mod half_space;
 pub mod half_space_fd;
 pub mod half_space_fd_shear;
-pub mod interface;
-pub mod interface_shear;
 pub mod output;
 pub mod radau;
+pub(crate) mod stepping;
 
 pub use output::{EnergyAudit, FdOutput, HalfSpaceOutput};
 

@@ -1,7 +1,10 @@
 //! Three-stage Radau IIA collocation (order 5, L-stable, stiffly accurate) for the small
-//! stiff systems of the interface: `M y' = f(t, y)` with `y = ([u], beta)` and a diagonal
-//! mass `M` whose damage row may be 0 (the rate-independent limit, an index-1 DAE).
-//! Newton's method on the 6 stage unknowns; no allocation.
+//! stiff systems of the interface, `M y' = f(t, y)` with `N` unknowns and a diagonal mass
+//! `M` whose damage row may be 0 (the rate-independent limit, an index-1 DAE): the one
+//! step of both exact solvers, the normal gap equation (`y = ([u], beta)`, analytic
+//! Jacobian, full Newton, affine phases in one linear solve) and the coupled interface
+//! (`y = ([u]_N, beta, [u]_T)`, forward-difference Jacobian, simplified Newton). Newton's
+//! method on the `3 N` stage unknowns of the evolving components; no allocation.
 
 /// Collocation nodes c_j.
 pub const C: [f64; 3] = [
@@ -57,10 +60,20 @@ pub fn a_inverse() -> [[f64; 3]; 3] {
     inv
 }
 
-/// A system `M y' = f(t, y)` of dimension 2.
-pub trait System {
-    /// Diagonal of the mass matrix.
-    fn mass(&self) -> [f64; 2];
+/// Most unknowns of a [`System`] (the coupled interface's three).
+pub const MAX_UNKNOWNS: usize = 3;
+
+/// Most stage unknowns of a step, `3 MAX_UNKNOWNS`.
+const MAX_STAGE_UNKNOWNS: usize = 3 * MAX_UNKNOWNS;
+
+/// A system `M y' = f(t, y)` of `N` unknowns (at most [`MAX_UNKNOWNS`]) with a diagonal
+/// mass `M`: the normal gap equation (`N = 2`: `([u], beta)`, analytic Jacobian) and the
+/// coupled interface (`N = 3`: `([u]_N, beta, [u]_T)`, forward-difference Jacobian).
+pub trait System<const N: usize> {
+    /// Diagonal of the mass matrix (default: the identity).
+    fn mass(&self) -> [f64; N] {
+        [1.0; N]
+    }
     /// Time-dependent forcing g(t) (evaluated once per stage time and step).
     fn forcing(&self, _t: f64) -> f64 {
         0.0
@@ -74,28 +87,33 @@ pub trait System {
         ]
     }
     /// Right-hand side f(t, y) given the forcing g(t).
-    fn rhs_forced(&self, t: f64, g: f64, y: [f64; 2]) -> [f64; 2];
+    fn rhs_forced(&self, t: f64, g: f64, y: [f64; N]) -> [f64; N];
     /// First component of the right-hand side at the three stage times `t + C[l] h` of a
     /// step, all at the same state `y`, given their forcings `g` (what an affine step needs).
-    fn rhs_stages(&self, t: f64, h: f64, g: [f64; 3], y: [f64; 2]) -> [f64; 3] {
+    fn rhs_stages(&self, t: f64, h: f64, g: [f64; 3], y: [f64; N]) -> [f64; 3] {
         std::array::from_fn(|l| self.rhs_forced(t + C[l] * h, g[l], y)[0])
     }
     /// Right-hand side f(t, y).
-    fn rhs(&self, t: f64, y: [f64; 2]) -> [f64; 2] {
+    fn rhs(&self, t: f64, y: [f64; N]) -> [f64; N] {
         self.rhs_forced(t, self.forcing(t), y)
     }
-    /// Jacobian df/dy, row-major.
-    fn jacobian(&self, t: f64, y: [f64; 2]) -> [[f64; 2]; 2];
-    /// Number of evolving components: 1 if the second one is frozen (its rhs and
-    /// Jacobian row vanish and its mass is 1), else 2.
-    fn dim(&self) -> usize {
-        2
+    /// The analytic Jacobian df/dy (row-major), or `None` (the default): no analytic one.
+    /// With it, [`step`] takes full Newton iterations (the Jacobian again at the stage
+    /// values of every iteration); without, simplified ones on a forward-difference
+    /// Jacobian at the step start.
+    fn jacobian(&self, _t: f64, _y: [f64; N]) -> Option<[[f64; N]; N]> {
+        None
     }
-    /// Where a one-component system (`dim() == 1`) is affine in `y[0]` near the state `y`:
-    /// `f(t, y + (z, 0)) = f(t, y) + slope z` for every `y[0] + z` in `[lower, upper]`.
-    /// [`step`] then solves the collocation equations in one linear solve, without
-    /// Newton's iterations; `None` (the default): no such interval.
-    fn affine(&self, _y: [f64; 2]) -> Option<Affine> {
+    /// Which components evolve (default: all). An inactive component's right-hand side
+    /// and Jacobian row vanish (and its mass is 1): it stays exactly constant.
+    fn active(&self) -> [bool; N] {
+        [true; N]
+    }
+    /// Where a system whose only evolving component is `y[0]` is affine in it near the
+    /// state `y`: `f(t, y + (z, 0, ..)) = f(t, y) + slope z` for every `y[0] + z` in
+    /// `[lower, upper]`. [`step`] then solves the collocation equations in one linear
+    /// solve, without Newton's iterations; `None` (the default): no such interval.
+    fn affine(&self, _y: [f64; N]) -> Option<Affine> {
         None
     }
 }
@@ -113,26 +131,83 @@ pub struct Affine {
 
 /// Result of one step.
 #[derive(Debug, Clone, Copy)]
-pub struct Step {
+pub struct Step<const N: usize> {
     /// Stage values Y_j (the last one is the end value).
-    pub stages: [[f64; 2]; 3],
+    pub stages: [[f64; N]; 3],
     /// Forcing at the stage times.
     pub forcing: [f64; 3],
 }
 
-impl Step {
+impl<const N: usize> Step<N> {
     /// State at the end of the step.
-    pub fn end(&self) -> [f64; 2] {
+    pub fn end(&self) -> [f64; N] {
         self.stages[2]
     }
 }
 
+/// `y + z`, componentwise.
+#[inline(always)]
+fn plus<const N: usize>(y: [f64; N], z: [f64; N]) -> [f64; N] {
+    std::array::from_fn(|i| y[i] + z[i])
+}
+
+/// Whether the only evolving component is the first (a scalar system, [`System::affine`]).
+#[inline]
+fn only_first<const N: usize>(active: [bool; N]) -> bool {
+    active.iter().enumerate().all(|(i, &a)| a == (i == 0))
+}
+
+/// `y` with its first component replaced by `v`.
+#[inline(always)]
+fn with_first<const N: usize>(mut y: [f64; N], v: f64) -> [f64; N] {
+    y[0] = v;
+    y
+}
+
 /// One Radau IIA step of size `h` from `(t, y)`. `scale` gives the magnitude of each
-/// component for the convergence test. Returns `None` if Newton does not converge.
-pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) -> Option<Step> {
+/// component (the convergence test; the difference quotients of a Jacobian without an
+/// analytic form). Returns `None` if Newton does not converge (the caller splits the step).
+///
+/// Newton's method on the `3 n` stage unknowns of the `n` evolving components
+/// ([`System::active`]) follows the Jacobian ([`System::jacobian`]):
+/// - analytic: full Newton, the Jacobian at the stage values of every iteration; an
+///   explicit predictor unless the step is stiff (`h |J_ii| > |M_ii|`); converged when the
+///   residual falls below 1e-14 or the increment below 1e-13 of the scale; one unknown by
+///   Cramer's rule on its 3x3 system;
+/// - by forward differences (step `1e-7 max(|y_i|, scale_i)`, at the step start):
+///   simplified Newton, the iteration matrix `M - h (A x J)` assembled once per step; an
+///   explicit predictor; converged when the increment falls below 1e-14 of `scale + |z|`,
+///   or below 1e-11 once it stops halving (round-off).
+///
+/// A one-component system affine at `y` ([`System::affine`]) whose stages stay in the
+/// interval takes one linear solve instead.
+pub fn step<const N: usize, S: System<N>>(
+    sys: &S,
+    t: f64,
+    y: [f64; N],
+    h: f64,
+    scale: [f64; N],
+) -> Option<Step<N>> {
+    const { assert!(N <= MAX_UNKNOWNS) };
+    let active = sys.active();
+    // the evolving components, in order
+    let mut idx = [0usize; N];
+    let mut n = 0;
+    for (i, &a) in active.iter().enumerate() {
+        if a {
+            idx[n] = i;
+            n += 1;
+        }
+    }
+    let idx = &idx[..n];
+    if n == 0 {
+        return Some(Step {
+            stages: [y; 3],
+            forcing: [0.0; 3],
+        });
+    }
     let m = sys.mass();
-    let n = sys.dim();
-    if n == 1 {
+    if only_first(active) {
         if let Some(a) = sys.affine(y) {
             if let Some(s) = affine_step(sys, t, y, h, m[0], a) {
                 return Some(s);
@@ -140,13 +215,15 @@ pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) ->
         }
     }
     let f0 = sys.rhs(t, y);
-    let j0 = sys.jacobian(t, y);
+    let analytic = sys.jacobian(t, y);
+    let full = analytic.is_some();
+    let j0 = analytic.unwrap_or_else(|| difference_jacobian(sys, t, y, f0, idx, scale));
     let g = sys.forcing_stages(t, h);
-    let stiff = h * j0[0][0].abs() > 1.0 || (n == 2 && h * j0[1][1].abs() > m[1].abs());
-    let mut z = [[0.0f64; 2]; 3];
+    let stiff = full && idx.iter().any(|&i| h * j0[i][i].abs() > m[i].abs());
+    let mut z = [[0.0f64; N]; 3];
     if !stiff {
         for (j, zj) in z.iter_mut().enumerate() {
-            for i in 0..n {
+            for &i in idx {
                 if m[i] != 0.0 {
                     zj[i] = C[j] * h * f0[i] / m[i];
                 }
@@ -154,92 +231,154 @@ pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) ->
         }
     }
     let nn = 3 * n;
-    let mut rhs = [0.0f64; 6];
-    let mut f = [[0.0; 2]; 3];
+    // simplified Newton: the iteration matrix of the step
+    let fixed = (!full).then(|| iteration_matrix(h, &m, &[j0; 3], idx));
+    let mut r = [0.0f64; MAX_STAGE_UNKNOWNS];
+    let mut f = [[0.0; N]; 3];
+    let mut prev = f64::INFINITY;
     for iter in 0..25 {
         for l in 0..3 {
-            f[l] = sys.rhs_forced(t + C[l] * h, g[l], [y[0] + z[l][0], y[1] + z[l][1]]);
+            f[l] = sys.rhs_forced(t + C[l] * h, g[l], plus(y, z[l]));
         }
         // residual R_{j,i} = m_i z_{j,i} - h sum_l a_jl f_{l,i}
         let mut res = 0.0f64;
         for j in 0..3 {
-            for i in 0..n {
+            for (c, &i) in idx.iter().enumerate() {
                 let mut s = m[i] * z[j][i];
                 for l in 0..3 {
                     s -= h * A[j][l] * f[l][i];
                 }
-                rhs[j * n + i] = s;
+                r[j * n + c] = s;
                 res = res.max(s.abs() / scale[i]);
             }
         }
         if !res.is_finite() {
             return None;
         }
-        if iter > 0 && res < 1e-14 {
+        if full && iter > 0 && res < 1e-14 {
             break;
         }
-        let mut jj = [[[0.0; 2]; 2]; 3];
-        for l in 0..3 {
-            jj[l] = sys.jacobian(t + C[l] * h, [y[0] + z[l][0], y[1] + z[l][1]]);
-        }
-        let ok = if n == 1 {
-            // 3x3 system of the scalar gap equation (no 6x6 buffer to clear per step)
-            let mut jac = [0.0f64; 9];
-            for j in 0..3 {
-                for l in 0..3 {
-                    let mut v = -h * A[j][l] * jj[l][0][0];
-                    if j == l {
-                        v += m[0];
-                    }
-                    jac[j * 3 + l] = v;
-                }
+        let ok = match &fixed {
+            Some(matrix) => {
+                let mut a = *matrix;
+                crate::numeric::solve_dense(&mut a[..nn * nn], &mut r[..nn], nn)
             }
-            solve3(&jac, &mut rhs)
-        } else {
-            let mut jac = [0.0f64; 36];
-            for j in 0..3 {
-                for i in 0..n {
-                    let r = j * n + i;
-                    for l in 0..3 {
-                        for k in 0..n {
-                            let c = l * n + k;
-                            let mut v = -h * A[j][l] * jj[l][i][k];
-                            if j == l && i == k {
+            None => {
+                let jj: [[[f64; N]; N]; 3] = std::array::from_fn(|l| {
+                    sys.jacobian(t + C[l] * h, plus(y, z[l]))
+                        .unwrap_or([[0.0; N]; N])
+                });
+                if n == 1 {
+                    // 3x3 system of one unknown (no dense buffer to clear per step)
+                    let i = idx[0];
+                    let mut jac = [0.0f64; 9];
+                    for j in 0..3 {
+                        for l in 0..3 {
+                            let mut v = -h * A[j][l] * jj[l][i][i];
+                            if j == l {
                                 v += m[i];
                             }
-                            jac[r * nn + c] = v;
+                            jac[j * 3 + l] = v;
                         }
                     }
+                    solve3(&jac, &mut r)
+                } else {
+                    let mut a = iteration_matrix(h, &m, &jj, idx);
+                    crate::numeric::solve_dense(&mut a[..nn * nn], &mut r[..nn], nn)
                 }
             }
-            crate::numeric::solve_dense(&mut jac[..nn * nn], &mut rhs[..nn], nn)
         };
         if !ok {
             return None;
         }
         let mut err = 0.0f64;
         for j in 0..3 {
-            for i in 0..n {
-                let d = rhs[j * n + i];
+            for (c, &i) in idx.iter().enumerate() {
+                let d = r[j * n + c];
                 z[j][i] -= d;
-                err = err.max(d.abs() / scale[i]);
+                err = err.max(if full {
+                    d.abs() / scale[i]
+                } else {
+                    d.abs() / (scale[i] + z[j][i].abs())
+                });
             }
         }
         if !err.is_finite() {
             return None;
         }
-        if err < 1e-13 {
-            break;
-        }
-        if iter == 24 {
-            return None;
+        if full {
+            if err < 1e-13 {
+                break;
+            }
+            if iter == 24 {
+                return None;
+            }
+        } else {
+            if err < 1e-14 || (err < 1e-11 && err > 0.5 * prev) {
+                break;
+            }
+            if iter == 24 {
+                return None;
+            }
+            prev = err;
         }
     }
-    let mut stages = [[0.0; 2]; 3];
+    Some(Step {
+        stages: z.map(|zj| plus(y, zj)),
+        forcing: g,
+    })
+}
+
+/// The Jacobian of `sys` at `(t, y)` by forward differences on the evolving components
+/// `idx`, from `f0 = f(t, y)` (step `1e-7 max(|y_j|, scale_j)`); zero elsewhere.
+fn difference_jacobian<const N: usize, S: System<N>>(
+    sys: &S,
+    t: f64,
+    y: [f64; N],
+    f0: [f64; N],
+    idx: &[usize],
+    scale: [f64; N],
+) -> [[f64; N]; N] {
+    let mut jac = [[0.0; N]; N];
+    for &j in idx {
+        let d = 1e-7 * y[j].abs().max(scale[j]);
+        let mut yp = y;
+        yp[j] += d;
+        let fp = sys.rhs(t, yp);
+        for &i in idx {
+            jac[i][j] = (fp[i] - f0[i]) / d;
+        }
+    }
+    jac
+}
+
+/// Newton's iteration matrix `M - h (A x J_l)` of the evolving components `idx`, row-major
+/// with stride `3 idx.len()`, from the Jacobians `jj[l]` at the three stages.
+#[inline]
+fn iteration_matrix<const N: usize>(
+    h: f64,
+    m: &[f64; N],
+    jj: &[[[f64; N]; N]; 3],
+    idx: &[usize],
+) -> [f64; MAX_STAGE_UNKNOWNS * MAX_STAGE_UNKNOWNS] {
+    let n = idx.len();
+    let nn = 3 * n;
+    let mut a = [0.0f64; MAX_STAGE_UNKNOWNS * MAX_STAGE_UNKNOWNS];
     for j in 0..3 {
-        stages[j] = [y[0] + z[j][0], y[1] + z[j][1]];
+        for (ci, &i) in idx.iter().enumerate() {
+            let row = j * n + ci;
+            for l in 0..3 {
+                for (ck, &k) in idx.iter().enumerate() {
+                    let mut v = -h * A[j][l] * jj[l][i][k];
+                    if j == l && i == k {
+                        v += m[i];
+                    }
+                    a[row * nn + l * n + ck] = v;
+                }
+            }
+        }
     }
-    Some(Step { stages, forcing: g })
+    a
 }
 
 /// The Radau step of an affine scalar system ([`System::affine`]): the collocation
@@ -247,7 +386,14 @@ pub fn step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, scale: [f64; 2]) ->
 /// [`AffineMap`] gives what Newton's iteration converges to (the same solution up to
 /// round-off). `None` when the start or a stage is outside the affine interval (a step at
 /// or across a kink of the law: Newton takes it) or the system is singular.
-fn affine_step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, m: f64, a: Affine) -> Option<Step> {
+fn affine_step<const N: usize, S: System<N>>(
+    sys: &S,
+    t: f64,
+    y: [f64; N],
+    h: f64,
+    m: f64,
+    a: Affine,
+) -> Option<Step<N>> {
     // a start outside the interval (a grazing step-on across a kink): Newton
     if !(y[0] >= a.lower && y[0] <= a.upper) {
         return None;
@@ -262,8 +408,13 @@ fn affine_step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64, m: f64, a: Affin
 /// turns to Newton on the law's kink: what an event search between the two sides of a
 /// contact event evaluates. `None` where the system is not scalar and affine at `y`, `y`
 /// is outside the interval, the map is singular or a stage is not finite.
-pub fn continued_step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64) -> Option<Step> {
-    if sys.dim() != 1 {
+pub fn continued_step<const N: usize, S: System<N>>(
+    sys: &S,
+    t: f64,
+    y: [f64; N],
+    h: f64,
+) -> Option<Step<N>> {
+    if !only_first(sys.active()) {
         return None;
     }
     let a = sys.affine(y)?;
@@ -273,7 +424,7 @@ pub fn continued_step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64) -> Option
     let map = AffineMap::new(h, sys.mass()[0], a.slope)?;
     let g = sys.forcing_stages(t, h);
     let z = map.apply(sys.rhs_stages(t, h, g, y));
-    let stages = z.map(|zj| [y[0] + zj, y[1]]);
+    let stages = z.map(|zj| with_first(y, y[0] + zj));
     stages
         .iter()
         .all(|s| s[0].is_finite())
@@ -283,23 +434,23 @@ pub fn continued_step<S: System>(sys: &S, t: f64, y: [f64; 2], h: f64) -> Option
 /// The affine step from `(t, y)` of length `h` (s) with the planned `map` of that step
 /// length and the slope of `a`: the forcing at the stage times, the stage right-hand sides
 /// at `y`, `z = P f`; `None` when a stage leaves `a`'s interval.
-pub fn affine_step_with<S: System>(
+pub fn affine_step_with<const N: usize, S: System<N>>(
     sys: &S,
     t: f64,
-    y: [f64; 2],
+    y: [f64; N],
     h: f64,
     a: Affine,
     map: &AffineMap,
-) -> Option<Step> {
+) -> Option<Step<N>> {
     let g = sys.forcing_stages(t, h);
     let z = map.apply(sys.rhs_stages(t, h, g, y));
-    let mut stages = [[0.0; 2]; 3];
+    let mut stages = [y; 3];
     for j in 0..3 {
         let v = y[0] + z[j];
         if !(v >= a.lower && v <= a.upper) {
             return None;
         }
-        stages[j] = [v, y[1]];
+        stages[j][0] = v;
     }
     Some(Step { stages, forcing: g })
 }
@@ -377,7 +528,7 @@ impl AffineMap {
 
 /// Solve the 3x3 system (row-major in `a[..9]`) by Cramer's rule, in place in `b[..3]`.
 #[inline]
-fn solve3(a: &[f64; 9], b: &mut [f64; 6]) -> bool {
+fn solve3(a: &[f64; 9], b: &mut [f64; MAX_STAGE_UNKNOWNS]) -> bool {
     let m = |r: usize, c: usize| a[r * 3 + c];
     let det = m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
         - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
@@ -402,15 +553,15 @@ fn solve3(a: &[f64; 9], b: &mut [f64; 6]) -> bool {
 mod tests {
     use super::*;
     struct Decay(f64);
-    impl System for Decay {
+    impl System<2> for Decay {
         fn mass(&self) -> [f64; 2] {
             [1.0, 1.0]
         }
         fn rhs_forced(&self, t: f64, _g: f64, y: [f64; 2]) -> [f64; 2] {
             [-self.0 * (y[0] - t.cos()), 0.0]
         }
-        fn jacobian(&self, _t: f64, _y: [f64; 2]) -> [[f64; 2]; 2] {
-            [[-self.0, 0.0], [0.0, 0.0]]
+        fn jacobian(&self, _t: f64, _y: [f64; 2]) -> Option<[[f64; 2]; 2]> {
+            Some([[-self.0, 0.0], [0.0, 0.0]])
         }
     }
     /// `y' = -lambda max(y, 0) - 1 + cos t`: affine with slope `-lambda` on `[0, inf)`,
@@ -419,7 +570,7 @@ mod tests {
         lambda: f64,
         kink: bool,
     }
-    impl System for Kinked {
+    impl System<2> for Kinked {
         fn mass(&self) -> [f64; 2] {
             [1.0, 1.0]
         }
@@ -430,16 +581,16 @@ mod tests {
             let v = if self.kink { y[0].max(0.0) } else { y[0] };
             [-self.lambda * v - 1.0 + g, 0.0]
         }
-        fn jacobian(&self, _t: f64, y: [f64; 2]) -> [[f64; 2]; 2] {
+        fn jacobian(&self, _t: f64, y: [f64; 2]) -> Option<[[f64; 2]; 2]> {
             let d = if self.kink && y[0] < 0.0 {
                 0.0
             } else {
                 -self.lambda
             };
-            [[d, 0.0], [0.0, 0.0]]
+            Some([[d, 0.0], [0.0, 0.0]])
         }
-        fn dim(&self) -> usize {
-            1
+        fn active(&self) -> [bool; 2] {
+            [true, false]
         }
         fn affine(&self, y: [f64; 2]) -> Option<Affine> {
             let lower = if self.kink { 0.0 } else { f64::NEG_INFINITY };
@@ -516,18 +667,18 @@ mod tests {
     }
     /// The decay of [`Decay`] declaring itself affine above `lower`.
     struct AffineDecay(f64, f64);
-    impl System for AffineDecay {
+    impl System<2> for AffineDecay {
         fn mass(&self) -> [f64; 2] {
             [1.0, 1.0]
         }
         fn rhs_forced(&self, t: f64, _g: f64, y: [f64; 2]) -> [f64; 2] {
             Decay(self.0).rhs_forced(t, 0.0, y)
         }
-        fn jacobian(&self, t: f64, y: [f64; 2]) -> [[f64; 2]; 2] {
+        fn jacobian(&self, t: f64, y: [f64; 2]) -> Option<[[f64; 2]; 2]> {
             Decay(self.0).jacobian(t, y)
         }
-        fn dim(&self) -> usize {
-            1
+        fn active(&self) -> [bool; 2] {
+            [true, false]
         }
         fn affine(&self, _y: [f64; 2]) -> Option<Affine> {
             Some(Affine {
@@ -592,6 +743,44 @@ mod tests {
         }
         assert!(AffineMap::new(1.0, 0.0, 0.0).is_none());
     }
+    /// Three unknowns without an analytic Jacobian (simplified Newton on difference
+    /// quotients): a stiff one relaxing to `sin t`, a frozen one, and `y' = -y`.
+    struct Frozen;
+    impl System<3> for Frozen {
+        fn rhs_forced(&self, t: f64, _g: f64, y: [f64; 3]) -> [f64; 3] {
+            [-1e3 * (y[0] - t.sin()), 0.0, -y[2]]
+        }
+        fn active(&self) -> [bool; 3] {
+            [true, false, true]
+        }
+    }
+
+    #[test]
+    fn difference_jacobian_steps_are_fifth_order_and_frozen_components_stay() {
+        // y2' = -y2: exact exp(-t); the error of 10 steps of 0.1 is O(h^5)
+        let mut y = [0.0, 0.7, 1.0];
+        let h = 0.1;
+        for k in 0..10 {
+            y = step(&Frozen, k as f64 * h, y, h, [1.0; 3]).unwrap().end();
+        }
+        assert!((y[2] - (-1.0f64).exp()).abs() < 1e-8);
+        assert_eq!(y[1], 0.7);
+        // the stiff component: close to its slow manifold sin(t) - cos(t)/1e3
+        let slow = 1f64.sin() - 1f64.cos() / 1e3;
+        assert!((y[0] - slow).abs() < 1e-5);
+        // and fifth order: halving the step divides the error by about 32
+        let err = |n: usize| {
+            let h = 1.0 / n as f64;
+            let mut y = [0.0, 0.7, 1.0];
+            for k in 0..n {
+                y = step(&Frozen, k as f64 * h, y, h, [1.0; 3]).unwrap().end();
+            }
+            (y[2] - (-1.0f64).exp()).abs()
+        };
+        let order = (err(5) / err(10)).log2();
+        assert!(order > 4.6, "observed order {order}");
+    }
+
     #[test]
     fn a_inverse_is_inverse() {
         let inv = a_inverse();

@@ -3,9 +3,12 @@
 //!
 //! This module owns the sweep file format (TOML), the grid it resolves to, the resumable
 //! `sweep.csv` it writes and the hash that ties a CSV to the sweep that produced it. It
-//! never touches the physics: every grid point is a [`crate::scenario::Scenario`] built
-//! from the base scenario with [`crate::scenario::set_dotted`] and run through
-//! [`crate::simulate_summary`].
+//! never touches the physics: the base scenario is planned once into a
+//! [`crate::model::Template`] (its table parsed, its laws and files built once) with one
+//! typed [`crate::model::Param`] per axis; every grid point is the template built with
+//! the point's values ([`crate::model::Template::build`], validated before anything
+//! runs), and the points run on the [`crate::run::Executor`], whose observer writes each
+//! row as it finishes.
 
 pub mod convergence;
 mod sweep;

@@ -1,6 +1,8 @@
 //! No tangential stress: the faces slide freely (`tau = 0`), the interface reflects a
 //! normally incident shear wave completely.
 
+use crate::error::Result;
+use crate::law::tangential::TangentialLawSpec;
 use crate::law::TangentialBranch;
 
 /// Free tangential branch.
@@ -10,5 +12,16 @@ pub struct Free;
 impl TangentialBranch for Free {
     fn name(&self) -> &'static str {
         "free"
+    }
+}
+
+/// Parameters of `law = "free"`: none.
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {}
+
+impl TangentialLawSpec for Spec {
+    fn build(&self, _file: &str, _prefix: &str) -> Result<Box<dyn TangentialBranch>> {
+        Ok(Box::new(Free))
     }
 }

@@ -2,6 +2,9 @@
 //! closed (a bonded interface of finite shear stiffness; the shear analogue of the
 //! spring-interface model).
 
+use crate::error::Result;
+use crate::law::param::{positive, ParamMut};
+use crate::law::tangential::TangentialLawSpec;
 use crate::law::TangentialBranch;
 
 /// Linear tangential branch.
@@ -17,5 +20,28 @@ impl TangentialBranch for Linear {
     }
     fn spring_stiffness(&self, _adhesion: f64) -> f64 {
         self.stiffness
+    }
+}
+
+/// Parameters of `law = "linear"`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {
+    /// C_T, Pa/m (> 0).
+    pub stiffness: f64,
+}
+
+impl TangentialLawSpec for Spec {
+    fn build(&self, file: &str, prefix: &str) -> Result<Box<dyn TangentialBranch>> {
+        positive(file, &format!("{prefix}.stiffness"), self.stiffness)?;
+        Ok(Box::new(Linear {
+            stiffness: self.stiffness,
+        }))
+    }
+    fn param_mut(&mut self, name: &str) -> Option<ParamMut<'_>> {
+        (name == "stiffness").then_some(ParamMut::F64(&mut self.stiffness))
+    }
+    fn unit(name: &str) -> Option<&'static str> {
+        (name == "stiffness").then_some("Pa/m")
     }
 }

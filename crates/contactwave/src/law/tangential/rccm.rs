@@ -6,6 +6,9 @@
 //! driven by `w - beta (C_N d^2 + C_T [u]_T^2)`. With the adhesion gone the law is
 //! Signorini (or the compression branch) with Coulomb friction.
 
+use crate::error::Result;
+use crate::law::param::{non_negative, ParamMut};
+use crate::law::tangential::TangentialLawSpec;
 use crate::law::TangentialBranch;
 
 /// Tangential RCCM branch.
@@ -32,5 +35,36 @@ impl TangentialBranch for Rccm {
     }
     fn needs_adhesion(&self) -> bool {
         true
+    }
+}
+
+/// Parameters of `law = "rccm"`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {
+    /// C_T, Pa/m (>= 0).
+    pub stiffness: f64,
+    /// Friction coefficient mu (>= 0).
+    pub friction: f64,
+}
+
+impl TangentialLawSpec for Spec {
+    fn build(&self, file: &str, prefix: &str) -> Result<Box<dyn TangentialBranch>> {
+        non_negative(file, &format!("{prefix}.stiffness"), self.stiffness)?;
+        non_negative(file, &format!("{prefix}.friction"), self.friction)?;
+        Ok(Box::new(Rccm {
+            stiffness: self.stiffness,
+            friction: self.friction,
+        }))
+    }
+    fn param_mut(&mut self, name: &str) -> Option<ParamMut<'_>> {
+        match name {
+            "stiffness" => Some(ParamMut::F64(&mut self.stiffness)),
+            "friction" => Some(ParamMut::F64(&mut self.friction)),
+            _ => None,
+        }
+    }
+    fn unit(name: &str) -> Option<&'static str> {
+        (name == "stiffness").then_some("Pa/m")
     }
 }

@@ -1,4 +1,4 @@
-//! The bar-stack model (model.md section 5, thesis chapter 4): segments joined by contact
+//! The bar-stack model (model.md section 9, thesis chapter 4): segments joined by contact
 //! interfaces, hit by a hammer, driven by an imposed displacement or crossed by an
 //! incident wave; the explicit FD scheme gives the histories, the analysis the FRF, the
 //! first mode and its harmonic, or the reflected and transmitted harmonics.

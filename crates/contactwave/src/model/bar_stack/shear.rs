@@ -1,4 +1,4 @@
-//! The transverse field of a bar-stack run (model.md sections 5 and 13): the shear waves
+//! The transverse field of a bar-stack run (model.md sections 9.7 and 13): the shear waves
 //! at the ends of the stack and their harmonics, the tangential histories of every
 //! interface (gap, shear stress, slip, slider state), the frictional and damage
 //! dissipation and the energy balance of both wave types, and the transverse histories

@@ -1,4 +1,4 @@
-//! One bar-stack simulation (model.md section 5, thesis chapter 4): the hammer test, the
+//! One bar-stack simulation (model.md section 9.3, thesis chapter 4): the hammer test, the
 //! frequency response functions (H1 estimate of receptance and accelerance, thesis
 //! section 2.2), the first mode and its second harmonic from the free response after the
 //! pulse, the next (guide) mode from a small linear impulse, the mean contact stiffness

@@ -134,14 +134,23 @@ pub fn signal(scenario: &Scenario, out: &HalfSpaceOutput) -> Signal {
 
 /// Analyse the reflected wave of `out` (the scenario's solution) by the scenario's method,
 /// with the floor when `with_floor` (without it the floor is NaN and the linearised solve
-/// is made only if the method needs it); `solve` runs the solver on the derived scenarios.
+/// is made only if the method needs it); `solve` runs the solver on the derived scenarios;
+/// a locked interface's floor comes from `floors` where it is there.
 pub fn analyse(
     scenario: &Scenario,
     out: &HalfSpaceOutput,
-    solve: impl Fn(&Scenario) -> Result<HalfSpaceOutput>,
+    mut solve: impl FnMut(&Scenario) -> Result<HalfSpaceOutput>,
     with_floor: bool,
+    floors: &mut Floors,
 ) -> Result<Analysis> {
-    analyse_keeping(scenario, out, |s| solve(s).map(|o| (o, ())), with_floor).map(|(a, _)| a)
+    analyse_keeping(
+        scenario,
+        out,
+        |s| solve(s).map(|o| (o, ())),
+        with_floor,
+        floors,
+    )
+    .map(|(a, _)| a)
 }
 
 /// The derived solves of an analysis, kept with what the solver returned beside the normal
@@ -159,14 +168,15 @@ pub struct Derived<T> {
 pub fn analyse_keeping<T>(
     scenario: &Scenario,
     out: &HalfSpaceOutput,
-    solve: impl Fn(&Scenario) -> Result<(HalfSpaceOutput, T)>,
+    mut solve: impl FnMut(&Scenario) -> Result<(HalfSpaceOutput, T)>,
     with_floor: bool,
+    floors: &mut Floors,
 ) -> Result<(Analysis, Derived<T>)> {
     let method = scenario.spec.analysis.method;
     let sig = signal(scenario, out);
     // a locked interface's floor, once per burst shape (no linearised solve here)
     let locked = if with_floor {
-        locked_floor(scenario, &sig, |s| solve(s).map(|o| o.0)).transpose()?
+        locked_floor(scenario, &sig, |s| solve(s).map(|o| o.0), floors).transpose()?
     } else {
         None
     };
@@ -224,7 +234,7 @@ pub fn analyse_keeping<T>(
     ))
 }
 
-/// Most floors a thread keeps ([`locked_floor`]).
+/// Most floors a [`Floors`] keeps ([`locked_floor`]).
 const MAX_FLOORS: usize = 8;
 
 /// What fixes the floor of a locked interface, apart from the amplitude: the burst's
@@ -232,15 +242,28 @@ const MAX_FLOORS: usize = 8;
 /// per period, the tail, the analysis method and the signal's step, start and plateau.
 type FloorKey = (Vec<u64>, [u64; 9]);
 
-thread_local! {
-    /// The floors at unit incident peak this thread computed last, oldest first.
-    static FLOORS: std::cell::RefCell<Vec<(FloorKey, BandAmplitudes)>> =
-        const { std::cell::RefCell::new(Vec::new()) };
+/// The analysis floors at unit incident peak of the locked interfaces a worker solved
+/// last, oldest first (at most [`MAX_FLOORS`]; [`locked_floor`]): a plan cache owned by
+/// the caller with its other workspaces ([`crate::model::Workspace`]), never a result.
+#[derive(Debug, Default, Clone)]
+pub struct Floors(Vec<(FloorKey, BandAmplitudes)>);
+
+impl Floors {
+    /// Forget the kept floors: the next run solves its linearised interface again (what a
+    /// first run does; for benchmarks of a cold run).
+    pub fn clear(&mut self) {
+        self.0.clear();
+    }
+
+    /// Whether no floor is kept.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
 }
 
 /// The analysis floor of a scenario whose interface linearises to a locked one (rigid
 /// compression: [`linearised_law`] is rigid x bonded), from the floor at unit incident peak,
-/// computed once per burst shape and thread and scaled by the peak. The locked interface's
+/// computed once per burst shape and kept in `floors`, scaled by the peak. The locked interface's
 /// response is linear in the burst and its record length does not depend on the amplitude,
 /// so this is the floor of the scenario's own linearised solve (up to round-off), and the
 /// same whichever point of a sweep computed it first. `None` where that does not hold or
@@ -250,7 +273,8 @@ thread_local! {
 fn locked_floor(
     scenario: &Scenario,
     sig: &Signal,
-    solve: impl Fn(&Scenario) -> Result<HalfSpaceOutput>,
+    solve: impl FnOnce(&Scenario) -> Result<HalfSpaceOutput>,
+    floors: &mut Floors,
 ) -> Option<Result<BandAmplitudes>> {
     use crate::scenario::spec::Method;
     let method = scenario.spec.analysis.method;
@@ -283,7 +307,7 @@ fn locked_floor(
         ],
     );
     let peak = scenario.incident.peak();
-    let hit = FLOORS.with(|f| f.borrow().iter().find(|(k, _)| *k == key).map(|e| e.1));
+    let hit = floors.0.iter().find(|(k, _)| *k == key).map(|e| e.1);
     let unit = match hit {
         Some(u) => u,
         None => {
@@ -294,24 +318,14 @@ fn locked_floor(
                 Err(e) => return Some(Err(e)),
             };
             let u = method_floor(method, &out.reflected_displacement, sig);
-            FLOORS.with(|f| {
-                let mut f = f.borrow_mut();
-                if f.len() >= MAX_FLOORS {
-                    f.remove(0);
-                }
-                f.push((key, u));
-            });
+            if floors.0.len() >= MAX_FLOORS {
+                floors.0.remove(0);
+            }
+            floors.0.push((key, u));
             u
         }
     };
     Some(Ok(scaled(&unit, peak)))
-}
-
-/// Forget the locked-interface floors this thread keeps ([`locked_floor`]): its next run
-/// solves the linearised interface again (what a first run does; for benchmarks of a cold
-/// run).
-pub fn forget_locked_floors() {
-    FLOORS.with(|f| f.borrow_mut().clear());
 }
 
 /// Every amplitude of `b` times `factor`.
@@ -350,9 +364,9 @@ mod tests {
         )
     }
 
-    fn floor_of(s: &Scenario) -> BandAmplitudes {
+    fn floor_of(s: &Scenario, floors: &mut Floors) -> BandAmplitudes {
         let out = super::super::simulate::solve(s).unwrap();
-        analyse(s, &out, super::super::simulate::solve, true)
+        analyse(s, &out, super::super::simulate::solve, true, floors)
             .unwrap()
             .floor
     }
@@ -361,13 +375,13 @@ mod tests {
     /// linearised solve, at every amplitude, to round-off.
     #[test]
     fn cached_locked_floor_is_the_linearised_solve_floor() {
-        forget_locked_floors();
+        let mut floors = Floors::default();
         for amplitude in [0.82e6, 2.5e4, 3.3e6] {
             let s = scenario(
                 "{ law = \"rccm\", stiffness = 2e13, energy = 0.1 }",
                 amplitude,
             );
-            let (cached, solved) = (floor_of(&s), solved_floor(&s));
+            let (cached, solved) = (floor_of(&s, &mut floors), solved_floor(&s));
             for n in 1..=5 {
                 let (a, b) = (cached.harmonic[n], solved.harmonic[n]);
                 assert!(
@@ -386,10 +400,10 @@ mod tests {
     fn cached_floor_does_not_depend_on_the_order_of_the_runs() {
         let free = "{ law = \"free\" }";
         let (a, b) = (scenario(free, 1e4), scenario(free, 7.7e4));
-        forget_locked_floors();
-        let (fa, fb) = (floor_of(&a), floor_of(&b));
-        forget_locked_floors();
-        let (gb, ga) = (floor_of(&b), floor_of(&a));
+        let mut floors = Floors::default();
+        let (fa, fb) = (floor_of(&a, &mut floors), floor_of(&b, &mut floors));
+        floors.clear();
+        let (gb, ga) = (floor_of(&b, &mut floors), floor_of(&a, &mut floors));
         assert_eq!(fa, ga);
         assert_eq!(fb, gb);
         // a second burst shape is a second entry, not a wrong hit
@@ -400,7 +414,7 @@ mod tests {
             "floor.toml",
         )
         .unwrap();
-        let fo = floor_of(&other);
+        let fo = floor_of(&other, &mut floors);
         assert_ne!(fo.harmonic[2], fa.harmonic[2]);
         let so = solved_floor(&other);
         assert!((fo.harmonic[2] - so.harmonic[2]).abs() <= 1e-11 * so.harmonic[2]);

@@ -9,11 +9,14 @@ pub mod oblique;
 pub mod shear;
 mod simulate;
 
-pub use simulate::{half_space, settings, simulate, simulate_summary, ProbeSeries, RunResult};
+pub use simulate::{
+    half_space, settings, simulate, simulate_in, simulate_summary, simulate_summary_in,
+    ProbeSeries, RunResult,
+};
 
 use super::record::summary_record;
 use super::template::{FromSpec, SpecTemplate};
-use super::{Kind, Model, Outcome, Record, RunControl, Template, Value};
+use super::{Kind, Model, Outcome, Record, RunControl, Template, Value, Workspace};
 use crate::analysis::{BandAmplitudes, Summary};
 use crate::error::Result;
 use crate::render::OutputFile;
@@ -82,18 +85,30 @@ impl Model for Scenario {
     }
 
     fn summary_for(&self, keys: &[&str]) -> Result<Summary> {
+        self.summary_for_in(keys, &mut Workspace::new())
+    }
+
+    fn summary_in(&self, ws: &mut Workspace) -> Result<Summary> {
+        simulate_summary_in(self, ws)
+    }
+
+    fn summary_for_in(&self, keys: &[&str], ws: &mut Workspace) -> Result<Summary> {
         // the floor keys (`A*_floor_over_Ainc`, `harmonic_floor_warning`) need the
         // linearised solve
-        simulate::simulate_summary_with(self, keys.iter().any(|k| k.contains("floor")))
+        simulate::simulate_summary_with(self, keys.iter().any(|k| k.contains("floor")), ws)
     }
 
     fn warnings(&self) -> Vec<crate::scenario::Warning> {
         Scenario::warnings(self)
     }
 
-    fn run(&self, _control: &RunControl) -> Result<Box<dyn Outcome>> {
+    fn run(&self, control: &RunControl) -> Result<Box<dyn Outcome>> {
+        self.run_in(control, &mut Workspace::new())
+    }
+
+    fn run_in(&self, _control: &RunControl, ws: &mut Workspace) -> Result<Box<dyn Outcome>> {
         crate::scenario::budget::check_half_space_run(self)?;
-        Ok(Box::new(simulate(self)?))
+        Ok(Box::new(simulate_in(self, ws)?))
     }
 
     fn as_any(&self) -> &dyn Any {

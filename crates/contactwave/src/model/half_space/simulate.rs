@@ -6,9 +6,12 @@ use crate::analysis::{
     BandAmplitudes, Spectrum, Summary,
 };
 use crate::error::Result;
+use crate::model::Workspace;
 use crate::scenario::spec::Method;
 use crate::scenario::Scenario;
-use crate::solver::half_space::{ExactSolver, HalfSpace, HalfSpaceOutput, HalfSpaceSettings};
+use crate::solver::half_space::{
+    ExactSolver, HalfSpace, HalfSpaceOutput, HalfSpaceSettings, Workspace as SolverWorkspace,
+};
 use crate::solver::half_space_fd::FdSolver;
 use crate::solver::Solver;
 
@@ -85,30 +88,21 @@ pub fn half_space(scenario: &Scenario) -> HalfSpace {
     )
 }
 
-/// Interface histories by the scenario's method (`exact` or `fd`).
+/// Interface histories by the scenario's method (`exact` or `fd`), on a new workspace
+/// (the tests' reference solves).
+#[cfg(test)]
 pub fn solve(scenario: &Scenario) -> Result<HalfSpaceOutput> {
-    solve_with(scenario, false)
+    solve_with(scenario, false, &mut SolverWorkspace::new())
 }
 
-/// Interface histories by the scenario's method; with `summary_only` the exact solver
-/// records only what [`simulate_summary`] reads (`t`, `beta`, `reflected_displacement`).
-fn solve_with(scenario: &Scenario, summary_only: bool) -> Result<HalfSpaceOutput> {
-    let problem = half_space(scenario);
-    match scenario.spec.solver.method {
-        Method::Exact => ExactSolver {
-            settings: HalfSpaceSettings {
-                summary_only,
-                ..settings(scenario)
-            },
-        }
-        .solve(&problem),
-        Method::Fd => FdSolver {
-            samples_per_period: scenario.spec.solver.samples_per_period(),
-            tail_periods: scenario.spec.solver.tail_periods,
-            interface_scheme: scenario.spec.solver.interface_update.into(),
-        }
-        .solve(&problem),
+/// The scenario's problem on the FD scheme.
+fn solve_fd(scenario: &Scenario, problem: &HalfSpace) -> Result<HalfSpaceOutput> {
+    FdSolver {
+        samples_per_period: scenario.spec.solver.samples_per_period(),
+        tail_periods: scenario.spec.solver.tail_periods,
+        interface_scheme: scenario.spec.solver.interface_update.into(),
     }
+    .solve(problem)
 }
 
 /// Solver settings of a scenario.
@@ -125,41 +119,73 @@ pub fn settings(scenario: &Scenario) -> HalfSpaceSettings {
 /// The summary has the keys of [`simulate`]'s except the incident burst's own ratios
 /// (`incident_A*_over_Ainc`).
 pub fn simulate_summary(scenario: &Scenario) -> Result<Summary> {
-    simulate_summary_with(scenario, true)
+    simulate_summary_in(scenario, &mut Workspace::new())
+}
+
+/// [`simulate_summary`] on the caller's workspace `ws` (one per worker: the incident table
+/// and the locked interfaces' floors of its last runs are used again; the same summary).
+pub fn simulate_summary_in(scenario: &Scenario, ws: &mut Workspace) -> Result<Summary> {
+    simulate_summary_with(scenario, true, ws)
 }
 
 /// [`simulate_summary`], with the analysis floor (`A*_floor_over_Ainc`,
 /// `harmonic_floor_warning`) only when `with_floor`: without it those keys are NaN or 0 and
 /// the linearised solve that gives them is skipped (an identification that observes no
 /// floor key saves a third of each forward run). Every other key is the same.
-pub fn simulate_summary_with(scenario: &Scenario, with_floor: bool) -> Result<Summary> {
+/// On the caller's workspace `ws`.
+pub fn simulate_summary_with(
+    scenario: &Scenario,
+    with_floor: bool,
+    ws: &mut Workspace,
+) -> Result<Summary> {
     if let Some(sh) = &scenario.shear {
         let (out, mut shear) = super::shear::solve(scenario, sh)?;
         if let Some(o) = &scenario.oblique {
-            let (analysis, derived) = analyse_oblique(scenario, &out, with_floor)?;
+            let (analysis, derived) = analyse_oblique(scenario, &out, with_floor, ws)?;
             analyse_shear_oblique(scenario, sh, &mut shear, &derived)?;
             let mut s = summarise(scenario, &out, None, &analysis);
             super::shear::set_summary(&mut s, scenario, sh, &shear);
             super::oblique::set_summary(&mut s, scenario, o, (&out, &shear), &derived);
             return Ok(s);
         }
-        let analysis = analyse(scenario, &out, with_floor)?;
+        let analysis = analyse(scenario, &out, with_floor, ws)?;
         analyse_shear(scenario, sh, &mut shear)?;
         let mut s = summarise(scenario, &out, None, &analysis);
         super::shear::set_summary(&mut s, scenario, sh, &shear);
         return Ok(s);
     }
-    let out = solve_with(scenario, true)?;
-    let analysis = analyse(scenario, &out, with_floor)?;
+    let out = solve_with(scenario, true, &mut ws.solver)?;
+    let analysis = analyse(scenario, &out, with_floor, ws)?;
     Ok(summarise(scenario, &out, None, &analysis))
 }
 
 /// The normal histories of a scenario (through the coupled solver when it has a
 /// tangential part), recording only what the analysis reads.
-fn solve_normal(scenario: &Scenario) -> Result<HalfSpaceOutput> {
+fn solve_normal(scenario: &Scenario, ws: &mut SolverWorkspace) -> Result<HalfSpaceOutput> {
     match &scenario.shear {
         Some(sh) => Ok(super::shear::solve(scenario, sh)?.0),
-        None => solve_with(scenario, true),
+        None => solve_with(scenario, true, ws),
+    }
+}
+
+/// Interface histories by the scenario's method on the solver's workspace `ws`; with
+/// `summary_only` the exact solver records only what [`simulate_summary`] reads (`t`,
+/// `beta`, `reflected_displacement`).
+fn solve_with(
+    scenario: &Scenario,
+    summary_only: bool,
+    ws: &mut SolverWorkspace,
+) -> Result<HalfSpaceOutput> {
+    let problem = half_space(scenario);
+    match scenario.spec.solver.method {
+        Method::Exact => ExactSolver {
+            settings: HalfSpaceSettings {
+                summary_only,
+                ..settings(scenario)
+            },
+        }
+        .solve_in(&problem, ws),
+        Method::Fd => solve_fd(scenario, &problem),
     }
 }
 
@@ -169,9 +195,17 @@ fn analyse(
     scenario: &Scenario,
     out: &HalfSpaceOutput,
     with_floor: bool,
+    ws: &mut Workspace,
 ) -> Result<methods::Analysis> {
     if scenario.incident.peak() > 0.0 {
-        methods::analyse(scenario, out, solve_normal, with_floor)
+        let Workspace { solver, floors } = ws;
+        methods::analyse(
+            scenario,
+            out,
+            |s| solve_normal(s, solver),
+            with_floor,
+            floors,
+        )
     } else {
         Ok(methods::Analysis {
             method: scenario.spec.analysis.method,
@@ -189,6 +223,7 @@ fn analyse_oblique(
     scenario: &Scenario,
     out: &HalfSpaceOutput,
     with_floor: bool,
+    ws: &mut Workspace,
 ) -> Result<(
     methods::Analysis,
     methods::Derived<super::shear::ShearResult>,
@@ -205,6 +240,7 @@ fn analyse_oblique(
             )),
         },
         with_floor,
+        &mut ws.floors,
     )
 }
 
@@ -262,12 +298,18 @@ fn bands(scenario: &Scenario, displacement: &[f64], dt: f64) -> BandAmplitudes {
 /// assert!(r.summary.get("A2_over_Ainc").unwrap() > 0.05);
 /// ```
 pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
+    simulate_in(scenario, &mut Workspace::new())
+}
+
+/// [`simulate`] on the caller's workspace `ws` (one per worker: the incident table and the
+/// locked interfaces' floors of its last runs are used again; the same result).
+pub fn simulate_in(scenario: &Scenario, ws: &mut Workspace) -> Result<RunResult> {
     let (out, mut shear) = match &scenario.shear {
         Some(sh) => {
             let (out, r) = super::shear::solve(scenario, sh)?;
             (out, Some(r))
         }
-        None => (solve(scenario)?, None),
+        None => (solve_with(scenario, false, &mut ws.solver)?, None),
     };
     // at oblique incidence the incident wave's own bands (along its polarisation)
     let inc = match (&scenario.oblique, &shear) {
@@ -276,15 +318,15 @@ pub fn simulate(scenario: &Scenario) -> Result<RunResult> {
     };
     let (analysis, derived) = match (&scenario.oblique, &scenario.shear, &mut shear) {
         (Some(_), Some(sh), Some(r)) => {
-            let (a, d) = analyse_oblique(scenario, &out, true)?;
+            let (a, d) = analyse_oblique(scenario, &out, true, ws)?;
             analyse_shear_oblique(scenario, sh, r, &d)?;
             (a, Some(d))
         }
         (_, Some(sh), Some(r)) => {
             analyse_shear(scenario, sh, r)?;
-            (analyse(scenario, &out, true)?, None)
+            (analyse(scenario, &out, true, ws)?, None)
         }
-        _ => (analyse(scenario, &out, true)?, None),
+        _ => (analyse(scenario, &out, true, ws)?, None),
     };
     let mut summary = summarise(scenario, &out, Some(&inc), &analysis);
     if let (Some(sh), Some(r)) = (&scenario.shear, &shear) {
@@ -434,6 +476,45 @@ fn summarise(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A sweep on one workspace (its incident table and locked floor kept from point to
+    /// point, in either order) gives every point's summary bit for bit as a cold run.
+    #[test]
+    fn a_used_workspace_gives_the_summary_of_a_new_one() {
+        let scenario = |xi: f64, traction: &str| {
+            let text = format!(
+                "[medium]\nmaterial = \"pmma\"\n[interface]\nstatic_pressure = 0.082e6\n\
+                 traction = {traction}\n[incident]\nfrequency = 1e6\ncycles = 6\nxi = {xi}\n\
+                 [solver]\nsamples_per_period = 64\n"
+            );
+            Scenario::from_toml_str(&text, "ws.toml").unwrap()
+        };
+        let points: Vec<Scenario> = [0.3, 0.9, 0.3, 1.4]
+            .iter()
+            .flat_map(|&xi| {
+                [
+                    scenario(xi, "{ law = \"free\" }"),
+                    scenario(xi, "{ law = \"rccm\", stiffness = 2e13, energy = 0.1 }"),
+                ]
+            })
+            .collect();
+        let bits = |s: &Summary| -> Vec<(String, u64)> {
+            s.iter()
+                .map(|(k, v)| (k.to_string(), v.to_bits()))
+                .collect()
+        };
+        let mut ws = Workspace::new();
+        for order in [false, true] {
+            for i in 0..points.len() {
+                let p = &points[if order { points.len() - 1 - i } else { i }];
+                let warm = simulate_summary_in(p, &mut ws).unwrap();
+                let cold = simulate_summary(p).unwrap();
+                assert_eq!(bits(&warm), bits(&cold), "point {i}, reversed {order}");
+            }
+        }
+        // (the floor and the table were there to be used)
+        assert!(!ws.floors.is_empty());
+    }
 
     fn run_at(x: f64) -> RunResult {
         let text = format!(

@@ -1,4 +1,4 @@
-//! Bar-stack scenarios (`[model] kind = "bar_stack"`, model.md section 5; thesis sections
+//! Bar-stack scenarios (`[model] kind = "bar_stack"`, model.md section 9; thesis sections
 //! 2.3.1-2.3.5 and chapter 4): segments, interfaces with any law of the library, end
 //! conditions, gravity, damping, a hammer force, and the static step that computes the
 //! pre-loaded interface pressures before the dynamics start.

@@ -31,7 +31,7 @@ pub struct BarStackSpec {
     /// stress at x = 0, where its front arrives at t = 0.
     pub incident: Option<IncidentSpec>,
     /// An incident shear wave entering through the transparent first end (model.md
-    /// sections 5 and 13), alone or with `[incident]`: the keys of the half-space
+    /// sections 9.7 and 13), alone or with `[incident]`: the keys of the half-space
     /// `[shear_incident]` (`amplitude` in Pa, no xi; `delay` in s). `tau_inc(t)` is its
     /// shear stress at x = 0, where its front arrives at t = `delay`. It gives the stack a
     /// transverse field: every segment then needs a shear modulus.

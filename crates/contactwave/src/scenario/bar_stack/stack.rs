@@ -281,7 +281,7 @@ impl InterfaceLaws {
             || spec
                 .interfaces
                 .iter()
-                .any(|i| i.tangential != TangentialSpec::Free);
+                .any(|i| !matches!(i.tangential, TangentialSpec::Free(_)));
         if !active {
             return Ok(None);
         }

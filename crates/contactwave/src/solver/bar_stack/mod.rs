@@ -1,5 +1,5 @@
 //! Explicit finite-difference solver of a stack of elastic bars separated by contact
-//! interfaces (model.md section 5; thesis sections 2.3.1-2.3.5, eqs. 2.2, 2.18-2.37).
+//! interfaces (model.md section 9; thesis sections 2.3.1-2.3.5, eqs. 2.2, 2.18-2.37).
 //!
 //! Each segment is meshed with `n_i = floor(L_i / (c_i dt))` cells, so its Courant number
 //! `r_i = c_i dt / dx_i <= 1` and equals 1 (dispersion-free in 1D) when the length is a
@@ -9,7 +9,7 @@
 //! time. Displacements are relative to the pre-loaded static equilibrium (gravity and
 //! static forces are balanced by the static stress field, reported by the static step),
 //! so an interface transmits the dynamic stress `S = sigma(gap) + p0`. Interfaces are
-//! updated implicitly each step ([`super::interface::update`]): the law holds exactly.
+//! updated implicitly each step ([`crate::law::contact::update_point`]): the law holds exactly.
 //! Ends: free, fixed, transparent (first-order absorbing, exact at Courant 1) with an
 //! optional injected incident wave, or a rigid obstacle through an interface.
 //! The time loop allocates nothing; state lives in flat `Vec<f64>`s.
@@ -17,15 +17,17 @@
 mod field;
 mod joint;
 
-pub use super::interface::InterfaceScheme;
 pub use super::output::{FdOutput, FdShearOutput};
+use super::stepping::{self, Recorder, Schedule, Scheme};
 use super::Solver;
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
+pub use crate::law::contact::InterfaceScheme;
+use crate::law::contact::{PointState, StepContext};
 use crate::law::{ContactLaw, TangentialLaw};
 use crate::material::Material;
-use field::Field;
-use joint::{Joint, JointState, StepContext};
+pub(crate) use field::Field;
+pub(crate) use joint::Joint;
 use std::sync::Arc;
 
 /// An elastic bar segment.
@@ -95,7 +97,7 @@ pub struct BarStack {
     pub shear: Option<ShearStack>,
 }
 
-/// The transverse field of a stack (model.md sections 5 and 13): plane shear waves along
+/// The transverse field of a stack (model.md sections 9.7 and 13): plane shear waves along
 /// the stack, every segment at its shear wave speed `c_T = sqrt(G / rho)`, the interfaces
 /// updated by the coupled normal/tangential law each step. The ends are those of the
 /// longitudinal field: free, fixed, transparent (injecting `incident`) or the obstacle
@@ -222,6 +224,38 @@ pub fn check_stability(mesh: &Mesh) -> Result<()> {
 impl BarStack {
     /// Run the explicit scheme.
     pub fn run(&self, run: &FdRun) -> Result<FdOutput> {
+        let mut scheme = self.scheme(run)?;
+        let n_rec = run.steps / run.record_every.max(1) + 1;
+        let mut rec = StackRecorder {
+            run,
+            out: FdOutput::with_capacity(
+                n_rec,
+                run.probes.len(),
+                scheme.laws.len(),
+                scheme.shear.as_ref().map(|_| run.shear_probes.len()),
+            ),
+        };
+        let schedule = Schedule {
+            t0: run.t0,
+            dt: run.dt,
+            steps: run.steps,
+            record_every: run.record_every,
+            progress: run.progress.as_ref().map(|p| &*p.0),
+        };
+        stepping::run(&schedule, &mut scheme, &mut rec)?;
+        let mut out = rec.out;
+        out.node_updates = scheme.node_updates;
+        if let Some(sh) = out.shear.as_mut() {
+            let state = &scheme.contacts.state;
+            sh.friction_dissipation = state.iter().map(|s| s.friction).collect();
+            sh.damage_dissipation = state.iter().map(|s| s.damage).collect();
+        }
+        Ok(out)
+    }
+
+    /// The stack's fields, contacts and sources set up for `run` (checked: Courant
+    /// numbers, one law per interface, an incident wave only through a transparent end).
+    fn scheme<'a>(&'a self, run: &'a FdRun) -> Result<StackScheme<'a>> {
         let mesh = self.mesh(run.dt);
         check_stability(&mesh)?;
         let dt = run.dt;
@@ -240,20 +274,18 @@ impl BarStack {
         let tau_max = run.t0 + (run.steps + 2) as f64 * dt;
         let incident = self.incident_wave(self.incident.as_deref(), |m| m.impedance())?;
         let seg0 = &self.segments[0];
-        let mut normal = Field::new(
+        let normal = Field::new(
             self,
             mesh,
             (seg0.material.wave_speed(), seg0.length),
             incident,
             tau_max,
         );
-        let mut shear = self.shear_field(dt, tau_max)?;
+        let shear = self.shear_field(dt, tau_max)?;
         let n = normal.nodes();
-        let mut force = vec![0.0; run.forces.len()];
-        let forced: Vec<usize> = run.forces.iter().map(|f| f.node.min(n - 1)).collect();
         // interfaces between segments, then the obstacle(s): right, left
         let laws = self.contact_laws();
-        let mut contacts = Contacts::new(
+        let contacts = Contacts::new(
             &laws,
             self.tangential_laws()?,
             self.joints(&normal.mesh),
@@ -261,129 +293,17 @@ impl BarStack {
                 .as_ref()
                 .map_or_else(Vec::new, |f| self.joints(&f.mesh)),
         );
-        let n_rec = run.steps / run.record_every.max(1) + 1;
-        let mut out = FdOutput::with_capacity(
-            n_rec,
-            run.probes.len(),
-            laws.len(),
-            shear.as_ref().map(|_| run.shear_probes.len()),
-        );
-        let record = |out: &mut FdOutput,
-                      t: f64,
-                      normal: &[f64],
-                      shear: Option<&[f64]>,
-                      contacts: &Contacts| {
-            record_level(out, run, t, (normal, shear), contacts);
-        };
-        record(
-            &mut out,
-            run.t0,
-            &normal.u,
-            shear.as_ref().map(|f| &f.u[..]),
-            &contacts,
-        );
-        for step in 0..run.steps {
-            if step % 4096 == 0 {
-                crate::interrupt::check()?;
-                if let Some(p) = &run.progress {
-                    (p.0)(step, run.steps);
-                }
-            }
-            let t = run.t0 + step as f64 * dt;
-            let t1 = t + dt;
-            let ctx = StepContext {
-                scheme: run.interface_scheme,
-                dt,
-                t: t1,
-            };
-            for (f, src) in force.iter_mut().zip(&run.forces) {
-                *f = src.signal.value(t);
-            }
-            normal.bulk();
-            // external forces (few nodes)
-            for (node, f) in forced.iter().zip(force.iter()) {
-                normal.u_next[*node] += normal.force_gain(*node) * f;
-            }
-            out.node_updates += n as u64;
-            if let Some(sf) = shear.as_mut() {
-                sf.bulk();
-                out.node_updates += sf.nodes() as u64;
-            }
-            // first end
-            match &self.left {
-                End::Free => {}
-                End::Fixed => {
-                    normal.u_next[0] = 0.0;
-                    if let Some(sf) = shear.as_mut() {
-                        sf.u_next[0] = 0.0;
-                    }
-                }
-                End::Transparent => {
-                    normal.transparent_first(t, t1);
-                    if let Some(sf) = shear.as_mut() {
-                        sf.transparent_first(t, t1);
-                    }
-                }
-                End::Obstacle(law) => {
-                    let i = laws.len() - 1;
-                    contacts.update(i, ctx, law, &mut normal, shear.as_mut())?;
-                }
-            }
-            if let Some(d) = &run.imposed {
-                normal.u_next[0] = d.value(t1);
-            }
-            match &self.right {
-                End::Free => {}
-                End::Fixed => {
-                    normal.u_next[n - 1] = 0.0;
-                    if let Some(sf) = shear.as_mut() {
-                        let last = sf.nodes() - 1;
-                        sf.u_next[last] = 0.0;
-                    }
-                }
-                End::Transparent => {
-                    normal.transparent_last();
-                    if let Some(sf) = shear.as_mut() {
-                        sf.transparent_last();
-                    }
-                }
-                End::Obstacle(law) => {
-                    let i = self.interfaces.len();
-                    contacts.update(i, ctx, law, &mut normal, shear.as_mut())?;
-                }
-            }
-            for (i, law) in self.interfaces.iter().enumerate() {
-                contacts.update(i, ctx, law, &mut normal, shear.as_mut())?;
-            }
-            if (step % 4096 == 4095 || step + 1 == run.steps)
-                && !(normal.finite() && shear.as_ref().map_or(true, |f| f.finite()))
-            {
-                let gaps: Vec<f64> = contacts.state.iter().map(|s| s.gap).collect();
-                return Err(Error::numerical(
-                    t1,
-                    "non-finite displacement",
-                    format!("gaps = {gaps:?}"),
-                ));
-            }
-            if (step + 1) % run.record_every.max(1) == 0 {
-                record(
-                    &mut out,
-                    t1,
-                    &normal.u_next,
-                    shear.as_ref().map(|f| &f.u_next[..]),
-                    &contacts,
-                );
-            }
-            normal.rotate();
-            if let Some(sf) = shear.as_mut() {
-                sf.rotate();
-            }
-        }
-        if let Some(sh) = out.shear.as_mut() {
-            sh.friction_dissipation = contacts.state.iter().map(|s| s.friction).collect();
-            sh.damage_dissipation = contacts.state.iter().map(|s| s.damage).collect();
-        }
-        Ok(out)
+        Ok(StackScheme {
+            stack: self,
+            run,
+            force: vec![0.0; run.forces.len()],
+            forced: run.forces.iter().map(|f| f.node.min(n - 1)).collect(),
+            laws,
+            normal,
+            shear,
+            contacts,
+            node_updates: 0,
+        })
     }
 
     /// The incident wave of a transparent first end and the first segment's impedance
@@ -527,7 +447,7 @@ struct Contacts {
     joints: Vec<Joint>,
     shear_joints: Vec<Joint>,
     tangential: Vec<Arc<TangentialLaw>>,
-    state: Vec<JointState>,
+    state: Vec<PointState>,
 }
 
 impl Contacts {
@@ -540,7 +460,7 @@ impl Contacts {
         let state = laws
             .iter()
             .enumerate()
-            .map(|(i, l)| JointState::at_rest(l, tangential.get(i).map(|t| &**t)))
+            .map(|(i, l)| PointState::at_rest(l, tangential.get(i).map(|t| &**t)))
             .collect();
         Contacts {
             joints,
@@ -563,6 +483,134 @@ impl Contacts {
     ) -> Result<()> {
         let side = shear.map(|f| (f, self.shear_joints[i], &*self.tangential[i]));
         joint::update(ctx, law, self.joints[i], &mut self.state[i], normal, side)
+    }
+}
+
+/// A stack in the time loop: its fields, contacts and sources for one run.
+struct StackScheme<'a> {
+    stack: &'a BarStack,
+    run: &'a FdRun,
+    /// External forces of the step, N, and the nodes they act on.
+    force: Vec<f64>,
+    forced: Vec<usize>,
+    /// Contact laws in the order of the contacts' state.
+    laws: Vec<Arc<ContactLaw>>,
+    normal: Field,
+    shear: Option<Field>,
+    contacts: Contacts,
+    /// Node updates performed (of both fields).
+    node_updates: u64,
+}
+
+impl Scheme for StackScheme<'_> {
+    fn step(&mut self, t: f64, t1: f64) -> Result<()> {
+        let (stack, run) = (self.stack, self.run);
+        let (normal, contacts) = (&mut self.normal, &mut self.contacts);
+        let mut shear = self.shear.as_mut();
+        let n = normal.nodes();
+        let ctx = StepContext {
+            scheme: run.interface_scheme,
+            dt: run.dt,
+            t: t1,
+        };
+        for (f, src) in self.force.iter_mut().zip(&run.forces) {
+            *f = src.signal.value(t);
+        }
+        normal.bulk();
+        // external forces (few nodes)
+        for (node, f) in self.forced.iter().zip(self.force.iter()) {
+            normal.u_next[*node] += normal.force_gain(*node) * f;
+        }
+        self.node_updates += n as u64;
+        if let Some(sf) = shear.as_deref_mut() {
+            sf.bulk();
+            self.node_updates += sf.nodes() as u64;
+        }
+        // first end
+        match &stack.left {
+            End::Free => {}
+            End::Fixed => {
+                normal.u_next[0] = 0.0;
+                if let Some(sf) = shear.as_deref_mut() {
+                    sf.u_next[0] = 0.0;
+                }
+            }
+            End::Transparent => {
+                normal.transparent_first(t, t1);
+                if let Some(sf) = shear.as_deref_mut() {
+                    sf.transparent_first(t, t1);
+                }
+            }
+            End::Obstacle(law) => {
+                let i = self.laws.len() - 1;
+                contacts.update(i, ctx, law, normal, shear.as_deref_mut())?;
+            }
+        }
+        if let Some(d) = &run.imposed {
+            normal.u_next[0] = d.value(t1);
+        }
+        match &stack.right {
+            End::Free => {}
+            End::Fixed => {
+                normal.u_next[n - 1] = 0.0;
+                if let Some(sf) = shear.as_deref_mut() {
+                    let last = sf.nodes() - 1;
+                    sf.u_next[last] = 0.0;
+                }
+            }
+            End::Transparent => {
+                normal.transparent_last();
+                if let Some(sf) = shear.as_deref_mut() {
+                    sf.transparent_last();
+                }
+            }
+            End::Obstacle(law) => {
+                let i = stack.interfaces.len();
+                contacts.update(i, ctx, law, normal, shear.as_deref_mut())?;
+            }
+        }
+        for (i, law) in stack.interfaces.iter().enumerate() {
+            contacts.update(i, ctx, law, normal, shear.as_deref_mut())?;
+        }
+        Ok(())
+    }
+
+    fn check_finite(&self, t1: f64) -> Result<()> {
+        if self.normal.finite() && self.shear.as_ref().map_or(true, |f| f.finite()) {
+            return Ok(());
+        }
+        let gaps: Vec<f64> = self.contacts.state.iter().map(|s| s.gap).collect();
+        Err(Error::numerical(
+            t1,
+            "non-finite displacement",
+            format!("gaps = {gaps:?}"),
+        ))
+    }
+
+    fn advance(&mut self) {
+        self.normal.rotate();
+        if let Some(sf) = self.shear.as_mut() {
+            sf.rotate();
+        }
+    }
+}
+
+/// Records a stack's levels into an [`FdOutput`].
+struct StackRecorder<'a> {
+    run: &'a FdRun,
+    out: FdOutput,
+}
+
+impl Recorder<StackScheme<'_>> for StackRecorder<'_> {
+    fn record(&mut self, t: f64, s: &StackScheme<'_>) {
+        let shear = s.shear.as_ref().map(|f| &f.u[..]);
+        record_level(
+            &mut self.out,
+            self.run,
+            t,
+            (&s.normal.u, shear),
+            &s.contacts,
+        );
     }
 }
 

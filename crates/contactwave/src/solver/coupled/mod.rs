@@ -22,13 +22,12 @@
 
 mod oblique;
 mod state;
-pub mod stepper;
 
-use self::state::{Eval, Interface, Normal, Phase, Scales, Tangential};
-use self::stepper::N;
+use self::state::{Eval, Interface, Normal, Phase, Scales, SliderPhase};
+use super::exact_loop::{self, Driven, Grid, GridSolver};
 use super::half_space::{HalfSpace, HalfSpaceSettings};
 use super::output::{EnergyAudit, HalfSpaceOutput};
-use super::radau::{B, C};
+use super::radau::{self, System, B, C};
 use super::Solver;
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
@@ -36,6 +35,20 @@ use crate::law::TangentialLaw;
 use crate::material::admittance as inv;
 use crate::numeric::root::brent_past;
 use std::sync::Arc;
+
+/// Number of interface unknowns, `y = ([u]_N, beta, [u]_T)`.
+const N: usize = 3;
+
+/// The interface of the current phase as a Radau system: no analytic Jacobian (the
+/// step's difference quotients), the phase's evolving unknowns.
+impl System<N> for Interface<'_> {
+    fn rhs_forced(&self, t: f64, _g: f64, y: [f64; N]) -> [f64; N] {
+        self.eval(t, &y).rate
+    }
+    fn active(&self) -> [bool; N] {
+        Interface::active(self)
+    }
+}
 
 /// The coupled problem: the normal half-space problem plus shear impedances, the
 /// tangential law and the incident shear wave.
@@ -193,13 +206,16 @@ impl Solver for CoupledSolver {
     type Problem = CoupledHalfSpace;
     type Output = CoupledOutput;
     fn solve(&self, problem: &CoupledHalfSpace) -> Result<CoupledOutput> {
-        Runner::new(problem, &self.settings).run()
+        CoupledRun::new(problem, &self.settings).run()
     }
 }
 
-/// Running integrals.
+/// The running integrals of a run over time, `[normal, shear]` where paired: the wave
+/// energies (J/m^2) and displacements (m), the energy released by damage and dissipated
+/// by friction (J/m^2), the time open and slipping while a burst was at the interface (s),
+/// and at oblique incidence the four outgoing waves' energies (J/m^2).
 #[derive(Debug, Default, Clone, Copy)]
-struct Acc {
+struct Integrals {
     e_inc: [f64; 2],
     e_ref: [f64; 2],
     e_tr: [f64; 2],
@@ -213,7 +229,10 @@ struct Acc {
     wave_energy: [f64; 4],
 }
 
-struct Runner<'a> {
+/// One run of the coupled solver: the interface of the current phase, its scales, the
+/// grid step and the event counts (the time loop is [`exact_loop::run`], driving it
+/// as a [`Driven`] run).
+struct CoupledRun<'a> {
     p: &'a CoupledHalfSpace,
     settings: HalfSpaceSettings,
     iface: Interface<'a>,
@@ -221,6 +240,7 @@ struct Runner<'a> {
     h: f64,
     f0: f64,
     duration: f64,
+    /// The waveforms' breakpoints, s.
     breaks: Vec<f64>,
     events: usize,
     slip_events: usize,
@@ -230,7 +250,7 @@ struct Runner<'a> {
     z: [f64; 4],
 }
 
-impl<'a> Runner<'a> {
+impl<'a> CoupledRun<'a> {
     fn new(p: &'a CoupledHalfSpace, settings: &HalfSpaceSettings) -> Self {
         let hs = &p.normal;
         let law = &*hs.law;
@@ -239,15 +259,12 @@ impl<'a> Runner<'a> {
         let f0 = p.fundamental();
         let h = 1.0 / (settings.samples_per_period.max(1) as f64 * p.highest_frequency());
         let duration = p.duration();
-        let mut breaks: Vec<f64> = hs
+        let breaks: Vec<f64> = hs
             .incident
             .breakpoints()
             .into_iter()
             .chain(p.shear_incident.breakpoints())
-            .filter(|b| b.is_finite() && *b > 0.0)
             .collect();
-        breaks.sort_by(f64::total_cmp);
-        breaks.dedup();
         let z = match &p.oblique {
             None => [hs.z1, hs.z2, p.z1t, p.z2t],
             Some(o) => [
@@ -288,9 +305,9 @@ impl<'a> Runner<'a> {
                 Normal::Compression
             },
             tangential: if mu > 0.0 && law.static_pressure > 0.0 {
-                Tangential::Stick
+                SliderPhase::Stick
             } else {
-                Tangential::Free
+                SliderPhase::Free
             },
             damaging: false,
         };
@@ -309,10 +326,12 @@ impl<'a> Runner<'a> {
             held_gap: 0.0,
             beta_frozen: 1.0,
             slip: 0.0,
+            path: 0.0,
+            phase_slip: 0.0,
             phase,
             fd_dt: 1e-4 * h,
         };
-        Runner {
+        CoupledRun {
             p,
             settings: *settings,
             iface,
@@ -333,9 +352,8 @@ impl<'a> Runner<'a> {
     }
 
     /// One step of the current phase; split in halves when Newton fails.
-    fn step(&self, t: f64, y: &[f64; N], h: f64, depth: usize) -> Result<stepper::Step> {
-        let active = self.iface.active();
-        if let Some(s) = stepper::step(&self.iface, t, y, h, active, self.y_scale()) {
+    fn step(&self, t: f64, y: &[f64; N], h: f64, depth: usize) -> Result<radau::Step<N>> {
+        if let Some(s) = radau::step(&self.iface, t, *y, h, self.y_scale()) {
             return Ok(s);
         }
         if depth >= 30 {
@@ -349,13 +367,14 @@ impl<'a> Runner<'a> {
         let b = self.step(t + 0.5 * h, &a.end(), 0.5 * h, depth + 1)?;
         // stages of the combined step are only used for quadrature of smooth integrands:
         // take the end state and re-evaluate stage states by the halves' stages
-        Ok(stepper::Step {
+        Ok(radau::Step {
             stages: [a.stages[2], b.stages[1], b.stages[2]],
+            forcing: [0.0; 3],
         })
     }
 
     /// Integrals over a substep `[t, t + h]` from the stage values.
-    fn accumulate(&self, acc: &mut Acc, t: f64, h: f64, step: &stepper::Step) {
+    fn accumulate(&self, acc: &mut Integrals, t: f64, h: f64, step: &radau::Step<N>) {
         let [z1, z2, z1t, z2t] = self.z;
         let p0 = self.iface.law.static_pressure;
         let q0 = self.iface.tangential.static_shear;
@@ -385,7 +404,7 @@ impl<'a> Runner<'a> {
             // friction: tau_f ds/dt (the slider's work; zero while sticking)
             let slip_rate = match self.iface.phase.tangential {
                 _ if self.iface.tangential.branch.friction() == 0.0 => 0.0,
-                Tangential::Stick => 0.0,
+                SliderPhase::Stick => 0.0,
                 _ => e.slip_rate,
             };
             acc.friction += w * e.tau_f * slip_rate;
@@ -407,7 +426,7 @@ impl<'a> Runner<'a> {
                 if self.iface.phase.normal == Normal::Traction {
                     acc.open_in_burst += w;
                 }
-                if matches!(self.iface.phase.tangential, Tangential::Slip(_)) {
+                if matches!(self.iface.phase.tangential, SliderPhase::Slip(_)) {
                     acc.slip_in_burst += w;
                 }
             }
@@ -474,17 +493,19 @@ impl<'a> Runner<'a> {
                 self.iface.phase.normal = after;
                 let mu = self.iface.tangential.branch.friction();
                 if after == Normal::Traction {
-                    self.set_tangential(Tangential::Free, tau_f, y);
+                    self.set_tangential(SliderPhase::Free, tau_f, y);
                 } else if before == Normal::Traction && mu > 0.0 {
-                    self.set_tangential(Tangential::Stick, tau_f, y);
+                    self.set_tangential(SliderPhase::Stick, tau_f, y);
                 }
             }
             1 => {
                 let e = self.iface.eval(t, y);
                 let next = match self.iface.phase.tangential {
-                    Tangential::Free => Tangential::Stick,
-                    Tangential::Stick => Tangential::Slip(if e.tau_f >= 0.0 { 1.0 } else { -1.0 }),
-                    Tangential::Slip(_) => Tangential::Stick,
+                    SliderPhase::Free => SliderPhase::Stick,
+                    SliderPhase::Stick => {
+                        SliderPhase::Slip(if e.tau_f >= 0.0 { 1.0 } else { -1.0 })
+                    }
+                    SliderPhase::Slip(_) => SliderPhase::Stick,
                 };
                 self.slip_events += 1;
                 self.set_tangential(next, e.tau_f, y);
@@ -499,10 +520,19 @@ impl<'a> Runner<'a> {
     }
 
     /// Enter tangential phase `next`; `tau_f` is the slider stress just before.
-    fn set_tangential(&mut self, next: Tangential, tau_f: f64, y: &[f64; N]) {
+    fn set_tangential(&mut self, next: SliderPhase, tau_f: f64, y: &[f64; N]) {
         let tl = self.iface.tangential;
         let kt = tl.branch.stick_stiffness();
-        if next == Tangential::Stick {
+        // the slip path: the phase that ends adds its (net) slip
+        let slip_now = match self.iface.phase.tangential {
+            _ if tl.branch.friction() == 0.0 => 0.0,
+            SliderPhase::Stick => self.iface.slip,
+            _ if kt.is_finite() => y[2] - (tau_f - tl.static_shear) / kt,
+            _ => y[2],
+        };
+        self.iface.path += (slip_now - self.iface.phase_slip).abs();
+        self.iface.phase_slip = slip_now;
+        if next == SliderPhase::Stick {
             self.iface.slip = if kt.is_finite() {
                 y[2] - (tau_f - tl.static_shear) / kt
             } else {
@@ -518,14 +548,20 @@ impl<'a> Runner<'a> {
         let kt = tl.branch.stick_stiffness();
         match self.iface.phase.tangential {
             _ if tl.branch.friction() == 0.0 => 0.0,
-            Tangential::Stick => self.iface.slip,
+            SliderPhase::Stick => self.iface.slip,
             _ if kt.is_finite() => y[2] - (e.tau_f - tl.static_shear) / kt,
             _ => y[2],
         }
     }
 
     /// Advance from `t` to `t_end` (no breakpoint inside), locating events.
-    fn advance(&mut self, acc: &mut Acc, mut t: f64, t_end: f64, y: &mut [f64; N]) -> Result<()> {
+    fn advance(
+        &mut self,
+        acc: &mut Integrals,
+        mut t: f64,
+        t_end: f64,
+        y: &mut [f64; N],
+    ) -> Result<()> {
         let mut guard = 0usize;
         while t < t_end {
             guard += 1;
@@ -595,7 +631,7 @@ impl<'a> Runner<'a> {
         self.max_gap = self.max_gap.max(y[0]);
     }
 
-    fn record(&self, out: &mut CoupledOutput, acc: &Acc, t: f64, y: &[f64; N]) {
+    fn record(&self, out: &mut CoupledOutput, acc: &Integrals, t: f64, y: &[f64; N]) {
         let e = self.iface.eval(t, y);
         let p0 = self.iface.law.static_pressure;
         let q0 = self.iface.tangential.static_shear;
@@ -615,12 +651,15 @@ impl<'a> Runner<'a> {
             o.transmitted_displacement.push(acc.disp_tr[c]);
         }
         out.slip.push(self.slip_of(&e, y));
-        out.friction_limit
-            .push(self.iface.tangential.friction_limit(e.pressure));
+        out.friction_limit.push(
+            self.iface
+                .tangential
+                .friction_limit(e.pressure, self.iface.path(y)),
+        );
         out.slip_state.push(match self.iface.phase.tangential {
-            Tangential::Free => f64::NAN,
-            Tangential::Stick => 0.0,
-            Tangential::Slip(s) => s,
+            SliderPhase::Free => f64::NAN,
+            SliderPhase::Stick => 0.0,
+            SliderPhase::Slip(s) => s,
         });
     }
 
@@ -636,19 +675,19 @@ impl<'a> Runner<'a> {
 
     fn run(mut self) -> Result<CoupledOutput> {
         let h = self.h;
-        let period = 1.0 / self.f0;
-        let (min_tail, max_tail) = match self.settings.tail_periods {
-            Some(p) => (p * period, p * period),
-            None => (3.0 * period, 400.0 * period),
-        };
-        let n_min = ((self.duration + min_tail) / h).ceil() as usize;
-        let n_max = ((self.duration + max_tail) / h).ceil() as usize;
+        let grid = Grid::new(
+            h,
+            self.duration,
+            self.f0,
+            self.settings.tail_periods,
+            std::mem::take(&mut self.breaks),
+        );
         let mut out = CoupledOutput::default();
         out.normal.dt = h;
         out.shear.dt = h;
         out.normal.burst_duration = self.duration;
         out.shear.burst_duration = self.duration;
-        let mut acc = Acc::default();
+        let acc = Integrals::default();
         let mut y = [0.0, 1.0, 0.0];
         // make the rest phase consistent (e.g. p0 = 0 with friction)
         {
@@ -660,42 +699,13 @@ impl<'a> Runner<'a> {
             }
         }
         self.record(&mut out, &acc, 0.0, &y);
-        let breaks = std::mem::take(&mut self.breaks);
-        let mut bi = 0usize;
-        let mut k = 0usize;
-        let mut rest = 0usize;
-        while k < n_max {
-            let ta = k as f64 * h;
-            let tb = (k + 1) as f64 * h;
-            let mut t = ta;
-            while bi < breaks.len() && breaks[bi] <= ta {
-                bi += 1;
-            }
-            while bi < breaks.len() && breaks[bi] < tb {
-                self.advance(&mut acc, t, breaks[bi], &mut y)?;
-                t = breaks[bi];
-                bi += 1;
-            }
-            self.advance(&mut acc, t, tb, &mut y)?;
-            k += 1;
-            if k % 4096 == 0 {
-                crate::interrupt::check()?;
-            }
-            self.record(&mut out, &acc, tb, &y);
-            if k >= n_min && tb > self.duration {
-                if self.settings.tail_periods.is_some() {
-                    break;
-                }
-                if self.at_rest(tb, &y) {
-                    rest += 1;
-                    if rest as f64 * h >= period {
-                        break;
-                    }
-                } else {
-                    rest = 0;
-                }
-            }
-        }
+        let mut run = Driven {
+            solver: &mut self,
+            acc,
+            out,
+        };
+        let k = exact_loop::run(&grid, &mut run, &mut y)?;
+        let Driven { acc, mut out, .. } = run;
         let law = self.iface.law;
         let tl = self.iface.tangential;
         let e = self.iface.eval(k as f64 * h, &y);
@@ -733,5 +743,22 @@ impl<'a> Runner<'a> {
         out.slip_time_in_burst = acc.slip_in_burst;
         out.wave_energy = acc.wave_energy;
         Ok(out)
+    }
+}
+
+/// A run of the coupled solver as [`exact_loop::run`] drives it (no fast paths).
+impl GridSolver for Driven<'_, CoupledRun<'_>, Integrals, CoupledOutput> {
+    type State = [f64; N];
+
+    fn advance(&mut self, t: f64, t_end: f64, y: &mut [f64; N]) -> Result<()> {
+        self.solver.advance(&mut self.acc, t, t_end, y)
+    }
+
+    fn record(&mut self, t: f64, y: &[f64; N]) {
+        self.solver.record(&mut self.out, &self.acc, t, y);
+    }
+
+    fn at_rest(&self, t: f64, y: &[f64; N]) -> bool {
+        self.solver.at_rest(t, y)
     }
 }

@@ -9,9 +9,10 @@
 //! (and between identical media). Rigid branches (Signorini closed, bonded, rigid stick)
 //! hold their gap and their constraint stress now solves the coupled 2x2 relation.
 
-use super::state::{Eval, Interface, Normal, Tangential};
-use super::stepper::N;
-use super::{Acc, ObliqueCoupling};
+use super::state::{Eval, Interface, Normal, SliderPhase};
+use super::N;
+use super::{Integrals, ObliqueCoupling};
+use crate::law::tangential::coulomb::slider_stress;
 
 /// Stresses and gap rates of one state.
 struct Stresses {
@@ -33,12 +34,12 @@ impl Interface<'_> {
         let br = &*self.tangential.branch;
         let spring = br.spring_stiffness(beta) * y[2];
         let kt = br.stick_stiffness();
-        let mu = br.friction();
+        let mu = br.friction_at(self.path(y));
         let (dn, dt) = (self.two_over_z1 * s_inc, self.two_over_z1t * tau_inc);
         let (kn, knt, ktn, ktt) = (self.k_n, self.k_nt, self.k_tn, self.k_t);
         let normal = self.phase.normal;
         let held = normal == Normal::Held;
-        let rigid_stick = self.phase.tangential == Tangential::Stick && kt.is_infinite();
+        let rigid_stick = self.phase.tangential == SliderPhase::Stick && kt.is_infinite();
         let pressure_of = |sigma: f64| {
             if normal == Normal::Traction {
                 0.0
@@ -47,11 +48,16 @@ impl Interface<'_> {
             }
         };
         // slider stress for a known normal stress (not rigid stick)
-        let slider = |sigma: f64| match self.phase.tangential {
-            Tangential::Stick => q0 + kt * (y[2] - self.slip),
-            Tangential::Slip(sg) => sg * self.tangential.friction_limit(pressure_of(sigma)),
-            Tangential::Free if mu == 0.0 => q0,
-            Tangential::Free => 0.0,
+        let path = self.path(y);
+        let slider = |sigma: f64| {
+            slider_stress(
+                self.tangential,
+                self.phase.tangential,
+                y[2],
+                self.slip,
+                path,
+                pressure_of(sigma),
+            )
         };
         // (sigma + p0, tau - q0)
         let (sn, st) = if !held {
@@ -69,7 +75,7 @@ impl Interface<'_> {
         } else if rigid_stick {
             let det = kn * ktt - knt * ktn;
             ((dn * ktt - knt * dt) / det, (kn * dt - ktn * dn) / det)
-        } else if let Tangential::Slip(sg) = self.phase.tangential {
+        } else if let SliderPhase::Slip(sg) = self.phase.tangential {
             // tau_f = sg mu (p0 - sn) while compressive: linear in sn
             let sn = (dn - knt * (spring - q0 + sg * mu * p0)) / (kn - knt * sg * mu);
             if sn - p0 <= 0.0 {
@@ -105,9 +111,9 @@ impl Interface<'_> {
         let br = &*self.tangential.branch;
         let kt = br.stick_stiffness();
         let slip_rate = match self.phase.tangential {
-            Tangential::Stick => 0.0,
-            Tangential::Free => s.ut_dot,
-            Tangential::Slip(sg) if kt.is_finite() => {
+            SliderPhase::Stick => 0.0,
+            SliderPhase::Free => s.ut_dot,
+            SliderPhase::Slip(sg) if kt.is_finite() => {
                 let dp = match self.phase.normal {
                     Normal::Traction => 0.0,
                     Normal::Compression => {
@@ -130,25 +136,11 @@ impl Interface<'_> {
                         (at(h) - at(-h)) / (2.0 * h)
                     }
                 };
-                s.ut_dot - sg * br.friction() * dp / kt
+                s.ut_dot - sg * br.friction_at(self.path) * dp / kt
             }
-            Tangential::Slip(_) => s.ut_dot,
+            SliderPhase::Slip(_) => s.ut_dot,
         };
-        let d = (y[0] - self.uc).max(0.0);
-        let (phi, psi_beta) = if self.law.traction.has_damage() {
-            (
-                self.phi(d, y[2], s.beta),
-                self.law.traction.energy_d_adhesion(d, s.beta)
-                    + br.spring_energy_d_adhesion(s.beta, y[2]),
-            )
-        } else {
-            (f64::INFINITY, 0.0)
-        };
-        let beta_dot = if self.phase.damaging && !self.rate_independent() {
-            phi.min(0.0) / self.law.traction.damage_viscosity()
-        } else {
-            0.0
-        };
+        let (phi, psi_beta, beta_dot) = self.damage(y, s.beta);
         Eval {
             s_inc,
             tau_inc,
@@ -170,7 +162,7 @@ impl Interface<'_> {
 /// traction `tr = sigma - sigma_0` (each `[normal, tangential]`, Pa).
 pub(super) fn accumulate(
     o: &ObliqueCoupling,
-    acc: &mut Acc,
+    acc: &mut Integrals,
     w: f64,
     inc: [f64; 2],
     rf: [f64; 2],

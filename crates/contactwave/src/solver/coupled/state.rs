@@ -7,8 +7,10 @@
 //! `d[u]_T/dt = 2 tau_inc/Z1T - k_T (tau - q0)`, with `k = 1/Z1 + 1/Z2` of each wave type
 //! and `tau = k(beta) [u]_T + tau_f`, `tau_f` the slider's stress.
 
-use super::stepper::{Rhs, N};
+use super::N;
 use crate::excitation::Excitation;
+use crate::law::tangential::coulomb::slider_stress;
+pub use crate::law::tangential::coulomb::SliderPhase;
 use crate::law::{ContactLaw, TangentialLaw};
 
 /// Normal phase.
@@ -23,24 +25,13 @@ pub enum Normal {
     Traction,
 }
 
-/// Tangential phase.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Tangential {
-    /// No slider load possible: no friction or no normal contact; `tau_f = 0`.
-    Free,
-    /// Slider sticking.
-    Stick,
-    /// Slider slipping in the direction of the sign (+1 or -1), `tau_f = sign mu N`.
-    Slip(f64),
-}
-
 /// Phase of the coupled interface.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Phase {
     /// Normal phase.
     pub normal: Normal,
     /// Tangential phase.
-    pub tangential: Tangential,
+    pub tangential: SliderPhase,
     /// Damage evolving.
     pub damaging: bool,
 }
@@ -88,7 +79,7 @@ pub struct Interface<'a> {
     pub k_n: f64,
     /// `2/Z1T` (shear).
     pub two_over_z1t: f64,
-    /// Tangential compliance k_T, m/(Pa s).
+    /// SliderPhase compliance k_T, m/(Pa s).
     pub k_t: f64,
     /// Oblique incidence: coefficient of `tau - q0` in `d[u]_N/dt`, m/(Pa s) (0 at normal
     /// incidence; model.md section 14).
@@ -103,6 +94,10 @@ pub struct Interface<'a> {
     pub beta_frozen: f64,
     /// Accumulated slip of an elastic-stick slider while sticking, m.
     pub slip: f64,
+    /// Slip path `integral |ds|` up to the start of the current tangential phase, m.
+    pub path: f64,
+    /// Slip at the start of the current tangential phase, m.
+    pub phase_slip: f64,
     /// Current phase.
     pub phase: Phase,
     /// Time step of the derivative of the incident stress (held contact pressure), s.
@@ -112,6 +107,19 @@ pub struct Interface<'a> {
 impl Interface<'_> {
     pub(super) fn rate_independent(&self) -> bool {
         self.law.traction.damage_viscosity() == 0.0
+    }
+
+    /// Slip path at `y`, m: while a rigid-stick slider slips (its slip is `[u]_T`, monotone
+    /// in the phase) the path grows with it; otherwise the path of the phase's start (an
+    /// elastic-stick or free slider adds its net slip when the phase ends; a branch whose
+    /// coefficient depends on the path sticks rigidly).
+    pub fn path(&self, y: &[f64; N]) -> f64 {
+        match self.phase.tangential {
+            SliderPhase::Slip(_) if self.tangential.branch.stick_stiffness().is_infinite() => {
+                self.path + (y[2] - self.phase_slip).abs()
+            }
+            _ => self.path,
+        }
     }
 
     /// Damage driving force at opening `d >= 0`, tangential gap and adhesion.
@@ -180,42 +188,30 @@ impl Interface<'_> {
         let spring = k * y[2];
         let drive = self.two_over_z1t * tau_inc;
         let (tau_f, ut_dot) = match self.phase.tangential {
-            Tangential::Stick if kt.is_infinite() => (q0 + drive / self.k_t - spring, 0.0),
+            SliderPhase::Stick if kt.is_infinite() => (q0 + drive / self.k_t - spring, 0.0),
             other => {
-                let tau_f = match other {
-                    Tangential::Stick => q0 + kt * (y[2] - self.slip),
-                    Tangential::Slip(sg) => sg * self.tangential.friction_limit(pressure),
-                    // no slider: the spring carries the static shear (tau = q0 + k [u]_T);
-                    // a slider without normal load carries nothing
-                    Tangential::Free if br.friction() == 0.0 => q0,
-                    Tangential::Free => 0.0,
-                };
+                // no slider: the spring carries the static shear (tau = q0 + k [u]_T); a
+                // slider without normal load carries nothing
+                let tau_f = slider_stress(
+                    self.tangential,
+                    other,
+                    y[2],
+                    self.slip,
+                    self.path(y),
+                    pressure,
+                );
                 (tau_f, drive - self.k_t * (spring + tau_f - q0))
             }
         };
         let slip_rate = match self.phase.tangential {
-            Tangential::Stick => 0.0,
-            Tangential::Free => ut_dot,
-            Tangential::Slip(sg) if kt.is_finite() => {
-                ut_dot - sg * br.friction() * self.pressure_rate(t, y, un_dot) / kt
+            SliderPhase::Stick => 0.0,
+            SliderPhase::Free => ut_dot,
+            SliderPhase::Slip(sg) if kt.is_finite() => {
+                ut_dot - sg * br.friction_at(self.path) * self.pressure_rate(t, y, un_dot) / kt
             }
-            Tangential::Slip(_) => ut_dot,
+            SliderPhase::Slip(_) => ut_dot,
         };
-        let d = (y[0] - self.uc).max(0.0);
-        let (phi, psi_beta) = if self.law.traction.has_damage() {
-            (
-                self.phi(d, y[2], beta),
-                self.law.traction.energy_d_adhesion(d, beta)
-                    + br.spring_energy_d_adhesion(beta, y[2]),
-            )
-        } else {
-            (f64::INFINITY, 0.0)
-        };
-        let beta_dot = if self.phase.damaging && !self.rate_independent() {
-            phi.min(0.0) / self.law.traction.damage_viscosity()
-        } else {
-            0.0
-        };
+        let (phi, psi_beta, beta_dot) = self.damage(y, beta);
         Eval {
             s_inc,
             tau_inc,
@@ -229,6 +225,28 @@ impl Interface<'_> {
             phi,
             psi_beta,
         }
+    }
+
+    /// The damage terms of a state with adhesion `beta`: the driving force `phi` (Pa; +inf
+    /// without damage), `dpsi/dbeta` of the stored energy (J/m^2) and the rate of `beta`
+    /// (1/s; zero unless the phase is damaging at a finite rate).
+    pub(super) fn damage(&self, y: &[f64; N], beta: f64) -> (f64, f64, f64) {
+        let d = (y[0] - self.uc).max(0.0);
+        let (phi, psi_beta) = if self.law.traction.has_damage() {
+            (
+                self.phi(d, y[2], beta),
+                self.law.traction.energy_d_adhesion(d, beta)
+                    + self.tangential.branch.spring_energy_d_adhesion(beta, y[2]),
+            )
+        } else {
+            (f64::INFINITY, 0.0)
+        };
+        let beta_dot = if self.phase.damaging && !self.rate_independent() {
+            phi.min(0.0) / self.law.traction.damage_viscosity()
+        } else {
+            0.0
+        };
+        (phi, psi_beta, beta_dot)
     }
 
     /// dN/dt, Pa/s.
@@ -249,7 +267,7 @@ impl Interface<'_> {
         [
             self.phase.normal != Normal::Held,
             self.phase.damaging && !self.rate_independent(),
-            !(self.phase.tangential == Tangential::Stick
+            !(self.phase.tangential == SliderPhase::Stick
                 && self.tangential.branch.stick_stiffness().is_infinite()),
         ]
     }
@@ -276,17 +294,18 @@ impl Interface<'_> {
             }
         };
         let tangential = match self.phase.tangential {
-            Tangential::Free => {
+            SliderPhase::Free => {
                 if self.tangential.branch.friction() > 0.0 && e.pressure > 0.0 {
                     -1.0
                 } else {
                     1.0
                 }
             }
-            Tangential::Stick => {
-                (self.tangential.friction_limit(e.pressure) - e.tau_f.abs()) / scales.stress
+            SliderPhase::Stick => {
+                (self.tangential.friction_limit(e.pressure, self.path(y)) - e.tau_f.abs())
+                    / scales.stress
             }
-            Tangential::Slip(sg) => sg * e.slip_rate / scales.velocity,
+            SliderPhase::Slip(sg) => sg * e.slip_rate / scales.velocity,
         };
         let damage = if !law.traction.has_damage() {
             1.0
@@ -323,10 +342,4 @@ pub struct Scales {
     pub energy: f64,
     /// Power density, W/m^2.
     pub power: f64,
-}
-
-impl Rhs for Interface<'_> {
-    fn rhs(&self, t: f64, y: &[f64; N]) -> [f64; N] {
-        self.eval(t, y).rate
-    }
 }

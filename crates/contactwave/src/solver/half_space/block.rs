@@ -5,30 +5,30 @@
 //! step is the collocation map `z = P f` ([`AffineMap`]) of the stage right-hand sides.
 //! One loop takes step after step with the phase's constants in registers, reads the
 //! incident stress from the grid's table, checks the event functions at the stages and
-//! the end as [`Runner::advance`] does, integrates and records; it hands the step back to
+//! the end as [`GapRun::advance`] does, integrates and records; it hands the step back to
 //! the general path where anything happens (an event function past its threshold, a stage
 //! leaving the interval, a breakpoint inside the step, a step beyond the table inside the
 //! burst).
 
 use super::fast::AffinePhase;
 use super::ode::Phase;
-use super::{Runner, StageSums, Tape};
+use super::{GapRun, Sink, StageSums};
 use crate::error::{Error, Result};
 use crate::solver::radau::{self, AffineMap};
 
-impl Runner<'_> {
+impl GapRun<'_> {
     /// Take whole grid steps from `k0` (at most up to `k_end`, exclusive) while the interface
-    /// stays in its affine ODE phase and nothing happens, into `tape` (its next breakpoint
+    /// stays in its affine ODE phase and nothing happens, into `sink` (its next breakpoint
     /// advanced as the loop goes). Records each step. Returns the number of
     /// steps taken (0: the first step is not one this loop takes).
     pub(super) fn affine_block(
         &mut self,
-        tape: &mut Tape,
+        sink: &mut Sink,
         k0: usize,
         k_end: usize,
         y: &mut [f64; 2],
     ) -> Result<usize> {
-        let (acc, out, bi) = (&mut *tape.acc, &mut *tape.out, &mut *tape.bi);
+        let (acc, out, breaks, bi) = (&mut *sink.acc, &mut *sink.out, sink.breaks, &mut *sink.bi);
         let phase = self.ode.phase;
         let h = self.h;
         let ta0 = k0 as f64 * h;
@@ -54,7 +54,6 @@ impl Runner<'_> {
         let c = BlockConstants::new(self, &ap, *y);
         let uc = self.ode.uc;
         let mut map: Option<(u64, AffineMap)> = None;
-        let breaks = std::mem::take(&mut self.breaks);
         let mut k = k0;
         let result = loop {
             if k >= k_end {
@@ -93,7 +92,7 @@ impl Runner<'_> {
             }
             // event functions at the two inner stages and the end (threshold: the
             // hysteresis), and at the end as the next step's start (threshold 0); below
-            // the damage onset only the gap event's sign counts (Runner::quiet), and a
+            // the damage onset only the gap event's sign counts (GapRun::quiet), and a
             // stage inside the interval is on the phase's side of [u]_c
             let mut quiet = true;
             let mut next_quiet = true;
@@ -116,7 +115,7 @@ impl Runner<'_> {
                     format!("{stages:?}"),
                 ));
             }
-            // quadrature (Radau weights), as Runner::acc_ode
+            // quadrature (Radau weights), as GapRun::acc_ode
             let mut sum = StageSums::default();
             for j in 0..3 {
                 sum.add(radau::B[j], g[j], s + c.stiffness * z[j]);
@@ -139,7 +138,6 @@ impl Runner<'_> {
                 break Ok(());
             }
         };
-        self.breaks = breaks;
         // the next step starts from scratch (its start events are evaluated again)
         self.end_events.0 = f64::NAN;
         result.map(|()| k - k0)
@@ -161,7 +159,7 @@ struct BlockConstants {
 }
 
 impl BlockConstants {
-    fn new(r: &Runner, ap: &AffinePhase, y: [f64; 2]) -> Self {
+    fn new(r: &GapRun, ap: &AffinePhase, y: [f64; 2]) -> Self {
         BlockConstants {
             two_over_z1: r.ode.two_over_z1,
             k: r.ode.k,

@@ -1,22 +1,30 @@
 //! The time loop's fast paths (model.md section 4): whole grid steps taken as
-//! [`Runner::advance`] would take them, bit for bit, without its event machinery. A stuck
+//! [`GapRun::advance`] would take them, bit for bit, without its event machinery. A stuck
 //! step reads the incident table; an ODE step of an affine phase applies the collocation
 //! map planned once per step length and slope ([`AffineMap`]) and evaluates the damage
-//! event function only above the law's damage onset.
+//! event function only above the law's damage onset. The time loop
+//! ([`crate::solver::exact_loop::run`]) reaches them through the solver's [`GridSolver`].
 
 use super::ode::Phase;
-use super::{Acc, Runner, Tape, EVENT_HYSTERESIS};
+use super::{GapRun, HalfSpaceOutput, Integrals, Sink, EVENT_HYSTERESIS};
 use crate::error::{Error, Result};
+use crate::solver::exact_loop::{Driven, GridSolver};
 use crate::solver::radau::{self, Affine, AffineMap, Step, System};
 
-impl Runner<'_> {
+impl GapRun<'_> {
     /// The whole grid step `k` from `ta` to `tb` (s) of a stuck phase that it does not
     /// leave, straight from the incident table (after the burst: nothing to add): the
-    /// quadrature of [`Runner::advance`] without its event search. Returns `false`
+    /// quadrature of [`GapRun::advance`] without its event search. Returns `false`
     /// (nothing done) where `advance` must take the step: not a stuck phase, a step
     /// outside the table, or an exit event inside.
     #[inline]
-    pub(super) fn stuck_grid_step(&mut self, acc: &mut Acc, k: usize, ta: f64, tb: f64) -> bool {
+    pub(super) fn stuck_grid_step(
+        &mut self,
+        acc: &mut Integrals,
+        k: usize,
+        ta: f64,
+        tb: f64,
+    ) -> bool {
         let phase = self.ode.phase;
         phase.is_stuck()
             && self
@@ -24,14 +32,14 @@ impl Runner<'_> {
                 .is_some()
     }
 
-    /// [`Runner::stuck_grid_step`] in the stuck `phase`, with `prev` giving the exit
+    /// [`GapRun::stuck_grid_step`] in the stuck `phase`, with `prev` giving the exit
     /// function at the step start (asked only where it is needed). Returns the exit
     /// function at the step end (the next step's start; NaN where none was evaluated), or
     /// `None` where the step is declined.
     #[inline]
     fn stuck_table_step(
         &mut self,
-        acc: &mut Acc,
+        acc: &mut Integrals,
         phase: Phase,
         k: usize,
         ta: f64,
@@ -56,7 +64,7 @@ impl Runner<'_> {
         Some(end)
     }
 
-    /// [`Runner::advance`]'s event check of a stuck step: whether an exit function turns
+    /// [`GapRun::advance`]'s event check of a stuck step: whether an exit function turns
     /// positive at a node of `sinc` (the incident stress at [`super::ode::STUCK_NODES`],
     /// Pa), from `prev`, its value at the step start (no branch per node).
     #[inline]
@@ -72,17 +80,17 @@ impl Runner<'_> {
     }
 
     /// Whole stuck grid steps from `k0` (up to `k_end`, exclusive) as the time loop takes
-    /// them one by one through [`Runner::stuck_grid_step`] (bit for bit), each recorded
-    /// into `tape` (its next breakpoint advanced). Stops at a step with a breakpoint inside
+    /// them one by one through [`GapRun::stuck_grid_step`] (bit for bit), each recorded
+    /// into `sink` (its next breakpoint advanced). Stops at a step with a breakpoint inside
     /// or one the fast path declines (an exit event). Returns the number of steps taken.
     pub(super) fn stuck_run(
         &mut self,
-        tape: &mut Tape,
+        sink: &mut Sink,
         k0: usize,
         k_end: usize,
         y: [f64; 2],
     ) -> Result<usize> {
-        let (acc, out, bi) = (&mut *tape.acc, &mut *tape.out, &mut *tape.bi);
+        let (acc, out, breaks, bi) = (&mut *sink.acc, &mut *sink.out, sink.breaks, &mut *sink.bi);
         let phase = self.ode.phase;
         if !phase.is_stuck() {
             return Ok(0);
@@ -95,10 +103,10 @@ impl Runner<'_> {
         let mut k = k0;
         while k < k_end {
             let (ta, tb) = (k as f64 * h, (k + 1) as f64 * h);
-            while *bi < self.breaks.len() && self.breaks[*bi] <= ta {
+            while *bi < breaks.len() && breaks[*bi] <= ta {
                 *bi += 1;
             }
-            if *bi < self.breaks.len() && self.breaks[*bi] < tb {
+            if *bi < breaks.len() && breaks[*bi] < tb {
                 break;
             }
             let start = |r: &Self| prev.unwrap_or_else(|| r.stuck_event(phase, ta));
@@ -120,11 +128,11 @@ impl Runner<'_> {
     /// non-finite end state is refused.
     pub(super) fn take_ode(
         &mut self,
-        acc: &mut Acc,
+        acc: &mut Integrals,
         t: f64,
         h: f64,
         y0: [f64; 2],
-        st: &radau::Step,
+        st: &radau::Step<2>,
         y: &mut [f64; 2],
     ) -> Result<()> {
         if !(st.end()[0].is_finite() && st.end()[1].is_finite()) {
@@ -144,7 +152,7 @@ impl Runner<'_> {
     }
 
     /// The whole grid step `[ta, tb]` (s) of an ODE phase when no event happens in it, as
-    /// [`Runner::advance`] takes it (the same step, event checks and quadrature, bit for
+    /// [`GapRun::advance`] takes it (the same step, event checks and quadrature, bit for
     /// bit) without its event machinery. Returns `false` (nothing done) where `advance`
     /// must take the step: a stuck phase, a boundary-layer ramp, a step right after a
     /// switch, an event function past its threshold at the start, the end or a stage, or
@@ -155,7 +163,7 @@ impl Runner<'_> {
     #[inline]
     pub(super) fn ode_grid_step(
         &mut self,
-        acc: &mut Acc,
+        acc: &mut Integrals,
         ta: f64,
         tb: f64,
         y: &mut [f64; 2],
@@ -225,7 +233,7 @@ impl Runner<'_> {
                 let a = AffinePhase {
                     phase,
                     adhesion: y[1].to_bits(),
-                    affine: if self.ode.dim() == 1 {
+                    affine: if !self.ode.active()[1] {
                         self.ode.affine(y)
                     } else {
                         None
@@ -247,7 +255,7 @@ impl Runner<'_> {
 
     /// Whether no event function of `phase` at `(t, y)` is past its threshold:
     /// `(at the hysteresis of a step's end and stages, at 0 as a step's start)`. The
-    /// values of [`Runner::ode_events`]; below the opening `ap.onset` (where the damage
+    /// values of [`GapRun::ode_events`]; below the opening `ap.onset` (where the damage
     /// function is negative, or the phase has none) only the gap event's sign decides, and
     /// its division is made only where the gap is past `[u]_c`.
     #[inline]
@@ -279,7 +287,7 @@ impl Runner<'_> {
     /// arithmetic), with the map from [`Maps`]; `None` where that step is refused (a start
     /// or stage outside the interval, a singular map) or the phase is not affine.
     #[inline]
-    fn affine_stages(&mut self, ap: &AffinePhase, t: f64, h: f64, y: [f64; 2]) -> Option<Step> {
+    fn affine_stages(&mut self, ap: &AffinePhase, t: f64, h: f64, y: [f64; 2]) -> Option<Step<2>> {
         let a = ap.affine?;
         if !(y[0] >= a.lower && y[0] <= a.upper) {
             return None;
@@ -347,5 +355,92 @@ impl Maps {
             }
         };
         self.maps[i].as_ref()
+    }
+}
+
+/// The paths a run may take: every one (what every run does), or (in the tests that
+/// compare them with the general path) fewer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Paths {
+    /// Every path: the fast paths and the runs of affine steps.
+    All,
+    /// The fast paths of whole grid steps, but no runs of affine steps.
+    #[cfg(test)]
+    NoAffineBlocks,
+    /// Every step through [`GapRun::advance`].
+    #[cfg(test)]
+    General,
+}
+
+impl Paths {
+    /// Whether whole grid steps may take the fast paths.
+    #[inline]
+    pub(super) fn fast(self) -> bool {
+        #[cfg(test)]
+        return self != Paths::General;
+        #[cfg(not(test))]
+        true
+    }
+
+    /// Whether runs of affine steps may be taken by [`GapRun::affine_block`].
+    #[inline]
+    pub(super) fn affine_blocks(self) -> bool {
+        self == Paths::All
+    }
+}
+
+/// A run of the exact solver as [`exact_loop::run`] drives it: its fast paths take whole
+/// grid steps where the run's `paths` allow.
+impl GridSolver for Driven<'_, GapRun<'_>, Integrals, HalfSpaceOutput> {
+    type State = [f64; 2];
+
+    #[inline]
+    fn enter_step(&mut self, k: usize, ta: f64, tb: f64) {
+        self.solver.ode.grid.enter_step(k, ta, tb);
+    }
+
+    fn whole_steps(
+        &mut self,
+        k: usize,
+        k_end: usize,
+        breaks: &[f64],
+        bi: &mut usize,
+        y: &mut [f64; 2],
+    ) -> Result<usize> {
+        let mut sink = Sink {
+            acc: &mut self.acc,
+            out: &mut self.out,
+            breaks,
+            bi,
+        };
+        if self.solver.ode.phase.is_stuck() {
+            if self.solver.paths.fast() {
+                return self.solver.stuck_run(&mut sink, k, k_end, *y);
+            }
+        } else if self.solver.paths.affine_blocks() {
+            return self.solver.affine_block(&mut sink, k, k_end, y);
+        }
+        Ok(0)
+    }
+
+    #[inline]
+    fn whole_step(&mut self, k: usize, ta: f64, tb: f64, y: &mut [f64; 2]) -> Result<bool> {
+        Ok(self.solver.paths.fast()
+            && (self.solver.stuck_grid_step(&mut self.acc, k, ta, tb)
+                || self.solver.ode_grid_step(&mut self.acc, ta, tb, y)?))
+    }
+
+    fn advance(&mut self, t: f64, t_end: f64, y: &mut [f64; 2]) -> Result<()> {
+        self.solver.advance(&mut self.acc, t, t_end, y)
+    }
+
+    #[inline]
+    fn record(&mut self, t: f64, y: &[f64; 2]) {
+        self.solver.max_gap = self.solver.max_gap.max(y[0]);
+        self.solver.record(&mut self.out, &self.acc, t, *y);
+    }
+
+    fn at_rest(&self, _t: f64, y: &[f64; 2]) -> bool {
+        self.solver.at_rest(*y)
     }
 }

@@ -21,6 +21,7 @@ mod block;
 mod fast;
 mod ode;
 
+use super::exact_loop::{self, Driven, Grid};
 pub use super::output::{EnergyAudit, HalfSpaceOutput};
 use super::radau::{self, System};
 use super::Solver;
@@ -30,7 +31,8 @@ use crate::law::ContactLaw;
 use crate::material::Material;
 use crate::numeric::root::brent_past;
 use crate::numeric::{GL4_NODES, GL4_WEIGHTS};
-pub use ode::forget_incident_table;
+use fast::Paths;
+pub use ode::Workspace;
 use ode::{GapOde, IncidentGrid, Phase, STUCK_NODES};
 use std::sync::Arc;
 
@@ -76,33 +78,6 @@ pub struct HalfSpace {
 }
 
 #[cfg(test)]
-thread_local! {
-    /// Tests: 0 every path, 1 the grid fast paths but no affine blocks, 2 every step
-    /// through [`Runner::advance`].
-    static PATHS: std::cell::Cell<u8> = const { std::cell::Cell::new(0) };
-}
-
-/// Whether whole grid steps may take the fast paths (always, except in the tests that
-/// compare them with the general path).
-#[inline]
-fn fast_paths() -> bool {
-    #[cfg(test)]
-    return PATHS.with(|g| g.get()) < 2;
-    #[cfg(not(test))]
-    true
-}
-
-/// Whether runs of affine steps may be taken by [`Runner::affine_block`] (always, except
-/// in the tests that compare it with the step-by-step paths).
-#[inline]
-fn affine_blocks() -> bool {
-    #[cfg(test)]
-    return PATHS.with(|g| g.get()) < 1;
-    #[cfg(not(test))]
-    true
-}
-
-#[cfg(test)]
 mod tests;
 
 /// Relative threshold of the stuck phases' event functions: a constraint stress that
@@ -134,17 +109,21 @@ impl StageSums {
     }
 }
 
-/// What a run of whole grid steps writes to: the time loop's integrals, its records and
-/// the index of its next breakpoint.
-struct Tape<'t> {
-    acc: &'t mut Acc,
+/// Where a run of whole grid steps taken in one go ([`GapRun::stuck_run`],
+/// [`GapRun::affine_block`]) writes: the running integrals, the records, and the
+/// breakpoints with the index of the next one (advanced as the run goes).
+struct Sink<'t> {
+    acc: &'t mut Integrals,
     out: &'t mut HalfSpaceOutput,
+    breaks: &'t [f64],
     bi: &'t mut usize,
 }
 
-/// Running integrals.
+/// The running integrals of a run over time: the incident, reflected and transmitted
+/// displacements (m), the energies of the three waves and the energy released by damage
+/// (J/m^2), and the time the interface was open while the burst was at it (s).
 #[derive(Debug, Default, Clone, Copy)]
-struct Acc {
+struct Integrals {
     disp_ref: f64,
     disp_inc: f64,
     disp_tr: f64,
@@ -190,9 +169,32 @@ impl HalfSpace {
         }
     }
 
-    /// Run the exact solver.
+    /// Run the exact solver (on a fresh [`Workspace`]: a first run).
     pub fn solve(&self, settings: &HalfSpaceSettings) -> Result<HalfSpaceOutput> {
-        Runner::new(self, settings).run()
+        self.solve_in(settings, &mut Workspace::new())
+    }
+
+    /// Run the exact solver on the caller's workspace `ws` (one per worker): the incident
+    /// table its last run kept is used again, and this run's is kept for the next.
+    pub fn solve_in(
+        &self,
+        settings: &HalfSpaceSettings,
+        ws: &mut Workspace,
+    ) -> Result<HalfSpaceOutput> {
+        self.solve_taking(settings, ws, Paths::All)
+    }
+
+    /// [`HalfSpace::solve_in`] taking the `paths` allowed.
+    fn solve_taking(
+        &self,
+        settings: &HalfSpaceSettings,
+        ws: &mut Workspace,
+        paths: Paths,
+    ) -> Result<HalfSpaceOutput> {
+        let mut run = GapRun::new(self, settings, ws);
+        let out = run.run(paths);
+        ws.keep(&mut run.ode.grid);
+        out
     }
 }
 
@@ -211,12 +213,21 @@ impl Solver for ExactSolver {
     }
 }
 
-struct Runner<'a> {
+impl ExactSolver {
+    /// [`Solver::solve`] on the caller's workspace ([`HalfSpace::solve_in`]).
+    pub fn solve_in(&self, problem: &HalfSpace, ws: &mut Workspace) -> Result<HalfSpaceOutput> {
+        problem.solve_in(&self.settings, ws)
+    }
+}
+
+/// One run of the exact solver: the gap equation of the current phase, the grid step,
+/// and what the event location keeps between steps (the time loop is
+/// [`exact_loop::run`], driving it as a [`Driven`] run).
+struct GapRun<'a> {
     hs: &'a HalfSpace,
     ode: GapOde<'a>,
     h: f64,
     duration: f64,
-    breaks: Vec<f64>,
     scale: [f64; 2],
     ainv: [[f64; 3]; 3],
     settings: HalfSpaceSettings,
@@ -244,7 +255,7 @@ struct Runner<'a> {
     stuck_tol: f64,
     /// `[1/Z1, 1/Z2]` (`1/Z2 = 0` at a rigid wall), m/(Pa s).
     inv_z: [f64; 2],
-    /// What [`Runner::ode_grid_step`] found last at a step end: time (s), state as bits,
+    /// What [`GapRun::ode_grid_step`] found last at a step end: time (s), state as bits,
     /// phase, and whether no event function is positive there (the start of the next
     /// step when nothing changed).
     end_events: (f64, [u64; 2], Phase, bool),
@@ -252,30 +263,29 @@ struct Runner<'a> {
     affine_phase: Option<fast::AffinePhase>,
     /// The affine maps of the step lengths and slopes met.
     maps: fast::Maps,
+    /// The paths the time loop may take.
+    paths: Paths,
 }
 
-impl<'a> Runner<'a> {
-    fn new(hs: &'a HalfSpace, settings: &HalfSpaceSettings) -> Self {
+impl<'a> GapRun<'a> {
+    fn new(hs: &'a HalfSpace, settings: &HalfSpaceSettings, ws: &mut Workspace) -> Self {
         let k = hs.compliance();
         let p0 = hs.law.static_pressure;
         let uc = hs.law.critical_gap();
         let fmax = hs.incident.highest_frequency();
         let f0 = hs.incident.fundamental();
         let h = 1.0 / (fmax * settings.samples_per_period as f64);
-        let mut breaks = hs.incident.breakpoints();
-        breaks.retain(|b| b.is_finite() && *b > 0.0);
-        breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
         // typical gap: blocked stress over impedance and frequency, or [u]_c
         let omega = 2.0 * std::f64::consts::PI * f0;
         let gap_scale = (2.0 * hs.incident.peak() / hs.z1 / omega)
             .max(uc.abs())
             .max(1e-30);
-        Runner {
+        GapRun {
             hs,
             ode: GapOde {
                 hs,
                 cache: std::cell::Cell::new([(f64::NAN, 0.0); 2]),
-                grid: IncidentGrid::new(&*hs.incident, h, hs.rest_phase() == Phase::Locked),
+                grid: IncidentGrid::new(&*hs.incident, h, hs.rest_phase() == Phase::Locked, ws),
                 phase: hs.rest_phase(),
                 k,
                 p0,
@@ -284,7 +294,6 @@ impl<'a> Runner<'a> {
             },
             h,
             duration: hs.incident.duration(),
-            breaks,
             scale: [gap_scale, 1.0],
             ainv: radau::a_inverse(),
             settings: *settings,
@@ -302,6 +311,7 @@ impl<'a> Runner<'a> {
             end_events: (f64::NAN, [0; 2], Phase::Locked, false),
             affine_phase: None,
             maps: fast::Maps::default(),
+            paths: Paths::All,
             stuck_tol: STUCK_TOLERANCE * p0.abs().max(2.0 / hs.z1 / k * hs.incident.peak()),
         }
     }
@@ -369,7 +379,7 @@ impl<'a> Runner<'a> {
         }
     }
 
-    fn step_ode(&self, t: f64, y: [f64; 2], h: f64) -> Result<radau::Step> {
+    fn step_ode(&self, t: f64, y: [f64; 2], h: f64) -> Result<radau::Step<2>> {
         if let Some(s) = radau::step(&self.ode, t, y, h, self.scale) {
             return Ok(s);
         }
@@ -381,9 +391,9 @@ impl<'a> Runner<'a> {
     /// the phase's linear dynamics continued past the event ([`radau::continued_step`]:
     /// smooth on both sides of a contact event, and the step itself up to it), else the
     /// step.
-    /// Also returns whether the step is the step itself ([`Runner::step_ode`]'s: every
+    /// Also returns whether the step is the step itself ([`GapRun::step_ode`]'s: every
     /// stage inside the affine interval, or not an affine phase).
-    fn event_step(&self, t: f64, y: [f64; 2], h: f64) -> Result<(radau::Step, bool)> {
+    fn event_step(&self, t: f64, y: [f64; 2], h: f64) -> Result<(radau::Step<2>, bool)> {
         match radau::continued_step(&self.ode, t, y, h) {
             Some(s) => {
                 let inside = self
@@ -396,7 +406,7 @@ impl<'a> Runner<'a> {
         }
     }
 
-    fn step_ode_split(&self, t: f64, y: [f64; 2], h: f64, depth: usize) -> Result<radau::Step> {
+    fn step_ode_split(&self, t: f64, y: [f64; 2], h: f64, depth: usize) -> Result<radau::Step<2>> {
         if depth > 12 {
             return Err(Error::numerical(
                 t,
@@ -440,14 +450,14 @@ impl<'a> Runner<'a> {
     }
 
     /// Accumulate integrals over [t, t_end] of a stuck phase (explicit, GL4).
-    fn acc_stuck(&self, acc: &mut Acc, t: f64, t_end: f64) {
+    fn acc_stuck(&self, acc: &mut Integrals, t: f64, t_end: f64) {
         let sinc = self.stuck_nodes(t, t_end);
         self.acc_stuck_cached(acc, t_end - t, &sinc);
     }
 
     /// Accumulate a stuck step from the incident stress at its nodes (GL4: sums, then
     /// scale; the end node is not used).
-    fn acc_stuck_cached(&self, acc: &mut Acc, h: f64, sinc: &[f64; 5]) {
+    fn acc_stuck_cached(&self, acc: &mut Integrals, h: f64, sinc: &[f64; 5]) {
         // S = g s_inc and s_ref = (g - 1) s_inc: the integrals of s_inc and s_inc^2 give all
         let (mut d_inc, mut e_inc) = (0.0, 0.0);
         for i in 0..4 {
@@ -474,7 +484,7 @@ impl<'a> Runner<'a> {
 
     /// Accumulate integrals of an ODE step with its stages (Radau quadrature: weighted
     /// sums over the stages, then scaled by `h / Z`).
-    fn acc_ode(&self, acc: &mut Acc, t: f64, h: f64, y0: [f64; 2], st: &radau::Step) {
+    fn acc_ode(&self, acc: &mut Integrals, t: f64, h: f64, y0: [f64; 2], st: &radau::Step<2>) {
         let p0 = self.ode.p0;
         let mut sum = StageSums::default();
         for j in 0..3 {
@@ -509,7 +519,7 @@ impl<'a> Runner<'a> {
     /// Add an ODE step from `t` of length `h` (s) to the integrals from its stage sums, and
     /// to the open time in the burst when the interface is `open`.
     #[inline]
-    fn add_step(&self, acc: &mut Acc, t: f64, h: f64, sum: &StageSums, open: bool) {
+    fn add_step(&self, acc: &mut Integrals, t: f64, h: f64, sum: &StageSums, open: bool) {
         let sum = &sum.0;
         let (h1, h2) = (h * self.inv_z[0], h * self.inv_z[1]);
         acc.disp_ref += h1 * sum[1];
@@ -588,10 +598,10 @@ impl<'a> Runner<'a> {
             // at contact loss) while it is large one step later: take the larger of both
             // (with viscous damage the adhesion equation b dbeta/dt = phi is stiff too:
             // its rate is |dphi/dbeta| / b)
-            let stiffness = |t: f64, y: [f64; 2]| {
-                let j = self.ode.jacobian(t, y);
+            let stiffness = |y: [f64; 2]| {
+                let j = self.ode.gap_jacobian(y);
                 let mut l = j[0][0].abs();
-                if self.ode.dim() == 2 {
+                if self.ode.active()[1] {
                     // |dphi/dbeta| whether or not damage is active at y (at beta = 0 with
                     // w = 0 the Jacobian row vanishes although the rate is not small)
                     let d = (y[0] - self.ode.uc).max(0.0);
@@ -600,15 +610,15 @@ impl<'a> Runner<'a> {
                 }
                 l
             };
-            let mut lambda = stiffness(t, *y);
+            let mut lambda = stiffness(*y);
             // (a one-component phase whose branch has a constant tangent has the same
             // stiffness one step later: no probe step)
-            let constant = self.ode.dim() == 1 && self.ode.affine(*y).is_some();
+            let constant = !self.ode.active()[1] && self.ode.affine(*y).is_some();
             if constant {
             } else if let Ok(st) = self.step_ode(t, *y, self.h) {
                 let end = st.end();
                 if end[0].is_finite() && end[1].is_finite() {
-                    lambda = lambda.max(stiffness(t + self.h, end));
+                    lambda = lambda.max(stiffness(end));
                 }
             }
             if lambda * self.h > 2.0 {
@@ -619,7 +629,13 @@ impl<'a> Runner<'a> {
 
     /// Advance from t to t_end (no breakpoint inside), updating y, the phase, the
     /// integrals. Returns when t_end is reached.
-    fn advance(&mut self, acc: &mut Acc, mut t: f64, t_end: f64, y: &mut [f64; 2]) -> Result<()> {
+    fn advance(
+        &mut self,
+        acc: &mut Integrals,
+        mut t: f64,
+        t_end: f64,
+        y: &mut [f64; 2],
+    ) -> Result<()> {
         let mut guard = 0usize;
         while t < t_end {
             guard += 1;
@@ -711,7 +727,7 @@ impl<'a> Runner<'a> {
             // continued: what the event search evaluates on both sides of the event)
             let (st, whole) = self.event_step(t, y0, h)?;
             // (which, tau_hi, the step of length tau_hi: reused as the bracket's end)
-            let mut first: Option<(usize, f64, radau::Step)> = None;
+            let mut first: Option<(usize, f64, radau::Step<2>)> = None;
             // the event functions at the step end and (when needed) at the first two
             // stages, each evaluated once for both events
             let ev_end = self.ode_events(phase, t_end, st.end());
@@ -835,7 +851,7 @@ impl<'a> Runner<'a> {
     /// Record the state at time `t` (s): the series a summary needs, then (unless
     /// `summary_only`) the others.
     #[inline(always)]
-    fn record(&self, out: &mut HalfSpaceOutput, acc: &Acc, t: f64, y: [f64; 2]) {
+    fn record(&self, out: &mut HalfSpaceOutput, acc: &Integrals, t: f64, y: [f64; 2]) {
         out.t.push(t);
         out.beta.push(self.ode.beta(y));
         out.reflected_displacement.push(acc.disp_ref);
@@ -844,8 +860,8 @@ impl<'a> Runner<'a> {
         }
     }
 
-    /// The series beyond a summary's ([`Runner::record`]).
-    fn record_full(&self, out: &mut HalfSpaceOutput, acc: &Acc, t: f64, y: [f64; 2]) {
+    /// The series beyond a summary's ([`GapRun::record`]).
+    fn record_full(&self, out: &mut HalfSpaceOutput, acc: &Integrals, t: f64, y: [f64; 2]) {
         let sinc = self.ode.forcing(t);
         let sigma = if self.ode.phase.is_stuck() {
             self.stuck_s(t) - self.ode.p0
@@ -870,15 +886,16 @@ impl<'a> Runner<'a> {
         }
     }
 
-    fn run(mut self) -> Result<HalfSpaceOutput> {
+    /// Run over the grid, taking the `paths` allowed.
+    fn run(&mut self, paths: Paths) -> Result<HalfSpaceOutput> {
+        let grid = Grid::new(
+            self.h,
+            self.duration,
+            self.f0,
+            self.settings.tail_periods,
+            self.hs.incident.breakpoints(),
+        );
         let h = self.h;
-        let period = 1.0 / self.f0;
-        let (min_tail, max_tail) = match self.settings.tail_periods {
-            Some(p) => (p * period, p * period),
-            None => (3.0 * period, 400.0 * period),
-        };
-        let n_min = ((self.duration + min_tail) / h).ceil() as usize;
-        let n_max = ((self.duration + max_tail) / h).ceil() as usize;
         let mut out = HalfSpaceOutput {
             dt: h,
             burst_duration: self.duration,
@@ -887,7 +904,7 @@ impl<'a> Runner<'a> {
         let summary_only = self.settings.summary_only;
         // the shortest record, plus the period of rest that ends an automatic tail (an
         // interface at rest by the shortest tail's end: no vector grows in the run)
-        let reserve = (n_min + (period / h).ceil() as usize + 2).min(n_max + 1);
+        let reserve = (grid.n_min + (grid.period / h).ceil() as usize + 2).min(grid.n_max + 1);
         for (v, needed) in [
             (&mut out.t, true),
             (&mut out.beta, true),
@@ -904,77 +921,17 @@ impl<'a> Runner<'a> {
                 v.reserve(reserve);
             }
         }
-        let mut acc = Acc::default();
+        let acc = Integrals::default();
         let mut y = [0.0, 1.0];
         self.record(&mut out, &acc, 0.0, y);
-        let mut bi = 0usize;
-        let mut k = 0usize;
-        let mut rest_count = 0usize;
-        while k < n_max {
-            let ta = k as f64 * h;
-            let tb = (k + 1) as f64 * h;
-            self.ode.grid.enter_step(k, ta, tb);
-            let mut t = ta;
-            while bi < self.breaks.len() && self.breaks[bi] <= ta {
-                bi += 1;
-            }
-            let whole = bi >= self.breaks.len() || self.breaks[bi] >= tb;
-            // runs of stuck or affine steps (before the tail's end checks)
-            if whole && k + 1 < n_min {
-                let mut tape = Tape {
-                    acc: &mut acc,
-                    out: &mut out,
-                    bi: &mut bi,
-                };
-                let n = if self.ode.phase.is_stuck() {
-                    if fast_paths() {
-                        self.stuck_run(&mut tape, k, n_min - 1, y)?
-                    } else {
-                        0
-                    }
-                } else if affine_blocks() {
-                    self.affine_block(&mut tape, k, n_min - 1, &mut y)?
-                } else {
-                    0
-                };
-                if n > 0 {
-                    k += n;
-                    continue;
-                }
-            }
-            let done = whole
-                && fast_paths()
-                && (self.stuck_grid_step(&mut acc, k, ta, tb)
-                    || self.ode_grid_step(&mut acc, ta, tb, &mut y)?);
-            while !done && bi < self.breaks.len() && self.breaks[bi] < tb {
-                let tbk = self.breaks[bi];
-                self.advance(&mut acc, t, tbk, &mut y)?;
-                t = tbk;
-                bi += 1;
-            }
-            if !done {
-                self.advance(&mut acc, t, tb, &mut y)?;
-            }
-            k += 1;
-            if k % 4096 == 0 {
-                crate::interrupt::check()?;
-            }
-            self.max_gap = self.max_gap.max(y[0]);
-            self.record(&mut out, &acc, tb, y);
-            if k >= n_min && tb > self.duration {
-                if self.settings.tail_periods.is_some() {
-                    break;
-                }
-                if self.at_rest(y) {
-                    rest_count += 1;
-                    if rest_count as f64 * h >= period {
-                        break;
-                    }
-                } else {
-                    rest_count = 0;
-                }
-            }
-        }
+        self.paths = paths;
+        let mut run = Driven {
+            solver: self,
+            acc,
+            out,
+        };
+        exact_loop::run(&grid, &mut run, &mut y)?;
+        let Driven { acc, mut out, .. } = run;
         let law = &self.hs.law;
         let yend = y;
         out.energy = EnergyAudit {

@@ -17,9 +17,9 @@ const MAX_GRID_STEPS: usize = 1 << 20;
 /// grid inside the burst, tabulated once per run ([`Excitation::stress_grid`]): the Radau
 /// stage nodes and the nodes of a stuck step ([`STUCK_NODES`]), Pa. Steps split by an
 /// event or a breakpoint, and steps after the burst, are evaluated directly. The table of
-/// a thread's last run is kept and used again, as it is, by a run of the same incident
-/// wave ([`Excitation::grid_key`]) on the same grid: the runs of a sweep over the
-/// interface or the pressure, of an identification, of a repeated scenario.
+/// the last run on a [`Workspace`] is kept there and used again, as it is, by a run of the
+/// same incident wave ([`Excitation::grid_key`]) on the same grid: the runs of a sweep
+/// over the interface or the pressure, of an identification, of a repeated scenario.
 pub(super) struct IncidentGrid {
     /// The waveform's grid key with the step, the step count and the node set (empty:
     /// the waveform has no key, and the table is not for another run).
@@ -36,34 +36,40 @@ pub(super) struct IncidentGrid {
     duration: f64,
 }
 
-/// The table of a thread's last [`IncidentGrid`] and its key.
-#[derive(Default)]
-struct Kept {
+/// What a run of the exact solver leaves for the next run on the same worker (a plan
+/// cache: it never changes a result): the incident wave tabulated on the solver's grid
+/// ([`IncidentGrid`]), used again as it is by a run of the same incident wave
+/// ([`Excitation::grid_key`]) on the same grid (the runs of a sweep over the interface or
+/// the pressure, of an identification, of a repeated scenario), its buffer (up to 8 MB)
+/// by any other. Owned by the caller, one per worker ([`super::HalfSpace::solve_in`]).
+#[derive(Debug, Default)]
+pub struct Workspace {
+    /// The kept table's key (empty: none).
     key: Vec<u64>,
+    /// The kept table.
     table: Vec<f64>,
 }
 
-thread_local! {
-    /// The table of the thread's last [`IncidentGrid`]: used again as it is by a run with
-    /// the same key, its buffer by any other.
-    static POOL: std::cell::Cell<Kept> = std::cell::Cell::new(Kept::default());
-}
+impl Workspace {
+    /// An empty workspace (the first run on it tabulates its wave).
+    pub fn new() -> Self {
+        Workspace::default()
+    }
 
-impl Drop for IncidentGrid {
-    /// Hand the table back to the thread's pool (up to 8 MB is kept).
-    fn drop(&mut self) {
-        let table = std::mem::take(&mut self.table);
+    /// Forget the kept table: the next run tabulates its wave again (what a first run
+    /// costs; the benchmarks of cold runs call it).
+    pub fn clear(&mut self) {
+        *self = Workspace::default();
+    }
+
+    /// Keep the table of `grid` for the next run (up to 8 MB).
+    pub(super) fn keep(&mut self, grid: &mut IncidentGrid) {
+        let table = std::mem::take(&mut grid.table);
         if table.capacity() <= 1 << 20 {
-            let key = std::mem::take(&mut self.key);
-            POOL.with(|p| p.set(Kept { key, table }));
+            self.key = std::mem::take(&mut grid.key);
+            self.table = table;
         }
     }
-}
-
-/// Forget the incident table this thread keeps ([`IncidentGrid`]): its next run makes its
-/// table again (what a first run costs; the benchmarks of cold runs call it).
-pub fn forget_incident_table() {
-    POOL.with(|p| p.take());
 }
 
 /// The tabulated nodes: Radau's three stage nodes (the last is the step end, which is also
@@ -87,7 +93,13 @@ impl IncidentGrid {
     /// table would exceed [`MAX_GRID_STEPS`]).
     /// With `stuck_only` (a locked interface: no ODE phase ever) only the stuck-step nodes
     /// are tabulated (rows 2 to 6); the first two Radau rows are then not to be read.
-    pub(super) fn new(incident: &dyn Excitation, h: f64, stuck_only: bool) -> Self {
+    /// The table kept in `ws` is used again as it is for the same key, else its buffer.
+    pub(super) fn new(
+        incident: &dyn Excitation,
+        h: f64,
+        stuck_only: bool,
+        ws: &mut Workspace,
+    ) -> Self {
         let n = (incident.duration() / h).ceil();
         let steps = if n.is_finite() && n >= 0.0 && n <= MAX_GRID_STEPS as f64 {
             n as usize
@@ -98,15 +110,12 @@ impl IncidentGrid {
             k.extend([h.to_bits(), steps as u64, stuck_only as u64]);
             k
         });
-        // the table of the thread's previous run: as it is for the same key, else its
+        // the table of the workspace's previous run: as it is for the same key, else its
         // buffer (no allocation in a sweep; stress_grid writes every entry: only a longer
         // table than the last is zeroed)
-        let Kept {
-            key: kept,
-            mut table,
-        } = POOL.with(|p| p.take());
+        let mut table = std::mem::take(&mut ws.table);
         let n = GRID_NODES.len() * steps;
-        if key.is_empty() || key != kept || table.len() != n {
+        if key.is_empty() || key != ws.key || table.len() != n {
             table.truncate(n);
             table.resize(n, 0.0);
             if stuck_only {
@@ -281,13 +290,13 @@ impl GapOde<'_> {
     }
 }
 
-impl System for GapOde<'_> {
-    fn dim(&self) -> usize {
-        if self.phase == Phase::Damaging && !self.algebraic_damage() {
-            2
-        } else {
-            1
-        }
+impl System<2> for GapOde<'_> {
+    /// The gap, and the adhesion where its damage equation is a differential one.
+    fn active(&self) -> [bool; 2] {
+        [
+            true,
+            self.phase == Phase::Damaging && !self.algebraic_damage(),
+        ]
     }
     fn mass(&self) -> [f64; 2] {
         if self.phase == Phase::Damaging && !self.algebraic_damage() {
@@ -357,7 +366,15 @@ impl System for GapOde<'_> {
             upper,
         })
     }
-    fn jacobian(&self, _t: f64, y: [f64; 2]) -> [[f64; 2]; 2] {
+    #[inline]
+    fn jacobian(&self, _t: f64, y: [f64; 2]) -> Option<[[f64; 2]; 2]> {
+        Some(self.gap_jacobian(y))
+    }
+}
+
+impl GapOde<'_> {
+    /// The Jacobian of the gap equation of the current phase at `y` (row-major).
+    pub(super) fn gap_jacobian(&self, y: [f64; 2]) -> [[f64; 2]; 2] {
         match self.phase {
             Phase::Compression => [
                 [

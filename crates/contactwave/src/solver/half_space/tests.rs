@@ -40,16 +40,19 @@ fn fingerprint(out: &HalfSpaceOutput) -> Vec<u64> {
     v
 }
 
-/// Solve with the paths of `paths` ([`PATHS`]: 0 all, 1 no affine blocks, 2 general only).
+/// Solve with the paths of `paths` (0 all, 1 no affine blocks, 2 general only).
 fn solve(hs: &HalfSpace, samples_per_period: usize, paths: u8) -> HalfSpaceOutput {
-    PATHS.with(|g| g.set(paths));
     let settings = HalfSpaceSettings {
         samples_per_period,
         ..Default::default()
     };
-    let out = hs.solve(&settings);
-    PATHS.with(|g| g.set(0));
-    out.unwrap()
+    let paths = match paths {
+        0 => Paths::All,
+        1 => Paths::NoAffineBlocks,
+        _ => Paths::General,
+    };
+    hs.solve_taking(&settings, &mut Workspace::new(), paths)
+        .unwrap()
 }
 
 /// Every recorded series of `out`, and its scalars.
@@ -162,7 +165,7 @@ fn fast_paths_are_the_general_path_bit_for_bit() {
     assert!(compared >= 120, "{compared} runs compared");
 }
 
-/// The runs of affine steps ([`Runner::affine_block`]: the same collocation solution, its
+/// The runs of affine steps ([`GapRun::affine_block`]: the same collocation solution, its
 /// stage stresses from the phase's stiffness instead of the law) give the step-by-step
 /// outputs to round-off: the same events and record length, every series within 1e-12 of
 /// its largest magnitude, every scalar within 1e-12 relative.
@@ -188,19 +191,27 @@ fn affine_blocks_are_the_step_by_step_solution() {
     assert!(compared >= 120, "{compared} runs compared");
 }
 
-/// The incident table a thread keeps from its last run ([`forget_incident_table`]) gives
-/// the outputs of a table made anew, bit for bit: used again by the same wave on the same
+/// The incident table a workspace keeps from its last run ([`Workspace`]) gives the
+/// outputs of a table made anew, bit for bit: used again by the same wave on the same
 /// grid, replaced after another (other amplitudes, windows, delays and samplings).
 #[test]
 fn a_kept_incident_table_is_the_table_made_anew() {
+    let mut ws = Workspace::new();
+    let on = |hs: &HalfSpace, spp: usize, ws: &mut Workspace| {
+        let settings = HalfSpaceSettings {
+            samples_per_period: spp,
+            ..Default::default()
+        };
+        fingerprint(&hs.solve_in(&settings, ws).unwrap())
+    };
     let mut reused = 0;
     for (name, hs, spp) in cases() {
         // the table of the case before is there: replaced
-        let after_other = fingerprint(&solve(&hs, spp, 0));
-        forget_incident_table();
-        let fresh = fingerprint(&solve(&hs, spp, 0));
+        let after_other = on(&hs, spp, &mut ws);
+        ws.clear();
+        let fresh = on(&hs, spp, &mut ws);
         // the table of this very run is there: used again
-        let kept = fingerprint(&solve(&hs, spp, 0));
+        let kept = on(&hs, spp, &mut ws);
         assert!(after_other == fresh, "{name}: after another run");
         assert!(kept == fresh, "{name}: with its own table kept");
         reused += 1;
@@ -222,8 +233,8 @@ fn a_kept_incident_table_is_the_table_made_anew() {
     for xi in [0.5, 1.5, 3.0, 1.5] {
         let burst = Arc::new(ToneBurst::new(xi * p0, 1e6, 6.0, window));
         let hs = HalfSpace::new(Material::PMMA, None, law.clone(), burst);
-        let after_other = fingerprint(&solve(&hs, 100, 0));
-        forget_incident_table();
-        assert!(after_other == fingerprint(&solve(&hs, 100, 0)), "xi = {xi}");
+        let after_other = on(&hs, 100, &mut ws);
+        ws.clear();
+        assert!(after_other == on(&hs, 100, &mut ws), "xi = {xi}");
     }
 }

@@ -11,7 +11,7 @@ use super::format::Sweep;
 use super::shard::{Shard, ShardFile};
 use crate::analysis::Summary;
 use crate::error::{Error, Result};
-use crate::run::{Executor, Observer};
+use crate::run::{Executor, Observer, Workspaces};
 use std::fs::{File, OpenOptions};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -293,9 +293,14 @@ pub fn run_sweep_shard(
         progress,
         cancel,
     };
+    // one workspace per worker, kept from point to point
+    let workspaces = Workspaces::new();
     let ran = Executor::new().threads(opts.threads).for_each(
         &todo,
-        |&i| sweep.model(&plan, i)?.summary(),
+        |&i| {
+            let model = sweep.model(&plan, i)?;
+            workspaces.with(|ws| model.summary_in(ws))
+        },
         &observer,
     )?;
     let _ = ran;

@@ -12,7 +12,7 @@ use super::csv_io::{fmt_f64, hash_sweep};
 use super::grid::{grid, linspace, logspace};
 use crate::error::{Error, Result};
 use crate::model::{self, toml_number, Model, Param, Template};
-use crate::scenario::{apply_set, parse_toml, set_dotted};
+use crate::scenario::{deserialize_format, parse_toml, read_base, set_dotted, FieldProblem};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -90,26 +90,6 @@ pub struct Sweep {
     pub hash: String,
 }
 
-/// A number of a sweep file (integer or float).
-fn number(v: &toml::Value) -> Option<f64> {
-    match v {
-        toml::Value::Float(x) => Some(*x),
-        toml::Value::Integer(i) => Some(*i as f64),
-        _ => None,
-    }
-}
-
-/// A count of a sweep file: an integer >= 1 (an integral float is accepted too).
-fn count(v: &toml::Value) -> Option<usize> {
-    let x = number(v)?;
-    (x.is_finite() && x.fract() == 0.0 && x >= 1.0 && x <= MAX_AXIS_POINTS as f64)
-        .then_some(x as usize)
-}
-
-fn show(v: &toml::Value) -> String {
-    v.to_string()
-}
-
 impl Sweep {
     /// Load a sweep file and its base scenario, and build the grid. Errors name the sweep
     /// file and the field (`axis[1].linspace`, ...). The points are validated as scenarios
@@ -124,58 +104,18 @@ impl Sweep {
     /// Build a sweep from a parsed sweep table that came from `path`.
     pub fn from_table(table: toml::Table, path: &Path) -> Result<Sweep> {
         let file = path.display().to_string();
-        for key in table.keys() {
-            if key != "base" && key != "axis" && key != "set" {
-                return Err(Error::invalid(
-                    &file,
-                    key,
-                    show(&table[key]),
-                    "unknown key; a sweep file has `base` (the base scenario file), an \
-                     optional `[set]` table of fixed overrides and `[[axis]]` tables",
-                ));
-            }
+        let f: SweepFile = deserialize_format(&table, &file, sweep_allowed)?;
+        if f.axis.is_empty() {
+            return Err(Error::invalid(
+                &file,
+                "axis",
+                "[]",
+                sweep_allowed("axis", FieldProblem::Wrong),
+            ));
         }
-        let base_rel = match table.get("base") {
-            Some(toml::Value::String(s)) if !s.trim().is_empty() => s.clone(),
-            Some(v) => {
-                return Err(Error::invalid(
-                    &file,
-                    "base",
-                    show(v),
-                    "must be the path of the base scenario file, relative to the sweep file",
-                ))
-            }
-            None => {
-                return Err(Error::invalid(
-                    &file,
-                    "base",
-                    "(missing)",
-                    "required: the path of the base scenario file, relative to the sweep file",
-                ))
-            }
-        };
-        let axis_tables = match table.get("axis") {
-            Some(toml::Value::Array(a)) if !a.is_empty() => a,
-            Some(v) => {
-                return Err(Error::invalid(
-                    &file,
-                    "axis",
-                    show(v),
-                    "must be one or more `[[axis]]` tables",
-                ))
-            }
-            None => {
-                return Err(Error::invalid(
-                    &file,
-                    "axis",
-                    "(missing)",
-                    "required: one or more `[[axis]]` tables",
-                ))
-            }
-        };
-        let mut axes: Vec<Axis> = Vec::with_capacity(axis_tables.len());
-        for (i, a) in axis_tables.iter().enumerate() {
-            let axis = parse_axis(a, i, &file)?;
+        let mut axes: Vec<Axis> = Vec::with_capacity(f.axis.len());
+        for (i, a) in f.axis.into_iter().enumerate() {
+            let axis = a.check(i, &file)?;
             if axes.iter().any(|b| b.parameter == axis.parameter) {
                 return Err(Error::invalid(
                     &file,
@@ -187,27 +127,14 @@ impl Sweep {
             axes.push(axis);
         }
         check_axes(&file, &axes)?;
-        let base = path
-            .parent()
-            .map(Path::to_path_buf)
-            .unwrap_or_default()
-            .join(&base_rel);
-        let base_text = std::fs::read_to_string(&base).map_err(|e| Error::io(&base, e))?;
-        let mut base_table = parse_toml(&base_text, &base.display().to_string())?;
-        // `[set]`: fixed overrides of the base (any TOML value, e.g. another contact law),
-        // written before the axes; `interface.0.compression` indexes an array of tables
-        match table.get("set") {
-            None => {}
-            Some(toml::Value::Table(set)) => apply_set(&mut base_table, set, &file)?,
-            Some(v) => {
-                return Err(Error::invalid(
-                    &file,
-                    "set",
-                    show(v),
-                    "must be a table of dotted scenario keys and values",
-                ))
-            }
-        }
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        let (base, base_table) = read_base(
+            &file,
+            &dir,
+            &f.base,
+            f.set.as_ref(),
+            sweep_allowed("base", FieldProblem::Wrong),
+        )?;
         Ok(Sweep::assemble(path, base, base_table, axes))
     }
 
@@ -579,177 +506,181 @@ fn check_axes(file: &str, axes: &[Axis]) -> Result<()> {
 /// alive at once ([`Sweep::runnable`] is for small sweeps).
 const BYTES_PER_POINT: f64 = 1024.0;
 
-fn parse_axis(a: &toml::Value, i: usize, file: &str) -> Result<Axis> {
-    let t = match a {
-        toml::Value::Table(t) => t,
-        v => {
+/// A sweep file as written: the serde shape of the format (the module doc of
+/// `study::sweep` describes it); [`Sweep::from_table`] checks it into a [`Sweep`].
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SweepFile {
+    base: String,
+    #[serde(default)]
+    set: Option<toml::Table>,
+    axis: Vec<AxisFile>,
+}
+
+/// An `[[axis]]` table as written. The numbers stay TOML values until the check: their
+/// unit is that of `parameter` (`values = ["1 MHz", "2 MHz"]`).
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AxisFile {
+    parameter: String,
+    values: Option<Vec<toml::Value>>,
+    linspace: Option<Vec<toml::Value>>,
+    logspace: Option<Vec<toml::Value>>,
+}
+
+/// What a sweep file allows at `key` (array indices dropped), for the errors of
+/// [`deserialize_format`] and of the checks.
+fn sweep_allowed(key: &str, problem: FieldProblem) -> String {
+    let must = if problem == FieldProblem::Missing {
+        ""
+    } else {
+        "must be "
+    };
+    let what = match key {
+        "" => {
+            return "a sweep file has `base` (the base scenario file), an optional `[set]` \
+                    table of fixed overrides and `[[axis]]` tables"
+                .into()
+        }
+        "axis" if problem == FieldProblem::Unknown => {
+            return "an axis has `parameter` and one of `values`, `linspace`, `logspace`".into()
+        }
+        "base" => "the path of the base scenario file, relative to the sweep file",
+        "set" => "a table of dotted scenario keys and values",
+        "axis" => "one or more `[[axis]]` tables",
+        "axis.parameter" => "a dotted scenario key such as \"incident.xi\"",
+        _ => "an array of numbers",
+    };
+    format!("{must}{what}")
+}
+
+impl AxisFile {
+    /// Check axis `i` of `file` and build its values.
+    fn check(self, i: usize, file: &str) -> Result<Axis> {
+        let parameter = self.parameter;
+        if parameter.is_empty() || parameter.split('.').any(|p| p.trim().is_empty()) {
+            return Err(Error::invalid(
+                file,
+                format!("axis[{i}].parameter"),
+                format!("\"{parameter}\""),
+                sweep_allowed("axis.parameter", FieldProblem::Wrong),
+            ));
+        }
+        let given: Vec<(&str, Vec<toml::Value>)> = [
+            ("values", self.values),
+            ("linspace", self.linspace),
+            ("logspace", self.logspace),
+        ]
+        .into_iter()
+        .filter_map(|(k, v)| v.map(|v| (k, v)))
+        .collect();
+        let [(key, arr)] = given.as_slice() else {
             return Err(Error::invalid(
                 file,
                 format!("axis[{i}]"),
-                show(v),
-                "must be a table (`[[axis]]`)",
-            ))
-        }
-    };
-    for key in t.keys() {
-        if !["parameter", "values", "linspace", "logspace"].contains(&key.as_str()) {
-            return Err(Error::invalid(
-                file,
-                format!("axis[{i}].{key}"),
-                show(&t[key]),
-                "unknown key; an axis has `parameter` and one of `values`, `linspace`, \
-                 `logspace`",
-            ));
-        }
-    }
-    let parameter = match t.get("parameter") {
-        Some(toml::Value::String(s))
-            if !s.is_empty() && s.split('.').all(|p| !p.trim().is_empty()) =>
-        {
-            s.clone()
-        }
-        Some(v) => {
-            return Err(Error::invalid(
-                file,
-                format!("axis[{i}].parameter"),
-                show(v),
-                "must be a dotted scenario key such as \"incident.xi\"",
-            ))
-        }
-        None => {
-            return Err(Error::invalid(
-                file,
-                format!("axis[{i}].parameter"),
-                "(missing)",
-                "required: a dotted scenario key such as \"incident.xi\"",
-            ))
-        }
-    };
-    let given: Vec<&str> = ["values", "linspace", "logspace"]
-        .into_iter()
-        .filter(|k| t.contains_key(*k))
-        .collect();
-    if given.len() != 1 {
-        return Err(Error::invalid(
-            file,
-            format!("axis[{i}]"),
-            if given.is_empty() {
-                "(none)".to_string()
-            } else {
-                given.join(", ")
-            },
-            "give exactly one of `values = [..]`, `linspace = [start, end, n]`, \
-             `logspace = [start_exponent, end_exponent, n]`",
-        ));
-    }
-    let key = given[0];
-    let field = format!("axis[{i}].{key}");
-    let raw = &t[key];
-    let arr = match raw {
-        toml::Value::Array(arr) => arr,
-        v => {
-            return Err(Error::invalid(
-                file,
-                field,
-                show(v),
-                "must be an array of numbers",
-            ))
-        }
-    };
-    let spec = if key == "values" {
-        if arr.is_empty() {
-            return Err(Error::invalid(
-                file,
-                field,
-                show(raw),
-                "must hold at least one number",
-            ));
-        }
-        if arr.len() > MAX_AXIS_POINTS {
-            return Err(Error::invalid(
-                file,
-                field,
-                format!("({} values)", arr.len()),
-                format!("at most {MAX_AXIS_POINTS} values"),
-            ));
-        }
-        let mut v = Vec::with_capacity(arr.len());
-        for x in arr {
-            match crate::scenario::units::si_number(x, &parameter) {
-                Ok(y) if y.is_finite() => v.push(y),
-                Ok(_) => {
-                    return Err(Error::invalid(
-                        file,
-                        field,
-                        show(x),
-                        "every value must be a finite number",
-                    ))
-                }
-                Err(why) => return Err(Error::invalid(file, field, show(x), why)),
-            }
-        }
-        AxisSpec::Values(v)
-    } else {
-        let (what, limit) = if key == "linspace" {
-            ("[start, end, n]", f64::MAX)
-        } else {
-            ("[start_exponent, end_exponent, n] (exponents of 10)", 300.0)
-        };
-        if arr.len() != 3 {
-            return Err(Error::invalid(
-                file,
-                field,
-                show(raw),
-                format!("must be {what} with n an integer >= 1"),
-            ));
-        }
-        // linspace ends take the parameter's unit; logspace exponents are plain numbers
-        let end = |v: &toml::Value| match key {
-            "linspace" => crate::scenario::units::si_number(v, &parameter).ok(),
-            _ => number(v),
-        };
-        let a = end(&arr[0]).filter(|x| x.is_finite() && x.abs() <= limit);
-        let b = end(&arr[1]).filter(|x| x.is_finite() && x.abs() <= limit);
-        let n = count(&arr[2]);
-        match (a, b, n) {
-            (Some(a), Some(b), Some(n)) => {
-                if key == "linspace" {
-                    AxisSpec::Linspace {
-                        start: a,
-                        end: b,
-                        n,
-                    }
+                if given.is_empty() {
+                    "(none)".to_string()
                 } else {
-                    AxisSpec::Logspace {
-                        start_exponent: a,
-                        end_exponent: b,
-                        n,
-                    }
-                }
-            }
-            _ => {
+                    given.iter().map(|g| g.0).collect::<Vec<_>>().join(", ")
+                },
+                "give exactly one of `values = [..]`, `linspace = [start, end, n]`, \
+                 `logspace = [start_exponent, end_exponent, n]`",
+            ));
+        };
+        let field = format!("axis[{i}].{key}");
+        let raw = || toml::Value::Array(arr.clone()).to_string();
+        let spec = if *key == "values" {
+            if arr.is_empty() || arr.len() > MAX_AXIS_POINTS {
                 return Err(Error::invalid(
                     file,
                     field,
-                    show(raw),
-                    format!(
-                    "must be {what}: finite numbers{} and n an integer in [1, {MAX_AXIS_POINTS}]",
-                    if key == "logspace" {
-                        " in [-300, 300]"
+                    if arr.is_empty() {
+                        raw()
                     } else {
-                        ""
-                    }
-                ),
-                ))
+                        format!("({} values)", arr.len())
+                    },
+                    format!("must hold 1 to {MAX_AXIS_POINTS} numbers"),
+                ));
             }
-        }
-    };
-    let values = spec.values();
-    Ok(Axis {
-        parameter,
-        spec,
-        values,
-    })
+            let mut v = Vec::with_capacity(arr.len());
+            for x in arr {
+                match crate::scenario::units::si_number(x, &parameter) {
+                    Ok(y) if y.is_finite() => v.push(y),
+                    Ok(_) => {
+                        return Err(Error::invalid(
+                            file,
+                            field,
+                            x,
+                            "every value must be a finite number",
+                        ))
+                    }
+                    Err(why) => return Err(Error::invalid(file, field, x, why)),
+                }
+            }
+            AxisSpec::Values(v)
+        } else {
+            let linear = *key == "linspace";
+            let (what, limit, range) = if linear {
+                ("[start, end, n]", f64::MAX, "")
+            } else {
+                (
+                    "[start_exponent, end_exponent, n] (exponents of 10)",
+                    300.0,
+                    " in [-300, 300]",
+                )
+            };
+            // linspace ends take the parameter's unit; logspace exponents are plain numbers
+            let end = |v: &toml::Value| {
+                crate::scenario::units::si_number(v, if linear { &parameter } else { "" })
+                    .ok()
+                    .filter(|x| x.is_finite() && x.abs() <= limit)
+            };
+            let n = |v: &toml::Value| {
+                crate::scenario::units::si_number(v, "").ok().filter(|x| {
+                    x.is_finite() && x.fract() == 0.0 && *x >= 1.0 && *x <= MAX_AXIS_POINTS as f64
+                })
+            };
+            match arr.as_slice() {
+                [a, b, c] => match (end(a), end(b), n(c)) {
+                    (Some(start), Some(stop), Some(n)) if linear => AxisSpec::Linspace {
+                        start,
+                        end: stop,
+                        n: n as usize,
+                    },
+                    (Some(start), Some(stop), Some(n)) => AxisSpec::Logspace {
+                        start_exponent: start,
+                        end_exponent: stop,
+                        n: n as usize,
+                    },
+                    _ => {
+                        return Err(Error::invalid(
+                            file,
+                            field,
+                            raw(),
+                            format!(
+                                "must be {what}: finite numbers{range} and n an integer in \
+                                 [1, {MAX_AXIS_POINTS}]"
+                            ),
+                        ))
+                    }
+                },
+                _ => {
+                    return Err(Error::invalid(
+                        file,
+                        field,
+                        raw(),
+                        format!("must be {what} with n an integer >= 1"),
+                    ))
+                }
+            }
+        };
+        let values = spec.values();
+        Ok(Axis {
+            parameter,
+            spec,
+            values,
+        })
+    }
 }
 
 fn with_context(e: Error, ctx: &str) -> Error {
@@ -879,6 +810,44 @@ mod tests {
             assert!(e.contains("sweep.toml"), "{e}");
             assert!(e.contains(&format!("`{field}`")), "{field}: {e}");
         }
+    }
+
+    /// The derived format's errors (issue 25, item 7) name the field, the value as written
+    /// and what is allowed: the keys an axis has, the type a field takes.
+    #[test]
+    fn format_errors_say_what_is_allowed() {
+        let b = "base = \"base.toml\"\n";
+        let e = load_err(
+            "unknown",
+            &format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalue = [0.1]\n"),
+        );
+        assert!(
+            e.contains(
+                "field `axis[0].value` = [0.1]: unknown key; an axis has `parameter` and one of"
+            ),
+            "{e}"
+        );
+        let e = load_err(
+            "type",
+            "base = 3\n[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\n",
+        );
+        assert!(
+            e.contains("field `base` = 3: must be the path of the base scenario file"),
+            "{e}"
+        );
+        let e = load_err("missing", &format!("{b}[[axis]]\nvalues = [0.1]\n"));
+        assert!(
+            e.contains("field `axis[0].parameter` = (missing): required: a dotted scenario key"),
+            "{e}"
+        );
+        let e = load_err(
+            "scalar",
+            &format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = 0.1\n"),
+        );
+        assert!(
+            e.contains("field `axis[0].values` = 0.1: must be an array of numbers"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -1,5 +1,4 @@
-//! Per-step interface update of the explicit finite-difference solvers (thesis eqs.
-//! 2.23-2.37): given the predicted gap `g~` the two interface nodes would reach with no
+//! The normal half of the contact update (thesis eqs. 2.23-2.37): given the predicted gap `g~` the two interface nodes would reach with no
 //! interface force, and the compliance `chi` (gap change per unit dynamic stress), find the
 //! gap `g` and the dynamic stress `S = sigma + p0` with
 //!
@@ -15,23 +14,6 @@
 use crate::error::{Error, Result};
 use crate::law::{ContactLaw, WarmStart};
 use crate::numeric::root::brent_past;
-
-/// How the interface force enters the step (the law itself holds exactly at the new time
-/// level in both).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub enum InterfaceScheme {
-    /// The interface stress of the new time level acts over the whole step (backward,
-    /// as thesis eqs. 2.27-2.31): first order, and it dissipates energy (a linear spring
-    /// interface loses a fraction of order `K chi` of its vibration energy per step).
-    Backward,
-    /// The mean of the interface stresses at the new and the previous-but-one level
-    /// replaces the stress at the current level in the centred scheme (trapezoidal /
-    /// average acceleration): second order, no numerical dissipation for a linear spring,
-    /// unconditionally stable. Rigid (Signorini, bonded) branches keep the backward
-    /// projection, which enforces the constraint at the new level.
-    #[default]
-    Average,
-}
 
 /// Result of one interface update.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,11 +1,12 @@
-//! Per-step update of an interface with a normal and a tangential degree of freedom, for
-//! the explicit finite-difference solvers (model.md section 13): the normal update of
-//! [`super::interface`] with the damage also driven by the tangential gap, and a
-//! tangential return mapping for the spring and the Coulomb slider.
+//! The contact update of one point (model.md sections 3 and 13): given the trial normal
+//! and tangential gaps the point's two faces would reach at the new time level with no
+//! interface force, their compliances (gap change per unit dynamic stress) and the point's
+//! law state, find the tractions and the new state that satisfy the law exactly at the new
+//! level. Every time-stepping solver calls it (the bar stack through its joints, the
+//! half-space FD cross-checks, and a grid of split nodes alike); it is this project's
+//! `computeCohesiveForces` (uguca) or fault-law module (SEM2DPACK).
 //!
-//! Given the predicted gaps `g~_N`, `g~_T` the interface nodes would reach with no
-//! interface force and the compliances `chi_N`, `chi_T` (gap change per unit dynamic
-//! stress; `chi = 2 dt / Z` per side at Courant 1), one step solves
+//! One step solves
 //!
 //! ```text
 //! g_N = g~_N - chi_N S_N,   S_N = sigma(g_N, beta) + p0
@@ -15,21 +16,33 @@
 //! with `N = max(-sigma, 0)` the normal contact pressure of the same (new) time level and
 //! beta the adhesion of the new level, updated by the unconditionally stable backward-Euler
 //! step of `b dbeta/dt = min(phi, 0)`, `phi = phi_traction(d, beta) - k'(beta) g_T^2 / 2`
-//! (the RCCM energy of both gaps). The slider is a return mapping: a stick predictor
-//! (rigid: slip frozen; elastic: `tau_f = q0 + k_t (g_T - s)`), and if `|tau_f| > mu N`
-//! the Coulomb projection `tau_f = sign(tau_f) mu N` with the slip that follows. The
-//! normal and tangential halves are coupled only through beta (N does not depend on
-//! `g_T`); [`coupled_step`] iterates the two halves to a fixed point. Nothing allocates.
+//! (the RCCM energy of both gaps, [`crate::law::TangentialBranch::spring_energy_d_adhesion`]).
+//! The normal half ([`normal`]): Signorini with no penetration and no penalty, bonded
+//! locking, compliant branches by a safeguarded root-finder, damage by the law's stable
+//! update. The tangential half is the slider's return mapping
+//! ([`crate::law::tangential::coulomb::return_map`]): a stick predictor (rigid: slip
+//! frozen; elastic: `tau_f = q0 + k_t (g_T - s)`), and if `|tau_f| > mu N` the Coulomb
+//! projection. The halves are coupled only through beta (N does not depend on `g_T`);
+//! [`coupled_step`] iterates them to a fixed point. Nothing allocates.
 //!
-//! As in [`super::interface::InterfaceScheme`], the `Average` scheme applies the mean of
-//! the new and the previous-but-one stresses over the step (trapezoidal, no numerical
-//! dissipation for springs), and rigid constraints (Signorini, bonded, rigid stick) keep
-//! the backward projection that enforces them at the new level.
+//! A point's state ([`PointState`]) and its step input ([`Trial`], [`StepContext`]) are
+//! plain `Copy` data: an array of points, each with its own state, is updated in one loop
+//! ([`update_point`]) with the law's branches shared.
+//!
+//! In the `Average` [`InterfaceScheme`] the mean of the new and the previous-but-one
+//! stresses acts over the step (trapezoidal, no numerical dissipation for springs), and
+//! rigid constraints (Signorini, bonded, rigid stick) keep the backward projection that
+//! enforces them at the new level.
 
-use super::interface::{self, InterfaceScheme, InterfaceUpdate};
+pub mod normal;
+
 use crate::error::{Error, Result};
-use crate::law::{ContactLaw, TangentialLaw};
+use crate::law::tangential::coulomb::{return_map, ShearState, ShearUpdate};
+use crate::law::{ContactLaw, TangentialLaw, WarmStart};
 use crate::numeric::root::brent_past;
+use normal::InterfaceUpdate;
+
+pub use super::scheme::InterfaceScheme;
 
 /// Backward-Euler update of the adhesion over `dt` (s) at opening `d` (m) and tangential
 /// gap `ut` (m), from `beta_old`: `b (beta - beta_old) = dt min(phi(beta), 0)` with
@@ -75,29 +88,32 @@ pub fn adhesion_update(
 }
 
 /// Normal interface update with the damage driven by both gaps (the tangential gap `ut`,
-/// m, held): as [`interface::update`], which it calls when the tangential branch takes no
-/// adhesion (the result is then the normal-only update, bit for bit).
+/// m, held): [`normal::update`] (with the compression branch's warm start `warm`, when
+/// given) when there is no tangential law or its branch takes no adhesion (the result is
+/// then the normal-only update, bit for bit).
 #[allow(clippy::too_many_arguments)]
 pub fn normal_update(
     law: &ContactLaw,
-    tangential: &TangentialLaw,
+    tangential: Option<&TangentialLaw>,
     predicted_gap: f64,
     chi: f64,
     beta_old: f64,
     ut: f64,
+    warm: Option<&mut WarmStart>,
     dt: f64,
     t: f64,
 ) -> Result<InterfaceUpdate> {
-    if !tangential.branch.needs_adhesion() || !law.traction.has_damage() {
-        return interface::update(law, predicted_gap, chi, beta_old, None, dt, t);
-    }
+    let tangential = match tangential {
+        Some(tl) if tl.branch.needs_adhesion() && law.traction.has_damage() => tl,
+        _ => return normal::update(law, predicted_gap, chi, beta_old, warm, dt, t),
+    };
     let uc = law.critical_gap();
     let p0 = law.static_pressure;
     let gt = predicted_gap;
     let f_uc = p0 + (uc - gt) / chi;
     if f_uc >= 0.0 || law.traction.is_rigid() {
         // closed (or bonded): the stress does not depend on beta; damage from the shear gap
-        let upd = interface::update(law, gt, chi, beta_old, None, dt, t)?;
+        let upd = normal::update(law, gt, chi, beta_old, None, dt, t)?;
         let d = (upd.gap - uc).max(0.0);
         return Ok(InterfaceUpdate {
             adhesion: adhesion_update(law, tangential, d, ut, beta_old, dt),
@@ -137,21 +153,25 @@ pub fn normal_update(
 
 /// The normal update in the time discretisation `scheme`: returns the update (its
 /// `dynamic_stress` that of the new level) and the dynamic stress to apply over the step
-/// (Pa); `s_old` is the dynamic stress of the previous-but-one level.
+/// (Pa); `s_old` is the dynamic stress of the previous-but-one level. `warm`: as in
+/// [`normal_update`].
 #[allow(clippy::too_many_arguments)]
 pub fn normal_step(
     scheme: InterfaceScheme,
     law: &ContactLaw,
-    tangential: &TangentialLaw,
+    tangential: Option<&TangentialLaw>,
     gt: f64,
     chi: f64,
     beta_old: f64,
     s_old: f64,
     ut: f64,
+    mut warm: Option<&mut WarmStart>,
     dt: f64,
     t: f64,
 ) -> Result<(InterfaceUpdate, f64)> {
     if scheme == InterfaceScheme::Average {
+        // g = g~ - chi (S_new + S_old) / 2: the update with compliance chi/2 from the
+        // shifted prediction g~ - chi S_old / 2
         let upd = normal_update(
             law,
             tangential,
@@ -159,6 +179,7 @@ pub fn normal_step(
             0.5 * chi,
             beta_old,
             ut,
+            warm.as_deref_mut(),
             dt,
             t,
         )?;
@@ -169,143 +190,8 @@ pub fn normal_step(
             return Ok((upd, 0.5 * (upd.dynamic_stress + s_old)));
         }
     }
-    let upd = normal_update(law, tangential, gt, chi, beta_old, ut, dt, t)?;
+    let upd = normal_update(law, tangential, gt, chi, beta_old, ut, warm, dt, t)?;
     Ok((upd, upd.dynamic_stress))
-}
-
-/// Tangential state carried from step to step.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ShearState {
-    /// Tangential gap `[u]_T`, m.
-    pub gap: f64,
-    /// Accumulated slip s of the slider, m.
-    pub slip: f64,
-    /// Dynamic shear stress `T = tau - q0` of the level, Pa.
-    pub dynamic_stress: f64,
-    /// Slider stress tau_f, Pa.
-    pub slider: f64,
-    /// Slider state: 0 stick, +1 / -1 slipping, NaN free (no friction load possible).
-    pub state: f64,
-}
-
-impl ShearState {
-    /// At rest under the static shear of `law` and the normal pre-load `p0` (Pa): with
-    /// friction and `p0 > 0` the slider sticks and carries `q0`; otherwise it is free and
-    /// an elastic stick spring carries `q0` through its slip.
-    pub fn at_rest(law: &TangentialLaw, p0: f64) -> Self {
-        let q0 = law.static_shear;
-        let sticking = law.branch.friction() > 0.0 && p0 > 0.0;
-        let kt = law.branch.stick_stiffness();
-        ShearState {
-            slider: if sticking { q0 } else { 0.0 },
-            state: if sticking { 0.0 } else { f64::NAN },
-            slip: if kt.is_finite() && !sticking {
-                q0 / kt
-            } else {
-                0.0
-            },
-            ..ShearState::default()
-        }
-    }
-}
-
-/// Result of one tangential update.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ShearUpdate {
-    /// State of the new level.
-    pub new: ShearState,
-    /// Dynamic shear stress applied over the step, Pa.
-    pub applied: f64,
-}
-
-/// Linear solve of one tangential update with the slider stress `tau_f` given:
-/// `g = g~ - w chi (k g + tau_f - q0) - (1 - w) chi T_old`, `w` = 1 (backward) or 1/2
-/// (average). Returns `(g, T_new, T_applied)`.
-#[inline]
-fn given_slider(gt: f64, chi: f64, w: f64, k: f64, tau_f: f64, q0: f64, t_old: f64) -> [f64; 3] {
-    let c = w * chi;
-    let g = (gt - c * (tau_f - q0) - (1.0 - w) * chi * t_old) / (1.0 + c * k);
-    let t_new = k * g + tau_f - q0;
-    [g, t_new, w * t_new + (1.0 - w) * t_old]
-}
-
-/// Tangential update (return mapping) for predicted gap `gt` (m), compliance `chi`
-/// (m/Pa), adhesion `beta` and normal contact pressure `pressure` (Pa) of the new level,
-/// from the state `old` of the current level; `t_old` is the dynamic shear stress of the
-/// previous-but-one level (Pa, used by the `Average` scheme). A rigid-stick slider is a
-/// constraint and takes the backward projection in both schemes, with the friction limit
-/// on `pressure_applied`, the contact pressure of the normal stress applied over the same
-/// step (Pa): its stress, like the normal constraint reaction, is the one acting over the
-/// step (first order in time where it switches).
-#[allow(clippy::too_many_arguments)]
-pub fn shear_step(
-    scheme: InterfaceScheme,
-    law: &TangentialLaw,
-    gt: f64,
-    chi: f64,
-    old: &ShearState,
-    t_old: f64,
-    beta: f64,
-    pressure: f64,
-    pressure_applied: f64,
-) -> ShearUpdate {
-    let br = &*law.branch;
-    let q0 = law.static_shear;
-    let k = br.spring_stiffness(beta);
-    let kt = br.stick_stiffness();
-    let limit = law.friction_limit(pressure);
-    let limit_applied = law.friction_limit(pressure_applied);
-    let avg = scheme == InterfaceScheme::Average;
-    let w_compliant = if avg { 0.5 } else { 1.0 };
-    let finish = |[g, t_new, applied]: [f64; 3], tau_f: f64, slip: f64, state: f64| ShearUpdate {
-        new: ShearState {
-            gap: g,
-            slip,
-            dynamic_stress: t_new,
-            slider: tau_f,
-            state,
-        },
-        applied,
-    };
-    if (if kt.is_infinite() {
-        limit_applied
-    } else {
-        limit
-    }) <= 0.0
-    {
-        // free: no slider load; the slip follows the gap through the (unloaded) stick spring
-        let r = given_slider(gt, chi, w_compliant, k, 0.0, q0, t_old);
-        let slip = if kt.is_finite() { r[0] + q0 / kt } else { r[0] };
-        return finish(r, 0.0, slip, f64::NAN);
-    }
-    if kt.is_infinite() {
-        // rigid stick: a constraint, backward for stick and slip alike (a consistent return
-        // mapping). The reaction `(g~ - g_old)/chi` is the stress acting over the step,
-        // checked against the friction limit of the normal stress acting over the same step.
-        let g = old.gap;
-        let t_new = (gt - g) / chi;
-        let tau_f = t_new + q0 - k * g;
-        if tau_f.abs() <= limit_applied {
-            return finish([g, t_new, t_new], tau_f, g, 0.0);
-        }
-        let tau_f = limit_applied.copysign(tau_f);
-        let r = given_slider(gt, chi, 1.0, k, tau_f, q0, t_old);
-        return finish(r, tau_f, r[0], tau_f.signum());
-    }
-    // elastic stick predictor: tau_f = q0 + k_t (g - s_old), compliant (both schemes)
-    let w = w_compliant;
-    let c = w * chi;
-    let s_old = old.slip;
-    let g = (gt - c * (kt * (-s_old)) - (1.0 - w) * chi * t_old) / (1.0 + c * (k + kt));
-    let tau_f = q0 + kt * (g - s_old);
-    if tau_f.abs() <= limit {
-        let t_new = k * g + tau_f - q0;
-        return finish([g, t_new, w * t_new + (1.0 - w) * t_old], tau_f, s_old, 0.0);
-    }
-    let tau_f = limit.copysign(tau_f);
-    let r = given_slider(gt, chi, w, k, tau_f, q0, t_old);
-    let slip = r[0] - (tau_f - q0) / kt;
-    finish(r, tau_f, slip, tau_f.signum())
 }
 
 /// Result of one coupled interface step.
@@ -373,7 +259,17 @@ pub fn coupled_step(
     let mut ut = old.gap;
     for it in 1..=100 {
         let (nu, n_app) = normal_step(
-            scheme, normal_law, tangential, gn, chi_n, beta_old, s_old, ut, dt, t,
+            scheme,
+            normal_law,
+            Some(tangential),
+            gn,
+            chi_n,
+            beta_old,
+            s_old,
+            ut,
+            None,
+            dt,
+            t,
         )?;
         let pressure = if nu.gap > normal_law.critical_gap() {
             0.0
@@ -385,7 +281,7 @@ pub fn coupled_step(
         } else {
             (p0 - n_app).max(0.0)
         };
-        let su = shear_step(
+        let su = return_map(
             scheme,
             tangential,
             gt,
@@ -419,6 +315,160 @@ pub fn coupled_step(
     ))
 }
 
+/// What every point update of one time step shares.
+#[derive(Debug, Clone, Copy)]
+pub struct StepContext {
+    /// Time discretisation of the interface force.
+    pub scheme: InterfaceScheme,
+    /// Time step, s.
+    pub dt: f64,
+    /// The new time level, s (for error messages).
+    pub t: f64,
+}
+
+/// A point's trial: what its faces would reach at the new level with no interface force.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Trial {
+    /// Trial normal gap `g~_N`, m.
+    pub normal_gap: f64,
+    /// Normal compliance `chi_N` (gap change per unit dynamic normal stress), m/Pa.
+    pub normal_compliance: f64,
+    /// Trial tangential gap `g~_T`, m (unused without a tangential law).
+    pub tangential_gap: f64,
+    /// Tangential compliance `chi_T`, m/Pa (unused without a tangential law).
+    pub tangential_compliance: f64,
+}
+
+/// The state of one contact point carried between steps: plain data.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointState {
+    /// Adhesion of the current level.
+    pub beta: f64,
+    /// Normal dynamic stress `S = sigma + p0` of the previous-but-one level, Pa.
+    pub s_prev: f64,
+    /// Normal dynamic stress of the current level, Pa.
+    pub s_cur: f64,
+    /// Normal gap, m.
+    pub gap: f64,
+    /// Normal contact stress sigma (tension positive, -p0 at rest), Pa.
+    pub stress: f64,
+    /// Warm start of the compression branch's own solver (normal law alone).
+    pub warm: WarmStart,
+    /// Tangential state (with a tangential law).
+    pub shear: ShearState,
+    /// Tangential dynamic stress `T = tau - q0` of the previous-but-one level, Pa.
+    pub t_prev: f64,
+    /// Tangential dynamic stress of the current level, Pa.
+    pub t_cur: f64,
+    /// Frictional dissipation so far, `sum tau_f Delta s`, J/m^2 (with a tangential law).
+    pub friction: f64,
+    /// Energy released by damage so far, `sum (dpsi/dbeta) (-Delta beta)`, J/m^2 (with a
+    /// tangential law).
+    pub damage: f64,
+}
+
+impl PointState {
+    /// At rest at the pre-loaded equilibrium of `law`; the slider of `tangential` (when
+    /// given) holds the static shear.
+    pub fn at_rest(law: &ContactLaw, tangential: Option<&TangentialLaw>) -> Self {
+        PointState {
+            beta: 1.0,
+            s_prev: 0.0,
+            s_cur: 0.0,
+            gap: 0.0,
+            stress: -law.static_pressure,
+            warm: WarmStart::default(),
+            shear: tangential.map_or_else(ShearState::default, |tl| {
+                ShearState::at_rest(tl, law.static_pressure)
+            }),
+            t_prev: 0.0,
+            t_cur: 0.0,
+            friction: 0.0,
+            damage: 0.0,
+        }
+    }
+
+    /// Contact shear stress tau = T + q0 of the current level, Pa.
+    pub fn shear_stress(&self, tangential: &TangentialLaw) -> f64 {
+        self.shear.dynamic_stress + tangential.static_shear
+    }
+
+    fn finish_normal(&mut self, upd: InterfaceUpdate, law: &ContactLaw) {
+        self.s_prev = self.s_cur;
+        self.s_cur = upd.dynamic_stress;
+        self.gap = upd.gap;
+        self.stress = upd.dynamic_stress - law.static_pressure;
+        self.beta = upd.adhesion;
+    }
+}
+
+/// The dynamic stresses (Pa) a point update applies to its faces over the step:
+/// `[normal, tangential]` (tangential 0 without a tangential law). A stress `S` (tension
+/// positive) pulls the first face forward and the second back, each by its compliance.
+pub type Applied = [f64; 2];
+
+/// Update one contact point to the new level: the normal law alone (`tangential` `None`),
+/// or the coupled normal/tangential step. Returns the stresses to apply over the step; the
+/// state `st` becomes the new level's.
+pub fn update_point(
+    law: &ContactLaw,
+    tangential: Option<&TangentialLaw>,
+    trial: &Trial,
+    ctx: StepContext,
+    st: &mut PointState,
+) -> Result<Applied> {
+    let StepContext { scheme, dt, t } = ctx;
+    let Some(tl) = tangential else {
+        let (upd, s_app) = normal_step(
+            scheme,
+            law,
+            None,
+            trial.normal_gap,
+            trial.normal_compliance,
+            st.beta,
+            st.s_prev,
+            0.0,
+            Some(&mut st.warm),
+            dt,
+            t,
+        )?;
+        st.finish_normal(upd, law);
+        return Ok([s_app, 0.0]);
+    };
+    let input = CoupledStepInput {
+        scheme,
+        chi_n: trial.normal_compliance,
+        chi_t: trial.tangential_compliance,
+        beta_old: st.beta,
+        s_old: st.s_prev,
+        t_old: st.t_prev,
+        dt,
+        t,
+    };
+    let upd = coupled_step(
+        law,
+        tl,
+        trial.normal_gap,
+        trial.tangential_gap,
+        &st.shear,
+        &input,
+    )?;
+    let new = upd.shear.new;
+    st.friction += new.slider * (new.slip - st.shear.slip);
+    let b = upd.normal.adhesion;
+    if b != st.beta {
+        let d = (upd.normal.gap - law.critical_gap()).max(0.0);
+        let psi_beta =
+            law.traction.energy_d_adhesion(d, b) + tl.branch.spring_energy_d_adhesion(b, new.gap);
+        st.damage += psi_beta * (st.beta - b);
+    }
+    st.t_prev = st.t_cur;
+    st.t_cur = new.dynamic_stress;
+    st.shear = new;
+    st.finish_normal(upd.normal, law);
+    Ok([upd.normal_applied, upd.shear.applied])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -440,10 +490,10 @@ mod tests {
         )
         .unwrap();
         let tl = build_tangential(
-            &TangentialSpec::Rccm {
+            &TangentialSpec::Rccm(crate::law::tangential::rccm::Spec {
                 stiffness: 1e13,
                 friction: 0.4,
-            },
+            }),
             0.0,
             &law,
             "<t>",
@@ -463,53 +513,5 @@ mod tests {
         // rate-independent limit, closed interface, shear alone
         let got = adhesion_update(&law, &tl, 0.0, ut, 1.0, f64::INFINITY);
         assert!((got - w / (1e13 * ut * ut)).abs() < 1e-12);
-    }
-
-    #[test]
-    fn rigid_stick_return_mapping_clips_at_mu_n_and_slips_forward() {
-        let law = build_law(
-            1e6,
-            &CompressionSpec::Rigid,
-            &TractionSpec::Free,
-            "<t>",
-            "i",
-        )
-        .unwrap();
-        let tl = build_tangential(
-            &TangentialSpec::Coulomb {
-                friction: 0.5,
-                stiffness: None,
-            },
-            0.0,
-            &law,
-            "<t>",
-            "i",
-        )
-        .unwrap();
-        let chi = 1e-13;
-        let old = ShearState::default();
-        // below the limit: sticks, the stress is the constraint reaction
-        let u = shear_step(
-            InterfaceScheme::Average,
-            &tl,
-            0.3e6 * chi,
-            chi,
-            &old,
-            0.0,
-            1.0,
-            1e6,
-            1e6,
-        );
-        assert_eq!(u.new.state, 0.0);
-        assert_eq!(u.new.gap, 0.0);
-        assert!((u.new.dynamic_stress - 0.3e6).abs() < 1e-6);
-        // above: slips forward with tau = mu N
-        for scheme in [InterfaceScheme::Average, InterfaceScheme::Backward] {
-            let u = shear_step(scheme, &tl, 2e6 * chi, chi, &old, 0.0, 1.0, 1e6, 1e6);
-            assert_eq!(u.new.state, 1.0);
-            assert!(u.new.gap > 0.0);
-            assert_eq!(u.new.slider, 0.5e6);
-            assert_eq!(u.new.dynamic_stress, 0.5e6);
-        }
     }
 }
