@@ -7,6 +7,7 @@
 //! is its [`GridSolver`] ([`Driven`]).
 
 use crate::error::Result;
+use crate::numeric::root::brent_past;
 
 /// Grid steps between two interrupt checks.
 pub(crate) const INTERRUPT_STEPS: usize = 4096;
@@ -163,4 +164,82 @@ pub(crate) fn run<S: GridSolver>(grid: &Grid, solver: &mut S, y: &mut S::State) 
         }
     }
     Ok(k)
+}
+
+/// Most events one call of an exact solver's `advance` may locate before it reaches the
+/// end of its interval: more means the contact state chatters, and the run stops with an
+/// error ([`EventGuard`]).
+pub(crate) const MAX_EVENTS: usize = 10_000;
+
+/// The event count of one `advance` (both exact solvers): [`EventGuard::tick`] once per
+/// pass of its loop.
+#[derive(Debug, Default)]
+pub(crate) struct EventGuard(usize);
+
+impl EventGuard {
+    /// Count one pass at time `t` (s): an error after [`MAX_EVENTS`] passes, naming the
+    /// `solver` and the `state` it chatters in.
+    pub fn tick(&mut self, t: f64, solver: &str, state: impl FnOnce() -> String) -> Result<()> {
+        self.0 += 1;
+        if self.0 > MAX_EVENTS {
+            return Err(crate::error::Error::numerical(
+                t,
+                format!(
+                    "{solver}: more than {MAX_EVENTS} events in one time step (the contact \
+                     state chatters)"
+                ),
+                state(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The one event locator of the exact solvers: the root in `(0, hi]` of an event function
+/// along a trial step from time `t` (s), to machine precision.
+///
+/// `step_to(tau)` takes the trial step of length `tau` (s) and returns the event function
+/// at its end with the step; `f_lo` is the function at the step's start and `f_hi` (of the
+/// other sign, or 0) at `hi`, whose step is `s_hi`. The root is bracketed by
+/// [`brent_past`] (Illinois regula falsi safeguarded by bisection) and returned on the far
+/// side of the event: `tau` where the function has the sign of `f_hi` (or is 0), with the
+/// step of that length when it was the last such one evaluated (the caller takes it
+/// instead of stepping again; `None`: step again). `Ok(None)`: no bracket (the function is
+/// not finite, or has the same sign at both ends); an error of `step_to` stops the search
+/// and is returned.
+pub(crate) fn locate<S>(
+    mut step_to: impl FnMut(f64) -> Result<(f64, S)>,
+    hi: f64,
+    f_lo: f64,
+    f_hi: f64,
+    s_hi: S,
+) -> Result<Option<(f64, Option<S>)>> {
+    let past_side = |f: f64| f == 0.0 || (f > 0.0) == (f_hi > 0.0);
+    let mut fail = None;
+    // the last evaluated step past the event: brent_past returns the bracket end on that
+    // side
+    let mut past = (hi, Some(s_hi));
+    let tau = brent_past(
+        |tau| match step_to(tau) {
+            Ok((f, s)) => {
+                if past_side(f) {
+                    past = (tau, Some(s));
+                }
+                f
+            }
+            Err(e) => {
+                fail = Some(e);
+                f64::NAN
+            }
+        },
+        0.0,
+        hi,
+        f_lo,
+        f_hi,
+        200,
+    );
+    if let Some(e) = fail {
+        return Err(e);
+    }
+    Ok(tau.map(|tau| (tau, if past.0 == tau { past.1 } else { None })))
 }

@@ -33,7 +33,6 @@ use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::law::TangentialLaw;
 use crate::material::admittance as inv;
-use crate::numeric::root::brent_past;
 use std::sync::Arc;
 
 /// Number of interface unknowns, `y = ([u]_N, beta, [u]_T)`.
@@ -562,17 +561,11 @@ impl<'a> CoupledRun<'a> {
         t_end: f64,
         y: &mut [f64; N],
     ) -> Result<()> {
-        let mut guard = 0usize;
+        let mut guard = exact_loop::EventGuard::default();
         while t < t_end {
-            guard += 1;
-            if guard > 10_000 {
-                return Err(Error::numerical(
-                    t,
-                    "coupled interface solver: more than 10000 events in one time step \
-                     (the contact state chatters)",
-                    format!("y = {y:?}, phase {:?}", self.iface.phase),
-                ));
-            }
+            guard.tick(t, "coupled interface solver", || {
+                format!("y = {y:?}, phase {:?}", self.iface.phase)
+            })?;
             let h = t_end - t;
             let st = self.step(t, y, h, 0)?;
             let yend = st.end();
@@ -588,30 +581,37 @@ impl<'a> CoupledRun<'a> {
             let e0 = self.iface.eval(t, y);
             let g0 = self.iface.events(t, y, &e0, &self.scales);
             // earliest root among the crossing events
-            let mut best: Option<(f64, usize)> = None;
+            let mut best: Option<(f64, usize, Option<radau::Step<N>>)> = None;
             for &k in &crossing {
                 let ga = g0[k].max(1e-300);
-                let f = |hh: f64| -> f64 {
-                    if hh <= 0.0 {
-                        return ga;
-                    }
-                    match self.step(t, y, hh, 0) {
-                        Ok(s) => {
-                            let ye = s.end();
-                            let e = self.iface.eval(t + hh, &ye);
-                            self.iface.events(t + hh, &ye, &e, &self.scales)[k]
-                        }
-                        Err(_) => f64::NAN,
-                    }
+                let located = exact_loop::locate(
+                    |hh| {
+                        let s = self.step(t, y, hh, 0)?;
+                        let ye = s.end();
+                        let e = self.iface.eval(t + hh, &ye);
+                        Ok((self.iface.events(t + hh, &ye, &e, &self.scales)[k], s))
+                    },
+                    h,
+                    ga,
+                    g_end[k],
+                    st,
+                );
+                // (a trial step that fails, or no bracket: the event at the step's end)
+                let (root, s_root) = match located {
+                    Ok(Some(found)) => found,
+                    _ => (h, None),
                 };
-                let root = brent_past(f, 0.0, h, ga, g_end[k], 200).unwrap_or(h);
-                if best.map_or(true, |(r, _)| root < r) {
-                    best = Some((root, k));
+                if best.as_ref().map_or(true, |(r, _, _)| root < *r) {
+                    best = Some((root, k, s_root));
                 }
             }
-            let (hh, k) = best.unwrap_or((h, crossing[0]));
-            let hh = hh.max(f64::EPSILON * t.abs().max(h));
-            let st = if hh >= h { st } else { self.step(t, y, hh, 0)? };
+            let (root, k, s_root) = best.unwrap_or((h, crossing[0], None));
+            let hh = root.max(f64::EPSILON * t.abs().max(h));
+            let st = match s_root {
+                _ if hh >= h => st,
+                Some(s) if hh == root => s,
+                _ => self.step(t, y, hh, 0)?,
+            };
             self.accumulate(acc, t, hh, &st);
             *y = st.end();
             t = if hh >= h { t_end } else { t + hh };

@@ -636,19 +636,14 @@ impl<'a> GapRun<'a> {
         t_end: f64,
         y: &mut [f64; 2],
     ) -> Result<()> {
-        let mut guard = 0usize;
+        let mut guard = exact_loop::EventGuard::default();
         while t < t_end {
-            guard += 1;
-            if guard > 10_000 {
-                return Err(Error::numerical(
-                    t,
-                    "too many events in one time step (chattering)",
-                    format!(
-                        "gap = {:e} m, beta = {}, phase = {:?}",
-                        y[0], y[1], self.ode.phase
-                    ),
-                ));
-            }
+            guard.tick(t, "half-space solver", || {
+                format!(
+                    "gap = {:e} m, beta = {}, phase = {:?}",
+                    y[0], y[1], self.ode.phase
+                )
+            })?;
             let h = t_end - t;
             let phase = self.ode.phase;
             if phase.is_stuck() {
@@ -768,34 +763,17 @@ impl<'a> GapRun<'a> {
             if let Some((which, hi, s_hi)) = first {
                 let fa = e_start[which].min(-f64::MIN_POSITIVE);
                 let f_hi = self.ode_events(phase, t + hi, s_hi.end())[which];
-                let mut fail = None;
-                // the last evaluated step past the event (f >= 0): brent_past returns the
-                // bracket end on that side, whose step is then taken from here
-                let mut past = (hi, s_hi);
-                let tau = brent_past(
-                    |tau| match self.event_step(t, y0, tau) {
-                        Ok((s, _)) => {
-                            let f = self.ode_events(phase, t + tau, s.end())[which];
-                            if f >= 0.0 {
-                                past = (tau, s);
-                            }
-                            f
-                        }
-                        Err(e) => {
-                            fail = Some(e);
-                            f64::NAN
-                        }
+                let (tau, past) = exact_loop::locate(
+                    |tau| {
+                        let (s, _) = self.event_step(t, y0, tau)?;
+                        Ok((self.ode_events(phase, t + tau, s.end())[which], s))
                     },
-                    0.0,
                     hi,
                     fa,
                     f_hi,
-                    200,
-                );
-                if let Some(e) = fail {
-                    return Err(e);
-                }
-                let tau = tau.ok_or_else(|| {
+                    s_hi,
+                )?
+                .ok_or_else(|| {
                     Error::numerical(
                         t,
                         "cannot bracket a contact event",
@@ -817,7 +795,7 @@ impl<'a> GapRun<'a> {
                     continue;
                 }
                 if !(t + tau <= t && t == self.last_switch) {
-                    event = Some((which, tau, (past.0 == tau).then_some(past.1)));
+                    event = Some((which, tau, past));
                 }
             }
             match event {
