@@ -264,6 +264,54 @@ impl Executor {
             .map(|r| r.unwrap_or(Err(Error::Interrupted)))
             .collect()
     }
+
+    /// Run every plan on this executor's threads, each on a workspace of `pool` (one per
+    /// worker: a plan's run reuses what the run before it on the same worker kept) into a
+    /// new recorder: the recorders in the order of `plans`, failing on the first plan that
+    /// failed. The same generic path for every solver ([`crate::solver::Solver`]).
+    ///
+    /// ```
+    /// use contactwave::excitation::{ToneBurst, Window};
+    /// use contactwave::law::registry::build_law;
+    /// use contactwave::law::spec::{CompressionSpec, TractionSpec};
+    /// use contactwave::material::Material;
+    /// use contactwave::run::{Executor, Workspaces};
+    /// use contactwave::solver::{half_space::{ExactSolver, HalfSpace}, Solver};
+    /// use std::sync::Arc;
+    /// let law = Arc::new(build_law(1e5, &CompressionSpec::Rigid, &TractionSpec::Free, "<code>", "interface").unwrap());
+    /// let problems: Vec<HalfSpace> = [0.5e5, 1e5, 2e5]
+    ///     .iter()
+    ///     .map(|&a| {
+    ///         let burst = ToneBurst::new(a, 1e6, 10.0, Window::HannRamps { ramp_fraction: 0.25 });
+    ///         HalfSpace::new(Material::preset("pmma").unwrap(), None, law.clone(), Arc::new(burst))
+    ///     })
+    ///     .collect();
+    /// let plans = problems
+    ///     .iter()
+    ///     .map(|p| ExactSolver::default().plan(p))
+    ///     .collect::<Result<Vec<_>, _>>()
+    ///     .unwrap();
+    /// let outs = Executor::new().run_plans(&plans, &Workspaces::new()).unwrap();
+    /// // the larger the burst, the wider the interface opens
+    /// assert!(outs[0].max_gap < outs[1].max_gap && outs[1].max_gap < outs[2].max_gap);
+    /// ```
+    pub fn run_plans<S>(
+        &self,
+        plans: &[crate::solver::Plan<'_, S>],
+        pool: &Workspaces<S::Workspace>,
+    ) -> Result<Vec<S::Output>>
+    where
+        S: crate::solver::Solver + Sync,
+        S::Problem: Sync,
+        S::Output: Send,
+    {
+        self.try_map(plans, |plan| {
+            pool.with(|ws| {
+                let mut recorder = plan.recorder();
+                plan.run(ws, &mut recorder).map(|()| recorder)
+            })
+        })
+    }
 }
 
 /// One point of a map: skipped (`None`) once the observer cancelled or an interruption was

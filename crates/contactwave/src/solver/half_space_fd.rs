@@ -28,9 +28,14 @@ pub struct FdSolver {
 
 impl Solver for FdSolver {
     type Problem = HalfSpace;
+    /// (nothing kept from run to run)
+    type Workspace = ();
     type Output = HalfSpaceOutput;
-    fn solve(&self, problem: &HalfSpace) -> Result<HalfSpaceOutput> {
-        solve(problem, self)
+    /// (the run records into the bar stack's recorder, whose interface series become the
+    /// output: the recorder given is replaced)
+    fn run_in(&self, problem: &HalfSpace, _: &mut (), out: &mut HalfSpaceOutput) -> Result<()> {
+        *out = solve(problem, self)?;
+        Ok(())
     }
 }
 

@@ -67,9 +67,19 @@ impl Default for FdCoupledSolver {
 
 impl Solver for FdCoupledSolver {
     type Problem = CoupledHalfSpace;
+    /// (nothing kept from run to run)
+    type Workspace = ();
     type Output = CoupledOutput;
-    fn solve(&self, problem: &CoupledHalfSpace) -> Result<CoupledOutput> {
-        solve(problem, self)
+    /// (the run records the interface series of its two fields, which become the output:
+    /// the recorder given is replaced)
+    fn run_in(
+        &self,
+        problem: &CoupledHalfSpace,
+        _: &mut (),
+        out: &mut CoupledOutput,
+    ) -> Result<()> {
+        *out = solve(problem, self)?;
+        Ok(())
     }
 }
 

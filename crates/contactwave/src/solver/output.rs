@@ -65,6 +65,43 @@ pub struct HalfSpaceOutput {
     pub burst_duration: f64,
 }
 
+impl HalfSpaceOutput {
+    /// Empty for a new run of output step `dt` (s) and burst duration `burst_duration`
+    /// (s): every series cleared with its allocation kept, every scalar reset.
+    pub fn reset(&mut self, dt: f64, burst_duration: f64) {
+        let mut fresh = HalfSpaceOutput {
+            dt,
+            burst_duration,
+            ..Default::default()
+        };
+        for (new, old) in [
+            (&mut fresh.t, &mut self.t),
+            (&mut fresh.gap, &mut self.gap),
+            (&mut fresh.contact_stress, &mut self.contact_stress),
+            (&mut fresh.beta, &mut self.beta),
+            (&mut fresh.incident_stress, &mut self.incident_stress),
+            (&mut fresh.reflected_stress, &mut self.reflected_stress),
+            (&mut fresh.transmitted_stress, &mut self.transmitted_stress),
+            (
+                &mut fresh.reflected_displacement,
+                &mut self.reflected_displacement,
+            ),
+            (
+                &mut fresh.incident_displacement,
+                &mut self.incident_displacement,
+            ),
+            (
+                &mut fresh.transmitted_displacement,
+                &mut self.transmitted_displacement,
+            ),
+        ] {
+            std::mem::swap(new, old);
+            new.clear();
+        }
+        *self = fresh;
+    }
+}
+
 /// What the solver records every `record_every` steps.
 #[derive(Debug, Clone, Default)]
 pub struct FdOutput {

@@ -178,13 +178,18 @@ fn solve_with(
 ) -> Result<HalfSpaceOutput> {
     let problem = half_space(scenario);
     match scenario.spec.solver.method {
-        Method::Exact => ExactSolver {
-            settings: HalfSpaceSettings {
-                summary_only,
-                ..settings(scenario)
-            },
+        Method::Exact => {
+            let plan = ExactSolver {
+                settings: HalfSpaceSettings {
+                    summary_only,
+                    ..settings(scenario)
+                },
+            }
+            .plan(&problem)?;
+            let mut out = plan.recorder();
+            plan.run(ws, &mut out)?;
+            Ok(out)
         }
-        .solve_in(&problem, ws),
         Method::Fd => solve_fd(scenario, &problem),
     }
 }

@@ -679,8 +679,13 @@ fn mesh_with(segments: &[Segment], speed: &[f64], dt: f64, exact: impl Fn(usize)
 
 impl Solver for FdRun {
     type Problem = BarStack;
+    /// (nothing kept from run to run)
+    type Workspace = ();
     type Output = FdOutput;
-    fn solve(&self, problem: &BarStack) -> Result<FdOutput> {
-        problem.run(self)
+    /// (the records are sized for the run's probes and levels and replace the recorder
+    /// given)
+    fn run_in(&self, problem: &BarStack, _: &mut (), out: &mut FdOutput) -> Result<()> {
+        *out = problem.run(self)?;
+        Ok(())
     }
 }

@@ -176,6 +176,25 @@ pub struct CoupledOutput {
 }
 
 impl CoupledOutput {
+    /// Empty for a new run of output step `dt` (s) and burst duration `burst_duration`
+    /// (s): every series cleared with its allocation kept, every scalar reset.
+    pub fn reset(&mut self, dt: f64, burst_duration: f64) {
+        let mut fresh = CoupledOutput::default();
+        std::mem::swap(&mut fresh.normal, &mut self.normal);
+        std::mem::swap(&mut fresh.shear, &mut self.shear);
+        fresh.normal.reset(dt, burst_duration);
+        fresh.shear.reset(dt, burst_duration);
+        for (new, old) in [
+            (&mut fresh.slip, &mut self.slip),
+            (&mut fresh.friction_limit, &mut self.friction_limit),
+            (&mut fresh.slip_state, &mut self.slip_state),
+        ] {
+            std::mem::swap(new, old);
+            new.clear();
+        }
+        *self = fresh;
+    }
+
     /// Energy brought by both incident waves, J/m^2.
     pub fn incident_energy(&self) -> f64 {
         self.normal.energy.incident + self.shear.energy.incident
@@ -203,9 +222,16 @@ pub struct CoupledSolver {
 
 impl Solver for CoupledSolver {
     type Problem = CoupledHalfSpace;
+    /// (nothing kept from run to run)
+    type Workspace = ();
     type Output = CoupledOutput;
-    fn solve(&self, problem: &CoupledHalfSpace) -> Result<CoupledOutput> {
-        CoupledRun::new(problem, &self.settings).run()
+    fn run_in(
+        &self,
+        problem: &CoupledHalfSpace,
+        _: &mut (),
+        out: &mut CoupledOutput,
+    ) -> Result<()> {
+        CoupledRun::new(problem, &self.settings).run(out)
     }
 }
 
@@ -673,7 +699,7 @@ impl<'a> CoupledRun<'a> {
                 || (y[0]).abs() < 1e-9 * self.scales.gap)
     }
 
-    fn run(mut self) -> Result<CoupledOutput> {
+    fn run(mut self, recorder: &mut CoupledOutput) -> Result<()> {
         let h = self.h;
         let grid = Grid::new(
             h,
@@ -682,11 +708,9 @@ impl<'a> CoupledRun<'a> {
             self.settings.tail_periods,
             std::mem::take(&mut self.breaks),
         );
-        let mut out = CoupledOutput::default();
-        out.normal.dt = h;
-        out.shear.dt = h;
-        out.normal.burst_duration = self.duration;
-        out.shear.burst_duration = self.duration;
+        // the recorder's series, emptied (their allocations kept for this run)
+        let mut out = std::mem::take(recorder);
+        out.reset(h, self.duration);
         let acc = Integrals::default();
         let mut y = [0.0, 1.0, 0.0];
         // make the rest phase consistent (e.g. p0 = 0 with friction)
@@ -742,7 +766,8 @@ impl<'a> CoupledRun<'a> {
         out.slip_events = self.slip_events;
         out.slip_time_in_burst = acc.slip_in_burst;
         out.wave_energy = acc.wave_energy;
-        Ok(out)
+        *recorder = out;
+        Ok(())
     }
 }
 

@@ -191,10 +191,24 @@ impl HalfSpace {
         ws: &mut Workspace,
         paths: Paths,
     ) -> Result<HalfSpaceOutput> {
+        let mut out = HalfSpaceOutput::default();
+        self.run_taking(settings, ws, paths, &mut out)?;
+        Ok(out)
+    }
+
+    /// One run taking the `paths` allowed, recording into `out` (its series' allocations
+    /// reused).
+    fn run_taking(
+        &self,
+        settings: &HalfSpaceSettings,
+        ws: &mut Workspace,
+        paths: Paths,
+        out: &mut HalfSpaceOutput,
+    ) -> Result<()> {
         let mut run = GapRun::new(self, settings, ws);
-        let out = run.run(paths);
+        let done = run.run(paths, out);
         ws.keep(&mut run.ode.grid);
-        out
+        done
     }
 }
 
@@ -207,16 +221,15 @@ pub struct ExactSolver {
 
 impl Solver for ExactSolver {
     type Problem = HalfSpace;
+    type Workspace = Workspace;
     type Output = HalfSpaceOutput;
-    fn solve(&self, problem: &HalfSpace) -> Result<HalfSpaceOutput> {
-        problem.solve(&self.settings)
-    }
-}
-
-impl ExactSolver {
-    /// [`Solver::solve`] on the caller's workspace ([`HalfSpace::solve_in`]).
-    pub fn solve_in(&self, problem: &HalfSpace, ws: &mut Workspace) -> Result<HalfSpaceOutput> {
-        problem.solve_in(&self.settings, ws)
+    fn run_in(
+        &self,
+        problem: &HalfSpace,
+        ws: &mut Workspace,
+        out: &mut HalfSpaceOutput,
+    ) -> Result<()> {
+        problem.run_taking(&self.settings, ws, Paths::All, out)
     }
 }
 
@@ -865,7 +878,7 @@ impl<'a> GapRun<'a> {
     }
 
     /// Run over the grid, taking the `paths` allowed.
-    fn run(&mut self, paths: Paths) -> Result<HalfSpaceOutput> {
+    fn run(&mut self, paths: Paths, recorder: &mut HalfSpaceOutput) -> Result<()> {
         let grid = Grid::new(
             self.h,
             self.duration,
@@ -874,11 +887,9 @@ impl<'a> GapRun<'a> {
             self.hs.incident.breakpoints(),
         );
         let h = self.h;
-        let mut out = HalfSpaceOutput {
-            dt: h,
-            burst_duration: self.duration,
-            ..Default::default()
-        };
+        // the recorder's series, emptied (their allocations kept for this run)
+        let mut out = std::mem::take(recorder);
+        out.reset(h, self.duration);
         let summary_only = self.settings.summary_only;
         // the shortest record, plus the period of rest that ends an automatic tail (an
         // interface at rest by the shortest tail's end: no vector grows in the run)
@@ -924,6 +935,7 @@ impl<'a> GapRun<'a> {
         out.open_time_in_burst = acc.open_in_burst;
         out.max_gap = self.max_gap;
         out.events = self.events;
-        Ok(out)
+        *recorder = out;
+        Ok(())
     }
 }

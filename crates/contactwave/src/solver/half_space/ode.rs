@@ -41,7 +41,7 @@ pub(super) struct IncidentGrid {
 /// ([`IncidentGrid`]), used again as it is by a run of the same incident wave
 /// ([`Excitation::grid_key`]) on the same grid (the runs of a sweep over the interface or
 /// the pressure, of an identification, of a repeated scenario), its buffer (up to 8 MB)
-/// by any other. Owned by the caller, one per worker ([`super::HalfSpace::solve_in`]).
+/// by any other. Owned by the caller, one per worker (a [`crate::solver::Plan`] run on it).
 #[derive(Debug, Default)]
 pub struct Workspace {
     /// The kept table's key (empty: none).
