@@ -55,8 +55,8 @@ fn springs(
     let p0 = 50e6;
     let law = build_law(
         p0,
-        &CompressionSpec::Linear { stiffness: kn },
-        &TractionSpec::Linear { stiffness: kn },
+        &CompressionSpec::Linear(contactwave::law::compression::linear::Spec { stiffness: kn }),
+        &TractionSpec::Linear(contactwave::law::traction::linear::Spec { stiffness: kn }),
         "<test>",
         "interface",
     )
@@ -225,8 +225,8 @@ fn energy_audit_closes_with_clapping_friction_and_damage() {
     let cases: Vec<(&str, CompressionSpec, TractionSpec, TangentialSpec)> = vec![
         (
             "Signorini + Coulomb (rigid stick)",
-            CompressionSpec::Rigid,
-            TractionSpec::Free,
+            CompressionSpec::Rigid(Default::default()),
+            TractionSpec::Free(Default::default()),
             TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                 friction: 0.3,
                 stiffness: None,
@@ -234,8 +234,10 @@ fn energy_audit_closes_with_clapping_friction_and_damage() {
         ),
         (
             "linear + Coulomb (elastic stick)",
-            CompressionSpec::Linear { stiffness: 5e14 },
-            TractionSpec::Free,
+            CompressionSpec::Linear(contactwave::law::compression::linear::Spec {
+                stiffness: 5e14,
+            }),
+            TractionSpec::Free(Default::default()),
             TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                 friction: 0.3,
                 stiffness: Some(2e14),
@@ -243,12 +245,12 @@ fn energy_audit_closes_with_clapping_friction_and_damage() {
         ),
         (
             "Signorini + RCCM (damage, friction)",
-            CompressionSpec::Rigid,
-            TractionSpec::Rccm {
+            CompressionSpec::Rigid(Default::default()),
+            TractionSpec::Rccm(contactwave::law::traction::rccm::Spec {
                 stiffness: 1e14,
                 energy: 0.02,
                 viscosity: 0.0,
-            },
+            }),
             TangentialSpec::Rccm(contactwave::law::tangential::rccm::Spec {
                 stiffness: 5e13,
                 friction: 0.3,

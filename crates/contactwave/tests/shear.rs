@@ -45,8 +45,8 @@ fn rigid_stick_clipping_matches_closed_form() {
     let burst = Arc::new(ToneBurst::new(a, f, 10.0, Window::Rectangular));
     let p = problem(
         p0,
-        CompressionSpec::Rigid,
-        TractionSpec::Free,
+        CompressionSpec::Rigid(Default::default()),
+        TractionSpec::Free(Default::default()),
         TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
             friction: mu,
             stiffness: None,
@@ -121,14 +121,14 @@ fn no_shear_reproduces_the_normal_solver() {
             ramp_fraction: 0.25,
         },
     ));
-    let trac = TractionSpec::Rccm {
+    let trac = TractionSpec::Rccm(contactwave::law::traction::rccm::Spec {
         stiffness: 2e13,
         energy: 0.1,
         viscosity: 0.0,
-    };
+    });
     let p = problem(
         0.82e6,
-        CompressionSpec::Rigid,
+        CompressionSpec::Rigid(Default::default()),
         trac,
         TangentialSpec::Rccm(contactwave::law::tangential::rccm::Spec {
             stiffness: 1e13,
@@ -191,12 +191,12 @@ fn energy_audit_closes_on_combined_loading() {
         (
             "rccm full, damaging, normal + shear",
             0.82e6,
-            CompressionSpec::Rigid,
-            TractionSpec::Rccm {
+            CompressionSpec::Rigid(Default::default()),
+            TractionSpec::Rccm(contactwave::law::traction::rccm::Spec {
                 stiffness: 2e13,
                 energy: 0.1,
                 viscosity: 0.0,
-            },
+            }),
             TangentialSpec::Rccm(contactwave::law::tangential::rccm::Spec {
                 stiffness: 1e13,
                 friction: 0.4,
@@ -208,12 +208,12 @@ fn energy_audit_closes_on_combined_loading() {
         (
             "rccm full, viscous",
             0.82e6,
-            CompressionSpec::Rigid,
-            TractionSpec::Rccm {
+            CompressionSpec::Rigid(Default::default()),
+            TractionSpec::Rccm(contactwave::law::traction::rccm::Spec {
                 stiffness: 2e13,
                 energy: 0.1,
                 viscosity: 1e-7,
-            },
+            }),
             TangentialSpec::Rccm(contactwave::law::tangential::rccm::Spec {
                 stiffness: 1e13,
                 friction: 0.4,
@@ -225,8 +225,8 @@ fn energy_audit_closes_on_combined_loading() {
         (
             "power law + elastic-stick coulomb, static shear",
             5e6,
-            CompressionSpec::Power { c: 4e9, m: 0.5 },
-            TractionSpec::Free,
+            CompressionSpec::Power(contactwave::law::compression::power::Spec { c: 4e9, m: 0.5 }),
+            TractionSpec::Free(Default::default()),
             TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                 friction: 0.5,
                 stiffness: Some(5e12),
@@ -238,8 +238,10 @@ fn energy_audit_closes_on_combined_loading() {
         (
             "linear compression + rigid coulomb, clapping",
             1e6,
-            CompressionSpec::Linear { stiffness: 1e13 },
-            TractionSpec::Free,
+            CompressionSpec::Linear(contactwave::law::compression::linear::Spec {
+                stiffness: 1e13,
+            }),
+            TractionSpec::Free(Default::default()),
             TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                 friction: 0.6,
                 stiffness: None,
@@ -251,8 +253,8 @@ fn energy_audit_closes_on_combined_loading() {
         (
             "linear tangential spring",
             1e6,
-            CompressionSpec::Rigid,
-            TractionSpec::Free,
+            CompressionSpec::Rigid(Default::default()),
+            TractionSpec::Free(Default::default()),
             TangentialSpec::Linear(contactwave::law::tangential::linear::Spec { stiffness: 1e13 }),
             0.5e6,
             0.5e6,
@@ -328,8 +330,10 @@ fn static_shear_alone_keeps_the_interface_at_rest() {
     ] {
         let p = problem(
             5e6,
-            CompressionSpec::Linear { stiffness: 1e13 },
-            TractionSpec::Free,
+            CompressionSpec::Linear(contactwave::law::compression::linear::Spec {
+                stiffness: 1e13,
+            }),
+            TractionSpec::Free(Default::default()),
             tang.clone(),
             q0,
             silent(f),

@@ -106,8 +106,8 @@ fn rigid_stick_clipping_fd_matches_exact() {
     let burst = Arc::new(ToneBurst::new(a, f, 10.0, Window::Rectangular));
     let p = problem(
         p0,
-        CompressionSpec::Rigid,
-        TractionSpec::Free,
+        CompressionSpec::Rigid(Default::default()),
+        TractionSpec::Free(Default::default()),
         TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
             friction: mu,
             stiffness: None,
@@ -172,12 +172,12 @@ fn full_rccm_fd_matches_exact_to_one_percent() {
     let f = 1e6;
     let p = problem(
         0.82e6,
-        CompressionSpec::Rigid,
-        TractionSpec::Rccm {
+        CompressionSpec::Rigid(Default::default()),
+        TractionSpec::Rccm(contactwave::law::traction::rccm::Spec {
             stiffness: 2e13,
             energy: 0.1,
             viscosity: 0.0,
-        },
+        }),
         TangentialSpec::Rccm(contactwave::law::tangential::rccm::Spec {
             stiffness: 1e13,
             friction: 0.4,
@@ -248,12 +248,12 @@ fn fd_energy_audit_closes() {
             "full RCCM",
             problem(
                 0.82e6,
-                CompressionSpec::Rigid,
-                TractionSpec::Rccm {
+                CompressionSpec::Rigid(Default::default()),
+                TractionSpec::Rccm(contactwave::law::traction::rccm::Spec {
                     stiffness: 2e13,
                     energy: 0.1,
                     viscosity: 0.0,
-                },
+                }),
                 TangentialSpec::Rccm(contactwave::law::tangential::rccm::Spec {
                     stiffness: 1e13,
                     friction: 0.4,
@@ -268,8 +268,11 @@ fn fd_energy_audit_closes() {
             "power law + elastic-stick coulomb, static shear",
             problem(
                 5e6,
-                CompressionSpec::Power { c: 4e9, m: 0.5 },
-                TractionSpec::Free,
+                CompressionSpec::Power(contactwave::law::compression::power::Spec {
+                    c: 4e9,
+                    m: 0.5,
+                }),
+                TractionSpec::Free(Default::default()),
                 TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                     friction: 0.3,
                     stiffness: Some(5e12),
@@ -321,8 +324,10 @@ fn friction_limits_free_and_bonded() {
     for (mu, transmit) in [(0.0, false), (1e3, true)] {
         let p = problem(
             1e6,
-            CompressionSpec::Linear { stiffness: 1e13 },
-            TractionSpec::Free,
+            CompressionSpec::Linear(contactwave::law::compression::linear::Spec {
+                stiffness: 1e13,
+            }),
+            TractionSpec::Free(Default::default()),
             TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
                 friction: mu,
                 stiffness: None,
@@ -378,12 +383,12 @@ fn no_shear_reproduces_the_normal_fd() {
     let f = 1e6;
     let p = problem(
         0.82e6,
-        CompressionSpec::Rigid,
-        TractionSpec::Rccm {
+        CompressionSpec::Rigid(Default::default()),
+        TractionSpec::Rccm(contactwave::law::traction::rccm::Spec {
             stiffness: 2e13,
             energy: 0.1,
             viscosity: 1e-8,
-        },
+        }),
         TangentialSpec::Coulomb(contactwave::law::tangential::coulomb::Spec {
             friction: 0.5,
             stiffness: None,

@@ -43,8 +43,8 @@ fn burst() -> Arc<dyn Excitation> {
 fn problem(tang: TangentialSpec) -> CoupledHalfSpace {
     let law = build_law(
         P0,
-        &CompressionSpec::Rigid,
-        &TractionSpec::Free,
+        &CompressionSpec::Rigid(Default::default()),
+        &TractionSpec::Free(Default::default()),
         "<test>",
         "i",
     )
@@ -240,8 +240,8 @@ fn without_weakening_it_is_coulomb_bit_for_bit() {
 fn parameters_are_validated() {
     let law = build_law(
         P0,
-        &CompressionSpec::Rigid,
-        &TractionSpec::Free,
+        &CompressionSpec::Rigid(Default::default()),
+        &TractionSpec::Free(Default::default()),
         "f.toml",
         "i",
     )

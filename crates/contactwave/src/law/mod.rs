@@ -1,5 +1,5 @@
 //! Contact laws: one *compression branch* joined to one *traction branch* at the gap
-//! `[u]_c` where the interface stress reaches zero (model.md section 3; thesis eqs.
+//! `[u]_c` where the interface stress reaches zero (model.md section 2; thesis eqs.
 //! 2.10-2.17, 1.3, 4.4, 5.4).
 //!
 //! Conventions: stress `sigma` is tension-positive, the gap `[u]` is opening-positive and
@@ -390,8 +390,8 @@ impl ContactLaw {
     /// // w = 0.1 J/m^2, rate-independent damage
     /// let law = build_law(
     ///     1e6,
-    ///     &CompressionSpec::Linear { stiffness: 1e12 },
-    ///     &TractionSpec::Rccm { stiffness: 2e13, energy: 0.1, viscosity: 0.0 },
+    ///     &CompressionSpec::Linear(contactwave::law::compression::linear::Spec { stiffness: 1e12 }),
+    ///     &TractionSpec::Rccm(contactwave::law::traction::rccm::Spec { stiffness: 2e13, energy: 0.1, viscosity: 0.0 }),
     ///     "<doc>",
     ///     "interface",
     /// )

@@ -1,6 +1,8 @@
-//! A law's scenario parameters: the handle `[set]` and sweep axes change them through, and
-//! the range checks every law's builder uses (errors name file, field, value and the allowed
-//! range).
+//! A law's scenario parameters: what each law file's `Spec` does ([`LawSpec`]: validate,
+//! build, name its parameters and their units), the table that registers the laws of one
+//! kind ([`law_table!`]), the handle `[set]` and sweep axes change a parameter through, and
+//! the range checks every law's builder uses (errors name file, field, value and the
+//! allowed range).
 
 use crate::error::{Error, Result};
 
@@ -12,6 +14,80 @@ pub enum ParamMut<'a> {
     /// An optional number (setting it gives it a value).
     OptF64(&'a mut Option<f64>),
 }
+
+/// What a law's parameters, as a scenario file gives them, do: each law file's `Spec`
+/// implements it, and one line of its kind's [`law_table!`] registers it.
+pub trait LawSpec {
+    /// The branch it builds: `dyn CompressionBranch`, `dyn TractionBranch` or
+    /// `dyn TangentialBranch`.
+    type Branch: ?Sized;
+    /// Validate the parameters and build the branch for the interface's static pressure
+    /// `p0` (Pa: where a compression branch starts; the other kinds do not read it);
+    /// errors name `file` and the key `prefix.<parameter>` (`prefix` the law's dotted key,
+    /// e.g. `interface.compression`), the value and the allowed range.
+    fn build(&self, p0: f64, file: &str, prefix: &str) -> Result<Box<Self::Branch>>;
+    /// The parameter `name`, for `[set]` and sweep axes; `None` if the law has none of
+    /// that name (the default: no parameter can be set).
+    fn param_mut(&mut self, _name: &str) -> Option<ParamMut<'_>> {
+        None
+    }
+    /// The SI unit of a parameter with one (`"Pa/m"`, `"m"`), so that unit strings
+    /// (`"0.1 um"`) are read; `None` for a dimensionless or unknown parameter.
+    fn unit(_name: &str) -> Option<&'static str>
+    where
+        Self: Sized,
+    {
+        None
+    }
+}
+
+/// The table of the laws of one kind: `law_table! { (docs) Name: Branch { (docs)
+/// Variant(module::Spec), ... } }` makes the scenario's `{ law = "variant", ... }` (snake
+/// case) of that kind a law of that file: it generates the enum `Name` (serde, tagged by
+/// `law`) and its `build`, `param_mut` and `unit`, each dispatching to the file's
+/// [`LawSpec`].
+macro_rules! law_table {
+    (
+        $(#[$edoc:meta])*
+        $name:ident: $branch:ty {
+            $($(#[$doc:meta])* $variant:ident($spec:ty),)*
+        }
+    ) => {
+        $(#[$edoc])*
+        #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+        #[serde(tag = "law", rename_all = "snake_case")]
+        pub enum $name {
+            $($(#[$doc])* $variant($spec),)*
+        }
+
+        impl $name {
+            /// Validate and build the branch for static pressure `p0` (Pa), errors naming
+            /// `file` and `prefix.<parameter>` (see [`crate::law::param::LawSpec::build`]).
+            pub fn build(
+                &self,
+                p0: f64,
+                file: &str,
+                prefix: &str,
+            ) -> $crate::error::Result<Box<$branch>> {
+                match self {
+                    $($name::$variant(s) => $crate::law::param::LawSpec::build(s, p0, file, prefix),)*
+                }
+            }
+            /// The parameter `name` of the law (see
+            /// [`crate::law::param::LawSpec::param_mut`]).
+            pub fn param_mut(&mut self, name: &str) -> Option<$crate::law::param::ParamMut<'_>> {
+                match self {
+                    $($name::$variant(s) => $crate::law::param::LawSpec::param_mut(s, name),)*
+                }
+            }
+            /// The SI unit of the parameter `name` in any law of the table that has it.
+            pub fn unit(name: &str) -> Option<&'static str> {
+                None$(.or_else(|| <$spec as $crate::law::param::LawSpec>::unit(name)))*
+            }
+        }
+    };
+}
+pub(crate) use law_table;
 
 /// `v` finite and > 0, else an error naming `file`, `field` and the value.
 pub(crate) fn positive(file: &str, field: &str, v: f64) -> Result<()> {
@@ -38,5 +114,15 @@ pub(crate) fn non_negative(file: &str, field: &str, v: f64) -> Result<()> {
             v,
             "must be a finite number >= 0",
         ))
+    }
+}
+
+/// `v` finite and in (0, 1) (an exponent or a fraction), else an error naming `file`,
+/// `field` and the value.
+pub(crate) fn exponent(file: &str, field: &str, v: f64) -> Result<()> {
+    if v.is_finite() && v > 0.0 && v < 1.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(file, field, v, "must lie in (0, 1)"))
     }
 }

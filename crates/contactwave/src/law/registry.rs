@@ -1,157 +1,13 @@
-//! Where law names meet law types: scenario specs become boxed branches. Adding a
-//! compression or traction law = one new file in `compression/` or `traction/` + one match
-//! arm here (and its spec variant and parameter names); a tangential law registers itself
-//! in the table of `tangential/mod.rs`.
+//! Where the law tables meet the interface: whole contact laws built from a scenario's
+//! specs. Each law registers itself in its kind's table (`compression/mod.rs`,
+//! `traction/mod.rs`, `tangential/mod.rs`); nothing here names a law, except the checks
+//! that tie a tangential branch to the normal law (the full RCCM branch needs the RCCM
+//! traction branch).
 
-use super::compression::{self, ModifiedPower, StiffnessCurve};
-use super::param::{non_negative, positive};
+use super::param::non_negative;
 use super::spec::{CompressionSpec, TangentialSpec, TractionSpec};
-use super::traction;
-use super::{CompressionBranch, ContactLaw, TangentialBranch, TangentialLaw, TractionBranch};
+use super::{ContactLaw, TangentialLaw};
 use crate::error::{Error, Result};
-
-fn exponent(file: &str, field: &str, v: f64) -> Result<()> {
-    if v.is_finite() && v > 0.0 && v < 1.0 {
-        Ok(())
-    } else {
-        Err(Error::invalid(file, field, v, "must lie in (0, 1)"))
-    }
-}
-
-/// Build a compression branch for static pressure `p0` (Pa), validating its parameters.
-/// `prefix` is the dotted key of the spec (for messages), e.g. `interface.compression`.
-pub fn build_compression(
-    spec: &CompressionSpec,
-    p0: f64,
-    file: &str,
-    prefix: &str,
-) -> Result<Box<dyn CompressionBranch>> {
-    let key = |k: &str| format!("{prefix}.{k}");
-    Ok(match spec {
-        CompressionSpec::Rigid => Box::new(compression::Rigid {
-            static_pressure: p0,
-        }),
-        CompressionSpec::Linear { stiffness } => {
-            positive(file, &key("stiffness"), *stiffness)?;
-            Box::new(compression::Linear {
-                static_pressure: p0,
-                stiffness: *stiffness,
-            })
-        }
-        CompressionSpec::Quadratic { k0, k1 } => {
-            positive(file, &key("k0"), *k0)?;
-            if !k1.is_finite() {
-                return Err(Error::invalid(file, key("k1"), k1, "must be finite"));
-            }
-            Box::new(compression::Quadratic::new(p0, *k0, *k1).ok_or_else(|| {
-                Error::invalid(
-                    file,
-                    key("k1"),
-                    k1,
-                    format!(
-                        "must be <= k0^2 / (4 p0) = {:e} so that the stress reaches zero",
-                        k0 * k0 / (4.0 * p0)
-                    ),
-                )
-            })?)
-        }
-        CompressionSpec::Power { c, m } => {
-            positive(file, &key("c"), *c)?;
-            exponent(file, &key("m"), *m)?;
-            Box::new(compression::Power {
-                static_pressure: p0,
-                c: *c,
-                m: *m,
-            })
-        }
-        CompressionSpec::ModifiedPower {
-            c,
-            m,
-            transition_pressure,
-            zero_pressure_fraction,
-        } => {
-            positive(file, &key("c"), *c)?;
-            exponent(file, &key("m"), *m)?;
-            positive(file, &key("transition_pressure"), *transition_pressure)?;
-            exponent(
-                file,
-                &key("zero_pressure_fraction"),
-                *zero_pressure_fraction,
-            )?;
-            let k = compression::modified_power::ModifiedPowerStiffness::new(
-                *c,
-                *m,
-                *transition_pressure,
-                *zero_pressure_fraction,
-            );
-            let b: ModifiedPower = StiffnessCurve::new(k, p0, "modified_power");
-            Box::new(b)
-        }
-        CompressionSpec::Table {
-            pressure,
-            stiffness,
-        } => {
-            if pressure.len() < 2 || pressure.len() != stiffness.len() {
-                return Err(Error::invalid(
-                    file,
-                    key("pressure"),
-                    format!("{} values (stiffness: {})", pressure.len(), stiffness.len()),
-                    "pressure and stiffness need the same length, at least 2",
-                ));
-            }
-            for (i, p) in pressure.iter().enumerate() {
-                non_negative(file, &format!("{}[{i}]", key("pressure")), *p)?;
-                if i > 0 && !(*p > pressure[i - 1]) {
-                    return Err(Error::invalid(
-                        file,
-                        format!("{}[{i}]", key("pressure")),
-                        p,
-                        "pressures must be strictly increasing",
-                    ));
-                }
-            }
-            for (i, k) in stiffness.iter().enumerate() {
-                positive(file, &format!("{}[{i}]", key("stiffness")), *k)?;
-            }
-            let t = compression::table::TableStiffness::new(pressure, stiffness)
-                .ok_or_else(|| Error::invalid(file, key("pressure"), "table", "invalid table"))?;
-            Box::new(StiffnessCurve::new(t, p0, "table"))
-        }
-    })
-}
-
-/// Build a traction branch, validating its parameters.
-pub fn build_traction(
-    spec: &TractionSpec,
-    file: &str,
-    prefix: &str,
-) -> Result<Box<dyn TractionBranch>> {
-    let key = |k: &str| format!("{prefix}.{k}");
-    Ok(match spec {
-        TractionSpec::Free => Box::new(traction::Free),
-        TractionSpec::Linear { stiffness } => {
-            positive(file, &key("stiffness"), *stiffness)?;
-            Box::new(traction::Linear {
-                stiffness: *stiffness,
-            })
-        }
-        TractionSpec::Rccm {
-            stiffness,
-            energy,
-            viscosity,
-        } => {
-            positive(file, &key("stiffness"), *stiffness)?;
-            non_negative(file, &key("energy"), *energy)?;
-            non_negative(file, &key("viscosity"), *viscosity)?;
-            Box::new(traction::Rccm {
-                stiffness: *stiffness,
-                energy: *energy,
-                viscosity: *viscosity,
-            })
-        }
-        TractionSpec::Bonded => Box::new(traction::Bonded),
-    })
-}
 
 /// Build a whole contact law for static pressure `p0` (Pa, >= 0), validating every
 /// parameter; `prefix` is the dotted key of the interface (for messages), e.g.
@@ -160,15 +16,15 @@ pub fn build_traction(
 /// ```
 /// use contactwave::law::registry::build_law;
 /// use contactwave::law::spec::{CompressionSpec, TractionSpec};
-/// let law = build_law(0.1e6, &CompressionSpec::Rigid, &TractionSpec::Free, "<doc>", "interface")
+/// let law = build_law(0.1e6, &CompressionSpec::Rigid(Default::default()), &TractionSpec::Free(Default::default()), "<doc>", "interface")
 ///     .unwrap();
 /// assert_eq!(law.critical_gap(), 0.0); // Signorini: contact is lost at [u] = 0
 /// assert!(law.compression.stiffness_at_rest().is_infinite());
 /// // an invalid parameter is an error naming its dotted key
 /// let err = build_law(
 ///     0.1e6,
-///     &CompressionSpec::Linear { stiffness: -1.0 },
-///     &TractionSpec::Free,
+///     &CompressionSpec::Linear(contactwave::law::compression::linear::Spec { stiffness: -1.0 }),
+///     &TractionSpec::Free(Default::default()),
 ///     "<doc>",
 ///     "interface",
 /// )
@@ -185,19 +41,9 @@ pub fn build_law(
     non_negative(file, &format!("{prefix}.static_pressure"), p0)?;
     Ok(ContactLaw {
         static_pressure: p0,
-        compression: build_compression(compression, p0, file, &format!("{prefix}.compression"))?,
-        traction: build_traction(traction, file, &format!("{prefix}.traction"))?,
+        compression: compression.build(p0, file, &format!("{prefix}.compression"))?,
+        traction: traction.build(p0, file, &format!("{prefix}.traction"))?,
     })
-}
-
-/// Build a tangential branch, validating its parameters (each law's own
-/// [`crate::law::tangential::TangentialLawSpec::build`]).
-pub fn build_tangential_branch(
-    spec: &TangentialSpec,
-    file: &str,
-    prefix: &str,
-) -> Result<Box<dyn TangentialBranch>> {
-    spec.build(file, prefix)
 }
 
 /// Build the tangential part of a law for static shear `q0` (Pa), checking it against the
@@ -208,7 +54,7 @@ pub fn build_tangential_branch(
 /// ```
 /// use contactwave::law::registry::{build_law, build_tangential};
 /// use contactwave::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
-/// let normal = build_law(10e6, &CompressionSpec::Rigid, &TractionSpec::Free, "<doc>", "interface")
+/// let normal = build_law(10e6, &CompressionSpec::Rigid(Default::default()), &TractionSpec::Free(Default::default()), "<doc>", "interface")
 ///     .unwrap();
 /// use contactwave::law::tangential::coulomb;
 /// let coulomb = TangentialSpec::Coulomb(coulomb::Spec { friction: 0.3, stiffness: None });
@@ -226,7 +72,7 @@ pub fn build_tangential(
     prefix: &str,
 ) -> Result<TangentialLaw> {
     let branch_key = format!("{prefix}.tangential");
-    let branch = build_tangential_branch(spec, file, &branch_key)?;
+    let branch = spec.build(normal.static_pressure, file, &branch_key)?;
     if !q0.is_finite() {
         return Err(Error::invalid(
             file,

@@ -110,49 +110,35 @@ impl Fields for InterfaceSpec {
     }
 }
 
+/// The slot of a law parameter by its own name (each law file's `param_mut`).
+fn law_slot<'a>(
+    path: &[&str],
+    param: impl FnOnce(&str) -> Option<ParamMut<'a>>,
+) -> Option<Slot<'a>> {
+    match path {
+        [name] => param(name).map(|p| match p {
+            ParamMut::F64(x) => Slot::F64(x),
+            ParamMut::OptF64(x) => Slot::OptF64(x),
+        }),
+        _ => None,
+    }
+}
+
 impl Fields for CompressionSpec {
     fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
-        match self {
-            CompressionSpec::Rigid | CompressionSpec::Table { .. } => None,
-            CompressionSpec::Linear { stiffness } => leaf!(path; F64 "stiffness" => stiffness),
-            CompressionSpec::Quadratic { k0, k1 } => leaf!(path; F64 "k0" => k0, F64 "k1" => k1),
-            CompressionSpec::Power { c, m } => leaf!(path; F64 "c" => c, F64 "m" => m),
-            CompressionSpec::ModifiedPower {
-                c,
-                m,
-                transition_pressure,
-                zero_pressure_fraction,
-            } => leaf!(path; F64 "c" => c, F64 "m" => m,
-                       F64 "transition_pressure" => transition_pressure,
-                       F64 "zero_pressure_fraction" => zero_pressure_fraction),
-        }
+        law_slot(path, |name| self.param_mut(name))
     }
 }
 
 impl Fields for TractionSpec {
     fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
-        match self {
-            TractionSpec::Free | TractionSpec::Bonded => None,
-            TractionSpec::Linear { stiffness } => leaf!(path; F64 "stiffness" => stiffness),
-            TractionSpec::Rccm {
-                stiffness,
-                energy,
-                viscosity,
-            } => leaf!(path; F64 "stiffness" => stiffness, F64 "energy" => energy,
-                       F64 "viscosity" => viscosity),
-        }
+        law_slot(path, |name| self.param_mut(name))
     }
 }
 
 impl Fields for TangentialSpec {
     fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
-        match path {
-            [name] => self.param_mut(name).map(|p| match p {
-                ParamMut::F64(x) => Slot::F64(x),
-                ParamMut::OptF64(x) => Slot::OptF64(x),
-            }),
-            _ => None,
-        }
+        law_slot(path, |name| self.param_mut(name))
     }
 }
 
@@ -201,8 +187,11 @@ mod tests {
     fn slots_reach_law_parameters_of_the_variant_only() {
         let mut i = InterfaceSpec {
             static_pressure: 1.0,
-            compression: CompressionSpec::Power { c: 1.0, m: 0.5 },
-            traction: TractionSpec::Free,
+            compression: CompressionSpec::Power(crate::law::compression::power::Spec {
+                c: 1.0,
+                m: 0.5,
+            }),
+            traction: TractionSpec::Free(Default::default()),
             static_shear: 0.0,
             tangential: TangentialSpec::Coulomb(crate::law::tangential::coulomb::Spec {
                 friction: 0.3,
@@ -218,7 +207,10 @@ mod tests {
             .unwrap()
             .set(0.3, "f", "k")
             .unwrap();
-        assert_eq!(i.compression, CompressionSpec::Power { c: 1.0, m: 0.3 });
+        assert_eq!(
+            i.compression,
+            CompressionSpec::Power(crate::law::compression::power::Spec { c: 1.0, m: 0.3 })
+        );
         assert!(i.slot(&["compression", "k0"]).is_none());
         assert!(i.slot(&["traction", "stiffness"]).is_none());
         let mut inc = IncidentSpec {

@@ -278,7 +278,7 @@ impl Executor {
     /// use contactwave::run::{Executor, Workspaces};
     /// use contactwave::solver::{half_space::{ExactSolver, HalfSpace}, Solver};
     /// use std::sync::Arc;
-    /// let law = Arc::new(build_law(1e5, &CompressionSpec::Rigid, &TractionSpec::Free, "<code>", "interface").unwrap());
+    /// let law = Arc::new(build_law(1e5, &CompressionSpec::Rigid(Default::default()), &TractionSpec::Free(Default::default()), "<code>", "interface").unwrap());
     /// let problems: Vec<HalfSpace> = [0.5e5, 1e5, 2e5]
     ///     .iter()
     ///     .map(|&a| {

@@ -7,10 +7,10 @@ use serde::{Deserialize, Serialize};
 
 pub use crate::analysis::AnalysisMethod;
 
-pub use crate::law::spec::{
-    default_transition_pressure, default_zero_pressure_fraction, CompressionSpec, TangentialSpec,
-    TractionSpec,
+pub use crate::law::compression::modified_power::{
+    default_transition_pressure, default_zero_pressure_fraction,
 };
+pub use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 
 /// A whole scenario file.
 #[derive(Debug, Clone, Serialize, Deserialize)]

@@ -11,7 +11,7 @@
 //! lack compound units such as `Pa/m` and `J/m^2`.
 
 use crate::error::{Error, Result};
-use crate::law::spec::TangentialSpec;
+use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 
 /// The physical dimension of a scenario key.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -212,8 +212,13 @@ pub fn dimension_of_key(key: &str) -> Option<Dimension> {
         "k1" => Dimension::StiffnessPerLength,
         "energy" => Dimension::EnergyPerArea,
         "viscosity" => Dimension::Viscosity,
-        // a parameter of a tangential law, in the SI unit its file declares
-        _ => return TangentialSpec::unit(last).and_then(Dimension::of_si_unit),
+        // a parameter of a law, in the SI unit its file declares
+        _ => {
+            return CompressionSpec::unit(last)
+                .or_else(|| TractionSpec::unit(last))
+                .or_else(|| TangentialSpec::unit(last))
+                .and_then(Dimension::of_si_unit)
+        }
     })
 }
 
@@ -365,6 +370,55 @@ mod tests {
         assert_eq!(p("6.3 km/s", Dimension::Speed), 6300.0);
         assert_eq!(p("1.5e-3 m", Dimension::Length), 1.5e-3);
         assert_eq!(p("0.1 J/m^2", Dimension::EnergyPerArea), 0.1);
+    }
+
+    #[test]
+    fn every_unit_a_law_file_declares_is_a_known_dimension() {
+        // the parameters of every law of the three tables; a law's key whose unit its
+        // file declares is read with unit strings without a line here
+        let names = [
+            "stiffness",
+            "k0",
+            "k1",
+            "c",
+            "m",
+            "transition_pressure",
+            "zero_pressure_fraction",
+            "energy",
+            "viscosity",
+            "friction",
+            "mu_s",
+            "mu_d",
+            "d_c",
+        ];
+        let mut declared = 0;
+        for name in names {
+            for unit in [
+                CompressionSpec::unit(name),
+                TractionSpec::unit(name),
+                TangentialSpec::unit(name),
+            ]
+            .into_iter()
+            .flatten()
+            {
+                declared += 1;
+                let dim = Dimension::of_si_unit(unit);
+                assert!(dim.is_some(), "{name}: unit {unit} is no known dimension");
+                assert_eq!(
+                    dimension_of_key(&format!("interface.x.{name}")),
+                    dim,
+                    "{name}"
+                );
+            }
+        }
+        assert!(declared >= 8, "{declared} units declared");
+        // dimensionless parameters have none
+        assert_eq!(dimension_of_key("interface.compression.m"), None);
+        assert_eq!(dimension_of_key("interface.tangential.mu_s"), None);
+        assert_eq!(
+            dimension_of_key("interface.tangential.d_c"),
+            Some(Dimension::Length)
+        );
     }
 
     #[test]

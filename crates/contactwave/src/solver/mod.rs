@@ -21,7 +21,7 @@
 //! use contactwave::material::Material;
 //! use contactwave::solver::{half_space::{ExactSolver, HalfSpace}, Solver};
 //! use std::sync::Arc;
-//! let law = build_law(1e5, &CompressionSpec::Rigid, &TractionSpec::Free, "<code>", "interface").unwrap();
+//! let law = build_law(1e5, &CompressionSpec::Rigid(Default::default()), &TractionSpec::Free(Default::default()), "<code>", "interface").unwrap();
 //! let pmma = Material::preset("pmma").unwrap();
 //! let burst = ToneBurst::new(1e5, 1e6, 10.0, Window::HannRamps { ramp_fraction: 0.25 });
 //! let problem = HalfSpace::new(pmma, None, Arc::new(law), Arc::new(burst));
@@ -59,7 +59,7 @@ use crate::error::Result;
 /// use contactwave::material::Material;
 /// use contactwave::solver::{half_space::{ExactSolver, HalfSpace}, Solver};
 /// use std::sync::Arc;
-/// let law = build_law(1e5, &CompressionSpec::Rigid, &TractionSpec::Free, "<code>", "interface").unwrap();
+/// let law = build_law(1e5, &CompressionSpec::Rigid(Default::default()), &TractionSpec::Free(Default::default()), "<code>", "interface").unwrap();
 /// let burst = ToneBurst::new(1e5, 1e6, 10.0, Window::HannRamps { ramp_fraction: 0.25 });
 /// let problem = HalfSpace::new(Material::preset("pmma").unwrap(), None, Arc::new(law), Arc::new(burst));
 /// let plan = ExactSolver::default().plan(&problem).unwrap();

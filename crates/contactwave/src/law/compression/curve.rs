@@ -1,6 +1,6 @@
 //! Compression branches defined by a stiffness-pressure curve `K(p) = dp/d(closure)`
 //! (thesis section 4.2): the gap is `[u](p) = integral_p^p0 dp'/K(p')` (model.md section
-//! 3, `table` row), tabulated once on a pressure grid by Gauss-Legendre quadrature and
+//! 2, `table` row), tabulated once on a pressure grid by Gauss-Legendre quadrature and
 //! inverted by Newton's method (`d[u]/dp = -1/K` exactly), so that the stress, the tangent
 //! (`K(p)` itself) and the energy are smooth to working precision.
 

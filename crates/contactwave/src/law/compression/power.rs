@@ -2,6 +2,9 @@
 //! C = 1.81e10, m = 0.35 for the Al-Al data of Table 2). Closed form:
 //! `p([u]) = (p0^(1-m) - (1-m) C [u])^(1/(1-m))`, `[u]_c = p0^(1-m) / ((1-m) C)`.
 
+use crate::error::Result;
+use crate::law::param::LawSpec;
+use crate::law::param::{exponent, positive, ParamMut};
 use crate::law::CompressionBranch;
 
 /// Power-law compression branch (closed form).
@@ -51,5 +54,35 @@ impl CompressionBranch for Power {
         let b = self.base(gap);
         let int_p = (b0.powf(e) - b.powf(e)) / (e * q * self.c);
         self.static_pressure * gap - int_p
+    }
+}
+
+/// Parameters of `law = "power"`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {
+    /// C, Pa^(1-m)/m (> 0).
+    pub c: f64,
+    /// m, dimensionless, in (0, 1).
+    pub m: f64,
+}
+
+impl LawSpec for Spec {
+    type Branch = dyn CompressionBranch;
+    fn build(&self, p0: f64, file: &str, prefix: &str) -> Result<Box<dyn CompressionBranch>> {
+        positive(file, &format!("{prefix}.c"), self.c)?;
+        exponent(file, &format!("{prefix}.m"), self.m)?;
+        Ok(Box::new(Power {
+            static_pressure: p0,
+            c: self.c,
+            m: self.m,
+        }))
+    }
+    fn param_mut(&mut self, name: &str) -> Option<ParamMut<'_>> {
+        match name {
+            "c" => Some(ParamMut::F64(&mut self.c)),
+            "m" => Some(ParamMut::F64(&mut self.m)),
+            _ => None,
+        }
     }
 }

@@ -3,6 +3,10 @@
 //! `sigma = 0`; for gaps where the law would soften below zero tangent (far in
 //! compression when K1 < 0) the tangent is clamped at zero.
 
+use crate::error::Error;
+use crate::error::Result;
+use crate::law::param::LawSpec;
+use crate::law::param::{positive, ParamMut};
 use crate::law::CompressionBranch;
 
 /// Quadratic compression branch.
@@ -57,5 +61,57 @@ impl CompressionBranch for Quadratic {
     }
     fn energy(&self, gap: f64) -> f64 {
         0.5 * self.k0 * gap * gap - self.k1 * gap * gap * gap / 3.0
+    }
+}
+
+/// Parameters of `law = "quadratic"`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {
+    /// K0, Pa/m (> 0).
+    pub k0: f64,
+    /// K1, Pa/m^2 (at most `K0^2 / (4 p0)`, so that the stress reaches zero).
+    pub k1: f64,
+}
+
+impl LawSpec for Spec {
+    type Branch = dyn CompressionBranch;
+    fn build(&self, p0: f64, file: &str, prefix: &str) -> Result<Box<dyn CompressionBranch>> {
+        let (k0, k1) = (self.k0, self.k1);
+        positive(file, &format!("{prefix}.k0"), k0)?;
+        if !k1.is_finite() {
+            return Err(Error::invalid(
+                file,
+                format!("{prefix}.k1"),
+                k1,
+                "must be finite",
+            ));
+        }
+        let branch = Quadratic::new(p0, k0, k1).ok_or_else(|| {
+            Error::invalid(
+                file,
+                format!("{prefix}.k1"),
+                k1,
+                format!(
+                    "must be <= k0^2 / (4 p0) = {:e} so that the stress reaches zero",
+                    k0 * k0 / (4.0 * p0)
+                ),
+            )
+        })?;
+        Ok(Box::new(branch))
+    }
+    fn param_mut(&mut self, name: &str) -> Option<ParamMut<'_>> {
+        match name {
+            "k0" => Some(ParamMut::F64(&mut self.k0)),
+            "k1" => Some(ParamMut::F64(&mut self.k1)),
+            _ => None,
+        }
+    }
+    fn unit(name: &str) -> Option<&'static str> {
+        match name {
+            "k0" => Some("Pa/m"),
+            "k1" => Some("Pa/m^2"),
+            _ => None,
+        }
     }
 }

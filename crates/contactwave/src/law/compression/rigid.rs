@@ -1,6 +1,8 @@
 //! Rigid compression: Signorini's conditions `[u] >= 0, sigma <= 0, [u] sigma = 0`
 //! (thesis section 1.2, eq. 2.10), exact, with no penalty and no regularisation.
 
+use crate::error::Result;
+use crate::law::param::LawSpec;
 use crate::law::CompressionBranch;
 
 /// Signorini (rigid) compression branch; `[u]_c = 0`.
@@ -31,5 +33,19 @@ impl CompressionBranch for Rigid {
     }
     fn stiffness_at_rest(&self) -> f64 {
         f64::INFINITY
+    }
+}
+
+/// Parameters of `law = "rigid"`: none.
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {}
+
+impl LawSpec for Spec {
+    type Branch = dyn CompressionBranch;
+    fn build(&self, p0: f64, _file: &str, _prefix: &str) -> Result<Box<dyn CompressionBranch>> {
+        Ok(Box::new(Rigid {
+            static_pressure: p0,
+        }))
     }
 }

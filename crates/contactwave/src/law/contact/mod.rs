@@ -1,4 +1,4 @@
-//! The contact update of one point (model.md sections 3 and 13): given the trial normal
+//! The contact update of one point (model.md sections 2, 9 and 13): given the trial normal
 //! and tangential gaps the point's two faces would reach at the new time level with no
 //! interface force, their compliances (gap change per unit dynamic stress) and the point's
 //! law state, find the tractions and the new state that satisfy the law exactly at the new
@@ -479,12 +479,12 @@ mod tests {
     fn adhesion_update_matches_the_traction_update_without_shear_and_the_closed_form_with() {
         let law = build_law(
             1e6,
-            &CompressionSpec::Rigid,
-            &TractionSpec::Rccm {
+            &CompressionSpec::Rigid(Default::default()),
+            &TractionSpec::Rccm(crate::law::traction::rccm::Spec {
                 stiffness: 2e13,
                 energy: 0.1,
                 viscosity: 1e-8,
-            },
+            }),
             "<t>",
             "i",
         )

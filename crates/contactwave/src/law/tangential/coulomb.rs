@@ -10,9 +10,9 @@
 //! [`TangentialBranch::friction_at`], e.g. slip weakening); every branch's slider is this one.
 
 use crate::error::Result;
+use crate::law::param::LawSpec;
 use crate::law::param::{non_negative, positive, ParamMut};
 use crate::law::scheme::InterfaceScheme;
-use crate::law::tangential::TangentialLawSpec;
 use crate::law::{TangentialBranch, TangentialLaw};
 
 /// Coulomb friction branch.
@@ -47,8 +47,9 @@ pub struct Spec {
     pub stiffness: Option<f64>,
 }
 
-impl TangentialLawSpec for Spec {
-    fn build(&self, file: &str, prefix: &str) -> Result<Box<dyn TangentialBranch>> {
+impl LawSpec for Spec {
+    type Branch = dyn TangentialBranch;
+    fn build(&self, _p0: f64, file: &str, prefix: &str) -> Result<Box<dyn TangentialBranch>> {
         non_negative(file, &format!("{prefix}.friction"), self.friction)?;
         if let Some(k) = self.stiffness {
             positive(file, &format!("{prefix}.stiffness"), k)?;
@@ -253,8 +254,8 @@ mod tests {
     fn rigid_stick_return_mapping_clips_at_mu_n_and_slips_forward() {
         let law = build_law(
             1e6,
-            &CompressionSpec::Rigid,
-            &TractionSpec::Free,
+            &CompressionSpec::Rigid(Default::default()),
+            &TractionSpec::Free(Default::default()),
             "<t>",
             "i",
         )

@@ -2,7 +2,7 @@
 //! normally incident shear wave completely.
 
 use crate::error::Result;
-use crate::law::tangential::TangentialLawSpec;
+use crate::law::param::LawSpec;
 use crate::law::TangentialBranch;
 
 /// Free tangential branch.
@@ -20,8 +20,9 @@ impl TangentialBranch for Free {
 #[serde(deny_unknown_fields)]
 pub struct Spec {}
 
-impl TangentialLawSpec for Spec {
-    fn build(&self, _file: &str, _prefix: &str) -> Result<Box<dyn TangentialBranch>> {
+impl LawSpec for Spec {
+    type Branch = dyn TangentialBranch;
+    fn build(&self, _p0: f64, _file: &str, _prefix: &str) -> Result<Box<dyn TangentialBranch>> {
         Ok(Box::new(Free))
     }
 }

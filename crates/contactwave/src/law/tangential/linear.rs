@@ -3,8 +3,8 @@
 //! spring-interface model).
 
 use crate::error::Result;
+use crate::law::param::LawSpec;
 use crate::law::param::{positive, ParamMut};
-use crate::law::tangential::TangentialLawSpec;
 use crate::law::TangentialBranch;
 
 /// Linear tangential branch.
@@ -31,8 +31,9 @@ pub struct Spec {
     pub stiffness: f64,
 }
 
-impl TangentialLawSpec for Spec {
-    fn build(&self, file: &str, prefix: &str) -> Result<Box<dyn TangentialBranch>> {
+impl LawSpec for Spec {
+    type Branch = dyn TangentialBranch;
+    fn build(&self, _p0: f64, file: &str, prefix: &str) -> Result<Box<dyn TangentialBranch>> {
         positive(file, &format!("{prefix}.stiffness"), self.stiffness)?;
         Ok(Box::new(Linear {
             stiffness: self.stiffness,

@@ -7,8 +7,8 @@
 //! Signorini (or the compression branch) with Coulomb friction.
 
 use crate::error::Result;
+use crate::law::param::LawSpec;
 use crate::law::param::{non_negative, ParamMut};
-use crate::law::tangential::TangentialLawSpec;
 use crate::law::TangentialBranch;
 
 /// Tangential RCCM branch.
@@ -48,8 +48,9 @@ pub struct Spec {
     pub friction: f64,
 }
 
-impl TangentialLawSpec for Spec {
-    fn build(&self, file: &str, prefix: &str) -> Result<Box<dyn TangentialBranch>> {
+impl LawSpec for Spec {
+    type Branch = dyn TangentialBranch;
+    fn build(&self, _p0: f64, file: &str, prefix: &str) -> Result<Box<dyn TangentialBranch>> {
         non_negative(file, &format!("{prefix}.stiffness"), self.stiffness)?;
         non_negative(file, &format!("{prefix}.friction"), self.friction)?;
         Ok(Box::new(Rccm {

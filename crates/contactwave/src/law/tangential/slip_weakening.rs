@@ -24,8 +24,8 @@
 //! ```
 
 use crate::error::{Error, Result};
+use crate::law::param::LawSpec;
 use crate::law::param::{non_negative, positive, ParamMut};
-use crate::law::tangential::TangentialLawSpec;
 use crate::law::TangentialBranch;
 
 /// Linear slip-weakening branch (rigid stick).
@@ -87,8 +87,9 @@ pub struct Spec {
     pub d_c: f64,
 }
 
-impl TangentialLawSpec for Spec {
-    fn build(&self, file: &str, prefix: &str) -> Result<Box<dyn TangentialBranch>> {
+impl LawSpec for Spec {
+    type Branch = dyn TangentialBranch;
+    fn build(&self, _p0: f64, file: &str, prefix: &str) -> Result<Box<dyn TangentialBranch>> {
         let Spec { mu_s, mu_d, d_c } = *self;
         non_negative(file, &format!("{prefix}.mu_d"), mu_d)?;
         if !(mu_s.is_finite() && mu_s >= mu_d) {

@@ -1,6 +1,8 @@
 //! Bonded traction: the opening is locked, `d = 0` (bilateral perfect contact, the linear
 //! reference). The stress is whatever the constraint needs.
 
+use crate::error::Result;
+use crate::law::param::LawSpec;
 use crate::law::TractionBranch;
 
 /// Bonded (rigid) traction branch.
@@ -25,5 +27,17 @@ impl TractionBranch for Bonded {
     }
     fn stiffness_at_contact(&self) -> f64 {
         f64::INFINITY
+    }
+}
+
+/// Parameters of `law = "bonded"`: none.
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {}
+
+impl LawSpec for Spec {
+    type Branch = dyn TractionBranch;
+    fn build(&self, _p0: f64, _file: &str, _prefix: &str) -> Result<Box<dyn TractionBranch>> {
+        Ok(Box::new(Bonded))
     }
 }

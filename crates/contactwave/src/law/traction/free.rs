@@ -1,5 +1,7 @@
 //! Traction-free opening: `sigma = 0` (unilateral contact, clapping; thesis eq. 2.15).
 
+use crate::error::Result;
+use crate::law::param::LawSpec;
 use crate::law::TractionBranch;
 
 /// Free traction branch.
@@ -21,5 +23,17 @@ impl TractionBranch for Free {
     }
     fn is_affine(&self) -> bool {
         true
+    }
+}
+
+/// Parameters of `law = "free"`: none.
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {}
+
+impl LawSpec for Spec {
+    type Branch = dyn TractionBranch;
+    fn build(&self, _p0: f64, _file: &str, _prefix: &str) -> Result<Box<dyn TractionBranch>> {
+        Ok(Box::new(Free))
     }
 }

@@ -4,10 +4,13 @@
 //!
 //! beta never increases; damage starts at `sigma_lim = sqrt(C_N w)` for `beta = 1`. The
 //! thesis writes the open-state stress as `C_N [u] beta^2 - p0`; contactwave uses the
-//! continuous form (stress zero at contact loss; model.md section 3). The backward-Euler
+//! continuous form (stress zero at contact loss; model.md section 2). The backward-Euler
 //! update of beta is closed form and unconditionally stable, and `b = 0` is the
 //! rate-independent limit `beta = min(beta, w / (C_N d^2))`.
 
+use crate::error::Result;
+use crate::law::param::LawSpec;
+use crate::law::param::{non_negative, positive, ParamMut};
 use crate::law::TractionBranch;
 
 /// RCCM traction branch.
@@ -111,5 +114,49 @@ mod tests {
         // rate-independent limit
         let b = law.update_adhesion(2.0 * d_lim, 1.0, f64::INFINITY);
         assert!((b - 0.25).abs() < 1e-12);
+    }
+}
+
+/// Parameters of `law = "rccm"`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spec {
+    /// C_N, Pa/m (> 0).
+    pub stiffness: f64,
+    /// Decohesion energy w, J/m^2 (>= 0).
+    pub energy: f64,
+    /// Viscosity b, J s/m^2 (>= 0; 0, the default, is the rate-independent limit).
+    #[serde(default)]
+    pub viscosity: f64,
+}
+
+impl LawSpec for Spec {
+    type Branch = dyn TractionBranch;
+    fn build(&self, _p0: f64, file: &str, prefix: &str) -> Result<Box<dyn TractionBranch>> {
+        let key = |k: &str| format!("{prefix}.{k}");
+        positive(file, &key("stiffness"), self.stiffness)?;
+        non_negative(file, &key("energy"), self.energy)?;
+        non_negative(file, &key("viscosity"), self.viscosity)?;
+        Ok(Box::new(Rccm {
+            stiffness: self.stiffness,
+            energy: self.energy,
+            viscosity: self.viscosity,
+        }))
+    }
+    fn param_mut(&mut self, name: &str) -> Option<ParamMut<'_>> {
+        match name {
+            "stiffness" => Some(ParamMut::F64(&mut self.stiffness)),
+            "energy" => Some(ParamMut::F64(&mut self.energy)),
+            "viscosity" => Some(ParamMut::F64(&mut self.viscosity)),
+            _ => None,
+        }
+    }
+    fn unit(name: &str) -> Option<&'static str> {
+        match name {
+            "stiffness" => Some("Pa/m"),
+            "energy" => Some("J/m^2"),
+            "viscosity" => Some("J s/m^2"),
+            _ => None,
+        }
     }
 }

@@ -88,24 +88,24 @@ fn cases() -> Vec<(String, HalfSpace, usize)> {
     let p0 = 0.1e6;
     let c_n = 2e13;
     let compressions = [
-        CompressionSpec::Rigid,
-        CompressionSpec::Linear { stiffness: 3e12 },
-        CompressionSpec::Quadratic { k0: 3e12, k1: 1e19 },
+        CompressionSpec::Rigid(Default::default()),
+        CompressionSpec::Linear(crate::law::compression::linear::Spec { stiffness: 3e12 }),
+        CompressionSpec::Quadratic(crate::law::compression::quadratic::Spec { k0: 3e12, k1: 1e19 }),
     ];
     let tractions = [
-        TractionSpec::Free,
-        TractionSpec::Linear { stiffness: 1e12 },
-        TractionSpec::Rccm {
+        TractionSpec::Free(Default::default()),
+        TractionSpec::Linear(crate::law::traction::linear::Spec { stiffness: 1e12 }),
+        TractionSpec::Rccm(crate::law::traction::rccm::Spec {
             stiffness: c_n,
             energy: 0.1,
             viscosity: 1e-8,
-        },
-        TractionSpec::Rccm {
+        }),
+        TractionSpec::Rccm(crate::law::traction::rccm::Spec {
             stiffness: c_n,
             energy: 0.02,
             viscosity: 0.0,
-        },
-        TractionSpec::Bonded,
+        }),
+        TractionSpec::Bonded(Default::default()),
     ];
     let (pmma, steel) = (Material::PMMA, Material::STEEL);
     let mut cases = Vec::new();
@@ -222,8 +222,8 @@ fn a_kept_incident_table_is_the_table_made_anew() {
     let law = Arc::new(
         build_law(
             p0,
-            &CompressionSpec::Rigid,
-            &TractionSpec::Free,
+            &CompressionSpec::Rigid(Default::default()),
+            &TractionSpec::Free(Default::default()),
             "test.toml",
             "interface",
         )
