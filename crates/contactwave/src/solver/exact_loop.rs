@@ -10,7 +10,7 @@ use crate::error::Result;
 use crate::numeric::root::brent_past;
 
 /// Grid steps between two interrupt checks.
-pub(crate) const INTERRUPT_STEPS: usize = 4096;
+pub(crate) const INTERRUPT_STEPS: usize = super::stepping::CHECK_EVERY;
 
 /// The output grid of a run: step, burst, tail and breakpoints.
 #[derive(Debug, Clone)]

@@ -9,6 +9,15 @@
 //! The loop has no breakpoints and no tail until rest: the explicit schemes run a number
 //! of steps fixed beforehand (the burst and a tail of given length), and their step
 //! functions evaluate the sources at the step's times themselves.
+//!
+//! Why the exact solvers keep their own loop ([`super::exact_loop`]) beside this one: a
+//! step there is not a level of fixed length but an interval of the output grid that the
+//! solver splits at the waveforms' breakpoints and at located events (variable sub-steps,
+//! a tail that ends when the interface has rested a period, fast paths that take runs of
+//! whole grid steps at once), while here a step is one level of a fixed-step scheme that
+//! may be checked for finiteness and recorded every n-th level. The shared parts (the
+//! interrupt check and its cadence, [`CHECK_EVERY`] = `exact_loop::INTERRUPT_STEPS`, and a
+//! recorder that observes the levels) are the same in both.
 
 use crate::error::Result;
 
@@ -117,9 +126,9 @@ mod tests {
     }
 
     #[derive(Default)]
-    struct Tape(Vec<(f64, f64)>);
+    struct Levels(Vec<(f64, f64)>);
 
-    impl Recorder<Decay> for Tape {
+    impl Recorder<Decay> for Levels {
         fn record(&mut self, t: f64, s: &Decay) {
             self.0.push((t, s.u));
         }
@@ -133,7 +142,7 @@ mod tests {
             dt: 0.1,
             steps: 0,
         };
-        let mut tape = Tape::default();
+        let mut tape = Levels::default();
         let schedule = Schedule {
             t0: -0.2,
             dt: 0.1,
@@ -174,7 +183,7 @@ mod tests {
             record_every: 1,
             progress: None,
         };
-        let err = run(&schedule, &mut s, &mut Tape::default()).unwrap_err();
+        let err = run(&schedule, &mut s, &mut Levels::default()).unwrap_err();
         assert!(err.to_string().contains("non-finite"), "{err}");
         assert_eq!(s.steps, 5);
     }
