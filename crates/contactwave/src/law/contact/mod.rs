@@ -126,29 +126,12 @@ pub fn normal_update(
         let b = adhesion_update(law, tangential, d, ut, beta_old, dt);
         (law.traction.stress(d, b) + p0, b)
     };
-    let f = |g: f64| s_of(g).0 + (g - gt) / chi;
-    let hi = gt.max(uc);
-    let fhi = f(hi);
-    if fhi <= 0.0 {
-        let (s, b) = s_of(hi);
-        return Ok(InterfaceUpdate {
-            gap: hi,
-            dynamic_stress: s,
-            adhesion: b,
-        });
-    }
-    let g = brent_past(f, uc, hi, f_uc, fhi, 300).ok_or_else(|| {
+    normal::traction_side(gt, chi, uc, f_uc, s_of, || {
         Error::numerical(
             t,
             "coupled interface update (traction) failed",
             format!("predicted gap = {gt:e} m, beta = {beta_old}, [u]_T = {ut:e} m"),
         )
-    })?;
-    let (_s, b) = s_of(g);
-    Ok(InterfaceUpdate {
-        gap: g,
-        dynamic_stress: (gt - g) / chi,
-        adhesion: b,
     })
 }
 

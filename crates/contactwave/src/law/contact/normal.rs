@@ -165,26 +165,49 @@ pub fn update(
             adhesion: beta_old,
         });
     }
-    let f = |g: f64| s_of(law, g, beta_old, dt).0 + (g - gt) / chi;
     // F(uc) < 0; F(g~) = S(g~) >= 0 since S >= p0 >= 0 in traction
+    traction_side(
+        gt,
+        chi,
+        uc,
+        f_uc,
+        |g| s_of(law, g, beta_old, dt),
+        || {
+            Error::numerical(
+                t,
+                "interface update (traction) failed",
+                format!("predicted gap = {gt:e} m, beta = {beta_old}"),
+            )
+        },
+    )
+}
+
+/// The update on the traction side, `g >= uc` (m): the root of `F(g) = S(g) + (g - g~)/chi`
+/// bracketed by `F(uc) = f_uc < 0` and `F(max(g~, uc))`, where `s_of(g)` gives the dynamic
+/// stress `S` (Pa) and the adhesion of the new level at the gap `g`; `fail` is the error
+/// when the root-finder fails. The normal law alone and the law whose damage the
+/// tangential gap drives too ([`super::normal_update`]) differ only in `s_of`.
+pub(super) fn traction_side(
+    gt: f64,
+    chi: f64,
+    uc: f64,
+    f_uc: f64,
+    s_of: impl Fn(f64) -> (f64, f64),
+    fail: impl FnOnce() -> Error,
+) -> Result<InterfaceUpdate> {
+    let f = |g: f64| s_of(g).0 + (g - gt) / chi;
     let hi = gt.max(uc);
     let fhi = f(hi);
     if fhi <= 0.0 {
-        let (s, b) = s_of(law, hi, beta_old, dt);
+        let (s, b) = s_of(hi);
         return Ok(InterfaceUpdate {
             gap: hi,
             dynamic_stress: s,
             adhesion: b,
         });
     }
-    let g = brent_past(f, uc, hi, f_uc, fhi, 300).ok_or_else(|| {
-        Error::numerical(
-            t,
-            "interface update (traction) failed",
-            format!("predicted gap = {gt:e} m, beta = {beta_old}"),
-        )
-    })?;
-    let (_s, b) = s_of(law, g, beta_old, dt);
+    let g = brent_past(f, uc, hi, f_uc, fhi, 300).ok_or_else(fail)?;
+    let (_s, b) = s_of(g);
     Ok(InterfaceUpdate {
         gap: g,
         dynamic_stress: (gt - g) / chi,
