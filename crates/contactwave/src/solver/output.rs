@@ -66,6 +66,38 @@ pub struct HalfSpaceOutput {
 }
 
 impl HalfSpaceOutput {
+    /// Record the series a summary reads at one grid point: time `t` (s), adhesion `beta`
+    /// and the reflected displacement (m). The exact solvers' one recording path, with
+    /// [`HalfSpaceOutput::push_fields`].
+    #[inline(always)]
+    pub(crate) fn push_summary(&mut self, t: f64, beta: f64, reflected_displacement: f64) {
+        self.t.push(t);
+        self.beta.push(beta);
+        self.reflected_displacement.push(reflected_displacement);
+    }
+
+    /// Record the other series at the same grid point: the gap (m), the contact stress and
+    /// the incident stress (Pa), the dynamic stress `S` (contact stress less its static
+    /// value, Pa: the transmitted stress, and `S` less the incident the reflected one), and
+    /// the incident and transmitted displacements (m).
+    #[inline(always)]
+    pub(crate) fn push_fields(
+        &mut self,
+        gap: f64,
+        contact_stress: f64,
+        incident_stress: f64,
+        dynamic_stress: f64,
+        [incident_displacement, transmitted_displacement]: [f64; 2],
+    ) {
+        self.gap.push(gap);
+        self.contact_stress.push(contact_stress);
+        self.incident_stress.push(incident_stress);
+        self.reflected_stress.push(dynamic_stress - incident_stress);
+        self.transmitted_stress.push(dynamic_stress);
+        self.incident_displacement.push(incident_displacement);
+        self.transmitted_displacement.push(transmitted_displacement);
+    }
+
     /// Empty for a new run of output step `dt` (s) and burst duration `burst_duration`
     /// (s): every series cleared with its allocation kept, every scalar reset.
     pub fn reset(&mut self, dt: f64, burst_duration: f64) {

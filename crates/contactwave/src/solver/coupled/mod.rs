@@ -665,16 +665,14 @@ impl<'a> CoupledRun<'a> {
             (&mut out.normal, y[0], e.sigma, e.s_inc, e.sigma + p0, 0),
             (&mut out.shear, y[2], e.tau, e.tau_inc, e.tau - q0, 1),
         ] {
-            o.t.push(t);
-            o.beta.push(e.beta);
-            o.gap.push(gap);
-            o.contact_stress.push(stress);
-            o.incident_stress.push(inc);
-            o.reflected_stress.push(dyn_stress - inc);
-            o.transmitted_stress.push(dyn_stress);
-            o.reflected_displacement.push(acc.disp_ref[c]);
-            o.incident_displacement.push(acc.disp_inc[c]);
-            o.transmitted_displacement.push(acc.disp_tr[c]);
+            o.push_summary(t, e.beta, acc.disp_ref[c]);
+            o.push_fields(
+                gap,
+                stress,
+                inc,
+                dyn_stress,
+                [acc.disp_inc[c], acc.disp_tr[c]],
+            );
         }
         out.slip.push(self.slip_of(&e, y));
         out.friction_limit.push(

@@ -843,9 +843,7 @@ impl<'a> GapRun<'a> {
     /// `summary_only`) the others.
     #[inline(always)]
     fn record(&self, out: &mut HalfSpaceOutput, acc: &Integrals, t: f64, y: [f64; 2]) {
-        out.t.push(t);
-        out.beta.push(self.ode.beta(y));
-        out.reflected_displacement.push(acc.disp_ref);
+        out.push_summary(t, self.ode.beta(y), acc.disp_ref);
         if !self.settings.summary_only {
             self.record_full(out, acc, t, y);
         }
@@ -860,13 +858,7 @@ impl<'a> GapRun<'a> {
             self.ode.sigma(y)
         };
         let s = sigma + self.ode.p0;
-        out.gap.push(y[0]);
-        out.contact_stress.push(sigma);
-        out.incident_stress.push(sinc);
-        out.reflected_stress.push(s - sinc);
-        out.transmitted_stress.push(s);
-        out.incident_displacement.push(acc.disp_inc);
-        out.transmitted_displacement.push(acc.disp_tr);
+        out.push_fields(y[0], sigma, sinc, s, [acc.disp_inc, acc.disp_tr]);
     }
 
     fn at_rest(&self, y: [f64; 2]) -> bool {
