@@ -162,7 +162,8 @@ impl FdOutput {
         interfaces: usize,
         shear_probes: Option<usize>,
     ) -> Self {
-        let v = |k: usize| vec![Vec::with_capacity(n); k];
+        // (not `vec![Vec::with_capacity(n); k]`: a clone of an empty vector has no capacity)
+        let v = |k: usize| (0..k).map(|_| Vec::with_capacity(n)).collect::<Vec<_>>();
         FdOutput {
             t: Vec::with_capacity(n),
             displacement: v(probes),
