@@ -11,6 +11,7 @@
 pub mod compression;
 pub mod contact;
 pub mod param;
+pub mod point;
 pub mod registry;
 pub mod scheme;
 pub mod spec;
@@ -309,12 +310,83 @@ impl TangentialLaw {
     /// Friction limit `mu(path) N`, Pa, at normal contact pressure `N` (Pa, >= 0) after a
     /// slip path `path` (m; see [`TangentialBranch::friction_at`]).
     pub fn friction_limit(&self, pressure: f64, path: f64) -> f64 {
-        let mu = self.branch.friction_at(path);
+        TangentialPart::friction_limit(self, pressure, path)
+    }
+}
+
+/// What the contact update ([`contact`]) reads of a point's normal law: its static
+/// pressure and its two branches. [`ContactLaw`] implements it with branches shared by
+/// every point of an interface (called through their vtables); [`point::PointLaw`] with a
+/// point's own parameters, plain `Copy` data of concrete branch types (called directly:
+/// an array of points, each with its own parameters, is updated in one loop without
+/// dynamic dispatch per point).
+pub trait NormalPart {
+    /// The compression branch's type.
+    type Compression: CompressionBranch + ?Sized;
+    /// The traction branch's type.
+    type Traction: TractionBranch + ?Sized;
+    /// Static pressure p0, Pa (compression positive).
+    fn static_pressure(&self) -> f64;
+    /// The compression branch.
+    fn compression(&self) -> &Self::Compression;
+    /// The traction branch.
+    fn traction(&self) -> &Self::Traction;
+    /// Gap at contact loss `[u]_c`, m.
+    #[inline]
+    fn critical_gap(&self) -> f64 {
+        self.compression().critical_gap()
+    }
+}
+
+/// What the contact update reads of a point's tangential law: its static shear and its
+/// branch ([`NormalPart`] for the normal law; implemented by [`TangentialLaw`] and
+/// [`point::PointLaw`]).
+pub trait TangentialPart {
+    /// The branch's type.
+    type Branch: TangentialBranch + ?Sized;
+    /// Static shear stress q0, Pa.
+    fn static_shear(&self) -> f64;
+    /// The tangential branch.
+    fn branch(&self) -> &Self::Branch;
+    /// Friction limit `mu(path) N`, Pa, at normal contact pressure `N` (Pa, >= 0) after a
+    /// slip path `path` (m; see [`TangentialBranch::friction_at`]).
+    #[inline]
+    fn friction_limit(&self, pressure: f64, path: f64) -> f64 {
+        let mu = self.branch().friction_at(path);
         if mu == 0.0 {
             0.0
         } else {
             mu * pressure.max(0.0)
         }
+    }
+}
+
+impl TangentialPart for TangentialLaw {
+    type Branch = dyn TangentialBranch;
+    #[inline]
+    fn static_shear(&self) -> f64 {
+        self.static_shear
+    }
+    #[inline]
+    fn branch(&self) -> &(dyn TangentialBranch + 'static) {
+        &*self.branch
+    }
+}
+
+impl NormalPart for ContactLaw {
+    type Compression = dyn CompressionBranch;
+    type Traction = dyn TractionBranch;
+    #[inline]
+    fn static_pressure(&self) -> f64 {
+        self.static_pressure
+    }
+    #[inline]
+    fn compression(&self) -> &(dyn CompressionBranch + 'static) {
+        &*self.compression
+    }
+    #[inline]
+    fn traction(&self) -> &(dyn TractionBranch + 'static) {
+        &*self.traction
     }
 }
 

@@ -162,8 +162,11 @@ impl FdOutput {
         interfaces: usize,
         shear_probes: Option<usize>,
     ) -> Self {
-        // (not `vec![Vec::with_capacity(n); k]`: a clone of an empty vector has no capacity)
-        let v = |k: usize| (0..k).map(|_| Vec::with_capacity(n)).collect::<Vec<_>>();
+        // (`vec![..; k]` clones: only the last of the `k` records has the capacity, the
+        // others grow as they are pushed. Giving every record its capacity up front
+        // measured 7 % slower on `fd_tribobrake_0.02s` (6.55 against 6.1 ms, A/B), so the
+        // records grow.)
+        let v = |k: usize| vec![Vec::with_capacity(n); k];
         FdOutput {
             t: Vec::with_capacity(n),
             displacement: v(probes),

@@ -38,7 +38,10 @@ pub mod normal;
 
 use crate::error::{Error, Result};
 use crate::law::tangential::coulomb::{return_map, ShearState, ShearUpdate};
-use crate::law::{ContactLaw, TangentialLaw, WarmStart};
+use crate::law::{
+    CompressionBranch, NormalPart, TangentialBranch, TangentialLaw, TangentialPart, TractionBranch,
+    WarmStart,
+};
 use crate::numeric::root::brent_past;
 use normal::InterfaceUpdate;
 
@@ -48,19 +51,19 @@ pub use super::scheme::InterfaceScheme;
 /// gap `ut` (m), from `beta_old`: `b (beta - beta_old) = dt min(phi(beta), 0)` with
 /// `phi = phi_traction(d, beta) - k'(beta) ut^2 / 2`; `b = 0` or `dt = inf` is the
 /// rate-independent limit `phi(beta) = 0`. Never increases beta.
-pub fn adhesion_update(
-    law: &ContactLaw,
-    tangential: &TangentialLaw,
+pub fn adhesion_update<N: NormalPart + ?Sized, G: TangentialPart + ?Sized>(
+    law: &N,
+    tangential: &G,
     opening: f64,
     ut: f64,
     beta_old: f64,
     dt: f64,
 ) -> f64 {
-    let tr = &*law.traction;
+    let tr = law.traction();
     if !tr.has_damage() {
         return beta_old;
     }
-    let br = &*tangential.branch;
+    let br = tangential.branch();
     if ut == 0.0 || !br.needs_adhesion() {
         return tr.update_adhesion(opening, beta_old, dt);
     }
@@ -93,9 +96,9 @@ pub fn adhesion_update(
 /// then the normal-only update, bit for bit).
 #[inline]
 #[allow(clippy::too_many_arguments)]
-pub fn normal_update(
-    law: &ContactLaw,
-    tangential: Option<&TangentialLaw>,
+pub fn normal_update<N: NormalPart + ?Sized, G: TangentialPart + ?Sized>(
+    law: &N,
+    tangential: Option<&G>,
     predicted_gap: f64,
     chi: f64,
     beta_old: f64,
@@ -105,14 +108,14 @@ pub fn normal_update(
     t: f64,
 ) -> Result<InterfaceUpdate> {
     let tangential = match tangential {
-        Some(tl) if tl.branch.needs_adhesion() && law.traction.has_damage() => tl,
+        Some(tl) if tl.branch().needs_adhesion() && law.traction().has_damage() => tl,
         _ => return normal::update(law, predicted_gap, chi, beta_old, warm, dt, t),
     };
     let uc = law.critical_gap();
-    let p0 = law.static_pressure;
+    let p0 = law.static_pressure();
     let gt = predicted_gap;
     let f_uc = p0 + (uc - gt) / chi;
-    if f_uc >= 0.0 || law.traction.is_rigid() {
+    if f_uc >= 0.0 || law.traction().is_rigid() {
         // closed (or bonded): the stress does not depend on beta; damage from the shear gap
         let upd = normal::update(law, gt, chi, beta_old, None, dt, t)?;
         let d = (upd.gap - uc).max(0.0);
@@ -124,7 +127,7 @@ pub fn normal_update(
     let s_of = |g: f64| {
         let d = g - uc;
         let b = adhesion_update(law, tangential, d, ut, beta_old, dt);
-        (law.traction.stress(d, b) + p0, b)
+        (law.traction().stress(d, b) + p0, b)
     };
     normal::traction_side(gt, chi, uc, f_uc, s_of, || {
         Error::numerical(
@@ -141,10 +144,10 @@ pub fn normal_update(
 /// [`normal_update`].
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub fn normal_step(
+pub fn normal_step<N: NormalPart + ?Sized, G: TangentialPart + ?Sized>(
     scheme: InterfaceScheme,
-    law: &ContactLaw,
-    tangential: Option<&TangentialLaw>,
+    law: &N,
+    tangential: Option<&G>,
     gt: f64,
     chi: f64,
     beta_old: f64,
@@ -169,8 +172,8 @@ pub fn normal_step(
             t,
         )?;
         let uc = law.critical_gap();
-        let on_constraint = (upd.gap <= uc && law.compression.is_rigid())
-            || (upd.gap >= uc && law.traction.is_rigid());
+        let on_constraint = (upd.gap <= uc && law.compression().is_rigid())
+            || (upd.gap >= uc && law.traction().is_rigid());
         if !on_constraint {
             return Ok((upd, 0.5 * (upd.dynamic_stress + s_old)));
         }
@@ -221,9 +224,9 @@ pub struct CoupledStepInput {
 /// tangential gap, the tangential return mapping with the adhesion and the contact
 /// pressure of the new level, iterated to a fixed point on `[u]_T` (one pass when the
 /// tangential branch takes no adhesion: the normal update then ignores `[u]_T`).
-pub fn coupled_step(
-    normal_law: &ContactLaw,
-    tangential: &TangentialLaw,
+pub fn coupled_step<N: NormalPart + ?Sized, G: TangentialPart + ?Sized>(
+    normal_law: &N,
+    tangential: &G,
     gn: f64,
     gt: f64,
     old: &ShearState,
@@ -239,8 +242,8 @@ pub fn coupled_step(
         dt,
         t,
     } = *input;
-    let p0 = normal_law.static_pressure;
-    let coupled = tangential.branch.needs_adhesion() && normal_law.traction.has_damage();
+    let p0 = normal_law.static_pressure();
+    let coupled = tangential.branch().needs_adhesion() && normal_law.traction().has_damage();
     let mut ut = old.gap;
     for it in 1..=100 {
         let (nu, n_app) = normal_step(
@@ -355,16 +358,19 @@ pub struct PointState {
 impl PointState {
     /// At rest at the pre-loaded equilibrium of `law`; the slider of `tangential` (when
     /// given) holds the static shear.
-    pub fn at_rest(law: &ContactLaw, tangential: Option<&TangentialLaw>) -> Self {
+    pub fn at_rest<N: NormalPart + ?Sized, G: TangentialPart + ?Sized>(
+        law: &N,
+        tangential: Option<&G>,
+    ) -> Self {
         PointState {
             beta: 1.0,
             s_prev: 0.0,
             s_cur: 0.0,
             gap: 0.0,
-            stress: -law.static_pressure,
+            stress: -law.static_pressure(),
             warm: WarmStart::default(),
             shear: tangential.map_or_else(ShearState::default, |tl| {
-                ShearState::at_rest(tl, law.static_pressure)
+                ShearState::at_rest(tl, law.static_pressure())
             }),
             t_prev: 0.0,
             t_cur: 0.0,
@@ -374,15 +380,15 @@ impl PointState {
     }
 
     /// Contact shear stress tau = T + q0 of the current level, Pa.
-    pub fn shear_stress(&self, tangential: &TangentialLaw) -> f64 {
-        self.shear.dynamic_stress + tangential.static_shear
+    pub fn shear_stress<G: TangentialPart + ?Sized>(&self, tangential: &G) -> f64 {
+        self.shear.dynamic_stress + tangential.static_shear()
     }
 
-    fn finish_normal(&mut self, upd: InterfaceUpdate, law: &ContactLaw) {
+    fn finish_normal<N: NormalPart + ?Sized>(&mut self, upd: InterfaceUpdate, law: &N) {
         self.s_prev = self.s_cur;
         self.s_cur = upd.dynamic_stress;
         self.gap = upd.gap;
-        self.stress = upd.dynamic_stress - law.static_pressure;
+        self.stress = upd.dynamic_stress - law.static_pressure();
         self.beta = upd.adhesion;
     }
 }
@@ -396,9 +402,9 @@ pub type Applied = [f64; 2];
 /// or the coupled normal/tangential step. Returns the stresses to apply over the step; the
 /// state `st` becomes the new level's.
 #[inline]
-pub fn update_point(
-    law: &ContactLaw,
-    tangential: Option<&TangentialLaw>,
+pub fn update_point<N: NormalPart + ?Sized, G: TangentialPart + ?Sized>(
+    law: &N,
+    tangential: Option<&G>,
     trial: &Trial,
     ctx: StepContext,
     st: &mut PointState,
@@ -413,8 +419,8 @@ pub fn update_point(
 /// update of a bar stack's joint is a tenth of its step; measured, the call cost 13% of
 /// the Tribobrake benchmark when it was not).
 #[inline(always)]
-fn update_normal_point(
-    law: &ContactLaw,
+fn update_normal_point<N: NormalPart + ?Sized>(
+    law: &N,
     trial: &Trial,
     ctx: StepContext,
     st: &mut PointState,
@@ -423,7 +429,7 @@ fn update_normal_point(
     let (upd, s_app) = normal_step(
         scheme,
         law,
-        None,
+        None::<&TangentialLaw>,
         trial.normal_gap,
         trial.normal_compliance,
         st.beta,
@@ -438,9 +444,9 @@ fn update_normal_point(
 }
 
 /// [`update_point`] with a tangential law: the coupled normal/tangential step.
-fn update_coupled_point(
-    law: &ContactLaw,
-    tl: &TangentialLaw,
+fn update_coupled_point<N: NormalPart + ?Sized, G: TangentialPart + ?Sized>(
+    law: &N,
+    tl: &G,
     trial: &Trial,
     ctx: StepContext,
     st: &mut PointState,
@@ -469,8 +475,8 @@ fn update_coupled_point(
     let b = upd.normal.adhesion;
     if b != st.beta {
         let d = (upd.normal.gap - law.critical_gap()).max(0.0);
-        let psi_beta =
-            law.traction.energy_d_adhesion(d, b) + tl.branch.spring_energy_d_adhesion(b, new.gap);
+        let psi_beta = law.traction().energy_d_adhesion(d, b)
+            + tl.branch().spring_energy_d_adhesion(b, new.gap);
         st.damage += psi_beta * (st.beta - b);
     }
     st.t_prev = st.t_cur;

@@ -12,7 +12,7 @@
 //! damage by the law's unconditionally stable backward-Euler update inside `S(g)`.
 
 use crate::error::{Error, Result};
-use crate::law::{ContactLaw, WarmStart};
+use crate::law::{CompressionBranch, NormalPart, TractionBranch, WarmStart};
 use crate::numeric::root::brent_past;
 
 /// Result of one interface update.
@@ -27,15 +27,15 @@ pub struct InterfaceUpdate {
 }
 
 /// Stress of the law at gap `g` with adhesion updated from `beta_old` over `dt`.
-fn s_of(law: &ContactLaw, g: f64, beta_old: f64, dt: f64) -> (f64, f64) {
+fn s_of<N: NormalPart + ?Sized>(law: &N, g: f64, beta_old: f64, dt: f64) -> (f64, f64) {
     let uc = law.critical_gap();
-    let p0 = law.static_pressure;
+    let p0 = law.static_pressure();
     if g <= uc {
-        (law.compression.stress(g) + p0, beta_old)
+        (law.compression().stress(g) + p0, beta_old)
     } else {
         let d = g - uc;
-        let b = law.traction.update_adhesion(d, beta_old, dt);
-        (law.traction.stress(d, b) + p0, b)
+        let b = law.traction().update_adhesion(d, beta_old, dt);
+        (law.traction().stress(d, b) + p0, b)
     }
 }
 
@@ -43,8 +43,8 @@ fn s_of(law: &ContactLaw, g: f64, beta_old: f64, dt: f64) -> (f64, f64) {
 /// left), a compression branch with a solver of its own
 /// ([`crate::law::CompressionBranch::solve_compressed`]) uses it; without, the Newton
 /// iteration on the gap below. `t` is only used in error messages.
-pub fn update(
-    law: &ContactLaw,
+pub fn update<N: NormalPart + ?Sized>(
+    law: &N,
     predicted_gap: f64,
     chi: f64,
     beta_old: f64,
@@ -53,10 +53,10 @@ pub fn update(
     t: f64,
 ) -> Result<InterfaceUpdate> {
     let uc = law.critical_gap();
-    let p0 = law.static_pressure;
+    let p0 = law.static_pressure();
     let gt = predicted_gap;
-    let c_rigid = law.compression.is_rigid();
-    let t_rigid = law.traction.is_rigid();
+    let c_rigid = law.compression().is_rigid();
+    let t_rigid = law.traction().is_rigid();
     // Where does the solution lie? F(uc) = p0 + (uc - g~)/chi: >= 0 -> compression side.
     let f_uc = p0 + (uc - gt) / chi;
     if f_uc >= 0.0 {
@@ -68,7 +68,7 @@ pub fn update(
                 adhesion: beta_old,
             });
         }
-        let f = |g: f64| law.compression.stress(g) + p0 + (g - gt) / chi;
+        let f = |g: f64| law.compression().stress(g) + p0 + (g - gt) / chi;
         if f_uc == 0.0 {
             return Ok(InterfaceUpdate {
                 gap: uc,
@@ -77,7 +77,7 @@ pub fn update(
             });
         }
         // sigma(g) + (g - q)/chi = 0 with q = g~ - chi p0
-        let own = warm.and_then(|w| law.compression.solve_compressed(gt - chi * p0, chi, w));
+        let own = warm.and_then(|w| law.compression().solve_compressed(gt - chi * p0, chi, w));
         if let Some(g) = own.filter(|g| *g <= uc) {
             return Ok(InterfaceUpdate {
                 gap: g,
@@ -94,7 +94,7 @@ pub fn update(
         let mut g = (gt - chi * p0).min(uc);
         let mut done = false;
         for _ in 0..40 {
-            let (sigma, k) = law.compression.stress_tangent(g);
+            let (sigma, k) = law.compression().stress_tangent(g);
             let fg = sigma + p0 + (g - gt) / chi;
             // zero within the round-off of its terms: converged
             if fg.abs() <= 8.0 * f64::EPSILON * (p0 + sigma.abs() + ((g - gt) / chi).abs()) {
@@ -221,6 +221,7 @@ mod tests {
     use crate::law::compression::modified_power::{ModifiedPower, ModifiedPowerStiffness};
     use crate::law::compression::StiffnessCurve;
     use crate::law::traction::Free;
+    use crate::law::ContactLaw;
 
     /// The pressure iteration of a stiffness-curve branch, warm-started along a history of
     /// predictions (a slow oscillation through both branches of the modified power law,

@@ -13,7 +13,7 @@ use crate::error::Result;
 use crate::law::param::LawSpec;
 use crate::law::param::{non_negative, positive, ParamMut};
 use crate::law::scheme::InterfaceScheme;
-use crate::law::{TangentialBranch, TangentialLaw};
+use crate::law::{TangentialBranch, TangentialPart};
 
 /// Coulomb friction branch.
 #[derive(Debug, Clone, Copy)]
@@ -87,19 +87,19 @@ pub enum SliderPhase {
 /// and frozen slip `slip` (m); slip `sign mu(path) N` at slip path `path` (m) and contact
 /// pressure `pressure` (Pa); free: the static shear `q0` when there is no slider at all
 /// (a spring carries it), else 0.
-pub fn slider_stress(
-    law: &TangentialLaw,
+pub fn slider_stress<G: TangentialPart + ?Sized>(
+    law: &G,
     phase: SliderPhase,
     u_t: f64,
     slip: f64,
     path: f64,
     pressure: f64,
 ) -> f64 {
-    let br = &*law.branch;
+    let br = law.branch();
     match phase {
-        SliderPhase::Stick => law.static_shear + br.stick_stiffness() * (u_t - slip),
+        SliderPhase::Stick => law.static_shear() + br.stick_stiffness() * (u_t - slip),
         SliderPhase::Slip(sg) => sg * law.friction_limit(pressure, path),
-        SliderPhase::Free if br.friction() == 0.0 => law.static_shear,
+        SliderPhase::Free if br.friction() == 0.0 => law.static_shear(),
         SliderPhase::Free => 0.0,
     }
 }
@@ -125,10 +125,10 @@ impl ShearState {
     /// At rest under the static shear of `law` and the normal pre-load `p0` (Pa): with
     /// friction and `p0 > 0` the slider sticks and carries `q0`; otherwise it is free and
     /// an elastic stick spring carries `q0` through its slip.
-    pub fn at_rest(law: &TangentialLaw, p0: f64) -> Self {
-        let q0 = law.static_shear;
-        let sticking = law.branch.friction() > 0.0 && p0 > 0.0;
-        let kt = law.branch.stick_stiffness();
+    pub fn at_rest<G: TangentialPart + ?Sized>(law: &G, p0: f64) -> Self {
+        let q0 = law.static_shear();
+        let sticking = law.branch().friction() > 0.0 && p0 > 0.0;
+        let kt = law.branch().stick_stiffness();
         ShearState {
             slider: if sticking { q0 } else { 0.0 },
             state: if sticking { 0.0 } else { f64::NAN },
@@ -171,9 +171,9 @@ fn given_slider(gt: f64, chi: f64, w: f64, k: f64, tau_f: f64, q0: f64, t_old: f
 /// step (Pa): its stress, like the normal constraint reaction, is the one acting over the
 /// step (first order in time where it switches).
 #[allow(clippy::too_many_arguments)]
-pub fn return_map(
+pub fn return_map<G: TangentialPart + ?Sized>(
     scheme: InterfaceScheme,
-    law: &TangentialLaw,
+    law: &G,
     gt: f64,
     chi: f64,
     old: &ShearState,
@@ -182,8 +182,8 @@ pub fn return_map(
     pressure: f64,
     pressure_applied: f64,
 ) -> ShearUpdate {
-    let br = &*law.branch;
-    let q0 = law.static_shear;
+    let br = law.branch();
+    let q0 = law.static_shear();
     let k = br.spring_stiffness(beta);
     let kt = br.stick_stiffness();
     // the coefficient at the slip path of the current level (explicit in the path: a

@@ -69,7 +69,7 @@ pub(super) fn update(
         ..Trial::default()
     };
     let Some((sf, joint_t, tl)) = shear else {
-        let [s_app, _] = update_point(law, None, &trial, ctx, st)?;
+        let [s_app, _] = update_point(law, None::<&TangentialLaw>, &trial, ctx, st)?;
         joint.apply(&mut normal.u_next, chi, s_app);
         return Ok(());
     };

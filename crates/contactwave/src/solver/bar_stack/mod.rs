@@ -460,7 +460,7 @@ impl Contacts {
         let state = laws
             .iter()
             .enumerate()
-            .map(|(i, l)| PointState::at_rest(l, tangential.get(i).map(|t| &**t)))
+            .map(|(i, l)| PointState::at_rest(&**l, tangential.get(i).map(|t| &**t)))
             .collect();
         Contacts {
             joints,
@@ -639,7 +639,7 @@ fn record_level(
         }
         for (i, (st, tl)) in state.iter().zip(tangential).enumerate() {
             sh.gap[i].push(st.shear.gap);
-            sh.stress[i].push(st.shear_stress(tl));
+            sh.stress[i].push(st.shear_stress(&**tl));
             sh.slip[i].push(st.shear.slip);
             sh.state[i].push(st.shear.state);
         }
