@@ -136,16 +136,8 @@ fn solve(problem: &HalfSpace, settings: &FdSolver) -> Result<HalfSpaceOutput> {
         if k > 0 {
             inc_disp -= gauss4(t - dt, t, |x| inc.stress(x)) / z1;
         }
-        out.t.push(t);
-        out.gap.push(gap);
-        out.contact_stress.push(sigma);
-        out.beta.push(beta);
-        out.incident_stress.push(s_inc);
-        out.reflected_stress.push(s - s_inc);
-        out.transmitted_stress.push(s);
-        out.reflected_displacement.push(u_ref);
-        out.incident_displacement.push(inc_disp);
-        out.transmitted_displacement.push(0.0);
+        out.push_summary(t, beta, u_ref);
+        out.push_fields(gap, sigma, s_inc, s, [inc_disp, 0.0]);
         if gap > problem.law.critical_gap() && t <= inc.duration() {
             open_time += dt;
         }

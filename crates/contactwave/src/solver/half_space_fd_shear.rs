@@ -393,16 +393,14 @@ fn assemble(
                     e_tr += z2 * d_tr * d_tr / dt;
                 }
             }
-            o.t.push(t);
-            o.gap.push(rec.gap[c][i]);
-            o.contact_stress.push(s + statics[c]);
-            o.beta.push(rec.beta[i]);
-            o.incident_stress.push(s_inc);
-            o.reflected_stress.push(s - s_inc);
-            o.transmitted_stress.push(s);
-            o.reflected_displacement.push(rec.left[c][j]);
-            o.incident_displacement.push(inc_disp);
-            o.transmitted_displacement.push(rec.right[c][j]);
+            o.push_summary(t, rec.beta[i], rec.left[c][j]);
+            o.push_fields(
+                rec.gap[c][i],
+                s + statics[c],
+                s_inc,
+                s,
+                [inc_disp, rec.right[c][j]],
+            );
         }
         o.energy.incident = e_inc;
         o.energy.reflected = e_ref;

@@ -67,7 +67,8 @@ pub struct HalfSpaceOutput {
 
 impl HalfSpaceOutput {
     /// Record the series a summary reads at one grid point: time `t` (s), adhesion `beta`
-    /// and the reflected displacement (m). The exact solvers' one recording path, with
+    /// and the reflected displacement (m). The one recording path of every solver of the
+    /// half-space problems (exact and FD, normal and coupled), with
     /// [`HalfSpaceOutput::push_fields`].
     #[inline(always)]
     pub(crate) fn push_summary(&mut self, t: f64, beta: f64, reflected_displacement: f64) {
