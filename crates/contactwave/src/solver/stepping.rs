@@ -17,7 +17,13 @@
 //! whole grid steps at once), while here a step is one level of a fixed-step scheme that
 //! may be checked for finiteness and recorded every n-th level. The shared parts (the
 //! interrupt check and its cadence, [`CHECK_EVERY`] = `exact_loop::INTERRUPT_STEPS`, and a
-//! recorder that observes the levels) are the same in both.
+//! recorder that observes the levels) are the same in both. Measured (the grid steps of
+//! `examples/rccm_0.82MPa.toml` and `examples/unilateral.toml`, 3799 each, counted in a
+//! build instrumented for it): 3570 and 3574 are taken in runs of whole steps by the
+//! normal solver's fast paths (no per-step call of the loop), 200 as single whole steps,
+//! and only 29 and 25 through the general path with event location; the analysis run's
+//! locked interface takes 3598 in runs. A per-level loop like this one would call into the
+//! solver for every one of them, which is what the exact loop's runs avoid.
 
 use crate::error::Result;
 
