@@ -1,7 +1,7 @@
 //! The process-wide interruption request (Ctrl-C or SIGTERM in the CLI, `KeyboardInterrupt`
 //! in Python): once [`request`]ed, long loops (the solvers' time steps, the executor's
 //! points, file writing between files) stop at their next check with
-//! [`Error::Interrupted`](crate::Error::Interrupted). Files are written one whole file at
+//! [`crate::Error::Interrupted`]. Files are written one whole file at
 //! a time inside a [`Writing`] guard, so whoever ends the process on a signal can wait
 //! until no file is half-written ([`writing`]).
 //!

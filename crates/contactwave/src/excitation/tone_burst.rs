@@ -185,7 +185,7 @@ impl Excitation for ToneBurst {
             }
         }
     }
-    /// Block by block of up to [`GRID_BLOCK`] steps on one window piece: one exact `sin_cos`
+    /// Block by block of up to `GRID_BLOCK` steps on one window piece: one exact `sin_cos`
     /// of the carrier (and one of the window's ramp) at the block's first step, then each node of each step by
     /// angle addition with the rotation from the block start to the node, tabulated once
     /// per call (`j` steps by angle addition of exact `sin_cos` of `16 a` and `b < 16`

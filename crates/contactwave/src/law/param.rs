@@ -1,6 +1,6 @@
 //! A law's scenario parameters: what each law file's `Spec` does ([`LawSpec`]: validate,
 //! build, name its parameters and their units), the table that registers the laws of one
-//! kind ([`law_table!`]), the handle `[set]` and sweep axes change a parameter through, and
+//! kind (`law_table!`), the handle `[set]` and sweep axes change a parameter through, and
 //! the range checks every law's builder uses (errors name file, field, value and the
 //! allowed range).
 
@@ -16,7 +16,7 @@ pub enum ParamMut<'a> {
 }
 
 /// What a law's parameters, as a scenario file gives them, do: each law file's `Spec`
-/// implements it, and one line of its kind's [`law_table!`] registers it.
+/// implements it, and one line of its kind's `law_table!` registers it.
 pub trait LawSpec {
     /// The branch it builds: `dyn CompressionBranch`, `dyn TractionBranch` or
     /// `dyn TangentialBranch`.

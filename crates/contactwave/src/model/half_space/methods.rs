@@ -243,7 +243,7 @@ const MAX_FLOORS: usize = 8;
 type FloorKey = (Vec<u64>, [u64; 9]);
 
 /// The analysis floors at unit incident peak of the locked interfaces a worker solved
-/// last, oldest first (at most [`MAX_FLOORS`]; [`locked_floor`]): a plan cache owned by
+/// last, oldest first (at most `MAX_FLOORS`, 8; `locked_floor`): a plan cache owned by
 /// the caller with its other workspaces ([`crate::model::Workspace`]), never a result.
 #[derive(Debug, Default, Clone)]
 pub struct Floors(Vec<(FloorKey, BandAmplitudes)>);

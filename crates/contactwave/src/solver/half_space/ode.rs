@@ -38,7 +38,7 @@ pub(super) struct IncidentGrid {
 
 /// What a run of the exact solver leaves for the next run on the same worker (a plan
 /// cache: it never changes a result): the incident wave tabulated on the solver's grid
-/// ([`IncidentGrid`]), used again as it is by a run of the same incident wave
+/// (`IncidentGrid`), used again as it is by a run of the same incident wave
 /// ([`Excitation::grid_key`]) on the same grid (the runs of a sweep over the interface or
 /// the pressure, of an identification, of a repeated scenario), its buffer (up to 8 MB)
 /// by any other. Owned by the caller, one per worker (a [`crate::solver::Plan`] run on it).
