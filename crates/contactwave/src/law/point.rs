@@ -8,8 +8,10 @@
 //!
 //! The branches of the analytic laws are `Copy` (compression `rigid`, `linear`,
 //! `quadratic`, `power`; every traction branch; every tangential branch). The tabulated
-//! compression laws (`modified_power`, `table`) hold a table per static pressure and are
-//! shared per interface as a [`super::ContactLaw`].
+//! compression laws (`modified_power`, `table`) hold a table per static pressure (some
+//! 80 KB): a crack tabulates each distinct static pressure of its points once in a
+//! [`CurveStore`], and each point holds a reference to its curve (`&StiffnessCurve`, a
+//! compression branch like the curve itself, and `Copy`).
 //!
 //! ```
 //! use contactwave::law::compression::Linear;
@@ -39,7 +41,11 @@
 //! assert!(laws.iter().zip(&states).all(|(l, s)| (s.stress - (-l.static_pressure + 1e12 * g)).abs() < 1e-6));
 //! ```
 
-use super::{CompressionBranch, NormalPart, TangentialBranch, TangentialPart, TractionBranch};
+use super::compression::{StiffnessCurve, StiffnessPressure};
+use super::{
+    CompressionBranch, NormalPart, TangentialBranch, TangentialPart, TractionBranch, WarmStart,
+};
+use crate::error::{Error, Result};
 
 /// A point's contact law by value: static pressure p0 (Pa) and shear q0 (Pa), and its
 /// compression, traction and tangential branches (`C`, `T`, `B`).
@@ -100,14 +106,206 @@ impl<C, T, B: TangentialBranch> TangentialPart for PointLaw<C, T, B> {
     }
 }
 
+/// A compression branch shared by reference is a compression branch (every method
+/// forwarded), so that a point can hold its tabulated curve as a `Copy` reference into a
+/// [`CurveStore`].
+impl<C: CompressionBranch + ?Sized> CompressionBranch for &C {
+    #[inline]
+    fn name(&self) -> &'static str {
+        (**self).name()
+    }
+    #[inline]
+    fn is_rigid(&self) -> bool {
+        (**self).is_rigid()
+    }
+    #[inline]
+    fn critical_gap(&self) -> f64 {
+        (**self).critical_gap()
+    }
+    #[inline]
+    fn stress(&self, gap: f64) -> f64 {
+        (**self).stress(gap)
+    }
+    #[inline]
+    fn tangent(&self, gap: f64) -> f64 {
+        (**self).tangent(gap)
+    }
+    #[inline]
+    fn stress_tangent(&self, gap: f64) -> (f64, f64) {
+        (**self).stress_tangent(gap)
+    }
+    #[inline]
+    fn energy(&self, gap: f64) -> f64 {
+        (**self).energy(gap)
+    }
+    #[inline]
+    fn is_affine(&self) -> bool {
+        (**self).is_affine()
+    }
+    #[inline]
+    fn stiffness_at_rest(&self) -> f64 {
+        (**self).stiffness_at_rest()
+    }
+    #[inline]
+    fn tangent_at(&self, gap: f64, stress: f64) -> f64 {
+        (**self).tangent_at(gap, stress)
+    }
+    #[inline]
+    fn solve_compressed(&self, shifted_gap: f64, chi: f64, warm: &mut WarmStart) -> Option<f64> {
+        (**self).solve_compressed(shifted_gap, chi, warm)
+    }
+}
+
+/// The tabulated compression curves of a crack, one per distinct static pressure of its
+/// points: built once before the time loop, read by reference from the points' laws
+/// (`PointLaw<&StiffnessCurve<K>, T, B>`, `Copy`).
+#[derive(Debug)]
+pub struct CurveStore<K: StiffnessPressure> {
+    /// Distinct static pressures, Pa, increasing.
+    pressures: Vec<f64>,
+    /// The curve of each.
+    curves: Vec<StiffnessCurve<K>>,
+}
+
+impl<K: StiffnessPressure + Clone> CurveStore<K> {
+    /// Memory of one tabulated curve of `law`, bytes (an upper estimate: 1025 uniform
+    /// nodes, a geometric tail of at most 450 nodes to 1e10 Pa, a node at each kink of the
+    /// relation, four arrays per node and 4096 buckets).
+    pub fn curve_bytes(law: &K) -> usize {
+        (1025 + 450 + 2 + law.kinks().len()) * 4 * 8 + 4096 * 4
+    }
+
+    /// Tabulate the relation `law` (named `name` in reports) at each distinct pressure of
+    /// `static_pressures` (Pa, finite and >= 0), refusing more than `max_bytes` of tables
+    /// (the crack's memory budget).
+    pub fn new(
+        law: &K,
+        static_pressures: &[f64],
+        name: &'static str,
+        max_bytes: usize,
+    ) -> Result<Self> {
+        let mut pressures: Vec<f64> = Vec::with_capacity(static_pressures.len());
+        for &p in static_pressures {
+            if !(p.is_finite() && p >= 0.0) {
+                return Err(Error::invalid(
+                    "",
+                    "static_pressure",
+                    p,
+                    "a finite pressure >= 0 Pa",
+                ));
+            }
+            pressures.push(p);
+        }
+        pressures.sort_by(f64::total_cmp);
+        pressures.dedup();
+        let one = Self::curve_bytes(law);
+        let need = pressures.len().saturating_mul(one);
+        if need > max_bytes {
+            return Err(Error::invalid(
+                "",
+                "static_pressure",
+                format!(
+                    "{} distinct values ({need} bytes of tables)",
+                    pressures.len()
+                ),
+                format!("at most {} distinct static pressures", max_bytes / one),
+            ));
+        }
+        let curves = pressures
+            .iter()
+            .map(|&p0| StiffnessCurve::new(law.clone(), p0, name))
+            .collect();
+        Ok(CurveStore { pressures, curves })
+    }
+
+    /// The curve tabulated for static pressure `p0` (Pa), if `p0` was one of the store's.
+    pub fn curve(&self, p0: f64) -> Option<&StiffnessCurve<K>> {
+        self.pressures
+            .binary_search_by(|p| p.total_cmp(&p0))
+            .ok()
+            .map(|i| &self.curves[i])
+    }
+
+    /// Number of distinct curves.
+    pub fn len(&self) -> usize {
+        self.curves.len()
+    }
+
+    /// `true` when the store holds no curve.
+    pub fn is_empty(&self) -> bool {
+        self.curves.is_empty()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::law::compression::Linear;
+    use crate::law::compression::modified_power::ModifiedPowerStiffness;
+    use crate::law::compression::{Linear, ModifiedPower, StiffnessCurve};
     use crate::law::contact::{update_point, InterfaceScheme, PointState, StepContext, Trial};
     use crate::law::tangential::Rccm as RccmTangential;
     use crate::law::traction::Rccm;
     use crate::law::{ContactLaw, TangentialLaw};
+
+    /// Drive every point through `steps` steps of a growing two-gap drive (amplitudes
+    /// `gap_n`, `gap_t`, m; compliance `chi`, m/Pa) in both time discretisations, once with
+    /// the points' own laws in one loop and once with the shared laws point by point,
+    /// asserting identical states bit for bit at every step. Returns whether some point
+    /// damaged, slipped and opened (beyond 1.5 critical gaps).
+    fn drive_against_shared<C, T, B>(
+        points: &[PointLaw<C, T, B>],
+        shared: &[(ContactLaw, TangentialLaw)],
+        (gap_n, gap_t, chi): (f64, f64, f64),
+    ) -> (bool, bool, bool)
+    where
+        C: CompressionBranch,
+        T: TractionBranch,
+        B: TangentialBranch,
+    {
+        let (mut damaged, mut slipped, mut opened) = (false, false, false);
+        for scheme in [InterfaceScheme::Average, InterfaceScheme::Backward] {
+            let mut own: Vec<PointState> = points
+                .iter()
+                .map(|p| PointState::at_rest(p, Some(p)))
+                .collect();
+            let mut reference: Vec<PointState> = shared
+                .iter()
+                .map(|(n, t)| PointState::at_rest(n, Some(t)))
+                .collect();
+            for k in 1..=400 {
+                let t = k as f64 * 1e-8;
+                let ctx = StepContext {
+                    scheme,
+                    dt: 1e-8,
+                    t,
+                };
+                let phase = 2.0 * std::f64::consts::PI * k as f64 / 100.0;
+                let amp = (k as f64 / 100.0).min(1.0);
+                for (i, p) in points.iter().enumerate() {
+                    let trial = Trial {
+                        normal_gap: amp * gap_n * phase.sin(),
+                        normal_compliance: chi,
+                        tangential_gap: amp * gap_t * phase.cos(),
+                        tangential_compliance: chi,
+                    };
+                    update_point(p, Some(p), &trial, ctx, &mut own[i]).unwrap();
+                    let (n, tl) = &shared[i];
+                    update_point(n, Some(tl), &trial, ctx, &mut reference[i]).unwrap();
+                    assert_eq!(
+                        format!("{:?}", own[i]),
+                        format!("{:?}", reference[i]),
+                        "point {i}, step {k}, {scheme:?}"
+                    );
+                    damaged |= own[i].beta < 1.0;
+                    slipped |= own[i].shear.state.abs() == 1.0;
+                    opened |= own[i].gap > p.critical_gap() * 1.5;
+                }
+            }
+            // beta never increases: at the end it is at most 1 everywhere
+            assert!(own.iter().all(|s| (0.0..=1.0).contains(&s.beta)));
+        }
+        (damaged, slipped, opened)
+    }
 
     /// A crack of 64 points, each with its own closure pressure, stiffnesses and decohesion
     /// energy (full RCCM: damage driven by both gaps, Coulomb slip), driven through
@@ -160,50 +358,70 @@ mod tests {
                 )
             })
             .collect();
-        for scheme in [InterfaceScheme::Average, InterfaceScheme::Backward] {
-            let mut own: Vec<PointState> = points
-                .iter()
-                .map(|p| PointState::at_rest(p, Some(p)))
-                .collect();
-            let mut reference: Vec<PointState> = shared
-                .iter()
-                .map(|(n, t)| PointState::at_rest(n, Some(t)))
-                .collect();
-            let (mut damaged, mut slipped, mut opened) = (false, false, false);
-            for k in 1..=400 {
-                let t = k as f64 * 1e-8;
-                let ctx = StepContext {
-                    scheme,
-                    dt: 1e-8,
-                    t,
-                };
-                let phase = 2.0 * std::f64::consts::PI * k as f64 / 100.0;
-                // a drive growing over a period to gaps of a few critical gaps
-                // (`p0 / K` = 5e-8 to 1e-7 m) and damage openings (`sqrt(w / C_N)` ~ 1e-7 m)
-                let amp = (k as f64 / 100.0).min(1.0);
-                for (i, p) in points.iter().enumerate() {
-                    let trial = Trial {
-                        normal_gap: amp * 3e-7 * phase.sin(),
-                        normal_compliance: 1e-15,
-                        tangential_gap: amp * 2e-7 * phase.cos(),
-                        tangential_compliance: 1e-15,
-                    };
-                    update_point(p, Some(p), &trial, ctx, &mut own[i]).unwrap();
-                    let (n, tl) = &shared[i];
-                    update_point(n, Some(tl), &trial, ctx, &mut reference[i]).unwrap();
-                    assert_eq!(
-                        format!("{:?}", own[i]),
-                        format!("{:?}", reference[i]),
-                        "point {i}, step {k}, {scheme:?}"
-                    );
-                    damaged |= own[i].beta < 1.0;
-                    slipped |= own[i].shear.state.abs() == 1.0;
-                    opened |= own[i].gap > p.static_pressure / 1e13 * 1.5;
-                }
-            }
-            assert!(damaged && slipped && opened, "{damaged} {slipped} {opened}");
-            // beta never increases: at the end it is at most 1 everywhere, below 1 somewhere
-            assert!(own.iter().all(|s| (0.0..=1.0).contains(&s.beta)));
-        }
+        // gaps of a few critical gaps (`p0 / K` = 5e-8 to 1e-7 m) and damage openings
+        // (`sqrt(w / C_N)` ~ 1e-7 m)
+        let (damaged, slipped, opened) =
+            drive_against_shared(&points, &shared, (3e-7, 2e-7, 1e-15));
+        assert!(damaged && slipped && opened, "{damaged} {slipped} {opened}");
+    }
+
+    /// The tabulated modified power law (thesis section 4.2) on a crack of 64 points with 8
+    /// distinct closure pressures: the store tabulates 8 curves, each point's `Copy` law
+    /// holds a reference to its own, and the one-loop update gives bit for bit what the
+    /// shared laws (a curve tabulated per point, boxed) give, through closing (the curve's
+    /// own warm-started solver), opening (RCCM traction with damage) and Coulomb slip.
+    #[test]
+    fn tabulated_point_laws_share_curves_and_update_like_shared_laws() {
+        const N: usize = 64;
+        let law = ModifiedPowerStiffness::new(1.81e10, 0.35, 0.2e6, 0.3);
+        let p0 = |i: usize| 0.2e6 * (1.0 + (i % 8) as f64);
+        let pressures: Vec<f64> = (0..N).map(p0).collect();
+        let store = CurveStore::new(&law, &pressures, "modified_power", 64 << 20).unwrap();
+        assert_eq!(store.len(), 8);
+        // a budget too small for the 8 tables is refused before tabulating
+        let one = CurveStore::<ModifiedPowerStiffness>::curve_bytes(&law);
+        assert!(CurveStore::new(&law, &pressures, "modified_power", 7 * one).is_err());
+        assert!(CurveStore::new(&law, &[f64::NAN], "modified_power", 1 << 30).is_err());
+        let traction = Rccm {
+            stiffness: 2e13,
+            energy: 0.08,
+            viscosity: 0.0,
+        };
+        let tangential = RccmTangential {
+            stiffness: 1e13,
+            friction: 0.4,
+        };
+        let points: Vec<PointLaw<&ModifiedPower, Rccm, RccmTangential>> = pressures
+            .iter()
+            .map(|&p| PointLaw {
+                static_pressure: p,
+                static_shear: 0.05 * p,
+                compression: store.curve(p).unwrap(),
+                traction,
+                tangential,
+            })
+            .collect();
+        let shared: Vec<(ContactLaw, TangentialLaw)> = pressures
+            .iter()
+            .map(|&p| {
+                (
+                    ContactLaw {
+                        static_pressure: p,
+                        compression: Box::new(StiffnessCurve::new(law, p, "modified_power")),
+                        traction: Box::new(traction),
+                    },
+                    TangentialLaw {
+                        static_shear: 0.05 * p,
+                        branch: Box::new(tangential),
+                    },
+                )
+            })
+            .collect();
+        // critical gaps of the curve: G(p0), about 1e-5 m at these pressures
+        let uc = points.iter().map(|p| p.critical_gap()).fold(0.0, f64::max);
+        assert!(uc > 0.0);
+        let (damaged, slipped, opened) =
+            drive_against_shared(&points, &shared, (3.0 * uc, 3.0 * uc, 1e-12));
+        assert!(damaged && slipped && opened, "{damaged} {slipped} {opened}");
     }
 }
