@@ -303,9 +303,15 @@ pub fn fmt_value(v: f64) -> String {
     if v == 0.0 || !v.is_finite() {
         return format!("{v}");
     }
-    let a = v.abs();
-    if (1e-3..1e5).contains(&a) {
-        let digits = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
+    // the decimal exponent of the value rounded to 4 digits (0.99999 rounds to 1.000, not
+    // to the five digits of 1.0000 that the exponent of 0.99999 itself would give)
+    let rounded = format!("{:.3e}", v.abs());
+    let exponent: i32 = rounded
+        .split_once('e')
+        .and_then(|(_, e)| e.parse().ok())
+        .unwrap_or(0);
+    if (-3..5).contains(&exponent) {
+        let digits = (3 - exponent).clamp(0, 6) as usize;
         format!("{v:.digits$}")
     } else {
         format!("{v:.3e}")
@@ -534,5 +540,27 @@ mod tests {
         let y: Vec<f64> = x.iter().map(|v| -(v - 0.37f64).powi(2)).collect();
         assert!((argmax_refined(&x, &y) - 0.37).abs() < 1e-12);
         assert!(matches!(tv("{ law = \"free\" }"), toml::Value::Table(_)));
+    }
+
+    /// Four significant digits on both sides of a power of ten, whatever the round-off:
+    /// a value a hair below 1 and a hair above show alike.
+    #[test]
+    fn four_significant_digits_across_powers_of_ten() {
+        for (v, s) in [
+            (1.0000000000000022, "1.000"),
+            (0.9999999999999998, "1.000"),
+            (0.99996, "1.000"),
+            (0.99994, "0.9999"),
+            (-9.99996, "-10.00"),
+            (12.345, "12.35"),
+            (1234.4, "1234"),
+            (99999.7, "1.000e5"),
+            (0.001, "0.001000"),
+            (0.00099999, "0.001000"),
+            (0.0009994, "9.994e-4"),
+            (0.0, "0"),
+        ] {
+            assert_eq!(fmt_value(v), s, "{v}");
+        }
     }
 }

@@ -38,6 +38,7 @@ pub mod half_space;
 pub mod half_space_fd;
 pub mod half_space_fd_shear;
 pub mod output;
+mod quadrature;
 pub mod radau;
 pub(crate) mod stepping;
 

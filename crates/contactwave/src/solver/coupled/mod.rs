@@ -26,7 +26,8 @@ mod state;
 use self::state::{Eval, Interface, Normal, Phase, Scales, SliderPhase};
 use super::exact_loop::{self, Driven, Grid, GridSolver};
 use super::half_space::{HalfSpace, HalfSpaceSettings};
-use super::output::{EnergyAudit, HalfSpaceOutput};
+use super::output::HalfSpaceOutput;
+use super::quadrature::{StageSums, WaveIntegrals};
 use super::radau::{self, System, B, C};
 use super::Solver;
 use crate::error::{Error, Result};
@@ -241,12 +242,7 @@ impl Solver for CoupledSolver {
 /// and at oblique incidence the four outgoing waves' energies (J/m^2).
 #[derive(Debug, Default, Clone, Copy)]
 struct Integrals {
-    e_inc: [f64; 2],
-    e_ref: [f64; 2],
-    e_tr: [f64; 2],
-    disp_inc: [f64; 2],
-    disp_ref: [f64; 2],
-    disp_tr: [f64; 2],
+    wave: [WaveIntegrals; 2],
     damage: f64,
     friction: f64,
     open_in_burst: f64,
@@ -403,28 +399,18 @@ impl<'a> CoupledRun<'a> {
         let [z1, z2, z1t, z2t] = self.z;
         let p0 = self.iface.law.static_pressure;
         let q0 = self.iface.tangential.static_shear;
+        let mut sums = [StageSums::default(); 2];
         for j in 0..3 {
             let w = h * B[j];
             let tj = t + C[j] * h;
             let y = step.stages[j];
             let e = self.iface.eval(tj, &y);
             let (sn, st) = (e.sigma + p0, e.tau - q0);
-            let (rn, rt) = (sn - e.s_inc, st - e.tau_inc);
-            acc.e_inc[0] += w * e.s_inc * e.s_inc / z1;
-            acc.e_inc[1] += w * e.tau_inc * e.tau_inc / z1t;
-            acc.e_ref[0] += w * rn * rn / z1;
-            acc.e_ref[1] += w * rt * rt / z1t;
-            acc.e_tr[0] += w * sn * sn * inv(z2);
-            acc.e_tr[1] += w * st * st * inv(z2t);
+            sums[0].add(B[j], e.s_inc, sn);
+            sums[1].add(B[j], e.tau_inc, st);
             if let Some(o) = &self.p.oblique {
+                let (rn, rt) = (sn - e.s_inc, st - e.tau_inc);
                 oblique::accumulate(o, acc, w, [e.s_inc, e.tau_inc], [rn, rt], [sn, st]);
-            } else {
-                acc.disp_inc[0] -= w * e.s_inc / z1;
-                acc.disp_inc[1] -= w * e.tau_inc / z1t;
-                acc.disp_ref[0] += w * rn / z1;
-                acc.disp_ref[1] += w * rt / z1t;
-                acc.disp_tr[0] -= w * sn * inv(z2);
-                acc.disp_tr[1] -= w * st * inv(z2t);
             }
             // friction: tau_f ds/dt (the slider's work; zero while sticking)
             let slip_rate = match self.iface.phase.tangential {
@@ -456,6 +442,9 @@ impl<'a> CoupledRun<'a> {
                 }
             }
         }
+        let plane = self.p.oblique.is_none();
+        acc.wave[0].add(h, 1.0 / z1, inv(z2), &sums[0], plane);
+        acc.wave[1].add(h, 1.0 / z1t, inv(z2t), &sums[1], plane);
     }
 
     /// Slider stress of the current phase at `(t, y)`, Pa.
@@ -665,13 +654,13 @@ impl<'a> CoupledRun<'a> {
             (&mut out.normal, y[0], e.sigma, e.s_inc, e.sigma + p0, 0),
             (&mut out.shear, y[2], e.tau, e.tau_inc, e.tau - q0, 1),
         ] {
-            o.push_summary(t, e.beta, acc.disp_ref[c]);
+            o.push_summary(t, e.beta, acc.wave[c].disp_ref);
             o.push_fields(
                 gap,
                 stress,
                 inc,
                 dyn_stress,
-                [acc.disp_inc[c], acc.disp_tr[c]],
+                [acc.wave[c].disp_inc, acc.wave[c].disp_tr],
             );
         }
         out.slip.push(self.slip_of(&e, y));
@@ -738,23 +727,13 @@ impl<'a> CoupledRun<'a> {
         } else {
             0.0
         };
-        out.normal.energy = EnergyAudit {
-            incident: acc.e_inc[0],
-            reflected: acc.e_ref[0],
-            transmitted: acc.e_tr[0],
-            stored: law.stored_energy(y[0], e.beta),
-            damage: acc.damage,
-            adhesion_decrease: law.traction.adhesion_energy(1.0)
-                - law.traction.adhesion_energy(e.beta),
-        };
-        out.shear.energy = EnergyAudit {
-            incident: acc.e_inc[1],
-            reflected: acc.e_ref[1],
-            transmitted: acc.e_tr[1],
-            stored: tl.branch.spring_energy(e.beta, y[2]) + series,
-            damage: 0.0,
-            adhesion_decrease: 0.0,
-        };
+        out.normal.energy = acc.wave[0].audit(
+            law.stored_energy(y[0], e.beta),
+            acc.damage,
+            law.traction.adhesion_energy(1.0) - law.traction.adhesion_energy(e.beta),
+        );
+        out.shear.energy =
+            acc.wave[1].audit(tl.branch.spring_energy(e.beta, y[2]) + series, 0.0, 0.0);
         out.friction_dissipation = acc.friction;
         out.static_shear_work = tl.static_shear * self.slip_of(&e, &y);
         out.normal.open_time_in_burst = acc.open_in_burst;

@@ -171,9 +171,10 @@ pub(super) fn accumulate(
     let (c1, c2) = (&o.c1, &o.c2);
     for i in 0..2 {
         // v_inc = -C1 inc, v_ref = C1^T rf, v_tr = -C2 tr
-        acc.disp_inc[i] -= w * (c1[i][0] * inc[0] + c1[i][1] * inc[1]);
-        acc.disp_ref[i] += w * (c1[0][i] * rf[0] + c1[1][i] * rf[1]);
-        acc.disp_tr[i] -= w * (c2[i][0] * tr[0] + c2[i][1] * tr[1]);
+        let wave = &mut acc.wave[i];
+        wave.disp_inc -= w * (c1[i][0] * inc[0] + c1[i][1] * inc[1]);
+        wave.disp_ref += w * (c1[0][i] * rf[0] + c1[1][i] * rf[1]);
+        wave.disp_tr -= w * (c2[i][0] * tr[0] + c2[i][1] * tr[1]);
     }
     for (k, (m, f, s)) in [
         (&o.reflected_waves, &o.reflected_flux, rf),

@@ -12,8 +12,9 @@
 
 use super::fast::AffinePhase;
 use super::ode::Phase;
-use super::{GapRun, Sink, StageSums};
+use super::{GapRun, Sink};
 use crate::error::{Error, Result};
+use crate::solver::quadrature::StageSums;
 use crate::solver::radau::{self, AffineMap};
 
 impl GapRun<'_> {

@@ -23,6 +23,7 @@ mod ode;
 
 use super::exact_loop::{self, Driven, Grid};
 pub use super::output::{EnergyAudit, HalfSpaceOutput};
+use super::quadrature::{StageSums, WaveIntegrals};
 use super::radau::{self, System};
 use super::Solver;
 use crate::error::{Error, Result};
@@ -89,26 +90,6 @@ const STUCK_TOLERANCE: f64 = 1e-12;
 /// opening rate) below which no switch is made.
 const EVENT_HYSTERESIS: f64 = 1e-10;
 
-/// The Radau quadrature sums of a step: over its stages, the weight times `s_inc`, `s_ref`,
-/// `s_inc^2`, `s_ref^2`, `S` and `S^2` (`S = sigma + p0`; Pa and Pa^2).
-#[derive(Debug, Default, Clone, Copy)]
-struct StageSums([f64; 6]);
-
-impl StageSums {
-    /// Add a stage of weight `w` with incident stress `sinc` and `S = s` (Pa).
-    #[inline]
-    fn add(&mut self, w: f64, sinc: f64, s: f64) {
-        let sref = s - sinc;
-        let v = &mut self.0;
-        v[0] += w * sinc;
-        v[1] += w * sref;
-        v[2] += w * sinc * sinc;
-        v[3] += w * sref * sref;
-        v[4] += w * s;
-        v[5] += w * s * s;
-    }
-}
-
 /// Where a run of whole grid steps taken in one go ([`GapRun::stuck_run`],
 /// [`GapRun::affine_block`]) writes: the running integrals, the records, and the
 /// breakpoints with the index of the next one (advanced as the run goes).
@@ -124,12 +105,7 @@ struct Sink<'t> {
 /// (J/m^2), and the time the interface was open while the burst was at it (s).
 #[derive(Debug, Default, Clone, Copy)]
 struct Integrals {
-    disp_ref: f64,
-    disp_inc: f64,
-    disp_tr: f64,
-    e_inc: f64,
-    e_ref: f64,
-    e_tr: f64,
+    wave: WaveIntegrals,
     e_damage: f64,
     open_in_burst: f64,
 }
@@ -478,15 +454,9 @@ impl<'a> GapRun<'a> {
             d_inc += w * si;
             e_inc += w * si * si;
         }
-        let g = self.stuck_gain;
-        let (h1, h2) = (h * self.inv_z[0], h * self.inv_z[1]);
-        acc.disp_ref += h1 * ((g - 1.0) * d_inc);
-        acc.disp_inc -= h1 * d_inc;
-        acc.e_inc += h1 * e_inc;
-        acc.e_ref += h1 * ((g - 1.0) * (g - 1.0) * e_inc);
-        // (1/Z2 = 0 at a rigid wall: nothing transmitted)
-        acc.disp_tr -= h2 * (g * d_inc);
-        acc.e_tr += h2 * (g * g * e_inc);
+        let [iz1, iz2] = self.inv_z;
+        acc.wave
+            .add_proportional(h, iz1, iz2, self.stuck_gain, d_inc, e_inc);
     }
 
     /// S = sigma + p0 in a stuck phase from the incident stress.
@@ -533,15 +503,7 @@ impl<'a> GapRun<'a> {
     /// to the open time in the burst when the interface is `open`.
     #[inline]
     fn add_step(&self, acc: &mut Integrals, t: f64, h: f64, sum: &StageSums, open: bool) {
-        let sum = &sum.0;
-        let (h1, h2) = (h * self.inv_z[0], h * self.inv_z[1]);
-        acc.disp_ref += h1 * sum[1];
-        acc.disp_inc -= h1 * sum[0];
-        acc.e_inc += h1 * sum[2];
-        acc.e_ref += h1 * sum[3];
-        // (1/Z2 = 0 at a rigid wall: nothing transmitted)
-        acc.disp_tr -= h2 * sum[4];
-        acc.e_tr += h2 * sum[5];
+        acc.wave.add(h, self.inv_z[0], self.inv_z[1], sum, true);
         if open {
             let lo = t.max(0.0);
             let hi = (t + h).min(self.duration);
@@ -843,7 +805,7 @@ impl<'a> GapRun<'a> {
     /// `summary_only`) the others.
     #[inline(always)]
     fn record(&self, out: &mut HalfSpaceOutput, acc: &Integrals, t: f64, y: [f64; 2]) {
-        out.push_summary(t, self.ode.beta(y), acc.disp_ref);
+        out.push_summary(t, self.ode.beta(y), acc.wave.disp_ref);
         if !self.settings.summary_only {
             self.record_full(out, acc, t, y);
         }
@@ -858,7 +820,7 @@ impl<'a> GapRun<'a> {
             self.ode.sigma(y)
         };
         let s = sigma + self.ode.p0;
-        out.push_fields(y[0], sigma, sinc, s, [acc.disp_inc, acc.disp_tr]);
+        out.push_fields(y[0], sigma, sinc, s, [acc.wave.disp_inc, acc.wave.disp_tr]);
     }
 
     fn at_rest(&self, y: [f64; 2]) -> bool {
@@ -915,15 +877,11 @@ impl<'a> GapRun<'a> {
         let Driven { acc, mut out, .. } = run;
         let law = &self.hs.law;
         let yend = y;
-        out.energy = EnergyAudit {
-            incident: acc.e_inc,
-            reflected: acc.e_ref,
-            transmitted: acc.e_tr,
-            stored: law.stored_energy(yend[0], yend[1]),
-            damage: acc.e_damage,
-            adhesion_decrease: law.traction.adhesion_energy(1.0)
-                - law.traction.adhesion_energy(yend[1]),
-        };
+        out.energy = acc.wave.audit(
+            law.stored_energy(yend[0], yend[1]),
+            acc.e_damage,
+            law.traction.adhesion_energy(1.0) - law.traction.adhesion_energy(yend[1]),
+        );
         out.open_time_in_burst = acc.open_in_burst;
         out.max_gap = self.max_gap;
         out.events = self.events;
