@@ -3,6 +3,7 @@
 //! They are ours because they sit inside the hot loops and must not allocate. Beside them,
 //! [`table`]: the one reader of numeric CSV tables (measured and tabulated data).
 
+pub mod gll;
 pub mod pchip;
 pub mod root;
 pub mod table;

@@ -40,6 +40,7 @@ pub mod half_space_fd_shear;
 pub mod output;
 mod quadrature;
 pub mod radau;
+pub mod solid_2d;
 pub(crate) mod stepping;
 
 pub use output::{EnergyAudit, FdOutput, HalfSpaceOutput};

@@ -1,0 +1,862 @@
+//! Finite cracks in 2D (model.md section 9): plane-strain P-SV or antiplane SH waves in a
+//! rectangle of horizontal elastic layers, spectral elements of GLL order 2 to 8 on a
+//! structured mesh (diagonal mass), explicit central differences in time, and cracks as
+//! split-node boundary objects ([`crack::CrackNodes`]) whose every node is updated exactly at
+//! the new level by the per-point contact update of `law/`.
+//!
+//! The pieces: [`mesh`] (element edges through every layer boundary and crack line, the
+//! node grid, the split twins), [`kernel`] (the internal forces `-K u`, parallel and
+//! deterministic), [`crack`] (the split nodes), and here the problem, its plan (mass,
+//! time step, sources, receivers) and the time loop with its energy audit.
+//!
+//! Time stepping (leapfrog on the displacement, the velocity at half levels):
+//!
+//! ```text
+//! v~ = v^{n-1/2} + dt M^-1 (f^n - K u^n)           predicted, no crack traction
+//! crack update: U = U~ - chi S at each split node  (the law at the new level)
+//! v^{n+1/2} = v~ + dt M^-1 B (S n + T t) (face 1; minus on face 2)
+//! u^{n+1} = u^n + dt v^{n+1/2}
+//! ```
+//!
+//! The discrete energy `E^{n+1/2} = v^{n+1/2} M v^{n+1/2} / 2 + u^n K u^{n+1} / 2` then
+//! changes by exactly the work of the sources, `f^n (u^{n+1} - u^{n-1}) / 2`, less the
+//! crack's `B S (U^{n+1} - U^{n-1}) / 2`: the audit closes at round-off in a closed domain.
+//! Stable for `dt < 2 / omega_max` (the highest eigenfrequency of `M^-1 K`, found by power
+//! iteration); the crack's update is implicit and does not reduce the step.
+
+pub mod crack;
+pub mod kernel;
+pub mod mesh;
+
+#[cfg(test)]
+mod tests;
+
+use crate::error::{Error, Result};
+use crate::excitation::Excitation;
+use crate::law::contact::PointState;
+use crate::law::{NormalPart, TangentialPart};
+use crack::CrackNodes;
+use kernel::{ElementData, Stiffness};
+use mesh::{CrackLine, Mesh};
+use std::sync::Arc;
+
+/// An isotropic elastic solid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Elastic {
+    /// Density rho, kg/m^3.
+    pub density: f64,
+    /// P-wave speed c_P, m/s.
+    pub p_speed: f64,
+    /// S-wave speed c_S, m/s.
+    pub s_speed: f64,
+}
+
+impl Elastic {
+    /// Shear modulus mu = rho c_S^2, Pa.
+    pub fn mu(&self) -> f64 {
+        self.density * self.s_speed * self.s_speed
+    }
+    /// Lame's lambda = rho c_P^2 - 2 mu, Pa.
+    pub fn lambda(&self) -> f64 {
+        self.density * self.p_speed * self.p_speed - 2.0 * self.mu()
+    }
+}
+
+/// The wave type of a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WaveType {
+    /// Plane strain, `(u_x, u_z)`.
+    PSv,
+    /// Antiplane, `u_y`.
+    Sh,
+}
+
+/// What a side of the rectangle is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// Traction free (the spectral elements' natural condition).
+    Free,
+    /// Fixed: zero displacement.
+    Rigid,
+    /// Periodic (the x sides only, both together).
+    Periodic,
+}
+
+/// A horizontal layer: its material down to `bottom` (m, z of its lower boundary).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Layer {
+    /// z of the lower boundary, m (the last layer's is the depth).
+    pub bottom: f64,
+    /// Material.
+    pub material: Elastic,
+}
+
+/// A straight crack along x or z between two points `[x, z]` (m), with the law of every
+/// point.
+#[derive(Debug, Clone)]
+pub struct Crack<L> {
+    /// Start `[x, z]`, m.
+    pub start: [f64; 2],
+    /// End `[x, z]`, m (same z as the start: horizontal; same x: vertical).
+    pub end: [f64; 2],
+    /// Across the whole width of a periodic rectangle (start and end ignored but z).
+    pub full_width: bool,
+    /// The contact law of its points (normal and tangential).
+    pub law: L,
+}
+
+/// Where a source acts and how.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SourceKind {
+    /// A line force (N/m per unit of the signal) at the node nearest `at = [x, z]` (m),
+    /// along `direction` (`[x, z]`, unit; ignored in antiplane runs: along y).
+    Force {
+        /// Position, m.
+        at: [f64; 2],
+        /// Direction.
+        direction: [f64; 2],
+    },
+    /// A traction (Pa per unit of the signal) over `[x0, x1]` (m) of the top (`top`) or
+    /// bottom surface, normal (`normal`: along +z, i.e. a pull on the top surface... see
+    /// [`Source`]) or shear (along +x; along y in antiplane runs), each point delayed by
+    /// `delay_per_m * (x - x0)` (s/m: an angled beam by a linear delay law).
+    Traction {
+        /// On the top surface (z = 0) or the bottom one.
+        top: bool,
+        /// Aperture start, m.
+        x0: f64,
+        /// Aperture end, m.
+        x1: f64,
+        /// Normal traction (else shear).
+        normal: bool,
+        /// Linear delay law, s/m.
+        delay_per_m: f64,
+    },
+}
+
+/// A source: where, and its time function.
+#[derive(Debug, Clone)]
+pub struct Source {
+    /// Where and how. A normal traction `s(t)` on a surface is the stress `sigma_zz = s`
+    /// there (tension positive: a compressive burst pushes into the solid).
+    pub kind: SourceKind,
+    /// The time function (its `stress(t)`: Pa for a traction, N/m for a force).
+    pub signal: Arc<dyn Excitation>,
+}
+
+/// The problem of a 2D run.
+#[derive(Debug, Clone)]
+pub struct Solid2d<L> {
+    /// Width along x, m.
+    pub width: f64,
+    /// Layers from the top down; the last one's bottom is the depth.
+    pub layers: Vec<Layer>,
+    /// Wave type.
+    pub wave: WaveType,
+    /// Top, bottom, and the x sides.
+    pub top: Side,
+    /// Bottom side.
+    pub bottom: Side,
+    /// Left and right sides (periodic: both).
+    pub sides: Side,
+    /// Largest element size, m.
+    pub element_size: f64,
+    /// GLL order of the elements (2 to 8).
+    pub order: usize,
+    /// Fraction of the stability limit `2 / omega_max` the time step takes (0 to 1).
+    pub courant: f64,
+    /// Cracks.
+    pub cracks: Vec<Crack<L>>,
+    /// Sources.
+    pub sources: Vec<Source>,
+    /// Velocity receivers `[x, z]`, m (the nearest node; on a crack, its face-1 node).
+    pub receivers: Vec<[f64; 2]>,
+    /// Duration, s.
+    pub duration: f64,
+    /// Record the crack fields every this many steps.
+    pub crack_every: usize,
+}
+
+/// A force applied at one node component: `(index into u, weight, source, delay s)`.
+#[derive(Debug, Clone, Copy)]
+struct Load {
+    index: usize,
+    weight: f64,
+    source: usize,
+    delay: f64,
+}
+
+/// The built run: mesh, operator, masses, step, cracks, loads and receivers.
+#[derive(Debug, Clone)]
+pub struct Plan<L> {
+    /// The mesh.
+    pub mesh: Mesh,
+    stiffness: Stiffness,
+    /// Inverse lumped mass per node, 1/(kg/m) (0 on rigid sides).
+    inv_mass: Vec<f64>,
+    /// Lumped mass per node, kg/m.
+    mass: Vec<f64>,
+    /// Time step, s.
+    pub dt: f64,
+    /// Steps of the run.
+    pub steps: usize,
+    /// Components per node (1 antiplane, 2 plane strain).
+    pub components: usize,
+    cracks: Vec<CrackNodes<L>>,
+    loads: Vec<Load>,
+    signals: Vec<Arc<dyn Excitation>>,
+    /// Receiver nodes.
+    pub receiver_nodes: Vec<usize>,
+    crack_every: usize,
+}
+
+/// One crack's recorded fields, `[record][point]` flattened point-fastest.
+#[derive(Debug, Clone, Default)]
+pub struct CrackRecord {
+    /// Position of each point along the crack, m.
+    pub position: Vec<f64>,
+    /// Times of the records, s.
+    pub time: Vec<f64>,
+    /// Normal gap, m.
+    pub normal_gap: Vec<f64>,
+    /// Tangential gap, m.
+    pub tangential_gap: Vec<f64>,
+    /// Normal contact stress sigma (tension positive, -p0 at rest), Pa.
+    pub normal_stress: Vec<f64>,
+    /// Shear stress tau, Pa.
+    pub shear_stress: Vec<f64>,
+    /// Adhesion beta.
+    pub adhesion: Vec<f64>,
+}
+
+/// The energy audit of a run, J/m (per unit length along y).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Energy2d {
+    /// Work of the sources.
+    pub input: f64,
+    /// Discrete energy of the solid at the end (`E^{N-1/2}`).
+    pub solid: f64,
+    /// Energy taken by the cracks (stored in their laws, dissipated by friction, damage
+    /// and the discrete impacts of rigid contact).
+    pub cracks: f64,
+}
+
+impl Energy2d {
+    /// `|input - solid - cracks| / input`.
+    pub fn closure_error(&self) -> f64 {
+        (self.input - self.solid - self.cracks).abs() / self.input.abs().max(f64::MIN_POSITIVE)
+    }
+}
+
+/// What a 2D run returns.
+#[derive(Debug, Clone, Default)]
+pub struct Solid2dOutput {
+    /// Time step, s.
+    pub dt: f64,
+    /// Times of the receiver samples (half levels `(n + 1/2) dt`), s.
+    pub time: Vec<f64>,
+    /// Receiver velocities, `[receiver][component][sample]` flattened: receiver r,
+    /// component c at `(r * components + c) * n_t + k`, m/s.
+    pub receivers: Vec<f64>,
+    /// Components per receiver.
+    pub components: usize,
+    /// Each crack's fields.
+    pub cracks: Vec<CrackRecord>,
+    /// Energy audit.
+    pub energy: Energy2d,
+}
+
+impl Solid2dOutput {
+    /// The trace of receiver `r`, component `c`.
+    pub fn trace(&self, r: usize, c: usize) -> &[f64] {
+        let n = self.time.len();
+        let i = (r * self.components + c) * n;
+        &self.receivers[i..i + n]
+    }
+}
+
+fn nearest(values: &[f64], v: f64) -> usize {
+    let mut best = 0;
+    for (i, x) in values.iter().enumerate() {
+        if (x - v).abs() < (values[best] - v).abs() {
+            best = i;
+        }
+    }
+    best
+}
+
+impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
+    /// Depth, m.
+    pub fn depth(&self) -> f64 {
+        self.layers.last().map_or(0.0, |l| l.bottom)
+    }
+
+    /// Check the problem and build its plan: the mesh, masses, the stable time step,
+    /// the cracks' split nodes, the loads and the receivers. `max_nodes` refuses a mesh
+    /// beyond it before allocating it.
+    pub fn plan(&self, max_nodes: usize) -> Result<Plan<L>> {
+        let bad = |field: &str, value: String, allowed: &str| {
+            Err(Error::invalid("", field, value, allowed))
+        };
+        let depth = self.depth();
+        if !(self.width > 0.0 && self.width.is_finite() && depth > 0.0 && depth.is_finite()) {
+            return bad(
+                "width",
+                format!("{} m x {} m", self.width, depth),
+                "a rectangle of positive, finite size",
+            );
+        }
+        if !(2..=8).contains(&self.order) {
+            return bad("order", self.order.to_string(), "2 to 8");
+        }
+        if !(self.courant > 0.0 && self.courant < 1.0) {
+            return bad("courant", self.courant.to_string(), "in (0, 1)");
+        }
+        if !(self.element_size > 0.0) {
+            return bad("element_size", self.element_size.to_string(), "> 0 m");
+        }
+        if self.top == Side::Periodic || self.bottom == Side::Periodic {
+            return bad(
+                "boundary.top",
+                "periodic".into(),
+                "free or rigid (only the x sides may be periodic)",
+            );
+        }
+        if !(self.duration > 0.0 && self.duration.is_finite()) {
+            return bad("duration", self.duration.to_string(), "> 0 s, finite");
+        }
+        for (i, l) in self.layers.iter().enumerate() {
+            let m = l.material;
+            if !(m.density > 0.0 && m.s_speed > 0.0 && m.p_speed > m.s_speed * 2f64.sqrt()) {
+                return bad(
+                    &format!("layer.{i}.material"),
+                    format!("rho {}, c_P {}, c_S {}", m.density, m.p_speed, m.s_speed),
+                    "rho > 0, c_S > 0 and c_P > sqrt(2) c_S (lambda > 0... at least a positive P-wave modulus)",
+                );
+            }
+        }
+        // the lines every element edge must follow
+        let mut xs = Vec::new();
+        let mut zs: Vec<f64> = self.layers.iter().map(|l| l.bottom).collect();
+        for (i, c) in self.cracks.iter().enumerate() {
+            if c.full_width {
+                zs.push(c.start[1]);
+                continue;
+            }
+            let horizontal = c.start[1] == c.end[1];
+            if !horizontal && c.start[0] != c.end[0] {
+                return bad(
+                    &format!("crack.{i}.end"),
+                    format!("{:?}", c.end),
+                    "a horizontal or vertical crack (same z or same x as the start)",
+                );
+            }
+            for p in [c.start, c.end] {
+                if !(p[0] >= 0.0 && p[0] <= self.width && p[1] > 0.0 && p[1] < depth) {
+                    return bad(
+                        &format!("crack.{i}.start"),
+                        format!("{p:?}"),
+                        "inside the rectangle (a crack may not lie on its top or bottom side)",
+                    );
+                }
+            }
+            xs.extend([c.start[0], c.end[0]]);
+            zs.extend([c.start[1], c.end[1]]);
+        }
+        for s in &self.sources {
+            if let SourceKind::Traction { x0, x1, .. } = s.kind {
+                xs.extend([x0, x1]);
+            }
+        }
+        let x_edges = mesh::edges(self.width, &xs, self.element_size);
+        let z_edges = mesh::edges(depth, &zs, self.element_size);
+        let n = self.order;
+        let nodes = ((x_edges.len() - 1) * n + 1) as f64 * ((z_edges.len() - 1) * n + 1) as f64;
+        if nodes > max_nodes as f64 {
+            return bad(
+                "element_size",
+                format!("{} m ({nodes:.3e} nodes)", self.element_size),
+                &format!("at most {max_nodes} nodes: a larger element size or a smaller rectangle"),
+            );
+        }
+        let periodic = self.sides == Side::Periodic;
+        let mut lines = Vec::new();
+        for (i, c) in self.cracks.iter().enumerate() {
+            let line = if c.full_width {
+                let iz = mesh::edge_index(&z_edges, c.start[1]).unwrap_or(0) * n;
+                CrackLine {
+                    horizontal: true,
+                    line: iz,
+                    tips: (0, 0),
+                    full_width: true,
+                }
+            } else if c.start[1] == c.end[1] {
+                let iz = mesh::edge_index(&z_edges, c.start[1]).unwrap_or(0) * n;
+                let a = mesh::edge_index(&x_edges, c.start[0]).unwrap_or(0) * n;
+                let b = mesh::edge_index(&x_edges, c.end[0]).unwrap_or(0) * n;
+                CrackLine {
+                    horizontal: true,
+                    line: iz,
+                    tips: (a, b),
+                    full_width: false,
+                }
+            } else {
+                let ix = mesh::edge_index(&x_edges, c.start[0]).unwrap_or(0) * n;
+                let a = mesh::edge_index(&z_edges, c.start[1]).unwrap_or(0) * n;
+                let b = mesh::edge_index(&z_edges, c.end[1]).unwrap_or(0) * n;
+                CrackLine {
+                    horizontal: false,
+                    line: ix,
+                    tips: (a, b),
+                    full_width: false,
+                }
+            };
+            if c.full_width && !periodic {
+                return bad(
+                    &format!("crack.{i}.full_width"),
+                    "true".into(),
+                    "periodic x sides",
+                );
+            }
+            lines.push(line);
+        }
+        let mesh = Mesh::new(n, x_edges, z_edges, periodic, &lines).map_err(|e| match e {
+            Error::Invalid { value, allowed, .. } => Error::invalid("", "crack", value, allowed),
+            e => e,
+        })?;
+        let (nex, nez) = mesh.element_dims();
+        let layer_of = |zmid: f64| {
+            self.layers
+                .iter()
+                .position(|l| zmid < l.bottom)
+                .unwrap_or(self.layers.len() - 1)
+        };
+        let mut elements = Vec::with_capacity(nex * nez);
+        for ez in 0..nez {
+            let (z0, z1) = (mesh.z_edges[ez], mesh.z_edges[ez + 1]);
+            let mat = self.layers[layer_of(0.5 * (z0 + z1))].material;
+            for ex in 0..nex {
+                elements.push(ElementData {
+                    hx: mesh.x_edges[ex + 1] - mesh.x_edges[ex],
+                    hz: z1 - z0,
+                    lambda: mat.lambda(),
+                    mu: mat.mu(),
+                });
+            }
+        }
+        let m = n + 1;
+        let w = &mesh.gll.weights;
+        let mut mass = vec![0.0; mesh.n_nodes];
+        for ez in 0..nez {
+            let rho = self.layers[layer_of(0.5 * (mesh.z_edges[ez] + mesh.z_edges[ez + 1]))]
+                .material
+                .density;
+            for ex in 0..nex {
+                let e = ez * nex + ex;
+                let el = &elements[e];
+                for b in 0..m {
+                    for a in 0..m {
+                        mass[mesh.conn[e * m * m + b * m + a] as usize] +=
+                            rho * w[a] * w[b] * el.hx * el.hz / 4.0;
+                    }
+                }
+            }
+        }
+        let (nxn, nzn) = mesh.grid_dims();
+        // (0 for the grid nodes no element takes: the periodic images of column 0)
+        let mut inv_mass: Vec<f64> = mass
+            .iter()
+            .map(|&m| if m > 0.0 { 1.0 / m } else { 0.0 })
+            .collect();
+        let mut fix = |ix: usize, iz: usize| inv_mass[mesh.grid_node(ix, iz)] = 0.0;
+        for ix in 0..nxn {
+            if self.top == Side::Rigid {
+                fix(ix, 0);
+            }
+            if self.bottom == Side::Rigid {
+                fix(ix, nzn - 1);
+            }
+        }
+        if self.sides == Side::Rigid {
+            for iz in 0..nzn {
+                fix(0, iz);
+                fix(nxn - 1, iz);
+            }
+        }
+        let components = if self.wave == WaveType::Sh { 1 } else { 2 };
+        let stiffness = Stiffness {
+            order: n,
+            dims: (nex, nez),
+            elements,
+            conn: mesh.conn.clone(),
+            weights: mesh.gll.weights.clone(),
+            derivative: mesh.gll.derivative.clone(),
+            antiplane: components == 1,
+        };
+        let densities: Vec<f64> = (0..nez)
+            .flat_map(|ez| {
+                let rho = self.layers[layer_of(0.5 * (mesh.z_edges[ez] + mesh.z_edges[ez + 1]))]
+                    .material
+                    .density;
+                std::iter::repeat(rho).take(nex)
+            })
+            .collect();
+        let omega_max = max_frequency(&stiffness, &densities);
+        let dt = self.courant * 2.0 / omega_max;
+        let steps = (self.duration / dt).ceil() as usize;
+        // cracks
+        let mut cracks = Vec::new();
+        for (ci, c) in self.cracks.iter().enumerate() {
+            let line = &lines[ci];
+            let (normal, tangent) = if line.horizontal {
+                ([0.0, 1.0], [1.0, 0.0])
+            } else {
+                ([1.0, 0.0], [0.0, 1.0])
+            };
+            let pairs = &mesh.splits[ci];
+            let mut nodes = CrackNodes {
+                normal,
+                tangent,
+                faces: Vec::with_capacity(pairs.len()),
+                position: Vec::new(),
+                weight: Vec::new(),
+                kick: Vec::new(),
+                compliance: Vec::new(),
+                law: Vec::new(),
+                state: Vec::new(),
+                gaps: Vec::new(),
+                applied: Vec::new(),
+                work: 0.0,
+            };
+            for &(g, twin) in pairs {
+                if inv_mass[g] == 0.0 || inv_mass[twin] == 0.0 {
+                    return bad(
+                        &format!("crack.{ci}"),
+                        "on a rigid side".into(),
+                        "a crack away from rigid sides",
+                    );
+                }
+                let (ix, iz) = (g % nxn, g / nxn);
+                // boundary weight: the GLL weights of the element edges along the line
+                let (coords, k, edges) = if line.horizontal {
+                    (&mesh.x, ix, &mesh.x_edges)
+                } else {
+                    (&mesh.z, iz, &mesh.z_edges)
+                };
+                let bw = edge_weight(coords, edges, &mesh.gll.weights, n, k, line.full_width);
+                let pos = if line.horizontal {
+                    mesh.x[ix] - c.start[0].min(c.end[0])
+                } else {
+                    mesh.z[iz] - c.start[1].min(c.end[1])
+                };
+                nodes.faces.push((g, twin));
+                nodes.position.push(pos);
+                nodes.weight.push(bw);
+                nodes
+                    .kick
+                    .push((dt * bw * inv_mass[g], dt * bw * inv_mass[twin]));
+                nodes
+                    .compliance
+                    .push(dt * dt * bw * (inv_mass[g] + inv_mass[twin]));
+                nodes.law.push(c.law.clone());
+                nodes.state.push(PointState::at_rest(&c.law, Some(&c.law)));
+                nodes.gaps.push([[0.0; 2]; 2]);
+                nodes.applied.push([0.0; 2]);
+            }
+            cracks.push(nodes);
+        }
+        // loads
+        let mut loads = Vec::new();
+        let mut signals = Vec::new();
+        for (si, s) in self.sources.iter().enumerate() {
+            signals.push(s.signal.clone());
+            match s.kind {
+                SourceKind::Force { at, direction } => {
+                    let g = mesh.grid_node(nearest(&mesh.x, at[0]), nearest(&mesh.z, at[1]));
+                    if components == 1 {
+                        loads.push(Load {
+                            index: g,
+                            weight: 1.0,
+                            source: si,
+                            delay: 0.0,
+                        });
+                    } else {
+                        for c in 0..2 {
+                            if direction[c] != 0.0 {
+                                loads.push(Load {
+                                    index: 2 * g + c,
+                                    weight: direction[c],
+                                    source: si,
+                                    delay: 0.0,
+                                });
+                            }
+                        }
+                    }
+                }
+                SourceKind::Traction {
+                    top,
+                    x0,
+                    x1,
+                    normal,
+                    delay_per_m,
+                } => {
+                    let iz = if top { 0 } else { nzn - 1 };
+                    // a traction t on the top surface (outward normal -z) is sigma_zz = -t_z... the
+                    // force on the surface node is B times the traction vector sigma . n_out;
+                    // for sigma_zz = s on the top surface: f_z = -s B (pull up for s > 0)
+                    let sign = if top { -1.0 } else { 1.0 };
+                    for ix in 0..nxn {
+                        let x = mesh.x[ix];
+                        if x < x0.min(x1) - 1e-12 || x > x0.max(x1) + 1e-12 {
+                            continue;
+                        }
+                        let bw = aperture_weight(&mesh, ix, x0.min(x1), x0.max(x1));
+                        let g = mesh.grid_node(ix, iz);
+                        let delay = delay_per_m * (x - x0);
+                        let index = match (components, normal) {
+                            (1, _) => g,
+                            (_, true) => 2 * g + 1,
+                            (_, false) => 2 * g,
+                        };
+                        loads.push(Load {
+                            index,
+                            weight: sign * bw,
+                            source: si,
+                            delay,
+                        });
+                    }
+                }
+            }
+        }
+        let receiver_nodes = self
+            .receivers
+            .iter()
+            .map(|r| mesh.grid_node(nearest(&mesh.x, r[0]), nearest(&mesh.z, r[1])))
+            .collect();
+        Ok(Plan {
+            mesh,
+            stiffness,
+            inv_mass,
+            mass,
+            dt,
+            steps,
+            components,
+            cracks,
+            loads,
+            signals,
+            receiver_nodes,
+            crack_every: self.crack_every.max(1),
+        })
+    }
+}
+
+/// The boundary weight of node-grid position `k` along a line of element edges `edges`
+/// (node coordinates `coords`, order `n`): the GLL weights times the half-lengths of the
+/// elements it belongs to. `wrap`: the line closes on itself (periodic).
+fn edge_weight(coords: &[f64], edges: &[f64], w: &[f64], n: usize, k: usize, wrap: bool) -> f64 {
+    let ne = edges.len() - 1;
+    let (e, a) = (k / n, k % n);
+    let h = |e: usize| 0.5 * (edges[e + 1] - edges[e]);
+    let _ = coords;
+    if a != 0 {
+        return w[a] * h(e);
+    }
+    // an element corner: the end of the element before and the start of the one after
+    let mut s = 0.0;
+    if e < ne {
+        s += w[0] * h(e);
+    } else if wrap {
+        s += w[0] * h(0);
+    }
+    if e > 0 {
+        s += w[n] * h(e - 1);
+    } else if wrap {
+        s += w[n] * h(ne - 1);
+    }
+    s
+}
+
+/// The boundary weight of surface node column `ix` restricted to the aperture `[x0, x1]`
+/// (m; both on element edges): the GLL weights of the element edges inside it.
+fn aperture_weight(mesh: &Mesh, ix: usize, x0: f64, x1: f64) -> f64 {
+    let n = mesh.gll.order;
+    let w = &mesh.gll.weights;
+    let ne = mesh.x_edges.len() - 1;
+    let (e, a) = (ix / n, ix % n);
+    let inside = |e: usize| {
+        let mid = 0.5 * (mesh.x_edges[e] + mesh.x_edges[e + 1]);
+        mid > x0 && mid < x1
+    };
+    let h = |e: usize| 0.5 * (mesh.x_edges[e + 1] - mesh.x_edges[e]);
+    if a != 0 {
+        return if inside(e) { w[a] * h(e) } else { 0.0 };
+    }
+    let mut s = 0.0;
+    if e < ne && inside(e) {
+        s += w[0] * h(e);
+    }
+    if e > 0 && inside(e - 1) {
+        s += w[n] * h(e - 1);
+    }
+    s
+}
+
+/// An upper bound of the highest eigenfrequency of `M^-1 K` (rad/s): the largest of the
+/// elements' own (Fried's bound: with a lumped mass assembled from the elements',
+/// `x K x = sum x_e K_e x_e <= max_e lambda_e sum x_e M_e x_e = max_e lambda_e x M x`),
+/// each by power iteration on the element alone (elements of one size and material
+/// share it). Rigid sides and split nodes only lower the true value.
+fn max_frequency(k: &Stiffness, densities: &[f64]) -> f64 {
+    let m = k.order + 1;
+    let comps = if k.antiplane { 1 } else { 2 };
+    let mut seen: Vec<([u64; 5], f64)> = Vec::new();
+    let mut lambda_max = 0.0f64;
+    for (e, el) in k.elements.iter().enumerate() {
+        let rho = densities[e];
+        let key = [el.hx, el.hz, el.lambda, el.mu, rho].map(f64::to_bits);
+        if let Some((_, l)) = seen.iter().find(|(kk, _)| *kk == key) {
+            lambda_max = lambda_max.max(*l);
+            continue;
+        }
+        // the element alone: nodes 0..m*m, its own lumped mass
+        let one = Stiffness {
+            order: k.order,
+            dims: (1, 1),
+            elements: vec![*el],
+            conn: (0..(m * m) as u32).collect(),
+            weights: k.weights.clone(),
+            derivative: k.derivative.clone(),
+            antiplane: k.antiplane,
+        };
+        let w = &k.weights;
+        let mass: Vec<f64> = (0..m * m)
+            .map(|i| rho * w[i % m] * w[i / m] * el.hx * el.hz / 4.0)
+            .collect();
+        let len = comps * m * m;
+        let mut x: Vec<f64> = (0..len)
+            .map(|i| 1.0 + ((i * 7919) % 13) as f64 * 0.1 * if i % 2 == 0 { 1.0 } else { -1.0 })
+            .collect();
+        let mut y = vec![0.0; len];
+        let mut l = 0.0;
+        for _ in 0..5000 {
+            one.apply_serial(&x, &mut y);
+            let (mut xy, mut xx) = (0.0, 0.0);
+            for i in 0..len {
+                let mi = mass[i / comps];
+                y[i] /= -mi;
+                xy += mi * x[i] * y[i];
+                xx += mi * x[i] * x[i];
+            }
+            let new = xy / xx;
+            let norm = y.iter().map(|v| v * v).sum::<f64>().sqrt();
+            for (a, b) in x.iter_mut().zip(&y) {
+                *a = b / norm;
+            }
+            let done = (new - l).abs() <= 1e-13 * new;
+            l = new;
+            if done {
+                break;
+            }
+        }
+        seen.push((key, l));
+        lambda_max = lambda_max.max(l);
+    }
+    // (the power iteration approaches the element's value from below: a margin of 1e-6)
+    (lambda_max * (1.0 + 1e-6)).sqrt()
+}
+
+impl<L: NormalPart + TangentialPart> Plan<L> {
+    /// The signal of load `l` at time t, N/m.
+    #[inline]
+    fn load_value(&self, l: &Load, t: f64) -> f64 {
+        l.weight * self.signals[l.source].stress(t - l.delay)
+    }
+
+    /// Run from rest, checking for Ctrl-C every 256 steps.
+    pub fn run(&mut self) -> Result<Solid2dOutput> {
+        let c = self.components;
+        let len = c * self.mesh.n_nodes;
+        let dt = self.dt;
+        let mut u = vec![0.0; len];
+        let mut v = vec![0.0; len];
+        let mut f = vec![0.0; len];
+        let nr = self.receiver_nodes.len();
+        let n_t = self.steps;
+        let mut rec = vec![0.0; nr * c * n_t];
+        let mut time = Vec::with_capacity(n_t);
+        let mut records: Vec<CrackRecord> = self
+            .cracks
+            .iter()
+            .map(|cr| CrackRecord {
+                position: cr.position.clone(),
+                ..Default::default()
+            })
+            .collect();
+        let mut input = 0.0;
+        let mut v_old = vec![0.0; self.loads.len()];
+        for n in 0..n_t {
+            let t = n as f64 * dt;
+            self.stiffness.apply(&u, &mut f);
+            for l in &self.loads {
+                f[l.index] += self.load_value(l, t);
+            }
+            for (i, (vi, fi)) in v.iter_mut().zip(&f).enumerate() {
+                *vi += dt * self.inv_mass[i / c] * fi;
+            }
+            for cr in &mut self.cracks {
+                cr.update(&u, &mut v, dt, t + dt, c == 1)?;
+            }
+            for (k, l) in self.loads.iter().enumerate() {
+                let fv = self.load_value(l, t);
+                input += fv * dt * 0.5 * (v[l.index] + v_old[k]);
+                v_old[k] = v[l.index];
+            }
+            for (ui, vi) in u.iter_mut().zip(&v) {
+                *ui += dt * vi;
+            }
+            time.push(t + 0.5 * dt);
+            for (r, &g) in self.receiver_nodes.iter().enumerate() {
+                for cc in 0..c {
+                    rec[(r * c + cc) * n_t + n] = v[c * g + cc];
+                }
+            }
+            if n % self.crack_every == 0 || n + 1 == n_t {
+                for (cr, out) in self.cracks.iter().zip(&mut records) {
+                    out.time.push(t + dt);
+                    for (st, law) in cr.state.iter().zip(&cr.law) {
+                        out.normal_gap.push(st.gap);
+                        out.tangential_gap.push(st.shear.gap);
+                        out.normal_stress.push(st.stress);
+                        out.shear_stress.push(st.shear_stress(law));
+                        out.adhesion.push(st.beta);
+                    }
+                }
+            }
+            if n % 256 == 255 {
+                crate::interrupt::check()?;
+            }
+        }
+        // E^{N-1/2} = v M v / 2 + u^{N-1} K u^N / 2 with u^{N-1} = u^N - dt v^{N-1/2}
+        self.stiffness.apply(&u, &mut f);
+        let mut solid = 0.0;
+        for i in 0..len {
+            let m = self.mass[i / c];
+            let ku = -f[i];
+            solid += 0.5 * m * v[i] * v[i];
+            solid += 0.5 * (u[i] - dt * v[i]) * ku;
+        }
+        let cracks = self.cracks.iter().map(|c| c.work).sum();
+        Ok(Solid2dOutput {
+            dt,
+            time,
+            receivers: rec,
+            components: c,
+            cracks: records,
+            energy: Energy2d {
+                input,
+                solid,
+                cracks,
+            },
+        })
+    }
+}
