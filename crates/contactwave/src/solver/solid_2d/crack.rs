@@ -46,13 +46,14 @@ pub struct CrackNodes<L> {
 }
 
 impl<L: NormalPart + TangentialPart> CrackNodes<L> {
-    /// Update every point of the crack to the new level and kick the face velocities `v`
-    /// (the predicted velocities of the step, m/s; `u` the displacements of the current
-    /// level, m; `dt` s). `antiplane`: one component per node, the tangential gap along y
-    /// and no normal motion.
+    /// Update every point of the crack to the new level and kick its faces: `u` holds the
+    /// predicted displacements of the new level (m) and `v` the predicted velocities of
+    /// the step (m/s), both without the crack's tractions; each face gets its velocity
+    /// kick and the displacement `dt` times it (`dt` s). `antiplane`: one component per
+    /// node, the tangential gap along y and no normal motion.
     pub fn update(
         &mut self,
-        u: &[f64],
+        u: &mut [f64],
         v: &mut [f64],
         dt: f64,
         t_new: f64,
@@ -69,11 +70,10 @@ impl<L: NormalPart + TangentialPart> CrackNodes<L> {
             let (i1, i2) = self.faces[k];
             let chi = self.compliance[k];
             let (gn, gt) = if antiplane {
-                (0.0, (u[i2] + dt * v[i2]) - (u[i1] + dt * v[i1]))
+                (0.0, u[i2] - u[i1])
             } else {
-                let dx = (u[2 * i2] + dt * v[2 * i2]) - (u[2 * i1] + dt * v[2 * i1]);
-                let dz =
-                    (u[2 * i2 + 1] + dt * v[2 * i2 + 1]) - (u[2 * i1 + 1] + dt * v[2 * i1 + 1]);
+                let dx = u[2 * i2] - u[2 * i1];
+                let dz = u[2 * i2 + 1] - u[2 * i1 + 1];
                 (dx * nx + dz * nz, dx * tx + dz * tz)
             };
             let trial = Trial {
@@ -86,16 +86,20 @@ impl<L: NormalPart + TangentialPart> CrackNodes<L> {
             let st = &mut self.state[k];
             let [sn, stt] = update_point(law, Some(law), &trial, ctx, st)?;
             let (k1, k2) = self.kick[k];
+            let mut kick = |i: usize, dv: f64| {
+                v[i] += dv;
+                u[i] += dt * dv;
+            };
             if antiplane {
-                v[i1] += k1 * stt;
-                v[i2] -= k2 * stt;
+                kick(i1, k1 * stt);
+                kick(i2, -k2 * stt);
             } else {
                 let fx = sn * nx + stt * tx;
                 let fz = sn * nz + stt * tz;
-                v[2 * i1] += k1 * fx;
-                v[2 * i1 + 1] += k1 * fz;
-                v[2 * i2] -= k2 * fx;
-                v[2 * i2 + 1] -= k2 * fz;
+                kick(2 * i1, k1 * fx);
+                kick(2 * i1 + 1, k1 * fz);
+                kick(2 * i2, -k2 * fx);
+                kick(2 * i2 + 1, -k2 * fz);
             }
             let new = [st.gap, st.shear.gap];
             let [old, now] = self.gaps[k];

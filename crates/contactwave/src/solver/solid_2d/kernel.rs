@@ -57,181 +57,270 @@ impl Shared {
     }
 }
 
+/// Elements computed together, one per SIMD lane (along a row of elements).
+const LANES: usize = 4;
+
+/// The derivative matrix and the weights of order `M - 1` as fixed-size arrays.
+struct Rule<const M: usize> {
+    /// `d[i][j] = l_j'(x_i)`.
+    d: [[f64; M]; M],
+    w: [f64; M],
+}
+
 impl Stiffness {
     /// `force = -K u` (plus nothing: `force` is overwritten). `u` and `force` hold one
     /// value per node (antiplane) or two interleaved (plane strain), m and N/m.
     pub fn apply(&self, u: &[f64], force: &mut [f64]) {
+        self.dispatch(u, force, true);
+    }
+
+    /// [`Stiffness::apply`] on the calling thread only (small operators); the same bits.
+    pub fn apply_serial(&self, u: &[f64], force: &mut [f64]) {
+        self.dispatch(u, force, false);
+    }
+
+    fn dispatch(&self, u: &[f64], force: &mut [f64], parallel: bool) {
         force.fill(0.0);
         match self.order {
-            2 => self.apply_m::<3>(u, force),
-            3 => self.apply_m::<4>(u, force),
-            4 => self.apply_m::<5>(u, force),
-            5 => self.apply_m::<6>(u, force),
-            6 => self.apply_m::<7>(u, force),
-            7 => self.apply_m::<8>(u, force),
-            8 => self.apply_m::<9>(u, force),
+            2 => self.apply_m::<3>(u, force, parallel),
+            3 => self.apply_m::<4>(u, force, parallel),
+            4 => self.apply_m::<5>(u, force, parallel),
+            5 => self.apply_m::<6>(u, force, parallel),
+            6 => self.apply_m::<7>(u, force, parallel),
+            7 => self.apply_m::<8>(u, force, parallel),
+            8 => self.apply_m::<9>(u, force, parallel),
             _ => unreachable!("orders 2 to 8 are checked when the problem is built"),
         }
     }
 
-    /// [`Stiffness::apply`] on the calling thread only (small operators).
-    pub fn apply_serial(&self, u: &[f64], force: &mut [f64]) {
-        force.fill(0.0);
-        let m = self.order + 1;
-        for e in 0..self.elements.len() {
-            let conn = &self.conn[e * m * m..(e + 1) * m * m];
-            macro_rules! go {
-                ($M:literal) => {
-                    if self.antiplane {
-                        self.element_sh::<$M>(&self.elements[e], conn, u, force)
-                    } else {
-                        self.element_psv::<$M>(&self.elements[e], conn, u, force)
-                    }
-                };
-            }
-            match m {
-                3 => go!(3),
-                4 => go!(4),
-                5 => go!(5),
-                6 => go!(6),
-                7 => go!(7),
-                8 => go!(8),
-                9 => go!(9),
-                _ => unreachable!("orders 2 to 8 are checked when the problem is built"),
+    fn rule<const M: usize>(&self) -> Rule<M> {
+        let mut r = Rule {
+            d: [[0.0; M]; M],
+            w: [0.0; M],
+        };
+        for i in 0..M {
+            r.w[i] = self.weights[i];
+            for j in 0..M {
+                r.d[i][j] = self.derivative[i * M + j];
             }
         }
+        r
     }
 
-    fn apply_m<const M: usize>(&self, u: &[f64], force: &mut [f64]) {
-        let (nex, nez) = self.dims;
+    fn apply_m<const M: usize>(&self, u: &[f64], force: &mut [f64], parallel: bool) {
+        let nez = self.dims.1;
+        let rule = self.rule::<M>();
         let out = Shared(force.as_mut_ptr());
         let len = force.len();
+        #[cfg(target_arch = "x86_64")]
+        let avx2 = std::is_x86_feature_detected!("avx2");
+        let row = |ez: usize| {
+            // SAFETY: rows of one parity write disjoint nodes (module comment), and the
+            // rows of a parity finish before the other parity starts; every index is
+            // below `len` (the map is built over the nodes).
+            let out = unsafe { std::slice::from_raw_parts_mut(out.get(), len) };
+            #[cfg(target_arch = "x86_64")]
+            if avx2 {
+                // SAFETY: the CPU has AVX2 (checked at run time above)
+                unsafe { self.row_avx2::<M>(&rule, ez, u, out) };
+                return;
+            }
+            self.row::<M>(&rule, ez, u, out);
+        };
         for parity in 0..2 {
-            let rows: Vec<usize> = (parity..nez).step_by(2).collect();
-            rows.par_iter().for_each(|&ez| {
-                for ex in 0..nex {
-                    let e = ez * nex + ex;
-                    let conn = &self.conn[e * M * M..(e + 1) * M * M];
-                    // SAFETY: rows of one parity write disjoint nodes (module comment);
-                    // every index is below `len` (the map is built over the nodes).
-                    let out = unsafe { std::slice::from_raw_parts_mut(out.get(), len) };
-                    if self.antiplane {
-                        self.element_sh::<M>(&self.elements[e], conn, u, out);
-                    } else {
-                        self.element_psv::<M>(&self.elements[e], conn, u, out);
+            let n = (nez + 1 - parity) / 2;
+            if parallel {
+                (0..n).into_par_iter().for_each(|i| row(parity + 2 * i));
+            } else {
+                (0..n).for_each(|i| row(parity + 2 * i));
+            }
+        }
+    }
+
+    /// The forces of element row `ez`.
+    #[inline(always)]
+    fn row<const M: usize>(&self, r: &Rule<M>, ez: usize, u: &[f64], out: &mut [f64]) {
+        if self.antiplane {
+            self.row_sh::<M>(r, ez, u, out);
+        } else {
+            self.row_psv::<M>(r, ez, u, out);
+        }
+    }
+
+    /// [`Stiffness::row`] compiled for AVX2: the same operations in the same order on
+    /// wider vectors (no fused multiply-add: Rust does not contract `a * b + c`), so the
+    /// same bits as the baseline build.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn row_avx2<const M: usize>(&self, r: &Rule<M>, ez: usize, u: &[f64], out: &mut [f64]) {
+        self.row::<M>(r, ez, u, out);
+    }
+
+    /// The forces of element row `ez`, `LANES` elements at a time.
+    #[inline(always)]
+    fn row_psv<const M: usize>(&self, r: &Rule<M>, ez: usize, u: &[f64], out: &mut [f64]) {
+        let nex = self.dims.0;
+        let (d, w) = (&r.d, &r.w);
+        let mut ex0 = 0;
+        while ex0 < nex {
+            let nl = LANES.min(nex - ex0);
+            let e0 = ez * nex + ex0;
+            let (mut ux, mut uz) = ([[[0.0f64; LANES]; M]; M], [[[0.0f64; LANES]; M]; M]);
+            let (mut sx, mut sz, mut l2m, mut lam, mut mu, mut hx2, mut hz2) = (
+                [1.0; LANES],
+                [1.0; LANES],
+                [0.0; LANES],
+                [0.0; LANES],
+                [0.0; LANES],
+                [0.0; LANES],
+                [0.0; LANES],
+            );
+            for l in 0..nl {
+                let el = &self.elements[e0 + l];
+                sx[l] = 2.0 / el.hx;
+                sz[l] = 2.0 / el.hz;
+                l2m[l] = el.lambda + 2.0 * el.mu;
+                lam[l] = el.lambda;
+                mu[l] = el.mu;
+                hx2[l] = 0.5 * el.hx;
+                hz2[l] = 0.5 * el.hz;
+                let conn = &self.conn[(e0 + l) * M * M..(e0 + l + 1) * M * M];
+                for b in 0..M {
+                    for a in 0..M {
+                        let g = conn[b * M + a] as usize;
+                        ux[b][a][l] = u[2 * g];
+                        uz[b][a][l] = u[2 * g + 1];
                     }
                 }
-            });
+            }
+            // the x-flux `(hz/2) w_a w_b sigma_ix` and the z-flux `(hx/2) w_a w_b sigma_iz`
+            // of each component i at each quadrature point (dA sx = (hx hz / 4) w_a w_b
+            // (2 / hx), and alike along z)
+            let (mut fxx, mut fxz, mut fzx, mut fzz) = (
+                [[[0.0f64; LANES]; M]; M],
+                [[[0.0f64; LANES]; M]; M],
+                [[[0.0f64; LANES]; M]; M],
+                [[[0.0f64; LANES]; M]; M],
+            );
+            for b in 0..M {
+                for a in 0..M {
+                    let (mut dux_dx, mut duz_dx, mut dux_dz, mut duz_dz) =
+                        ([0.0; LANES], [0.0; LANES], [0.0; LANES], [0.0; LANES]);
+                    for k in 0..M {
+                        let (da, db) = (d[a][k], d[b][k]);
+                        for l in 0..LANES {
+                            dux_dx[l] += da * ux[b][k][l];
+                            duz_dx[l] += da * uz[b][k][l];
+                            dux_dz[l] += db * ux[k][a][l];
+                            duz_dz[l] += db * uz[k][a][l];
+                        }
+                    }
+                    let wab = w[a] * w[b];
+                    for l in 0..LANES {
+                        let (exx, ezz) = (dux_dx[l] * sx[l], duz_dz[l] * sz[l]);
+                        let exz = dux_dz[l] * sz[l] + duz_dx[l] * sx[l];
+                        let sxx = l2m[l] * exx + lam[l] * ezz;
+                        let szz = lam[l] * exx + l2m[l] * ezz;
+                        let sxz = mu[l] * exz;
+                        let (wx, wz) = (hz2[l] * wab, hx2[l] * wab);
+                        fxx[b][a][l] = wx * sxx;
+                        fzx[b][a][l] = wx * sxz;
+                        fxz[b][a][l] = wz * sxz;
+                        fzz[b][a][l] = wz * szz;
+                    }
+                }
+            }
+            let (mut gx, mut gz) = ([[[0.0f64; LANES]; M]; M], [[[0.0f64; LANES]; M]; M]);
+            for b in 0..M {
+                for a in 0..M {
+                    for k in 0..M {
+                        let (dka, dkb) = (d[k][a], d[k][b]);
+                        for l in 0..LANES {
+                            gx[b][a][l] += dka * fxx[b][k][l] + dkb * fxz[k][a][l];
+                            gz[b][a][l] += dka * fzx[b][k][l] + dkb * fzz[k][a][l];
+                        }
+                    }
+                }
+            }
+            // scatter element by element, left to right (the order of every run)
+            for l in 0..nl {
+                let conn = &self.conn[(e0 + l) * M * M..(e0 + l + 1) * M * M];
+                for b in 0..M {
+                    for a in 0..M {
+                        let g = conn[b * M + a] as usize;
+                        out[2 * g] -= gx[b][a][l];
+                        out[2 * g + 1] -= gz[b][a][l];
+                    }
+                }
+            }
+            ex0 += LANES;
         }
     }
 
+    /// The antiplane forces of element row `ez`, `LANES` elements at a time.
     #[inline(always)]
-    fn element_psv<const M: usize>(
-        &self,
-        el: &ElementData,
-        conn: &[u32],
-        u: &[f64],
-        out: &mut [f64],
-    ) {
-        let d = &self.derivative;
-        let w = &self.weights;
-        let (mut ux, mut uz) = ([[0.0f64; M]; M], [[0.0f64; M]; M]);
-        for b in 0..M {
-            for a in 0..M {
-                let g = conn[b * M + a] as usize;
-                ux[b][a] = u[2 * g];
-                uz[b][a] = u[2 * g + 1];
-            }
-        }
-        let (sx, sz) = (2.0 / el.hx, 2.0 / el.hz);
-        let l2m = el.lambda + 2.0 * el.mu;
-        // stresses weighted for the divergence: the x-flux `(hz/2) w_b w_a sigma_ix` and
-        // the z-flux `(hx/2) w_a w_b sigma_iz` of each component i
-        let (mut fxx, mut fxz, mut fzx, mut fzz) = (
-            [[0.0f64; M]; M],
-            [[0.0f64; M]; M],
-            [[0.0f64; M]; M],
-            [[0.0f64; M]; M],
-        );
-        for b in 0..M {
-            for a in 0..M {
-                let (mut dux_dx, mut duz_dx, mut dux_dz, mut duz_dz) = (0.0, 0.0, 0.0, 0.0);
-                for k in 0..M {
-                    let da = d[a * M + k];
-                    let db = d[b * M + k];
-                    dux_dx += da * ux[b][k];
-                    duz_dx += da * uz[b][k];
-                    dux_dz += db * ux[k][a];
-                    duz_dz += db * uz[k][a];
+    fn row_sh<const M: usize>(&self, r: &Rule<M>, ez: usize, u: &[f64], out: &mut [f64]) {
+        let nex = self.dims.0;
+        let (d, w) = (&r.d, &r.w);
+        let mut ex0 = 0;
+        while ex0 < nex {
+            let nl = LANES.min(nex - ex0);
+            let e0 = ez * nex + ex0;
+            let mut uy = [[[0.0f64; LANES]; M]; M];
+            let (mut cx, mut cz) = ([0.0; LANES], [0.0; LANES]);
+            for l in 0..nl {
+                let el = &self.elements[e0 + l];
+                // (hz/2) mu sx and (hx/2) mu sz
+                cx[l] = 0.5 * el.hz * el.mu * (2.0 / el.hx);
+                cz[l] = 0.5 * el.hx * el.mu * (2.0 / el.hz);
+                let conn = &self.conn[(e0 + l) * M * M..(e0 + l + 1) * M * M];
+                for b in 0..M {
+                    for a in 0..M {
+                        uy[b][a][l] = u[conn[b * M + a] as usize];
+                    }
                 }
-                let (exx, ezz) = (dux_dx * sx, duz_dz * sz);
-                let exz = dux_dz * sz + duz_dx * sx;
-                let sxx = l2m * exx + el.lambda * ezz;
-                let szz = el.lambda * exx + l2m * ezz;
-                let sxz = el.mu * exz;
-                // dA sx = (hx hz / 4) w_a w_b (2 / hx), and alike along z
-                let wx = 0.5 * el.hz * w[b] * w[a];
-                let wz = 0.5 * el.hx * w[a] * w[b];
-                fxx[b][a] = wx * sxx;
-                fzx[b][a] = wx * sxz;
-                fxz[b][a] = wz * sxz;
-                fzz[b][a] = wz * szz;
             }
-        }
-        for b in 0..M {
-            for a in 0..M {
-                let (mut gx, mut gz) = (0.0, 0.0);
-                for k in 0..M {
-                    // sum over the quadrature points of the row (x) and the column (z)
-                    let dka = d[k * M + a];
-                    let dkb = d[k * M + b];
-                    gx += dka * fxx[b][k] + dkb * fxz[k][a];
-                    gz += dka * fzx[b][k] + dkb * fzz[k][a];
+            let (mut fx, mut fz) = ([[[0.0f64; LANES]; M]; M], [[[0.0f64; LANES]; M]; M]);
+            for b in 0..M {
+                for a in 0..M {
+                    let (mut dx, mut dz) = ([0.0; LANES], [0.0; LANES]);
+                    for k in 0..M {
+                        let (da, db) = (d[a][k], d[b][k]);
+                        for l in 0..LANES {
+                            dx[l] += da * uy[b][k][l];
+                            dz[l] += db * uy[k][a][l];
+                        }
+                    }
+                    let wab = w[a] * w[b];
+                    for l in 0..LANES {
+                        fx[b][a][l] = wab * cx[l] * dx[l];
+                        fz[b][a][l] = wab * cz[l] * dz[l];
+                    }
                 }
-                let g = conn[b * M + a] as usize;
-                out[2 * g] -= gx;
-                out[2 * g + 1] -= gz;
             }
-        }
-    }
-
-    #[inline(always)]
-    fn element_sh<const M: usize>(
-        &self,
-        el: &ElementData,
-        conn: &[u32],
-        u: &[f64],
-        out: &mut [f64],
-    ) {
-        let d = &self.derivative;
-        let w = &self.weights;
-        let mut uy = [[0.0f64; M]; M];
-        for b in 0..M {
-            for a in 0..M {
-                uy[b][a] = u[conn[b * M + a] as usize];
-            }
-        }
-        let (sx, sz) = (2.0 / el.hx, 2.0 / el.hz);
-        let (mut fx, mut fz) = ([[0.0f64; M]; M], [[0.0f64; M]; M]);
-        for b in 0..M {
-            for a in 0..M {
-                let (mut dx, mut dz) = (0.0, 0.0);
-                for k in 0..M {
-                    dx += d[a * M + k] * uy[b][k];
-                    dz += d[b * M + k] * uy[k][a];
+            let mut g = [[[0.0f64; LANES]; M]; M];
+            for b in 0..M {
+                for a in 0..M {
+                    for k in 0..M {
+                        let (dka, dkb) = (d[k][a], d[k][b]);
+                        for l in 0..LANES {
+                            g[b][a][l] += dka * fx[b][k][l] + dkb * fz[k][a][l];
+                        }
+                    }
                 }
-                fx[b][a] = 0.5 * el.hz * w[b] * w[a] * (el.mu * dx * sx);
-                fz[b][a] = 0.5 * el.hx * w[a] * w[b] * (el.mu * dz * sz);
             }
-        }
-        for b in 0..M {
-            for a in 0..M {
-                let mut g = 0.0;
-                for k in 0..M {
-                    g += d[k * M + a] * fx[b][k] + d[k * M + b] * fz[k][a];
+            for l in 0..nl {
+                let conn = &self.conn[(e0 + l) * M * M..(e0 + l + 1) * M * M];
+                for b in 0..M {
+                    for a in 0..M {
+                        out[conn[b * M + a] as usize] -= g[b][a][l];
+                    }
                 }
-                out[conn[b * M + a] as usize] -= g;
             }
+            ex0 += LANES;
         }
     }
 }
