@@ -79,7 +79,7 @@ fn solid_2d(c: &mut Criterion) {
     g.sample_size(10);
     for cracked in [true, false] {
         let p = plate(cracked, 0.5e-6);
-        let plan = p.plan(1 << 24).unwrap();
+        let plan = p.plan("<bench>").unwrap();
         eprintln!(
             "{} nodes, dt {:e} s, {} steps",
             plan.mesh.n_nodes, plan.dt, plan.steps

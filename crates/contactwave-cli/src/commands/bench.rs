@@ -32,6 +32,11 @@ pub struct Args {
     /// Repetitions of the Tribobrake hammer test (the median is reported; 0: skip it).
     #[arg(long, default_value_t = 3)]
     tribobrake_runs: usize,
+    /// Simulated microseconds of the 2D reference case
+    /// (examples/solid_2d/plate_crack.toml, its mesh and time step; 0: skip it): prints
+    /// its throughput in node-updates per second.
+    #[arg(long, default_value_t = 1.0)]
+    solid_2d_us: f64,
     /// Also time one identification of this file (e.g.
     /// examples/identify/rccm_damaged.toml: a few seconds), files not written.
     #[arg(long, value_name = "FILE")]
@@ -70,6 +75,9 @@ fn timed(
     Ok((times[times.len() / 2], times[0], times[times.len() - 1]))
 }
 
+/// The 2D reference case (examples/solid_2d/plate_crack.toml).
+const PLATE_CRACK: &str = include_str!("../../../../examples/solid_2d/plate_crack.toml");
+
 /// The chapter-3 RCCM scenario of `bench` (examples/rccm_0.82MPa.toml).
 const BENCH_SCENARIO: &str = include_str!("../../../../examples/rccm_0.82MPa.toml");
 
@@ -78,6 +86,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         points,
         runs,
         tribobrake_runs,
+        solid_2d_us,
         identify: identify_file,
     } = args;
     let file = "<bench: examples/rccm_0.82MPa.toml>";
@@ -149,7 +158,31 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             1,
         );
     }
-    // (d) one identification, forward runs on all cores
+    // (d) the 2D reference case over `solid_2d_us` microseconds
+    if solid_2d_us > 0.0 {
+        let file = "<bench: examples/solid_2d/plate_crack.toml>";
+        let t = model::plan_valid(parse_toml(PLATE_CRACK, file)?, Path::new(file))?;
+        let duration = t.param("model.duration")?;
+        let m = t.build(&[(&duration, solid_2d_us * 1e-6)])?;
+        let scenario = m
+            .as_any()
+            .downcast_ref::<contactwave::scenario::solid_2d::Solid2dScenario>()
+            .expect("a solid_2d scenario");
+        let plan = scenario.problem.plan(file)?;
+        let updates = (plan.mesh.n_nodes * plan.steps) as f64;
+        let mut run = plan.clone();
+        let t0 = Instant::now();
+        std::hint::black_box(run.run()?);
+        let s = t0.elapsed().as_secs_f64();
+        println!(
+            "2D solid, plate crack (examples/solid_2d/plate_crack.toml, {} nodes, {} steps, {} threads): {:.3e} node-updates/s",
+            plan.mesh.n_nodes,
+            plan.steps,
+            Executor::new().thread_count(),
+            updates / s
+        );
+    }
+    // (e) one identification, forward runs on all cores
     if let Some(path) = identify_file {
         let spec = IdentifySpec::load(&path)?;
         let t0 = Instant::now();

@@ -106,6 +106,47 @@ impl<C, T, B: TangentialBranch> TangentialPart for PointLaw<C, T, B> {
     }
 }
 
+/// A point's law shared with every point of an interface: the normal law and the
+/// tangential law by reference (`Clone` is two reference counts). What a scenario builds
+/// from its law tables, whose branches are chosen at run time (the branches are then
+/// called through their vtables; [`PointLaw`] calls them directly).
+#[derive(Debug, Clone)]
+pub struct SharedLaw {
+    /// Normal law (static pressure, compression and traction branches).
+    pub normal: std::sync::Arc<super::ContactLaw>,
+    /// Tangential law (static shear and branch).
+    pub tangential: std::sync::Arc<super::TangentialLaw>,
+}
+
+impl NormalPart for SharedLaw {
+    type Compression = dyn CompressionBranch;
+    type Traction = dyn TractionBranch;
+    #[inline]
+    fn static_pressure(&self) -> f64 {
+        self.normal.static_pressure
+    }
+    #[inline]
+    fn compression(&self) -> &(dyn CompressionBranch + 'static) {
+        &*self.normal.compression
+    }
+    #[inline]
+    fn traction(&self) -> &(dyn TractionBranch + 'static) {
+        &*self.normal.traction
+    }
+}
+
+impl TangentialPart for SharedLaw {
+    type Branch = dyn TangentialBranch;
+    #[inline]
+    fn static_shear(&self) -> f64 {
+        self.tangential.static_shear
+    }
+    #[inline]
+    fn branch(&self) -> &(dyn TangentialBranch + 'static) {
+        &*self.tangential.branch
+    }
+}
+
 /// A compression branch shared by reference is a compression branch (every method
 /// forwarded), so that a point can hold its tabulated curve as a `Copy` reference into a
 /// [`CurveStore`].

@@ -57,6 +57,7 @@ mod fields;
 pub mod half_space;
 mod param;
 mod record;
+pub mod solid_2d;
 mod template;
 
 pub use fields::{Fields, Slot};
@@ -94,7 +95,7 @@ pub trait Kind: Sync {
 }
 
 /// The registered kinds, tried in order (the half-space problem, the default, last).
-pub static KINDS: [&dyn Kind; 2] = [&bar_stack::KIND, &half_space::KIND];
+pub static KINDS: [&dyn Kind; 3] = [&bar_stack::KIND, &solid_2d::KIND, &half_space::KIND];
 
 /// The kind of a parsed scenario table.
 pub fn kind_of(table: &toml::Table) -> &'static dyn Kind {

@@ -300,48 +300,52 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         self.layers.last().map_or(0.0, |l| l.bottom)
     }
 
-    /// Check the problem and build its plan: the mesh, masses, the stable time step,
-    /// the cracks' split nodes, the loads and the receivers. `max_nodes` refuses a mesh
-    /// beyond it before allocating it.
-    pub fn plan(&self, max_nodes: usize) -> Result<Plan<L>> {
+    /// Check the problem without building anything: sizes, materials, cracks inside the
+    /// rectangle and along x or z, and the mesh against the memory budget. Returns the x
+    /// and z lines the element edges must follow.
+    pub fn validate(&self, file: &str) -> Result<(Vec<f64>, Vec<f64>)> {
         let bad = |field: &str, value: String, allowed: &str| {
-            Err(Error::invalid("", field, value, allowed))
+            Err(Error::invalid(file, field, value, allowed))
         };
         let depth = self.depth();
         if !(self.width > 0.0 && self.width.is_finite() && depth > 0.0 && depth.is_finite()) {
             return bad(
-                "width",
+                "model.width",
                 format!("{} m x {} m", self.width, depth),
                 "a rectangle of positive, finite size",
             );
         }
         if !(2..=8).contains(&self.order) {
-            return bad("order", self.order.to_string(), "2 to 8");
+            return bad("model.order", self.order.to_string(), "2 to 8");
         }
         if !(self.courant > 0.0 && self.courant < 1.0) {
-            return bad("courant", self.courant.to_string(), "in (0, 1)");
+            return bad("model.courant", self.courant.to_string(), "in (0, 1)");
         }
         if !(self.max_time_step > 0.0) {
-            return bad("max_time_step", self.max_time_step.to_string(), "> 0 s");
+            return bad(
+                "model.max_time_step",
+                self.max_time_step.to_string(),
+                "> 0 s",
+            );
         }
         if !(self.element_size > 0.0) {
-            return bad("element_size", self.element_size.to_string(), "> 0 m");
+            return bad("model.element_size", self.element_size.to_string(), "> 0 m");
         }
         if self.top == Side::Periodic || self.bottom == Side::Periodic {
             return bad(
-                "boundary.top",
+                "model.top",
                 "periodic".into(),
                 "free or rigid (only the x sides may be periodic)",
             );
         }
         if !(self.duration > 0.0 && self.duration.is_finite()) {
-            return bad("duration", self.duration.to_string(), "> 0 s, finite");
+            return bad("model.duration", self.duration.to_string(), "> 0 s, finite");
         }
         for (i, l) in self.layers.iter().enumerate() {
             let m = l.material;
             if !(m.density > 0.0 && m.s_speed > 0.0 && m.p_speed > m.s_speed * 2f64.sqrt()) {
                 return bad(
-                    &format!("layer.{i}.material"),
+                    &format!("layer.{i}"),
                     format!("rho {}, c_P {}, c_S {}", m.density, m.p_speed, m.s_speed),
                     "rho > 0, c_S > 0 and c_P > sqrt(2) c_S (lambda > 0... at least a positive P-wave modulus)",
                 );
@@ -380,17 +384,41 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 xs.extend([x0, x1]);
             }
         }
+        // the mesh's size before it is built: elements along each side (at most one more
+        // per required line), nodes, and what the run holds per node (u, v, f, two masses,
+        // per component) and per element (its map and data)
+        let n = self.order;
+        let count = |len: f64, lines: usize| (len / self.element_size).ceil() + lines as f64 + 1.0;
+        let (ex, ez) = (count(self.width, xs.len()), count(depth, zs.len()));
+        let nodes = (ex * n as f64 + 1.0) * (ez * n as f64 + 1.0);
+        let comps = if self.wave == WaveType::Sh { 1.0 } else { 2.0 };
+        let bytes =
+            nodes * (3.0 * comps + 2.0) * 8.0 + ex * ez * ((n + 1) * (n + 1) * 4 + 32) as f64;
+        crate::budget::check(
+            file,
+            "model.element_size",
+            self.element_size,
+            bytes,
+            &format!("a mesh of about {nodes:.3e} nodes"),
+        )?;
+        Ok((xs, zs))
+    }
+
+    /// Check the problem and build its plan: the mesh, masses, the stable time step,
+    /// the cracks' split nodes, the loads and the receivers. Errors name `file` and the
+    /// scenario key (`model.width`, `crack.0.end`, ...); the mesh and the recorded series
+    /// are checked against the memory budget ([`crate::budget`]) before they are
+    /// allocated.
+    pub fn plan(&self, file: &str) -> Result<Plan<L>> {
+        let bad = |field: &str, value: String, allowed: &str| {
+            Err(Error::invalid(file, field, value, allowed))
+        };
+        let (xs, zs) = self.validate(file)?;
+        let depth = self.depth();
+        let n = self.order;
+        let comps = if self.wave == WaveType::Sh { 1.0 } else { 2.0 };
         let x_edges = mesh::edges(self.width, &xs, self.element_size);
         let z_edges = mesh::edges(depth, &zs, self.element_size);
-        let n = self.order;
-        let nodes = ((x_edges.len() - 1) * n + 1) as f64 * ((z_edges.len() - 1) * n + 1) as f64;
-        if nodes > max_nodes as f64 {
-            return bad(
-                "element_size",
-                format!("{} m ({nodes:.3e} nodes)", self.element_size),
-                &format!("at most {max_nodes} nodes: a larger element size or a smaller rectangle"),
-            );
-        }
         let periodic = self.sides == Side::Periodic;
         let mut lines = Vec::new();
         for (i, c) in self.cracks.iter().enumerate() {
@@ -433,7 +461,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             lines.push(line);
         }
         let mesh = Mesh::new(n, x_edges, z_edges, periodic, &lines).map_err(|e| match e {
-            Error::Invalid { value, allowed, .. } => Error::invalid("", "crack", value, allowed),
+            Error::Invalid { value, allowed, .. } => Error::invalid(file, "crack", value, allowed),
             e => e,
         })?;
         let (nex, nez) = mesh.element_dims();
@@ -515,7 +543,22 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             .collect();
         let omega_max = max_frequency(&stiffness, &densities);
         let dt = (self.courant * 2.0 / omega_max).min(self.max_time_step);
-        let steps = (self.duration / dt).ceil() as usize;
+        let steps = (self.duration / dt).ceil();
+        // the recorded series: receivers and the cracks' fields
+        let crack_points: usize = mesh.splits.iter().map(Vec::len).sum();
+        let series = self.receivers.len() as f64 * comps * steps
+            + 5.0 * crack_points as f64 * (steps / self.crack_every.max(1) as f64 + 1.0);
+        crate::budget::check(
+            file,
+            "model.duration",
+            self.duration,
+            series * 8.0,
+            &format!(
+                "{steps:.3e} time steps of {} receivers and {crack_points} crack nodes",
+                self.receivers.len()
+            ),
+        )?;
+        let steps = steps as usize;
         // cracks
         let mut cracks = Vec::new();
         for (ci, c) in self.cracks.iter().enumerate() {
@@ -786,6 +829,14 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
 
     /// Run from rest, checking for Ctrl-C every 256 steps.
     pub fn run(&mut self) -> Result<Solid2dOutput> {
+        self.run_with(None)
+    }
+
+    /// [`Plan::run`] reporting `(steps done, steps)` to `progress` every 256 steps.
+    pub fn run_with(
+        &mut self,
+        progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+    ) -> Result<Solid2dOutput> {
         let c = self.components;
         let len = c * self.mesh.n_nodes;
         let dt = self.dt;
@@ -860,6 +911,9 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
             }
             if n % 256 == 255 {
                 crate::interrupt::check()?;
+                if let Some(p) = progress {
+                    p(n + 1, n_t);
+                }
             }
         }
         // E^{N-1/2} = v M v / 2 + u^{N-1} K u^N / 2 with u^{N-1} = u^N - dt v^{N-1/2}

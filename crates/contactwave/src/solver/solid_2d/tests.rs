@@ -80,7 +80,7 @@ fn clapping_plate(sides: Side) -> Solid2d<Signorini> {
 #[test]
 fn clapping_crack_closes_the_energy_at_round_off_and_keeps_signorini() {
     for sides in [Side::Rigid, Side::Periodic, Side::Free] {
-        let mut plan = clapping_plate(sides).plan(1 << 22).unwrap();
+        let mut plan = clapping_plate(sides).plan("<test>").unwrap();
         let out = plan.run().unwrap();
         let e = out.energy;
         assert!(e.input > 0.0);
@@ -123,7 +123,7 @@ fn results_are_bit_identical_for_any_thread_count() {
             .unwrap();
         pool.install(|| {
             clapping_plate(Side::Free)
-                .plan(1 << 22)
+                .plan("<test>")
                 .unwrap()
                 .run()
                 .unwrap()
@@ -215,7 +215,7 @@ fn reduction_errors<L: NormalPart + TangentialPart + Clone>(
             duration: zc / ALUMINIUM.p_speed + 3.0 / f0,
             crack_every: 1,
         };
-        let out = problem.plan(1 << 22).unwrap().run().unwrap();
+        let out = problem.plan("<test>").unwrap().run().unwrap();
         let rec = &out.cracks[0];
         let n = rec.position.len();
         let delay = zc / ALUMINIUM.p_speed;
@@ -345,7 +345,7 @@ fn sh_wave_on_a_frictional_interface_slips_within_coulomb() {
         duration: 2.0 * lambda / ALUMINIUM.s_speed + 3.0 / f0,
         crack_every: 1,
     };
-    let out = problem.plan(1 << 22).unwrap().run().unwrap();
+    let out = problem.plan("<test>").unwrap().run().unwrap();
     let e = out.energy;
     assert!(e.closure_error() < 1e-9, "{e:?}");
     let rec = &out.cracks[0];
@@ -406,7 +406,7 @@ fn plane_wave_from_a_surface_traction() {
             duration: z / ALUMINIUM.p_speed + 3.0 / f0,
             crack_every: 1,
         };
-        let out = problem.plan(1 << 22).unwrap().run().unwrap();
+        let out = problem.plan("<test>").unwrap().run().unwrap();
         let tr = out.trace(0, 1);
         let mut err = 0.0f64;
         for (k, &t) in out.time.iter().enumerate() {
@@ -477,7 +477,7 @@ fn phase_velocity_error(
         duration: (z2 + 14.0 * lambda) / c,
         crack_every: 1000,
     };
-    let out = problem.plan(1 << 22).unwrap().run().unwrap();
+    let out = problem.plan("<test>").unwrap().run().unwrap();
     let comp = if wave == WaveType::PSv && !shear {
         1
     } else {
@@ -485,7 +485,7 @@ fn phase_velocity_error(
     };
     // (the receivers sit at the nearest nodes: their true distance)
     let plan_z = |z: f64| {
-        let m = &problem.plan(1 << 22).unwrap().mesh;
+        let m = &problem.plan("<test>").unwrap().mesh;
         m.z[super::nearest(&m.z, z)]
     };
     let dz = plan_z(z2) - plan_z(z1);

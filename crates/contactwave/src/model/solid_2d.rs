@@ -1,0 +1,436 @@
+//! The 2D model (`[model] kind = "solid_2d"`, model.md section 9): a scenario planned
+//! into the spectral-element solver ([`crate::solver::solid_2d`]), run, and its receivers
+//! analysed by the library's band-peak analysis (A1...A5 of each receiver's velocity);
+//! files `summary.json`, `receivers.csv` and `crack.csv`.
+
+use super::record::summary_record;
+use super::template::{FromSpec, SpecTemplate};
+use super::{Fields, Kind, Model, Outcome, Record, RunControl, Slot, Template, Value};
+use crate::analysis::with_analyzer;
+use crate::analysis::Summary;
+use crate::error::Result;
+use crate::render::{csv_columns, summary_json, time_series, OutputFile, Rows};
+use crate::scenario::solid_2d::{
+    CrackSpec, LayerSpec, ModelSpec, ReceiverSpec, Solid2dScenario, Solid2dSpec, SourceSpec,
+};
+use crate::scenario::BuildCache;
+use crate::solver::solid_2d::Solid2dOutput;
+use std::any::Any;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// The 2D kind: tables with `[model] kind = "solid_2d"`.
+#[derive(Debug)]
+pub struct Solid2dKind;
+
+/// The registered instance.
+pub static KIND: Solid2dKind = Solid2dKind;
+
+impl Kind for Solid2dKind {
+    fn name(&self) -> &'static str {
+        <Solid2dScenario as FromSpec>::KIND
+    }
+
+    fn matches(&self, table: &toml::Table) -> bool {
+        Solid2dScenario::is_solid_2d(table)
+    }
+
+    fn plan(&self, table: toml::Table, path: &Path) -> Arc<dyn Template> {
+        Arc::new(SpecTemplate::<Solid2dScenario>::new(table, path))
+    }
+}
+
+impl FromSpec for Solid2dScenario {
+    type Spec = Solid2dSpec;
+    const KIND: &'static str = "solid_2d";
+
+    fn to_spec(table: toml::Table, file: &str) -> Result<Solid2dSpec> {
+        Solid2dSpec::from_table(table, file)
+    }
+
+    fn from_spec(spec: Solid2dSpec, file: &str, dir: &Path, cache: &BuildCache) -> Result<Self> {
+        Solid2dScenario::from_spec(spec, file, dir, cache)
+    }
+
+    fn base_dir(path: &Path) -> PathBuf {
+        path.parent().unwrap_or(Path::new(".")).to_path_buf()
+    }
+}
+
+/// The item of an array of tables named by a decimal index.
+fn item<'a, T>(items: &'a mut [T], index: &str) -> Option<&'a mut T> {
+    index.parse::<usize>().ok().and_then(|i| items.get_mut(i))
+}
+
+impl Fields for Solid2dSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        match path {
+            ["model", rest @ ..] => self.model.slot(rest),
+            ["layer", i, rest @ ..] => item(&mut self.layers, i)?.slot(rest),
+            ["crack", i, rest @ ..] => item(&mut self.cracks, i)?.slot(rest),
+            ["source", i, rest @ ..] => item(&mut self.sources, i)?.slot(rest),
+            ["receiver", i, rest @ ..] => item(&mut self.receivers, i)?.slot(rest),
+            _ => None,
+        }
+    }
+}
+
+impl Fields for ModelSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        match path {
+            ["width"] => Some(Slot::F64(&mut self.width)),
+            ["duration"] => Some(Slot::F64(&mut self.duration)),
+            ["element_size"] => Some(Slot::OptF64(&mut self.element_size)),
+            ["harmonic"] => Some(Slot::OptF64(&mut self.harmonic)),
+            ["courant"] => Some(Slot::OptF64(&mut self.courant)),
+            ["time_step"] => Some(Slot::OptF64(&mut self.time_step)),
+            ["order"] => Some(Slot::OptUsize(&mut self.order)),
+            _ => None,
+        }
+    }
+}
+
+impl Fields for LayerSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        match path {
+            ["thickness"] => Some(Slot::F64(&mut self.thickness)),
+            ["density"] => Some(Slot::OptF64(&mut self.density)),
+            ["youngs_modulus"] => Some(Slot::OptF64(&mut self.youngs_modulus)),
+            ["poisson_ratio"] => Some(Slot::OptF64(&mut self.poisson_ratio)),
+            ["p_speed"] => Some(Slot::OptF64(&mut self.p_speed)),
+            ["s_speed"] => Some(Slot::OptF64(&mut self.s_speed)),
+            _ => None,
+        }
+    }
+}
+
+impl Fields for CrackSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        match path {
+            ["static_pressure"] => Some(Slot::F64(&mut self.static_pressure)),
+            ["static_shear"] => Some(Slot::F64(&mut self.static_shear)),
+            // the crack's length from its start, along its line (a given end becomes the
+            // length and the orientation it implies)
+            ["length"] => {
+                if let Some(e) = self.end.take() {
+                    self.vertical = e[0] == self.start[0] && e[1] != self.start[1];
+                    self.length = Some(if self.vertical {
+                        e[1] - self.start[1]
+                    } else {
+                        e[0] - self.start[0]
+                    });
+                }
+                Some(Slot::OptF64(&mut self.length))
+            }
+            ["start", "x"] => Some(Slot::F64(&mut self.start[0])),
+            ["start", "z"] => Some(Slot::F64(&mut self.start[1])),
+            ["compression", rest @ ..] => self.compression.slot(rest),
+            ["traction", rest @ ..] => self.traction.slot(rest),
+            ["tangential", rest @ ..] => self.tangential.slot(rest),
+            _ => None,
+        }
+    }
+}
+
+impl Fields for SourceSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        match path {
+            ["angle"] => Some(Slot::F64(&mut self.angle)),
+            ["x0"] => Some(Slot::OptF64(&mut self.x0)),
+            ["x1"] => Some(Slot::OptF64(&mut self.x1)),
+            ["signal", rest @ ..] => self.signal.slot(rest),
+            _ => None,
+        }
+    }
+}
+
+impl Fields for ReceiverSpec {
+    fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
+        match path {
+            ["x"] => Some(Slot::F64(&mut self.at[0])),
+            ["z"] => Some(Slot::F64(&mut self.at[1])),
+            _ => None,
+        }
+    }
+}
+
+/// A 2D run: the solver's output, the receivers' names and the summary.
+#[derive(Debug, Clone)]
+pub struct Solid2dResult {
+    /// Scenario file.
+    pub file: String,
+    /// The solver's output.
+    pub output: Solid2dOutput,
+    /// Receiver names.
+    pub receivers: Vec<String>,
+    /// Component names of a receiver (`["x", "z"]` or `["y"]`).
+    pub component_names: Vec<&'static str>,
+    /// Nodes of the mesh.
+    pub nodes: usize,
+    /// Summary scalars.
+    pub summary: Summary,
+}
+
+impl Solid2dScenario {
+    /// Plan and run, reporting progress.
+    pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
+        let mut plan = self.problem.plan(&self.file)?;
+        let nodes = plan.mesh.n_nodes;
+        let progress = control.progress.clone();
+        let report = progress.as_ref().map(|p| {
+            let f = p.0.clone();
+            move |a: usize, b: usize| f(a, b)
+        });
+        let output = match &report {
+            Some(f) => plan.run_with(Some(f))?,
+            None => plan.run()?,
+        };
+        let mut s = Summary::new();
+        s.set("nodes", nodes as f64);
+        s.set("steps", output.time.len() as f64);
+        s.set("dt", output.dt);
+        s.set("element_size", self.problem.element_size);
+        let e = output.energy;
+        s.set("energy_input", e.input);
+        s.set("energy_solid", e.solid);
+        s.set("energy_cracks", e.cracks);
+        s.set("energy_closure_error", e.closure_error());
+        for (i, c) in output.cracks.iter().enumerate() {
+            let max = |v: &[f64]| v.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
+            s.set(
+                &format!("crack_max_gap_{i}"),
+                c.normal_gap.iter().fold(0.0f64, |a, &b| a.max(b)),
+            );
+            s.set(&format!("crack_max_slip_{i}"), max(&c.tangential_gap));
+            s.set(
+                &format!("crack_min_adhesion_{i}"),
+                c.adhesion.iter().fold(1.0f64, |a, &b| a.min(b)),
+            );
+        }
+        let dt = output.dt;
+        for (r, spec) in self.spec.receivers.iter().enumerate() {
+            let trace = output.trace(r, self.components[r]);
+            let bands = with_analyzer(|a| a.bands(trace, dt, self.f0, None));
+            let h = bands.harmonic;
+            for (n, a) in h.iter().enumerate().skip(1) {
+                s.set(&format!("{}_A{n}", spec.name), *a);
+            }
+            let a1 = h[1];
+            s.set(&format!("{}_A2_over_A1", spec.name), h[2] / a1);
+            s.set(&format!("{}_A3_over_A1", spec.name), h[3] / a1);
+            s.set(&format!("{}_beta", spec.name), h[2] / (a1 * a1));
+        }
+        Ok(Solid2dResult {
+            file: self.file.clone(),
+            receivers: self.spec.receivers.iter().map(|r| r.name.clone()).collect(),
+            component_names: if output.components == 1 {
+                vec!["y"]
+            } else {
+                vec!["x", "z"]
+            },
+            nodes,
+            output,
+            summary: s,
+        })
+    }
+}
+
+impl Model for Solid2dScenario {
+    fn kind(&self) -> &'static str {
+        KIND.name()
+    }
+
+    fn file(&self) -> &str {
+        &self.file
+    }
+
+    fn load_ratio(&self) -> f64 {
+        0.0
+    }
+
+    fn summary(&self) -> Result<Summary> {
+        Ok(self.simulate(&RunControl::default())?.summary)
+    }
+
+    fn run(&self, control: &RunControl) -> Result<Box<dyn Outcome>> {
+        Ok(Box::new(self.simulate(control)?))
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
+impl Solid2dResult {
+    /// `receivers.csv`: `t` (s) and each receiver's velocity components (m/s).
+    fn receivers_csv(&self, rows: Rows) -> Option<OutputFile> {
+        let o = &self.output;
+        let mut header = String::from("t");
+        let mut cols: Vec<&[f64]> = vec![&o.time];
+        for (r, name) in self.receivers.iter().enumerate() {
+            for (c, comp) in self.component_names.iter().enumerate() {
+                header.push_str(&format!(",{name}_v{comp}"));
+                cols.push(o.trace(r, c));
+            }
+        }
+        time_series("receivers.csv", &header, &cols, rows)
+    }
+
+    /// `crack.csv`: one row per crack node and record: crack index, time (s), position
+    /// along the crack (m), normal and tangential gaps (m), normal and shear contact
+    /// stresses (Pa), adhesion.
+    fn crack_csv(&self) -> OutputFile {
+        let mut cols: [Vec<f64>; 8] = Default::default();
+        for (i, c) in self.output.cracks.iter().enumerate() {
+            let n = c.position.len();
+            for (k, &t) in c.time.iter().enumerate() {
+                for p in 0..n {
+                    let j = k * n + p;
+                    let row = [
+                        i as f64,
+                        t,
+                        c.position[p],
+                        c.normal_gap[j],
+                        c.tangential_gap[j],
+                        c.normal_stress[j],
+                        c.shear_stress[j],
+                        c.adhesion[j],
+                    ];
+                    for (col, v) in cols.iter_mut().zip(row) {
+                        col.push(v);
+                    }
+                }
+            }
+        }
+        let refs: Vec<&[f64]> = cols.iter().map(|c| c.as_slice()).collect();
+        OutputFile {
+            name: "crack.csv".into(),
+            contents: csv_columns(
+                "crack,t,position,normal_gap,tangential_gap,normal_stress,shear_stress,adhesion",
+                &refs,
+            ),
+        }
+    }
+}
+
+impl Outcome for Solid2dResult {
+    fn kind(&self) -> &'static str {
+        KIND.name()
+    }
+
+    fn summary(&self) -> &Summary {
+        &self.summary
+    }
+
+    fn files(&self) -> Result<Vec<OutputFile>> {
+        self.files_with(Rows::All)
+    }
+
+    fn files_with(&self, rows: Rows) -> Result<Vec<OutputFile>> {
+        let mut files = vec![OutputFile {
+            name: "summary.json".into(),
+            contents: summary_json(&self.file, &self.summary),
+        }];
+        files.extend(self.receivers_csv(rows));
+        if !self.output.cracks.is_empty() {
+            files.push(self.crack_csv());
+        }
+        Ok(files)
+    }
+
+    /// `t` (s), `receivers` (rows: receiver-major, then component; m/s), `receiver_names`,
+    /// `components`, `cracks` (per crack: `position` (m), `time` (s), and rows `(n_nodes,
+    /// n_records)` of `normal_gap`, `tangential_gap` (m), `normal_stress`, `shear_stress`
+    /// (Pa), `adhesion`), `dt` (s), `summary`.
+    fn record(&self) -> Record {
+        let o = &self.output;
+        let mut rows = Vec::new();
+        for r in 0..self.receivers.len() {
+            for c in 0..o.components {
+                rows.push(o.trace(r, c).to_vec());
+            }
+        }
+        let mut cracks = Vec::new();
+        for c in &o.cracks {
+            let n = c.position.len();
+            let by_node = |v: &[f64]| -> Value {
+                Value::Rows(
+                    (0..n)
+                        .map(|p| v.iter().skip(p).step_by(n).copied().collect())
+                        .collect(),
+                )
+            };
+            cracks.push(Value::Map(
+                Record::new()
+                    .with("position", c.position.clone().into())
+                    .with("time", c.time.clone().into())
+                    .with("normal_gap", by_node(&c.normal_gap))
+                    .with("tangential_gap", by_node(&c.tangential_gap))
+                    .with("normal_stress", by_node(&c.normal_stress))
+                    .with("shear_stress", by_node(&c.shear_stress))
+                    .with("adhesion", by_node(&c.adhesion)),
+            ));
+        }
+        Record::new()
+            .with("t", o.time.clone().into())
+            .with("receivers", Value::Rows(rows))
+            .with(
+                "receiver_names",
+                Value::Tuple(
+                    self.receivers
+                        .iter()
+                        .map(|n| Value::Text(n.clone()))
+                        .collect(),
+                ),
+            )
+            .with(
+                "components",
+                Value::Tuple(
+                    self.component_names
+                        .iter()
+                        .map(|n| Value::Text(n.to_string()))
+                        .collect(),
+                ),
+            )
+            .with("cracks", Value::Tuple(cracks))
+            .with("dt", Value::Number(o.dt))
+            .with("summary", Value::Map(summary_record(None, &self.summary)))
+    }
+
+    fn report(&self) -> Vec<String> {
+        let s = &self.summary;
+        let get = |k: &str| s.get(k).unwrap_or(f64::NAN);
+        let mut lines = vec![
+            format!(
+                "mesh                   {} nodes, {} steps of {:.4e} s",
+                self.nodes,
+                self.output.time.len(),
+                self.output.dt
+            ),
+            format!("energy input           {:.6e} J/m", get("energy_input")),
+            format!("energy closure error   {:.3e}", get("energy_closure_error")),
+        ];
+        for i in 0..self.output.cracks.len() {
+            lines.push(format!(
+                "crack {i} max gap        {:.6e} m",
+                get(&format!("crack_max_gap_{i}"))
+            ));
+        }
+        for name in &self.receivers {
+            lines.push(format!(
+                "{:<23}{:.6e}",
+                format!("{name} A2/A1"),
+                get(&format!("{name}_A2_over_A1"))
+            ));
+        }
+        lines
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+
+    fn into_any(self: Box<Self>) -> Box<dyn Any> {
+        self
+    }
+}

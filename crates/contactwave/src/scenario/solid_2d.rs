@@ -1,0 +1,642 @@
+//! 2D scenarios (`[model] kind = "solid_2d"`, model.md section 9): a rectangle of
+//! horizontal layers, plane-strain P-SV or antiplane SH waves, cracks with any law of the
+//! library, transducer and point-force sources, velocity receivers. The serde-level spec
+//! ([`Solid2dSpec`]) and its validation into the solver's problem
+//! ([`crate::solver::solid_2d::Solid2d`]) with every crack's law built once.
+
+use crate::error::{Error, Result};
+use crate::excitation::Excitation;
+use crate::law::point::SharedLaw;
+use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
+use crate::material::Material;
+use crate::scenario::spec::IncidentSpec;
+use crate::scenario::BuildCache;
+use crate::solver::solid_2d::{Crack, Elastic, Layer, Side, Solid2d, Source, SourceKind, WaveType};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+use std::sync::Arc;
+
+/// Default GLL order of the elements.
+pub const DEFAULT_ORDER: usize = 4;
+/// Default elements per S wavelength at the highest analysed harmonic (`model.harmonic`
+/// times the first source's frequency): with order 4 and the default time step, P, SV and
+/// SH waves there are within 1e-3 of their phase velocity (measured: docs/model.md).
+pub const ELEMENTS_PER_WAVELENGTH: f64 = 2.0;
+/// Default bound of `omega dt` at the highest analysed harmonic: the central differences'
+/// phase error `(omega dt)^2 / 24` stays below 6e-4.
+pub const PHASE_STEP: f64 = 0.12;
+
+/// The whole 2D scenario file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Solid2dSpec {
+    /// Model settings.
+    pub model: ModelSpec,
+    /// Layers from the top surface (z = 0) down.
+    #[serde(rename = "layer")]
+    pub layers: Vec<LayerSpec>,
+    /// Cracks.
+    #[serde(rename = "crack", default)]
+    pub cracks: Vec<CrackSpec>,
+    /// Sources.
+    #[serde(rename = "source")]
+    pub sources: Vec<SourceSpec>,
+    /// Velocity receivers.
+    #[serde(rename = "receiver", default)]
+    pub receivers: Vec<ReceiverSpec>,
+}
+
+/// `[model]`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSpec {
+    /// Must be `solid_2d`.
+    pub kind: String,
+    /// `p_sv` (plane strain, default) or `sh` (antiplane).
+    #[serde(default = "p_sv")]
+    pub wave: String,
+    /// Width along x, m.
+    pub width: f64,
+    /// Simulated time, s.
+    pub duration: f64,
+    /// GLL order of the elements, 2 to 8 (default 4).
+    pub order: Option<usize>,
+    /// Largest element size, m (default: the S wavelength at the highest analysed
+    /// harmonic over [`ELEMENTS_PER_WAVELENGTH`]).
+    pub element_size: Option<f64>,
+    /// Highest analysed harmonic of the first source's frequency (default 3): sets the
+    /// default element size and time step.
+    pub harmonic: Option<f64>,
+    /// Fraction of the stability limit the time step takes, in (0, 1) (default 0.9).
+    pub courant: Option<f64>,
+    /// Time step, s (default: the smaller of the stability limit times `courant` and
+    /// [`PHASE_STEP`] over the angular frequency of the highest analysed harmonic).
+    pub time_step: Option<f64>,
+    /// Top side: `free` (default) or `rigid`.
+    #[serde(default = "free")]
+    pub top: String,
+    /// Bottom side: `free` (default) or `rigid`.
+    #[serde(default = "free")]
+    pub bottom: String,
+    /// The x sides: `free` (default), `rigid` or `periodic`.
+    #[serde(default = "free")]
+    pub sides: String,
+    /// Record the cracks' fields every this many time steps (default 10).
+    pub crack_every: Option<usize>,
+}
+
+fn p_sv() -> String {
+    "p_sv".into()
+}
+fn free() -> String {
+    "free".into()
+}
+
+/// `[[layer]]`: a horizontal layer and its material (a preset, or E / nu / rho, or
+/// c_P / c_S / rho).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LayerSpec {
+    /// Thickness, m.
+    pub thickness: f64,
+    /// Material preset (`aluminium`, `steel`, `pmma`).
+    pub material: Option<String>,
+    /// Young's modulus E, Pa (with `poisson_ratio` and `density`).
+    pub youngs_modulus: Option<f64>,
+    /// Poisson's ratio nu in (-1, 0.5).
+    pub poisson_ratio: Option<f64>,
+    /// Density rho, kg/m^3.
+    pub density: Option<f64>,
+    /// P-wave speed c_P, m/s (with `s_speed` and `density`).
+    pub p_speed: Option<f64>,
+    /// S-wave speed c_S, m/s.
+    pub s_speed: Option<f64>,
+}
+
+/// `[[crack]]`: a straight horizontal or vertical crack with its law and static state.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CrackSpec {
+    /// Start `[x, z]`, m.
+    pub start: [f64; 2],
+    /// End `[x, z]`, m: the same z (horizontal) or the same x (vertical). Give this or
+    /// `length`.
+    pub end: Option<[f64; 2]>,
+    /// Length from the start, m, along +x (or +z with `vertical`): instead of `end`.
+    pub length: Option<f64>,
+    /// With `length`: the crack runs down from its start (default false: along +x).
+    #[serde(default)]
+    pub vertical: bool,
+    /// Across the whole width (periodic sides): a plane interface at the start's z.
+    #[serde(default)]
+    pub full_width: bool,
+    /// Static closure pressure p0, Pa (default 0).
+    #[serde(default)]
+    pub static_pressure: f64,
+    /// Static shear stress q0, Pa (default 0).
+    #[serde(default)]
+    pub static_shear: f64,
+    /// Compression branch (default rigid: Signorini).
+    #[serde(default)]
+    pub compression: CompressionSpec,
+    /// Traction branch (default free).
+    #[serde(default)]
+    pub traction: TractionSpec,
+    /// Tangential branch (default free sliding).
+    #[serde(default)]
+    pub tangential: TangentialSpec,
+}
+
+/// `[[source]]`: a transducer (a traction over an aperture of the top or bottom surface)
+/// or a point force, with its time function.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SourceSpec {
+    /// `transducer` (default) or `force`.
+    #[serde(default = "transducer")]
+    pub kind: String,
+    /// Transducer: aperture start and end along x, m.
+    pub x0: Option<f64>,
+    /// Transducer: aperture end, m.
+    pub x1: Option<f64>,
+    /// Transducer: `top` (default) or `bottom` surface.
+    #[serde(default = "top")]
+    pub surface: String,
+    /// Transducer: `normal` (default) or `shear` traction (shear is along y in SH runs).
+    #[serde(default = "normal")]
+    pub component: String,
+    /// Transducer: beam angle from the surface normal, degrees in (-90, 90) (default 0): a
+    /// linear delay law `sin(angle) / c` along the aperture (c_P of the top layer for a
+    /// normal traction, c_S for a shear one).
+    #[serde(default)]
+    pub angle: f64,
+    /// Force: position `[x, z]`, m (the nearest node).
+    pub at: Option<[f64; 2]>,
+    /// Force: direction `[x, z]` (normalised; ignored in SH runs), default `[0, 1]`.
+    pub direction: Option<[f64; 2]>,
+    /// The time function: the keys of a half-space `[incident]` (tone burst, two-tone or
+    /// file; `amplitude` in Pa for a transducer, N/m for a force; no xi).
+    pub signal: IncidentSpec,
+}
+
+fn transducer() -> String {
+    "transducer".into()
+}
+fn top() -> String {
+    "top".into()
+}
+fn normal() -> String {
+    "normal".into()
+}
+
+/// `[[receiver]]`: a point where the velocity is recorded and analysed.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReceiverSpec {
+    /// Name (summary key prefix and CSV column prefix: letters, digits, `_`).
+    pub name: String,
+    /// Position `[x, z]`, m (the nearest node).
+    pub at: [f64; 2],
+    /// The analysed component: `x`, `z` (default in P-SV runs) or `y` (SH runs).
+    pub component: Option<String>,
+}
+
+/// A validated 2D scenario.
+#[derive(Debug, Clone)]
+pub struct Solid2dScenario {
+    /// The spec.
+    pub spec: Solid2dSpec,
+    /// File it came from.
+    pub file: String,
+    /// The solver's problem.
+    pub problem: Solid2d<SharedLaw>,
+    /// Fundamental of the analysis (the first source's), Hz.
+    pub f0: f64,
+    /// The analysed component of each receiver (index into its components).
+    pub components: Vec<usize>,
+}
+
+fn inv(file: &str, field: impl Into<String>, v: impl std::fmt::Display, allowed: &str) -> Error {
+    Error::invalid(file, field, v, allowed)
+}
+
+fn positive(file: &str, field: &str, v: f64) -> Result<f64> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(inv(file, field, v, "must be a finite number > 0"))
+    }
+}
+
+fn side(file: &str, field: &str, v: &str, periodic: bool) -> Result<Side> {
+    match (v, periodic) {
+        ("free", _) => Ok(Side::Free),
+        ("rigid", _) => Ok(Side::Rigid),
+        ("periodic", true) => Ok(Side::Periodic),
+        _ => Err(inv(
+            file,
+            field,
+            v,
+            if periodic {
+                "free, rigid or periodic"
+            } else {
+                "free or rigid"
+            },
+        )),
+    }
+}
+
+/// The elastic solid of a layer.
+fn material(l: &LayerSpec, file: &str, key: &str) -> Result<Elastic> {
+    let k = |f: &str| format!("{key}.{f}");
+    if let Some(name) = &l.material {
+        if l.youngs_modulus.is_some() || l.p_speed.is_some() || l.s_speed.is_some() {
+            return Err(inv(
+                file,
+                k("material"),
+                name,
+                "give a preset or the moduli, not both",
+            ));
+        }
+        let m = Material::preset(name).ok_or_else(|| {
+            inv(
+                file,
+                k("material"),
+                name,
+                &format!("one of {}", Material::PRESETS.join(", ")),
+            )
+        })?;
+        let nu = m.poisson_ratio().unwrap_or(0.3);
+        let rho = l.density.unwrap_or(m.density);
+        return from_moduli(m.youngs_modulus, nu, positive(file, &k("density"), rho)?);
+    }
+    let rho = positive(file, &k("density"), l.density.unwrap_or(f64::NAN))?;
+    match (l.youngs_modulus, l.poisson_ratio, l.p_speed, l.s_speed) {
+        (Some(e), Some(nu), None, None) => {
+            positive(file, &k("youngs_modulus"), e)?;
+            if !(nu > -1.0 && nu < 0.5) {
+                return Err(inv(file, k("poisson_ratio"), nu, "in (-1, 0.5)"));
+            }
+            from_moduli(e, nu, rho)
+        }
+        (None, None, Some(cp), Some(cs)) => {
+            positive(file, &k("s_speed"), cs)?;
+            if !(cp.is_finite() && cp > cs * 2f64.sqrt()) {
+                return Err(inv(
+                    file,
+                    k("p_speed"),
+                    cp,
+                    "a finite speed above sqrt(2) s_speed (a positive Lame lambda... at least nu > 0)",
+                ));
+            }
+            Ok(Elastic { density: rho, p_speed: cp, s_speed: cs })
+        }
+        _ => Err(inv(
+            file,
+            key,
+            "incomplete material",
+            "a `material` preset, or `youngs_modulus` + `poisson_ratio` + `density`, or `p_speed` + `s_speed` + `density`",
+        )),
+    }
+}
+
+fn from_moduli(e: f64, nu: f64, rho: f64) -> Result<Elastic> {
+    let g = e / (2.0 * (1.0 + nu));
+    let m = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    Ok(Elastic {
+        density: rho,
+        p_speed: (m / rho).sqrt(),
+        s_speed: (g / rho).sqrt(),
+    })
+}
+
+impl Solid2dScenario {
+    /// Does this TOML table describe a 2D scenario?
+    pub fn is_solid_2d(table: &toml::Table) -> bool {
+        table
+            .get("model")
+            .and_then(|m| m.get("kind"))
+            .and_then(|k| k.as_str())
+            == Some("solid_2d")
+    }
+
+    /// Validate a spec (`dir`: the folder that relative file paths refer to), building
+    /// the laws and reading waveform files through `cache`.
+    pub fn from_spec(
+        spec: Solid2dSpec,
+        file: &str,
+        dir: &Path,
+        cache: &BuildCache,
+    ) -> Result<Self> {
+        let m = &spec.model;
+        let wave = match m.wave.as_str() {
+            "p_sv" => WaveType::PSv,
+            "sh" => WaveType::Sh,
+            w => return Err(inv(file, "model.wave", w, "p_sv or sh")),
+        };
+        positive(file, "model.width", m.width)?;
+        positive(file, "model.duration", m.duration)?;
+        if spec.layers.is_empty() {
+            return Err(inv(file, "layer", "none", "at least one [[layer]]"));
+        }
+        let mut layers = Vec::new();
+        let mut bottom = 0.0;
+        for (i, l) in spec.layers.iter().enumerate() {
+            bottom += positive(file, &format!("layer.{i}.thickness"), l.thickness)?;
+            layers.push(Layer {
+                bottom,
+                material: material(l, file, &format!("layer.{i}"))?,
+            });
+        }
+        if spec.sources.is_empty() {
+            return Err(inv(file, "source", "none", "at least one [[source]]"));
+        }
+        let mut sources = Vec::new();
+        let mut f0 = 0.0;
+        for (i, s) in spec.sources.iter().enumerate() {
+            let key = format!("source.{i}");
+            if let Some(x) = s.signal.xi {
+                return Err(inv(
+                    file,
+                    format!("{key}.signal.xi"),
+                    x,
+                    "a source takes `amplitude` (Pa or N/m), not xi",
+                ));
+            }
+            let signal: Arc<dyn Excitation> = crate::scenario::build_wave(
+                &s.signal,
+                &format!("{key}.signal"),
+                file,
+                dir,
+                None,
+                cache,
+                Some(m.duration),
+            )?
+            .0;
+            if i == 0 {
+                f0 = signal.fundamental();
+            }
+            let top = &layers[0].material;
+            let kind = match s.kind.as_str() {
+                "transducer" => {
+                    let x0 = s.x0.ok_or_else(|| {
+                        inv(
+                            file,
+                            format!("{key}.x0"),
+                            "missing",
+                            "the aperture start, m",
+                        )
+                    })?;
+                    let x1 = s.x1.ok_or_else(|| {
+                        inv(file, format!("{key}.x1"), "missing", "the aperture end, m")
+                    })?;
+                    if !(x0 >= 0.0 && x1 > x0 && x1 <= m.width) {
+                        return Err(inv(
+                            file,
+                            format!("{key}.x1"),
+                            format!("[{x0}, {x1}]"),
+                            "0 <= x0 < x1 <= model.width",
+                        ));
+                    }
+                    let on_top = match s.surface.as_str() {
+                        "top" => true,
+                        "bottom" => false,
+                        v => return Err(inv(file, format!("{key}.surface"), v, "top or bottom")),
+                    };
+                    let normal = match s.component.as_str() {
+                        "normal" => true,
+                        "shear" => false,
+                        v => {
+                            return Err(inv(file, format!("{key}.component"), v, "normal or shear"))
+                        }
+                    };
+                    if normal && wave == WaveType::Sh {
+                        return Err(inv(
+                            file,
+                            format!("{key}.component"),
+                            "normal",
+                            "shear (an SH run has no normal motion)",
+                        ));
+                    }
+                    if !(s.angle.abs() < 90.0) {
+                        return Err(inv(
+                            file,
+                            format!("{key}.angle"),
+                            s.angle,
+                            "in (-90, 90) degrees",
+                        ));
+                    }
+                    let c = if normal { top.p_speed } else { top.s_speed };
+                    SourceKind::Traction {
+                        top: on_top,
+                        x0,
+                        x1,
+                        normal,
+                        delay_per_m: s.angle.to_radians().sin() / c,
+                    }
+                }
+                "force" => {
+                    let at = s.at.ok_or_else(|| {
+                        inv(
+                            file,
+                            format!("{key}.at"),
+                            "missing",
+                            "the force's position [x, z], m",
+                        )
+                    })?;
+                    let d = s.direction.unwrap_or([0.0, 1.0]);
+                    let n = (d[0] * d[0] + d[1] * d[1]).sqrt();
+                    if !(n > 0.0 && n.is_finite()) {
+                        return Err(inv(
+                            file,
+                            format!("{key}.direction"),
+                            format!("{d:?}"),
+                            "a non-zero direction [x, z]",
+                        ));
+                    }
+                    SourceKind::Force {
+                        at,
+                        direction: [d[0] / n, d[1] / n],
+                    }
+                }
+                v => return Err(inv(file, format!("{key}.kind"), v, "transducer or force")),
+            };
+            sources.push(Source { kind, signal });
+        }
+        let harmonic = m.harmonic.unwrap_or(3.0);
+        positive(file, "model.harmonic", harmonic)?;
+        let cs_min = layers
+            .iter()
+            .map(|l| l.material.s_speed)
+            .fold(f64::INFINITY, f64::min);
+        let f_max = harmonic * f0;
+        let element_size = match m.element_size {
+            Some(h) => positive(file, "model.element_size", h)?,
+            None => cs_min / f_max / ELEMENTS_PER_WAVELENGTH,
+        };
+        let max_time_step = match m.time_step {
+            Some(dt) => positive(file, "model.time_step", dt)?,
+            None => PHASE_STEP / (2.0 * std::f64::consts::PI * f_max),
+        };
+        let depth = bottom;
+        let mut cracks = Vec::new();
+        for (i, c) in spec.cracks.iter().enumerate() {
+            let key = format!("crack.{i}");
+            let normal = cache.law(c.static_pressure, &c.compression, &c.traction, file, &key)?;
+            let tangential = crate::law::registry::build_tangential(
+                &c.tangential,
+                c.static_shear,
+                &normal,
+                file,
+                &key,
+            )?;
+            let end = match (c.end, c.length, c.full_width) {
+                (_, _, true) => [m.width, c.start[1]],
+                (Some(_), Some(l), false) => {
+                    return Err(inv(
+                        file,
+                        format!("{key}.length"),
+                        l,
+                        "give `end` or `length`, not both",
+                    ))
+                }
+                (Some(e), None, false) => e,
+                (None, Some(l), false) => {
+                    positive(file, &format!("{key}.length"), l)?;
+                    if c.vertical {
+                        [c.start[0], c.start[1] + l]
+                    } else {
+                        [c.start[0] + l, c.start[1]]
+                    }
+                }
+                (None, None, false) => {
+                    return Err(inv(
+                        file,
+                        format!("{key}.end"),
+                        "missing",
+                        "the crack's end [x, z] or its length, m (or full_width = true)",
+                    ))
+                }
+            };
+            for (p, what) in [(c.start, "start"), (end, "end")] {
+                if !(p[0] >= 0.0 && p[0] <= m.width && p[1] > 0.0 && p[1] < depth) {
+                    return Err(inv(
+                        file,
+                        format!("{key}.{what}"),
+                        format!("[{}, {}]", p[0], p[1]),
+                        &format!(
+                            "inside the rectangle: 0 <= x <= {} m, 0 < z < {depth} m",
+                            m.width
+                        ),
+                    ));
+                }
+            }
+            cracks.push(Crack {
+                start: c.start,
+                end,
+                full_width: c.full_width,
+                law: SharedLaw {
+                    normal,
+                    tangential: Arc::new(tangential),
+                },
+            });
+        }
+        let mut components = Vec::new();
+        let mut receivers = Vec::new();
+        for (i, r) in spec.receivers.iter().enumerate() {
+            let key = format!("receiver.{i}");
+            if r.name.is_empty()
+                || !r
+                    .name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_')
+            {
+                return Err(inv(
+                    file,
+                    format!("{key}.name"),
+                    &r.name,
+                    "letters, digits and `_`",
+                ));
+            }
+            if spec.receivers[..i].iter().any(|o| o.name == r.name) {
+                return Err(inv(
+                    file,
+                    format!("{key}.name"),
+                    &r.name,
+                    "a name no other receiver has",
+                ));
+            }
+            if !(r.at[0] >= 0.0 && r.at[0] <= m.width && r.at[1] >= 0.0 && r.at[1] <= depth) {
+                return Err(inv(
+                    file,
+                    format!("{key}.at"),
+                    format!("[{}, {}]", r.at[0], r.at[1]),
+                    "inside the rectangle",
+                ));
+            }
+            let comp = match (r.component.as_deref(), wave) {
+                (None | Some("z"), WaveType::PSv) => 1,
+                (Some("x"), WaveType::PSv) => 0,
+                (None | Some("y"), WaveType::Sh) => 0,
+                (Some(v), _) => {
+                    return Err(inv(
+                        file,
+                        format!("{key}.component"),
+                        v,
+                        if wave == WaveType::Sh { "y" } else { "x or z" },
+                    ))
+                }
+            };
+            components.push(comp);
+            receivers.push(r.at);
+        }
+        let periodic = m.sides == "periodic";
+        let problem = Solid2d {
+            width: m.width,
+            layers,
+            wave,
+            top: side(file, "model.top", &m.top, false)?,
+            bottom: side(file, "model.bottom", &m.bottom, false)?,
+            sides: if periodic {
+                Side::Periodic
+            } else {
+                side(file, "model.sides", &m.sides, true)?
+            },
+            element_size,
+            order: m.order.unwrap_or(DEFAULT_ORDER),
+            courant: m.courant.unwrap_or(0.9),
+            max_time_step,
+            cracks,
+            sources,
+            receivers,
+            duration: m.duration,
+            crack_every: m.crack_every.unwrap_or(10).max(1),
+        };
+        problem.validate(file)?;
+        Ok(Solid2dScenario {
+            spec: spec.clone(),
+            file: file.to_string(),
+            problem,
+            f0,
+            components,
+        })
+    }
+}
+
+impl Solid2dSpec {
+    /// Deserialize a table into a spec, naming the field path on failure. Unit strings
+    /// (`width = "40 mm"`) are converted to SI first ([`crate::scenario::units`]).
+    pub fn from_table(mut table: toml::Table, file: &str) -> Result<Self> {
+        crate::scenario::units::to_si(&mut table, file)?;
+        serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
+            let p = e.path().to_string();
+            Error::Parse {
+                file: file.to_string(),
+                message: format!(
+                    "field `{p}`: {}",
+                    crate::scenario::units::plain_serde_message(&e.into_inner().to_string())
+                ),
+            }
+        })
+    }
+}
