@@ -42,6 +42,7 @@ __all__ = [
     "HarmonicFloorWarning",
     "Result",
     "BarStackResult",
+    "Solid2dResult",
     "Spectrum",
     "load_scenario",
     "scenario_from_dict",
@@ -386,11 +387,58 @@ class BarStackResult:
         )
 
 
+class Solid2dResult:
+    """Everything one 2D run produces (``[model] kind = "solid_2d"``, docs/scenario.md
+    section 2b; docs/model.md section 15), as float64 numpy arrays.
+
+    ``t``: times of the receiver samples (s, the half levels of the time step).
+    ``receivers``: velocities, shape ``(n_receivers, n_components, n_t)`` (m/s), in the
+    order of ``receiver_names``; ``components`` names the components (``("x", "z")`` in
+    P-SV runs, ``("y",)`` in SH runs). ``cracks``: one dict per crack with ``position``
+    (m along it, ``(n_nodes,)``), ``time`` (s, ``(n_records,)``) and ``normal_gap``,
+    ``tangential_gap`` (m), ``normal_stress``, ``shear_stress`` (Pa, tension positive,
+    ``-p0`` at rest) and ``adhesion`` of shape ``(n_nodes, n_records)``. ``dt`` (s);
+    ``summary``: the keys of ``summary.json``.
+    """
+
+    t: np.ndarray
+    receivers: np.ndarray
+    receiver_names: List[str]
+    components: List[str]
+    cracks: List[Dict[str, np.ndarray]]
+    dt: float
+    summary: Dict[str, Any]
+
+    def __init__(self, raw: Dict[str, Any]) -> None:
+        self.t = raw["t"]
+        self.receiver_names = list(raw["receiver_names"])
+        self.components = list(raw["components"])
+        rows = np.asarray(raw["receivers"], dtype=np.float64)
+        self.receivers = rows.reshape(len(self.receiver_names), len(self.components), len(self.t))
+        self.cracks = [dict(c) for c in raw["cracks"]]
+        self.dt = raw["dt"]
+        self.summary = raw["summary"]
+
+    def velocity(self, name: str, component: str) -> np.ndarray:
+        """The velocity (m/s) of receiver ``name`` along ``component`` (``x``, ``z`` or
+        ``y``)."""
+        return self.receivers[self.receiver_names.index(name), self.components.index(component)]
+
+    def __repr__(self) -> str:
+        s = self.summary
+        return (
+            f"Solid2dResult(scenario={s.get('scenario')!r}, receivers={self.receiver_names}, "
+            f"cracks={len(self.cracks)}, steps={len(self.t)}, "
+            f"energy_closure_error={s.get('energy_closure_error'):.3g})"
+        )
+
+
 #: How each kind of scenario's record (``_core.run``) becomes a Python result: one entry
 #: per kind registered in the library (``contactwave::model::KINDS``).
 _RESULTS = {
     "half_space": lambda raw, s: Result(raw, s),
     "bar_stack": lambda raw, s: BarStackResult(raw),
+    "solid_2d": lambda raw, s: Solid2dResult(raw),
 }
 
 
@@ -421,11 +469,12 @@ def run_bar_stack(
     return BarStackResult(_core.run(s))
 
 
-def run(scenario: ScenarioLike) -> Union[Result, BarStackResult]:
+def run(scenario: ScenarioLike) -> Union[Result, BarStackResult, "Solid2dResult"]:
     """Simulate one scenario (a :class:`Scenario`, a dict, or a TOML file path) and return
     a :class:`Result`: the arrays of ``timeseries.csv`` and ``probe.csv``, the summary of
     ``summary.json``, ``spectrum()`` and ``harmonics()``. A bar-stack scenario (``[model]
-    kind = "bar_stack"``) gives a :class:`BarStackResult` (as :func:`run_bar_stack`).
+    kind = "bar_stack"``) gives a :class:`BarStackResult` (as :func:`run_bar_stack`), a 2D
+    scenario (``kind = "solid_2d"``) a :class:`Solid2dResult`.
 
     The GIL is released while the simulation runs. Raises ``ValueError`` for an invalid
     scenario and :class:`SimulationError` for a numerical failure.

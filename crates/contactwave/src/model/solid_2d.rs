@@ -194,6 +194,7 @@ impl Solid2dScenario {
         s.set("energy_input", e.input);
         s.set("energy_solid", e.solid);
         s.set("energy_cracks", e.cracks);
+        s.set("energy_absorbed", e.absorbed);
         s.set("energy_closure_error", e.closure_error());
         for (i, c) in output.cracks.iter().enumerate() {
             let max = |v: &[f64]| v.iter().fold(0.0f64, |a, &b| a.max(b.abs()));

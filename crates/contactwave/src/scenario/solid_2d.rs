@@ -72,13 +72,13 @@ pub struct ModelSpec {
     /// Time step, s (default: the smaller of the stability limit times `courant` and
     /// [`PHASE_STEP`] over the angular frequency of the highest analysed harmonic).
     pub time_step: Option<f64>,
-    /// Top side: `free` (default) or `rigid`.
+    /// Top side: `free` (default), `rigid` or `absorbing` (dashpots).
     #[serde(default = "free")]
     pub top: String,
-    /// Bottom side: `free` (default) or `rigid`.
+    /// Bottom side: `free` (default), `rigid` or `absorbing`.
     #[serde(default = "free")]
     pub bottom: String,
-    /// The x sides: `free` (default), `rigid` or `periodic`.
+    /// The x sides: `free` (default), `rigid`, `absorbing` or `periodic`.
     #[serde(default = "free")]
     pub sides: String,
     /// Record the cracks' fields every this many time steps (default 10).
@@ -232,6 +232,7 @@ fn side(file: &str, field: &str, v: &str, periodic: bool) -> Result<Side> {
     match (v, periodic) {
         ("free", _) => Ok(Side::Free),
         ("rigid", _) => Ok(Side::Rigid),
+        ("absorbing", _) => Ok(Side::Absorbing),
         ("periodic", true) => Ok(Side::Periodic),
         _ => Err(inv(
             file,

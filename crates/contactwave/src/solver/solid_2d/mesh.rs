@@ -235,3 +235,61 @@ impl Mesh {
         Ok(mesh)
     }
 }
+
+/// The boundary weight of node-grid position `k` along a line of element edges `edges`
+/// (node coordinates `coords`, order `n`): the GLL weights times the half-lengths of the
+/// elements it belongs to. `wrap`: the line closes on itself (periodic).
+pub(super) fn edge_weight(
+    coords: &[f64],
+    edges: &[f64],
+    w: &[f64],
+    n: usize,
+    k: usize,
+    wrap: bool,
+) -> f64 {
+    let ne = edges.len() - 1;
+    let (e, a) = (k / n, k % n);
+    let h = |e: usize| 0.5 * (edges[e + 1] - edges[e]);
+    let _ = coords;
+    if a != 0 {
+        return w[a] * h(e);
+    }
+    // an element corner: the end of the element before and the start of the one after
+    let mut s = 0.0;
+    if e < ne {
+        s += w[0] * h(e);
+    } else if wrap {
+        s += w[0] * h(0);
+    }
+    if e > 0 {
+        s += w[n] * h(e - 1);
+    } else if wrap {
+        s += w[n] * h(ne - 1);
+    }
+    s
+}
+
+/// The boundary weight of surface node column `ix` restricted to the aperture `[x0, x1]`
+/// (m; both on element edges): the GLL weights of the element edges inside it.
+pub(super) fn aperture_weight(mesh: &Mesh, ix: usize, x0: f64, x1: f64) -> f64 {
+    let n = mesh.gll.order;
+    let w = &mesh.gll.weights;
+    let ne = mesh.x_edges.len() - 1;
+    let (e, a) = (ix / n, ix % n);
+    let inside = |e: usize| {
+        let mid = 0.5 * (mesh.x_edges[e] + mesh.x_edges[e + 1]);
+        mid > x0 && mid < x1
+    };
+    let h = |e: usize| 0.5 * (mesh.x_edges[e + 1] - mesh.x_edges[e]);
+    if a != 0 {
+        return if inside(e) { w[a] * h(e) } else { 0.0 };
+    }
+    let mut s = 0.0;
+    if e < ne && inside(e) {
+        s += w[0] * h(e);
+    }
+    if e > 0 && inside(e - 1) {
+        s += w[n] * h(e - 1);
+    }
+    s
+}

@@ -27,6 +27,7 @@
 pub mod crack;
 pub mod kernel;
 pub mod mesh;
+mod stepping;
 
 #[cfg(test)]
 mod tests;
@@ -36,9 +37,8 @@ use crate::excitation::Excitation;
 use crate::law::contact::PointState;
 use crate::law::{NormalPart, TangentialPart};
 use crack::CrackNodes;
-use kernel::{ElementData, Stiffness};
-use mesh::{CrackLine, Mesh};
-use rayon::prelude::*;
+use kernel::{max_frequency, ElementData, Stiffness};
+use mesh::{aperture_weight, edge_weight, CrackLine, Mesh};
 use std::sync::Arc;
 
 /// Nodes per parallel task of the node-wise updates.
@@ -84,6 +84,11 @@ pub enum Side {
     Rigid,
     /// Periodic (the x sides only, both together).
     Periodic,
+    /// Absorbing: viscous dashpots `rho c_P` normal and `rho c_S` tangential to the side
+    /// per unit length (Lysmer and Kuhlemeyer's paraxial condition: no reflection of a
+    /// plane wave at normal incidence in the continuum; the discrete reflection is measured
+    /// in docs/model.md section 15). Not a perfectly matched layer.
+    Absorbing,
 }
 
 /// A horizontal layer: its material down to `bottom` (m, z of its lower boundary).
@@ -213,6 +218,9 @@ pub struct Plan<L> {
     pub components: usize,
     cracks: Vec<CrackNodes<L>>,
     loads: Vec<Load>,
+    /// The absorbing sides' dashpots: `(dof, C)` with C in N s/m per m (kg/(m s)), one
+    /// per degree of freedom, in increasing dof order.
+    dampers: Vec<(usize, f64)>,
     signals: Vec<Arc<dyn Excitation>>,
     /// Receiver nodes.
     pub receiver_nodes: Vec<usize>,
@@ -248,12 +256,15 @@ pub struct Energy2d {
     /// Energy taken by the cracks (stored in their laws, dissipated by friction, damage
     /// and the discrete impacts of rigid contact).
     pub cracks: f64,
+    /// Energy absorbed by the absorbing sides (their dashpots' work).
+    pub absorbed: f64,
 }
 
 impl Energy2d {
-    /// `|input - solid - cracks| / input`.
+    /// `|input - solid - cracks - absorbed| / input`.
     pub fn closure_error(&self) -> f64 {
-        (self.input - self.solid - self.cracks).abs() / self.input.abs().max(f64::MIN_POSITIVE)
+        (self.input - self.solid - self.cracks - self.absorbed).abs()
+            / self.input.abs().max(f64::MIN_POSITIVE)
     }
 }
 
@@ -524,6 +535,62 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             }
         }
         let components = if self.wave == WaveType::Sh { 1 } else { 2 };
+        // the absorbing sides' dashpots, per dof: rho c_P B along the side's normal, rho c_S B
+        // along it (B the node's boundary weight)
+        let mut dampers: Vec<(usize, f64)> = Vec::new();
+        {
+            let gw = &mesh.gll.weights;
+            let layer_at = |z: f64| self.layers[layer_of(z.min(depth * (1.0 - 1e-12)))].material;
+            let mut side_dashpots = |node: usize, b: f64, m: Elastic, normal_is_z: bool| {
+                let z = m.density * m.p_speed * b;
+                let zs = m.density * m.s_speed * b;
+                if components == 1 {
+                    dampers.push((node, zs));
+                } else {
+                    let (dn, dt_) = if normal_is_z {
+                        (2 * node + 1, 2 * node)
+                    } else {
+                        (2 * node, 2 * node + 1)
+                    };
+                    dampers.push((dn, z));
+                    dampers.push((dt_, zs));
+                }
+            };
+            for (absorbing, iz) in [
+                (self.top == Side::Absorbing, 0),
+                (self.bottom == Side::Absorbing, nzn - 1),
+            ] {
+                if absorbing {
+                    let m = layer_at(mesh.z[iz]);
+                    for ix in 0..nxn {
+                        if periodic && ix == nxn - 1 {
+                            continue;
+                        }
+                        let b = edge_weight(&mesh.x, &mesh.x_edges, gw, n, ix, periodic);
+                        side_dashpots(mesh.grid_node(ix, iz), b, m, true);
+                    }
+                }
+            }
+            if self.sides == Side::Absorbing {
+                for ix in [0, nxn - 1] {
+                    for iz in 0..nzn {
+                        let b = edge_weight(&mesh.z, &mesh.z_edges, gw, n, iz, false);
+                        side_dashpots(mesh.grid_node(ix, iz), b, layer_at(mesh.z[iz]), false);
+                    }
+                }
+            }
+            dampers.sort_by_key(|d| d.0);
+            let mut merged: Vec<(usize, f64)> = Vec::with_capacity(dampers.len());
+            for (i, c) in dampers {
+                match merged.last_mut() {
+                    Some(last) if last.0 == i => last.1 += c,
+                    _ => merged.push((i, c)),
+                }
+            }
+            // (no dashpot on a fixed node)
+            merged.retain(|&(i, _)| inv_mass[i / components] > 0.0);
+            dampers = merged;
+        }
         let stiffness = Stiffness {
             order: n,
             dims: (nex, nez),
@@ -698,245 +765,10 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             components,
             cracks,
             loads,
+            dampers,
             signals,
             receiver_nodes,
             crack_every: self.crack_every.max(1),
-        })
-    }
-}
-
-/// The boundary weight of node-grid position `k` along a line of element edges `edges`
-/// (node coordinates `coords`, order `n`): the GLL weights times the half-lengths of the
-/// elements it belongs to. `wrap`: the line closes on itself (periodic).
-fn edge_weight(coords: &[f64], edges: &[f64], w: &[f64], n: usize, k: usize, wrap: bool) -> f64 {
-    let ne = edges.len() - 1;
-    let (e, a) = (k / n, k % n);
-    let h = |e: usize| 0.5 * (edges[e + 1] - edges[e]);
-    let _ = coords;
-    if a != 0 {
-        return w[a] * h(e);
-    }
-    // an element corner: the end of the element before and the start of the one after
-    let mut s = 0.0;
-    if e < ne {
-        s += w[0] * h(e);
-    } else if wrap {
-        s += w[0] * h(0);
-    }
-    if e > 0 {
-        s += w[n] * h(e - 1);
-    } else if wrap {
-        s += w[n] * h(ne - 1);
-    }
-    s
-}
-
-/// The boundary weight of surface node column `ix` restricted to the aperture `[x0, x1]`
-/// (m; both on element edges): the GLL weights of the element edges inside it.
-fn aperture_weight(mesh: &Mesh, ix: usize, x0: f64, x1: f64) -> f64 {
-    let n = mesh.gll.order;
-    let w = &mesh.gll.weights;
-    let ne = mesh.x_edges.len() - 1;
-    let (e, a) = (ix / n, ix % n);
-    let inside = |e: usize| {
-        let mid = 0.5 * (mesh.x_edges[e] + mesh.x_edges[e + 1]);
-        mid > x0 && mid < x1
-    };
-    let h = |e: usize| 0.5 * (mesh.x_edges[e + 1] - mesh.x_edges[e]);
-    if a != 0 {
-        return if inside(e) { w[a] * h(e) } else { 0.0 };
-    }
-    let mut s = 0.0;
-    if e < ne && inside(e) {
-        s += w[0] * h(e);
-    }
-    if e > 0 && inside(e - 1) {
-        s += w[n] * h(e - 1);
-    }
-    s
-}
-
-/// An upper bound of the highest eigenfrequency of `M^-1 K` (rad/s): the largest of the
-/// elements' own (Fried's bound: with a lumped mass assembled from the elements',
-/// `x K x = sum x_e K_e x_e <= max_e lambda_e sum x_e M_e x_e = max_e lambda_e x M x`),
-/// each by power iteration on the element alone (elements of one size and material
-/// share it). Rigid sides and split nodes only lower the true value.
-fn max_frequency(k: &Stiffness, densities: &[f64]) -> f64 {
-    let m = k.order + 1;
-    let comps = if k.antiplane { 1 } else { 2 };
-    let mut seen: Vec<([u64; 5], f64)> = Vec::new();
-    let mut lambda_max = 0.0f64;
-    for (e, el) in k.elements.iter().enumerate() {
-        let rho = densities[e];
-        let key = [el.hx, el.hz, el.lambda, el.mu, rho].map(f64::to_bits);
-        if let Some((_, l)) = seen.iter().find(|(kk, _)| *kk == key) {
-            lambda_max = lambda_max.max(*l);
-            continue;
-        }
-        // the element alone: nodes 0..m*m, its own lumped mass
-        let one = Stiffness {
-            order: k.order,
-            dims: (1, 1),
-            elements: vec![*el],
-            conn: (0..(m * m) as u32).collect(),
-            weights: k.weights.clone(),
-            derivative: k.derivative.clone(),
-            antiplane: k.antiplane,
-        };
-        let w = &k.weights;
-        let mass: Vec<f64> = (0..m * m)
-            .map(|i| rho * w[i % m] * w[i / m] * el.hx * el.hz / 4.0)
-            .collect();
-        let len = comps * m * m;
-        let mut x: Vec<f64> = (0..len)
-            .map(|i| 1.0 + ((i * 7919) % 13) as f64 * 0.1 * if i % 2 == 0 { 1.0 } else { -1.0 })
-            .collect();
-        let mut y = vec![0.0; len];
-        let mut l = 0.0;
-        for _ in 0..5000 {
-            one.apply_serial(&x, &mut y);
-            let (mut xy, mut xx) = (0.0, 0.0);
-            for i in 0..len {
-                let mi = mass[i / comps];
-                y[i] /= -mi;
-                xy += mi * x[i] * y[i];
-                xx += mi * x[i] * x[i];
-            }
-            let new = xy / xx;
-            let norm = y.iter().map(|v| v * v).sum::<f64>().sqrt();
-            for (a, b) in x.iter_mut().zip(&y) {
-                *a = b / norm;
-            }
-            let done = (new - l).abs() <= 1e-13 * new;
-            l = new;
-            if done {
-                break;
-            }
-        }
-        seen.push((key, l));
-        lambda_max = lambda_max.max(l);
-    }
-    // (the power iteration approaches the element's value from below: a margin of 1e-6)
-    (lambda_max * (1.0 + 1e-6)).sqrt()
-}
-
-impl<L: NormalPart + TangentialPart> Plan<L> {
-    /// The signal of load `l` at time t, N/m.
-    #[inline]
-    fn load_value(&self, l: &Load, t: f64) -> f64 {
-        l.weight * self.signals[l.source].stress(t - l.delay)
-    }
-
-    /// Run from rest, checking for Ctrl-C every 256 steps.
-    pub fn run(&mut self) -> Result<Solid2dOutput> {
-        self.run_with(None)
-    }
-
-    /// [`Plan::run`] reporting `(steps done, steps)` to `progress` every 256 steps.
-    pub fn run_with(
-        &mut self,
-        progress: Option<&(dyn Fn(usize, usize) + Sync)>,
-    ) -> Result<Solid2dOutput> {
-        let c = self.components;
-        let len = c * self.mesh.n_nodes;
-        let dt = self.dt;
-        let mut u = vec![0.0; len];
-        let mut v = vec![0.0; len];
-        let mut f = vec![0.0; len];
-        let nr = self.receiver_nodes.len();
-        let n_t = self.steps;
-        let mut rec = vec![0.0; nr * c * n_t];
-        let mut time = Vec::with_capacity(n_t);
-        let mut records: Vec<CrackRecord> = self
-            .cracks
-            .iter()
-            .map(|cr| CrackRecord {
-                position: cr.position.clone(),
-                ..Default::default()
-            })
-            .collect();
-        let mut input = 0.0;
-        let mut v_old = vec![0.0; self.loads.len()];
-        for n in 0..n_t {
-            let t = n as f64 * dt;
-            self.stiffness.apply(&u, &mut f);
-            for l in &self.loads {
-                f[l.index] += self.load_value(l, t);
-            }
-            // the predicted velocities and displacements of the new level, without the
-            // cracks' tractions (node-wise: parallel and deterministic)
-            let inv_mass = &self.inv_mass;
-            u.par_chunks_mut(CHUNK * c)
-                .zip(v.par_chunks_mut(CHUNK * c))
-                .zip(f.par_chunks(CHUNK * c))
-                .zip(inv_mass.par_chunks(CHUNK))
-                .for_each(|(((u, v), f), im)| {
-                    for (((un, vn), fnode), im) in u
-                        .chunks_exact_mut(c)
-                        .zip(v.chunks_exact_mut(c))
-                        .zip(f.chunks_exact(c))
-                        .zip(im)
-                    {
-                        for ((ui, vi), fi) in un.iter_mut().zip(vn.iter_mut()).zip(fnode) {
-                            *vi += dt * im * fi;
-                            *ui += dt * *vi;
-                        }
-                    }
-                });
-            for cr in &mut self.cracks {
-                cr.update(&mut u, &mut v, dt, t + dt, c == 1)?;
-            }
-            for (k, l) in self.loads.iter().enumerate() {
-                let fv = self.load_value(l, t);
-                input += fv * dt * 0.5 * (v[l.index] + v_old[k]);
-                v_old[k] = v[l.index];
-            }
-            time.push(t + 0.5 * dt);
-            for (r, &g) in self.receiver_nodes.iter().enumerate() {
-                for cc in 0..c {
-                    rec[(r * c + cc) * n_t + n] = v[c * g + cc];
-                }
-            }
-            if n % self.crack_every == 0 || n + 1 == n_t {
-                for (cr, out) in self.cracks.iter().zip(&mut records) {
-                    out.time.push(t + dt);
-                    for (st, law) in cr.state.iter().zip(&cr.law) {
-                        out.normal_gap.push(st.gap);
-                        out.tangential_gap.push(st.shear.gap);
-                        out.normal_stress.push(st.stress);
-                        out.shear_stress.push(st.shear_stress(law));
-                        out.adhesion.push(st.beta);
-                    }
-                }
-            }
-            if n % 256 == 255 {
-                crate::interrupt::check()?;
-                if let Some(p) = progress {
-                    p(n + 1, n_t);
-                }
-            }
-        }
-        // E^{N-1/2} = v M v / 2 + u^{N-1} K u^N / 2 with u^{N-1} = u^N - dt v^{N-1/2}
-        self.stiffness.apply(&u, &mut f);
-        let mut solid = 0.0;
-        for i in 0..len {
-            let m = self.mass[i / c];
-            let ku = -f[i];
-            solid += 0.5 * m * v[i] * v[i];
-            solid += 0.5 * (u[i] - dt * v[i]) * ku;
-        }
-        let cracks = self.cracks.iter().map(|c| c.work).sum();
-        Ok(Solid2dOutput {
-            dt,
-            time,
-            receivers: rec,
-            components: c,
-            cracks: records,
-            energy: Energy2d {
-                input,
-                solid,
-                cracks,
-            },
         })
     }
 }
