@@ -339,7 +339,7 @@ impl Outcome for Solid2dResult {
         Ok(files)
     }
 
-    /// `t` (s), `receivers` (rows: receiver-major, then component; m/s), `receiver_names`,
+    /// `kind`, `t` (s), `receivers` (rows: receiver-major, then component; m/s), `receiver_names`,
     /// `components`, `cracks` (per crack: `position` (m), `time` (s), and rows `(n_nodes,
     /// n_records)` of `normal_gap`, `tangential_gap` (m), `normal_stress`, `shear_stress`
     /// (Pa), `adhesion`), `dt` (s), `summary`.
@@ -373,6 +373,7 @@ impl Outcome for Solid2dResult {
             ));
         }
         Record::new()
+            .with("kind", Value::Text(KIND.name().into()))
             .with("t", o.time.clone().into())
             .with("receivers", Value::Rows(rows))
             .with(

@@ -627,17 +627,7 @@ impl Solid2dScenario {
 impl Solid2dSpec {
     /// Deserialize a table into a spec, naming the field path on failure. Unit strings
     /// (`width = "40 mm"`) are converted to SI first ([`crate::scenario::units`]).
-    pub fn from_table(mut table: toml::Table, file: &str) -> Result<Self> {
-        crate::scenario::units::to_si(&mut table, file)?;
-        serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
-            let p = e.path().to_string();
-            Error::Parse {
-                file: file.to_string(),
-                message: format!(
-                    "field `{p}`: {}",
-                    crate::scenario::units::plain_serde_message(&e.into_inner().to_string())
-                ),
-            }
-        })
+    pub fn from_table(table: toml::Table, file: &str) -> Result<Self> {
+        crate::scenario::value::deserialize_scenario(table, file)
     }
 }

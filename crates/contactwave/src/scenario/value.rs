@@ -33,10 +33,19 @@ pub fn parse_toml(text: &str, file: &str) -> Result<toml::Table> {
 
 /// Deserialize a table into a [`ScenarioSpec`], naming the field path on failure.
 /// Unit strings (`frequency = "1 MHz"`) are converted to SI first ([`super::units`]).
-pub fn table_to_spec(mut table: toml::Table, file: &str) -> Result<ScenarioSpec> {
+pub fn table_to_spec(table: toml::Table, file: &str) -> Result<ScenarioSpec> {
+    deserialize_scenario(table, file)
+}
+
+/// Deserialize a scenario table of any kind into its spec `T` (half-space, bar stack,
+/// 2D), naming the field path on failure; unit strings are converted to SI first.
+pub fn deserialize_scenario<T: serde::de::DeserializeOwned>(
+    mut table: toml::Table,
+    file: &str,
+) -> Result<T> {
     super::units::to_si(&mut table, file)?;
     let value = toml::Value::Table(table);
-    serde_path_to_error::deserialize::<_, ScenarioSpec>(value).map_err(|e| {
+    serde_path_to_error::deserialize::<_, T>(value).map_err(|e| {
         let path = e.path().to_string();
         let inner = super::units::plain_serde_message(&e.into_inner().to_string());
         Error::Parse {
