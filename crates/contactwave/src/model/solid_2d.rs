@@ -176,15 +176,7 @@ impl Solid2dScenario {
     pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
         let mut plan = self.problem.plan(&self.file)?;
         let nodes = plan.mesh.n_nodes;
-        let progress = control.progress.clone();
-        let report = progress.as_ref().map(|p| {
-            let f = p.0.clone();
-            move |a: usize, b: usize| f(a, b)
-        });
-        let output = match &report {
-            Some(f) => plan.run_with(Some(f))?,
-            None => plan.run()?,
-        };
+        let output = plan.run_with(control.progress.as_ref().map(|p| &*p.0))?;
         let mut s = Summary::new();
         s.set("nodes", nodes as f64);
         s.set("steps", output.time.len() as f64);

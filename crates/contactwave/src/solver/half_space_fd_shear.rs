@@ -334,6 +334,7 @@ fn solve(p: &CoupledHalfSpace, settings: &FdCoupledSolver) -> Result<CoupledOutp
         dt,
         steps,
         record_every: 1,
+        check_every: 0,
         progress: None,
     };
     stepping::run(&schedule, &mut scheme, &mut rec)?;

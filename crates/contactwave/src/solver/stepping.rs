@@ -1,7 +1,8 @@
-//! The time loop of the explicit finite-difference solvers ([`super::bar_stack`], and
-//! through it [`super::half_space_fd`]; [`super::half_space_fd_shear`]): one loop for
-//! every scheme that advances fixed steps `dt` from `t0`. It checks for an interruption
-//! and reports progress every [`CHECK_EVERY`] steps, asks the scheme whether its new
+//! The time loop of the explicit solvers ([`super::bar_stack`], and through it
+//! [`super::half_space_fd`]; [`super::half_space_fd_shear`]; the 2D spectral elements of
+//! [`super::solid_2d`]): one loop for every scheme that advances fixed steps `dt` from
+//! `t0`. It checks for an interruption and reports progress every [`CHECK_EVERY`] steps
+//! (or the schedule's own `check_every`), asks the scheme whether its new
 //! level is finite at the same cadence and at the last step, and hands every
 //! `record_every`-th level (and the first) to a [`Recorder`]. The schemes say how a step
 //! is taken ([`Scheme`]); what is recorded, and in which form, is the recorder's.
@@ -60,6 +61,9 @@ pub(crate) struct Schedule<'a> {
     pub steps: usize,
     /// Record every n-th level (0 is taken as 1).
     pub record_every: usize,
+    /// Steps between two interruption checks and progress reports (0: [`CHECK_EVERY`]; a
+    /// scheme whose steps are long checks more often).
+    pub check_every: usize,
     /// Progress report `(step, steps)`, every [`CHECK_EVERY`] steps.
     pub progress: Option<&'a (dyn Fn(usize, usize) + Send + Sync)>,
 }
@@ -75,12 +79,18 @@ pub(crate) fn run<S: Scheme, R: Recorder<S>>(
         dt,
         steps,
         record_every,
+        check_every,
         progress,
     } = *schedule;
     let every = record_every.max(1);
+    let check = if check_every == 0 {
+        CHECK_EVERY
+    } else {
+        check_every
+    };
     recorder.record(t0, scheme);
     for step in 0..steps {
-        if step % CHECK_EVERY == 0 {
+        if step % check == 0 {
             crate::interrupt::check()?;
             if let Some(p) = progress {
                 p(step, steps);
@@ -89,7 +99,7 @@ pub(crate) fn run<S: Scheme, R: Recorder<S>>(
         let t = t0 + step as f64 * dt;
         let t1 = t + dt;
         scheme.step(t, t1)?;
-        if step % CHECK_EVERY == CHECK_EVERY - 1 || step + 1 == steps {
+        if step % check == check - 1 || step + 1 == steps {
             scheme.check_finite(t1)?;
         }
         scheme.advance();
@@ -154,6 +164,7 @@ mod tests {
             dt: 0.1,
             steps: 10,
             record_every: 3,
+            check_every: 0,
             progress: None,
         };
         run(&schedule, &mut s, &mut tape).unwrap();
@@ -187,6 +198,7 @@ mod tests {
             dt: 1.0,
             steps: 5,
             record_every: 1,
+            check_every: 0,
             progress: None,
         };
         let err = run(&schedule, &mut s, &mut Levels::default()).unwrap_err();

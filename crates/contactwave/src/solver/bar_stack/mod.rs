@@ -240,6 +240,7 @@ impl BarStack {
             dt: run.dt,
             steps: run.steps,
             record_every: run.record_every,
+            check_every: 0,
             progress: run.progress.as_ref().map(|p| &*p.0),
         };
         stepping::run(&schedule, &mut scheme, &mut rec)?;

@@ -1,11 +1,33 @@
-//! The time loop of a 2D plan (docs/model.md section 15, eqs. 15.2-15.5): the kernel's
-//! forces, the sources, the node-wise predicted motion, the absorbing sides' dashpots, the
-//! cracks' split-node update, the records and the energy audit.
+//! A 2D plan's step (docs/model.md section 15, eqs. 15.2-15.5) as a scheme of the one time
+//! loop of the explicit solvers ([`crate::solver::stepping`]): the kernel's forces, the
+//! sources, the node-wise predicted motion, the absorbing sides' dashpots, the cracks'
+//! split-node update and the energy audit; a recorder keeps the receivers' velocities and
+//! the cracks' fields.
 
 use super::{CrackRecord, Energy2d, Load, Plan, Solid2dOutput, CHUNK};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::law::{NormalPart, TangentialPart};
+use crate::solver::stepping::{self, Recorder, Schedule, Scheme};
 use rayon::prelude::*;
+
+/// Steps between two interruption checks and progress reports of a 2D run (a step of a
+/// large mesh takes milliseconds: Ctrl-C is answered within a fraction of a second).
+const CHECK_EVERY: usize = 64;
+
+/// The state of a running 2D plan: displacements (level n), velocities (level n - 1/2),
+/// forces, and the energy terms accumulated so far.
+struct Run2d<'p, L> {
+    plan: &'p mut Plan<L>,
+    u: Vec<f64>,
+    v: Vec<f64>,
+    f: Vec<f64>,
+    /// Each load's velocity of the previous half level (its work).
+    v_load: Vec<f64>,
+    /// Each dashpot's velocity of the previous half level.
+    v_damped: Vec<f64>,
+    input: f64,
+    absorbed: f64,
+}
 
 impl<L: NormalPart + TangentialPart> Plan<L> {
     /// The signal of load `l` at time t, N/m.
@@ -14,127 +36,63 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
         l.weight * self.signals[l.source].stress(t - l.delay)
     }
 
-    /// Run from rest, checking for Ctrl-C every 256 steps.
+    /// Run from rest, checking for Ctrl-C every 64 steps.
     pub fn run(&mut self) -> Result<Solid2dOutput> {
         self.run_with(None)
     }
 
-    /// [`Plan::run`] reporting `(steps done, steps)` to `progress` every 256 steps.
+    /// [`Plan::run`] reporting `(steps done, steps)` to `progress` every 64 steps.
     pub fn run_with(
         &mut self,
-        progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+        progress: Option<&(dyn Fn(usize, usize) + Send + Sync)>,
     ) -> Result<Solid2dOutput> {
         let c = self.components;
         let len = c * self.mesh.n_nodes;
-        let dt = self.dt;
-        let mut u = vec![0.0; len];
-        let mut v = vec![0.0; len];
-        let mut f = vec![0.0; len];
-        let nr = self.receiver_nodes.len();
-        let n_t = self.steps;
-        let mut rec = vec![0.0; nr * c * n_t];
-        let mut time = Vec::with_capacity(n_t);
-        let mut records: Vec<CrackRecord> = self
-            .cracks
-            .iter()
-            .map(|cr| CrackRecord {
-                position: cr.position.clone(),
-                ..Default::default()
-            })
-            .collect();
-        let mut input = 0.0;
-        let mut absorbed = 0.0;
-        let mut v_old = vec![0.0; self.loads.len()];
-        let mut v_damped = vec![0.0; self.dampers.len()];
-        for n in 0..n_t {
-            let t = n as f64 * dt;
-            self.stiffness.apply(&u, &mut f);
-            for l in &self.loads {
-                f[l.index] += self.load_value(l, t);
-            }
-            for (vd, &(i, _)) in v_damped.iter_mut().zip(&self.dampers) {
-                *vd = v[i];
-            }
-            // the predicted velocities and displacements of the new level, without the
-            // cracks' tractions (node-wise: parallel and deterministic)
-            let inv_mass = &self.inv_mass;
-            u.par_chunks_mut(CHUNK * c)
-                .zip(v.par_chunks_mut(CHUNK * c))
-                .zip(f.par_chunks(CHUNK * c))
-                .zip(inv_mass.par_chunks(CHUNK))
-                .for_each(|(((u, v), f), im)| {
-                    for (((un, vn), fnode), im) in u
-                        .chunks_exact_mut(c)
-                        .zip(v.chunks_exact_mut(c))
-                        .zip(f.chunks_exact(c))
-                        .zip(im)
-                    {
-                        for ((ui, vi), fi) in un.iter_mut().zip(vn.iter_mut()).zip(fnode) {
-                            *vi += dt * im * fi;
-                            *ui += dt * *vi;
-                        }
-                    }
-                });
-            // the dashpots at the mean velocity of the step: v = (v~ - a v_old) / (1 + a),
-            // a = dt C / (2 M); their work dt C v_mean^2 leaves the solid
-            for (&vo, &(i, cd)) in v_damped.iter().zip(&self.dampers) {
-                let a = 0.5 * dt * cd * self.inv_mass[i / c];
-                let pred = v[i];
-                let new = (pred - a * vo) / (1.0 + a);
-                u[i] += dt * (new - pred);
-                v[i] = new;
-                let mean = 0.5 * (new + vo);
-                absorbed += dt * cd * mean * mean;
-            }
-            for cr in &mut self.cracks {
-                cr.update(&mut u, &mut v, dt, t + dt, c == 1)?;
-            }
-            for (k, l) in self.loads.iter().enumerate() {
-                let fv = self.load_value(l, t);
-                input += fv * dt * 0.5 * (v[l.index] + v_old[k]);
-                v_old[k] = v[l.index];
-            }
-            time.push(t + 0.5 * dt);
-            for (r, &g) in self.receiver_nodes.iter().enumerate() {
-                for cc in 0..c {
-                    rec[(r * c + cc) * n_t + n] = v[c * g + cc];
-                }
-            }
-            if n % self.crack_every == 0 || n + 1 == n_t {
-                for (cr, out) in self.cracks.iter().zip(&mut records) {
-                    out.time.push(t + dt);
-                    for (st, law) in cr.state.iter().zip(&cr.law) {
-                        out.normal_gap.push(st.gap);
-                        out.tangential_gap.push(st.shear.gap);
-                        out.normal_stress.push(st.stress);
-                        out.shear_stress.push(st.shear_stress(law));
-                        out.adhesion.push(st.beta);
-                    }
-                }
-            }
-            if n % 256 == 255 {
-                crate::interrupt::check()?;
-                if let Some(p) = progress {
-                    p(n + 1, n_t);
-                }
-            }
-        }
+        let (dt, n_t) = (self.dt, self.steps);
+        let mut recorder = Records::new(self);
+        let mut run = Run2d {
+            u: vec![0.0; len],
+            v: vec![0.0; len],
+            f: vec![0.0; len],
+            v_load: vec![0.0; self.loads.len()],
+            v_damped: vec![0.0; self.dampers.len()],
+            input: 0.0,
+            absorbed: 0.0,
+            plan: self,
+        };
+        let schedule = Schedule {
+            t0: 0.0,
+            dt,
+            steps: n_t,
+            record_every: 1,
+            check_every: CHECK_EVERY,
+            progress,
+        };
+        stepping::run(&schedule, &mut run, &mut recorder)?;
+        let Run2d {
+            plan,
+            u,
+            v,
+            mut f,
+            input,
+            absorbed,
+            ..
+        } = run;
         // E^{N-1/2} = v M v / 2 + u^{N-1} K u^N / 2 with u^{N-1} = u^N - dt v^{N-1/2}
-        self.stiffness.apply(&u, &mut f);
+        plan.stiffness.apply(&u, &mut f);
         let mut solid = 0.0;
         for i in 0..len {
-            let m = self.mass[i / c];
-            let ku = -f[i];
+            let m = plan.mass[i / c];
             solid += 0.5 * m * v[i] * v[i];
-            solid += 0.5 * (u[i] - dt * v[i]) * ku;
+            solid += 0.5 * (u[i] - dt * v[i]) * -f[i];
         }
-        let cracks = self.cracks.iter().map(|c| c.work).sum();
+        let cracks = plan.cracks.iter().map(|c| c.work).sum();
         Ok(Solid2dOutput {
             dt,
-            time,
-            receivers: rec,
+            time: recorder.time,
+            receivers: recorder.receivers,
             components: c,
-            cracks: records,
+            cracks: recorder.cracks,
             energy: Energy2d {
                 input,
                 solid,
@@ -142,5 +100,157 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
                 absorbed,
             },
         })
+    }
+}
+
+impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
+    /// Levels n -> n + 1 in place: `u` and `v` hold the new level when it returns.
+    fn step(&mut self, t: f64, t1: f64) -> Result<()> {
+        let p = &mut *self.plan;
+        let (c, dt) = (p.components, p.dt);
+        let (u, v, f) = (&mut self.u, &mut self.v, &mut self.f);
+        p.stiffness.apply(u, f);
+        for l in &p.loads {
+            f[l.index] += p.load_value(l, t);
+        }
+        for (vd, &(i, _)) in self.v_damped.iter_mut().zip(&p.dampers) {
+            *vd = v[i];
+        }
+        // the predicted velocities and displacements of the new level, without the
+        // cracks' tractions (node-wise: parallel and deterministic)
+        u.par_chunks_mut(CHUNK * c)
+            .zip(v.par_chunks_mut(CHUNK * c))
+            .zip(f.par_chunks(CHUNK * c))
+            .zip(p.inv_mass.par_chunks(CHUNK))
+            .for_each(|(((u, v), f), im)| {
+                for (((un, vn), fnode), im) in u
+                    .chunks_exact_mut(c)
+                    .zip(v.chunks_exact_mut(c))
+                    .zip(f.chunks_exact(c))
+                    .zip(im)
+                {
+                    for ((ui, vi), fi) in un.iter_mut().zip(vn.iter_mut()).zip(fnode) {
+                        *vi += dt * im * fi;
+                        *ui += dt * *vi;
+                    }
+                }
+            });
+        // the dashpots at the mean velocity of the step: v = (v~ - a v_old) / (1 + a),
+        // a = dt C / (2 M); their work dt C v_mean^2 leaves the solid
+        for (&vo, &(i, cd)) in self.v_damped.iter().zip(&p.dampers) {
+            let a = 0.5 * dt * cd * p.inv_mass[i / c];
+            let pred = v[i];
+            let new = (pred - a * vo) / (1.0 + a);
+            u[i] += dt * (new - pred);
+            v[i] = new;
+            let mean = 0.5 * (new + vo);
+            self.absorbed += dt * cd * mean * mean;
+        }
+        for cr in &mut p.cracks {
+            cr.update(u, v, dt, t1, c == 1)?;
+        }
+        // the sources' work f^n (u^{n+1} - u^{n-1}) / 2 = f^n dt (v^{n+1/2} + v^{n-1/2}) / 2
+        for (l, vo) in p.loads.iter().zip(&mut self.v_load) {
+            let fv = l.weight * p.signals[l.source].stress(t - l.delay);
+            self.input += fv * dt * 0.5 * (v[l.index] + *vo);
+            *vo = v[l.index];
+        }
+        Ok(())
+    }
+
+    fn check_finite(&self, t1: f64) -> Result<()> {
+        if self.u.iter().chain(&self.v).all(|x| x.is_finite()) {
+            Ok(())
+        } else {
+            Err(Error::numerical(
+                t1,
+                "2D solver: non-finite displacement or velocity",
+                format!("time step {:e} s", self.plan.dt),
+            ))
+        }
+    }
+
+    fn advance(&mut self) {}
+}
+
+/// What a 2D run keeps: the receivers' velocities at every half level and the cracks'
+/// fields every `crack_every` steps (and at the last), room reserved up front (the budget
+/// was checked when the plan was built): recording allocates nothing.
+struct Records {
+    /// Times of the receiver samples, s.
+    time: Vec<f64>,
+    /// `[receiver][component][sample]`, m/s.
+    receivers: Vec<f64>,
+    cracks: Vec<CrackRecord>,
+    /// Steps taken so far.
+    steps: usize,
+    /// Whether the level at rest has gone by (it is not recorded).
+    started: bool,
+    n_t: usize,
+    crack_every: usize,
+}
+
+impl Records {
+    fn new<L>(plan: &Plan<L>) -> Self {
+        let n_t = plan.steps;
+        let n_records = n_t / plan.crack_every + 2;
+        Records {
+            time: Vec::with_capacity(n_t),
+            receivers: vec![0.0; plan.receiver_nodes.len() * plan.components * n_t],
+            cracks: plan
+                .cracks
+                .iter()
+                .map(|cr| {
+                    let m = n_records * cr.position.len();
+                    CrackRecord {
+                        position: cr.position.clone(),
+                        time: Vec::with_capacity(n_records),
+                        normal_gap: Vec::with_capacity(m),
+                        tangential_gap: Vec::with_capacity(m),
+                        normal_stress: Vec::with_capacity(m),
+                        shear_stress: Vec::with_capacity(m),
+                        adhesion: Vec::with_capacity(m),
+                    }
+                })
+                .collect(),
+            steps: 0,
+            started: false,
+            n_t,
+            crack_every: plan.crack_every,
+        }
+    }
+}
+
+impl<L: NormalPart + TangentialPart> Recorder<Run2d<'_, L>> for Records {
+    /// Level `t` (s) after a step: the receivers' velocities of the half level before it
+    /// (`t - dt / 2`); the level at rest (`t = 0`) is not recorded.
+    fn record(&mut self, t: f64, s: &Run2d<'_, L>) {
+        if !self.started {
+            self.started = true;
+            return;
+        }
+        let n = self.steps;
+        self.steps += 1;
+        let p = &*s.plan;
+        let c = p.components;
+        // (n dt + dt / 2: the half level's time as the step computed it)
+        self.time.push(n as f64 * p.dt + 0.5 * p.dt);
+        for (r, &g) in p.receiver_nodes.iter().enumerate() {
+            for cc in 0..c {
+                self.receivers[(r * c + cc) * self.n_t + n] = s.v[c * g + cc];
+            }
+        }
+        if n % self.crack_every == 0 || n + 1 == self.n_t {
+            for (cr, out) in p.cracks.iter().zip(&mut self.cracks) {
+                out.time.push(t);
+                for (st, law) in cr.state.iter().zip(&cr.law) {
+                    out.normal_gap.push(st.gap);
+                    out.tangential_gap.push(st.shear.gap);
+                    out.normal_stress.push(st.stress);
+                    out.shear_stress.push(st.shear_stress(law));
+                    out.adhesion.push(st.beta);
+                }
+            }
+        }
     }
 }
