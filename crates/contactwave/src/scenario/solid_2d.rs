@@ -239,9 +239,9 @@ fn side(file: &str, field: &str, v: &str, periodic: bool) -> Result<Side> {
             field,
             v,
             if periodic {
-                "free, rigid or periodic"
+                "free, rigid, absorbing or periodic"
             } else {
-                "free or rigid"
+                "free, rigid or absorbing"
             },
         )),
     }
@@ -269,7 +269,11 @@ fn material(l: &LayerSpec, file: &str, key: &str) -> Result<Elastic> {
         })?;
         let nu = m.poisson_ratio().unwrap_or(0.3);
         let rho = l.density.unwrap_or(m.density);
-        return from_moduli(m.youngs_modulus, nu, positive(file, &k("density"), rho)?);
+        return Ok(from_moduli(
+            m.youngs_modulus,
+            nu,
+            positive(file, &k("density"), rho)?,
+        ));
     }
     let rho = positive(file, &k("density"), l.density.unwrap_or(f64::NAN))?;
     match (l.youngs_modulus, l.poisson_ratio, l.p_speed, l.s_speed) {
@@ -278,7 +282,7 @@ fn material(l: &LayerSpec, file: &str, key: &str) -> Result<Elastic> {
             if !(nu > -1.0 && nu < 0.5) {
                 return Err(inv(file, k("poisson_ratio"), nu, "in (-1, 0.5)"));
             }
-            from_moduli(e, nu, rho)
+            Ok(from_moduli(e, nu, rho))
         }
         (None, None, Some(cp), Some(cs)) => {
             positive(file, &k("s_speed"), cs)?;
@@ -301,14 +305,16 @@ fn material(l: &LayerSpec, file: &str, key: &str) -> Result<Elastic> {
     }
 }
 
-fn from_moduli(e: f64, nu: f64, rho: f64) -> Result<Elastic> {
+/// The solid of Young's modulus `e` (Pa), Poisson's ratio `nu` and density `rho`
+/// (kg/m^3).
+fn from_moduli(e: f64, nu: f64, rho: f64) -> Elastic {
     let g = e / (2.0 * (1.0 + nu));
     let m = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    Ok(Elastic {
+    Elastic {
         density: rho,
         p_speed: (m / rho).sqrt(),
         s_speed: (g / rho).sqrt(),
-    })
+    }
 }
 
 impl Solid2dScenario {
@@ -591,18 +597,13 @@ impl Solid2dScenario {
             components.push(comp);
             receivers.push(r.at);
         }
-        let periodic = m.sides == "periodic";
         let problem = Solid2d {
             width: m.width,
             layers,
             wave,
             top: side(file, "model.top", &m.top, false)?,
             bottom: side(file, "model.bottom", &m.bottom, false)?,
-            sides: if periodic {
-                Side::Periodic
-            } else {
-                side(file, "model.sides", &m.sides, true)?
-            },
+            sides: side(file, "model.sides", &m.sides, true)?,
             element_size,
             order: m.order.unwrap_or(DEFAULT_ORDER),
             courant: m.courant.unwrap_or(0.9),
@@ -615,7 +616,7 @@ impl Solid2dScenario {
         };
         problem.validate(file)?;
         Ok(Solid2dScenario {
-            spec: spec.clone(),
+            spec,
             file: file.to_string(),
             problem,
             f0,

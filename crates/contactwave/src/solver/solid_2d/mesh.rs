@@ -237,20 +237,12 @@ impl Mesh {
 }
 
 /// The boundary weight of node-grid position `k` along a line of element edges `edges`
-/// (node coordinates `coords`, order `n`): the GLL weights times the half-lengths of the
+/// (order `n`): the GLL weights times the half-lengths of the
 /// elements it belongs to. `wrap`: the line closes on itself (periodic).
-pub(super) fn edge_weight(
-    coords: &[f64],
-    edges: &[f64],
-    w: &[f64],
-    n: usize,
-    k: usize,
-    wrap: bool,
-) -> f64 {
+pub(super) fn edge_weight(edges: &[f64], w: &[f64], n: usize, k: usize, wrap: bool) -> f64 {
     let ne = edges.len() - 1;
     let (e, a) = (k / n, k % n);
     let h = |e: usize| 0.5 * (edges[e + 1] - edges[e]);
-    let _ = coords;
     if a != 0 {
         return w[a] * h(e);
     }

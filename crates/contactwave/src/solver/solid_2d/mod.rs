@@ -566,7 +566,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                         if periodic && ix == nxn - 1 {
                             continue;
                         }
-                        let b = edge_weight(&mesh.x, &mesh.x_edges, gw, n, ix, periodic);
+                        let b = edge_weight(&mesh.x_edges, gw, n, ix, periodic);
                         side_dashpots(mesh.grid_node(ix, iz), b, m, true);
                     }
                 }
@@ -574,7 +574,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             if self.sides == Side::Absorbing {
                 for ix in [0, nxn - 1] {
                     for iz in 0..nzn {
-                        let b = edge_weight(&mesh.z, &mesh.z_edges, gw, n, iz, false);
+                        let b = edge_weight(&mesh.z_edges, gw, n, iz, false);
                         side_dashpots(mesh.grid_node(ix, iz), b, layer_at(mesh.z[iz]), false);
                     }
                 }
@@ -660,12 +660,12 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 }
                 let (ix, iz) = (g % nxn, g / nxn);
                 // boundary weight: the GLL weights of the element edges along the line
-                let (coords, k, edges) = if line.horizontal {
-                    (&mesh.x, ix, &mesh.x_edges)
+                let (k, edges) = if line.horizontal {
+                    (ix, &mesh.x_edges)
                 } else {
-                    (&mesh.z, iz, &mesh.z_edges)
+                    (iz, &mesh.z_edges)
                 };
-                let bw = edge_weight(coords, edges, &mesh.gll.weights, n, k, line.full_width);
+                let bw = edge_weight(edges, &mesh.gll.weights, n, k, line.full_width);
                 let pos = if line.horizontal {
                     mesh.x[ix] - c.start[0].min(c.end[0])
                 } else {

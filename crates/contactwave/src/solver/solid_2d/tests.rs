@@ -139,6 +139,48 @@ fn results_are_bit_identical_for_any_thread_count() {
     assert_eq!(bits(&a), bits(&b));
 }
 
+/// A periodic strip `h` wide (one element) and `depth` deep (m; free top and bottom,
+/// order 4, courant 0.5, no cap on the time step), driven by a traction over the whole top
+/// (`normal`, else shear) with `signal` for `duration` s; no crack, no receiver.
+fn strip<L>(
+    wave: WaveType,
+    h: f64,
+    depth: f64,
+    normal: bool,
+    signal: Arc<dyn Excitation>,
+    duration: f64,
+) -> Solid2d<L> {
+    Solid2d {
+        width: h,
+        layers: vec![Layer {
+            bottom: depth,
+            material: ALUMINIUM,
+        }],
+        wave,
+        top: Side::Free,
+        bottom: Side::Free,
+        sides: Side::Periodic,
+        element_size: h,
+        order: 4,
+        courant: 0.5,
+        max_time_step: f64::INFINITY,
+        cracks: vec![],
+        sources: vec![Source {
+            kind: SourceKind::Traction {
+                top: true,
+                x0: 0.0,
+                x1: h,
+                normal,
+                delay_per_m: 0.0,
+            },
+            signal,
+        }],
+        receivers: vec![],
+        duration,
+        crack_every: 1,
+    }
+}
+
 /// The largest gap error (over the max gap) of a full-width interface (periodic sides)
 /// under a plane P wave at normal incidence, against the exact half-space solver (delayed
 /// by the travel time from the surface), at each element size of `sizes` (wavelengths).
@@ -182,38 +224,20 @@ fn reduction_errors<L: NormalPart + TangentialPart + Clone>(
     for &size in sizes {
         let h = size * lambda;
         let problem = Solid2d {
-            width: h,
-            layers: vec![Layer {
-                bottom: depth,
-                material: ALUMINIUM,
-            }],
-            wave: WaveType::PSv,
-            top: Side::Free,
-            bottom: Side::Free,
-            sides: Side::Periodic,
-            element_size: h,
-            order: 4,
-            courant: 0.5,
-            max_time_step: f64::INFINITY,
             cracks: vec![Crack {
                 start: [0.0, zc],
                 end: [h, zc],
                 full_width: true,
                 law: law_2d.clone(),
             }],
-            sources: vec![Source {
-                kind: SourceKind::Traction {
-                    top: true,
-                    x0: 0.0,
-                    x1: h,
-                    normal: true,
-                    delay_per_m: 0.0,
-                },
-                signal: burst(amp, f0, 2.0),
-            }],
-            receivers: vec![],
-            duration: zc / ALUMINIUM.p_speed + 3.0 / f0,
-            crack_every: 1,
+            ..strip(
+                WaveType::PSv,
+                h,
+                depth,
+                true,
+                burst(amp, f0, 2.0),
+                zc / ALUMINIUM.p_speed + 3.0 / f0,
+            )
         };
         let out = problem.plan("<test>").unwrap().run().unwrap();
         let rec = &out.cracks[0];
@@ -312,38 +336,21 @@ fn sh_wave_on_a_frictional_interface_slips_within_coulomb() {
     );
     let h = lambda / 4.0;
     let problem = Solid2d {
-        width: h,
-        layers: vec![Layer {
-            bottom: 4.0 * lambda,
-            material: ALUMINIUM,
-        }],
-        wave: WaveType::Sh,
-        top: Side::Free,
-        bottom: Side::Free,
-        sides: Side::Periodic,
-        element_size: h,
-        order: 4,
-        courant: 0.5,
-        max_time_step: f64::INFINITY,
         cracks: vec![Crack {
             start: [0.0, 2.0 * lambda],
             end: [h, 2.0 * lambda],
             full_width: true,
             law,
         }],
-        sources: vec![Source {
-            kind: SourceKind::Traction {
-                top: true,
-                x0: 0.0,
-                x1: h,
-                normal: false,
-                delay_per_m: 0.0,
-            },
-            signal: burst(1e6, f0, 2.0),
-        }],
         receivers: vec![[0.0, 4.0 * lambda]],
-        duration: 2.0 * lambda / ALUMINIUM.s_speed + 3.0 / f0,
-        crack_every: 1,
+        ..strip(
+            WaveType::Sh,
+            h,
+            4.0 * lambda,
+            false,
+            burst(1e6, f0, 2.0),
+            2.0 * lambda / ALUMINIUM.s_speed + 3.0 / f0,
+        )
     };
     let out = problem.plan("<test>").unwrap().run().unwrap();
     let e = out.energy;
@@ -378,33 +385,15 @@ fn plane_wave_from_a_surface_traction() {
     for size in [0.5, 0.25, 0.125] {
         let h = size * lambda;
         let problem: Solid2d<Signorini> = Solid2d {
-            width: h,
-            layers: vec![Layer {
-                bottom: 5.0 * lambda,
-                material: ALUMINIUM,
-            }],
-            wave: WaveType::PSv,
-            top: Side::Free,
-            bottom: Side::Free,
-            sides: Side::Periodic,
-            element_size: h,
-            order: 4,
-            courant: 0.5,
-            max_time_step: f64::INFINITY,
-            cracks: vec![],
-            sources: vec![Source {
-                kind: SourceKind::Traction {
-                    top: true,
-                    x0: 0.0,
-                    x1: h,
-                    normal: true,
-                    delay_per_m: 0.0,
-                },
-                signal: sig.clone(),
-            }],
             receivers: vec![[0.0, z]],
-            duration: z / ALUMINIUM.p_speed + 3.0 / f0,
-            crack_every: 1,
+            ..strip(
+                WaveType::PSv,
+                h,
+                5.0 * lambda,
+                true,
+                sig.clone(),
+                z / ALUMINIUM.p_speed + 3.0 / f0,
+            )
         };
         let out = problem.plan("<test>").unwrap().run().unwrap();
         let tr = out.trace(0, 1);
@@ -448,34 +437,18 @@ fn phase_velocity_error(
     // depth and element size on a common grid of elements
     let depth = (40.0 * lambda / h).ceil() * h;
     let problem: Solid2d<Signorini> = Solid2d {
-        width: h,
-        layers: vec![Layer {
-            bottom: depth,
-            material: ALUMINIUM,
-        }],
-        wave,
-        top: Side::Free,
-        bottom: Side::Free,
-        sides: Side::Periodic,
-        element_size: h,
-        order: 4,
         courant: 0.9,
         max_time_step: phase_step / w,
-        cracks: vec![],
-        sources: vec![Source {
-            kind: SourceKind::Traction {
-                top: true,
-                x0: 0.0,
-                x1: h,
-                normal: !shear,
-                delay_per_m: 0.0,
-            },
-            signal: burst(1e6, f, 12.0),
-        }],
         receivers: vec![[0.0, z1], [0.0, z2]],
-        // until the burst has passed z2, before the bottom's echo comes back
-        duration: (z2 + 14.0 * lambda) / c,
         crack_every: 1000,
+        ..strip(
+            wave,
+            h,
+            depth,
+            !shear,
+            burst(1e6, f, 12.0),
+            (z2 + 14.0 * lambda) / c,
+        )
     };
     let out = problem.plan("<test>").unwrap().run().unwrap();
     let comp = if wave == WaveType::PSv && !shear {
@@ -547,36 +520,19 @@ fn absorbing_side_reflects_less_than_40_db_at_normal_incidence() {
         let h = ALUMINIUM.s_speed / (3.0 * f0) / 2.0;
         let (z_rec, depth) = (3.0 * lambda, 6.0 * lambda);
         let problem: Solid2d<Signorini> = Solid2d {
-            width: h,
-            layers: vec![Layer {
-                bottom: depth,
-                material: ALUMINIUM,
-            }],
-            wave,
-            top: Side::Free,
             bottom: Side::Absorbing,
-            sides: Side::Periodic,
-            element_size: h,
-            order: 4,
             courant: 0.9,
             max_time_step: 0.12 / (2.0 * std::f64::consts::PI * 3.0 * f0),
-            cracks: vec![],
-            sources: vec![Source {
-                kind: SourceKind::Traction {
-                    top: true,
-                    x0: 0.0,
-                    x1: h,
-                    normal,
-                    delay_per_m: 0.0,
-                },
-                signal: burst(1e6, f0, 3.0),
-            }],
             receivers: vec![[0.0, z_rec]],
-            // the incident burst passes the receiver by (z_rec + 3 lambda) / c; its echo
-            // from the bottom would arrive from (2 depth - z_rec) / c, and the top's echo
-            // of that from (2 depth + z_rec) / c
-            duration: (2.0 * depth + z_rec) / c,
             crack_every: 1000,
+            ..strip(
+                wave,
+                h,
+                depth,
+                normal,
+                burst(1e6, f0, 3.0),
+                (2.0 * depth + z_rec) / c,
+            )
         };
         let out = problem.plan("<test>").unwrap().run().unwrap();
         let comp = if wave == WaveType::PSv { 1 } else { 0 };
