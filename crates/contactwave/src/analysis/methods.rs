@@ -82,9 +82,23 @@ pub struct Records<'a> {
     pub linear: Option<&'a [f64]>,
 }
 
+/// What a record holds.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Quantity {
+    /// Displacements (m) at the grid points, analysed as the cell-averaged velocity (their
+    /// differences over `dt`; the exact solvers' records).
+    #[default]
+    Displacement,
+    /// Samples analysed as they are (a velocity in m/s at the grid points, as the 2D
+    /// receivers record, or any measured signal in its own unit).
+    Samples,
+}
+
 /// What the analysis needs to know about the signal.
 #[derive(Debug, Clone, Copy)]
 pub struct Signal {
+    /// What the records hold.
+    pub quantity: Quantity,
     /// Time step, s.
     pub dt: f64,
     /// Time of the first sample, s.
@@ -106,10 +120,14 @@ fn combine(a: &[f64], b: &[f64], wa: f64, wb: f64) -> Vec<f64> {
 }
 
 fn band(x: &[f64], s: &Signal) -> BandAmplitudes {
-    with_analyzer(|a| a.displacement_bands(x, s.dt, s.f0, s.f2))
+    with_analyzer(|a| match s.quantity {
+        Quantity::Displacement => a.displacement_bands(x, s.dt, s.f0, s.f2),
+        Quantity::Samples => a.bands(x, s.dt, s.f0, s.f2),
+    })
 }
 
-/// Band amplitudes (m/s) of the velocity by `method`. Returns `None` when a record the
+/// Band amplitudes (m/s of the velocity; the samples' unit for [`Quantity::Samples`]) by
+/// `method`. Returns `None` when a record the
 /// method needs is missing.
 pub fn method_bands(method: AnalysisMethod, r: &Records, s: &Signal) -> Option<BandAmplitudes> {
     Some(match method {
@@ -221,7 +239,7 @@ pub fn plateau(stress: impl Fn(f64) -> f64, duration: f64, f0: f64) -> (f64, f64
 /// two-tone, `f2`, `f0 + f2`, `|f2 - f0|` (a frequency closer than half a bin `1/(2T)` to
 /// one already fitted takes that one's amplitude), and a quadratic baseline (the slow
 /// quasi-static part of the response).
-pub fn plateau_fit(displacement: &[f64], s: &Signal) -> BandAmplitudes {
+pub fn plateau_fit(record: &[f64], s: &Signal) -> BandAmplitudes {
     let (ta, tb) = s.plateau;
     let span = tb - ta;
     let mut freqs: Vec<f64> = (1..=5).map(|n| n as f64 * s.f0).collect();
@@ -250,13 +268,28 @@ pub fn plateau_fit(displacement: &[f64], s: &Signal) -> BandAmplitudes {
     let mut row = vec![0.0; nb];
     let mid = 0.5 * (ta + tb);
     let mut used = 0usize;
-    for (k, w) in displacement.windows(2).enumerate() {
-        let tc = s.t0 + (k as f64 + 0.5) * s.dt; // cell midpoint
+    // the samples: a displacement record's cell velocities at the cells' midpoints (each a
+    // cell average: its cos / sin weighted by sinc(pi f dt)), or the samples themselves at
+    // the grid points
+    let cell = s.quantity == Quantity::Displacement;
+    let n = if cell {
+        record.len().saturating_sub(1)
+    } else {
+        record.len()
+    };
+    for k in 0..n {
+        let (tc, v) = if cell {
+            (
+                s.t0 + (k as f64 + 0.5) * s.dt,
+                (record[k + 1] - record[k]) / s.dt,
+            )
+        } else {
+            (s.t0 + k as f64 * s.dt, record[k])
+        };
         if tc < ta || tc > tb {
             continue;
         }
         used += 1;
-        let v = (w[1] - w[0]) / s.dt;
         let x = 2.0 * (tc - mid) / span;
         row[0] = 1.0;
         row[1] = x;
@@ -264,7 +297,7 @@ pub fn plateau_fit(displacement: &[f64], s: &Signal) -> BandAmplitudes {
         for (i, &f) in fit.iter().enumerate() {
             // cell average of cos / sin over [tc - dt/2, tc + dt/2]
             let a = PI * f * s.dt;
-            let sinc = if a == 0.0 { 1.0 } else { a.sin() / a };
+            let sinc = if a == 0.0 || !cell { 1.0 } else { a.sin() / a };
             let ph = 2.0 * PI * f * (tc - ta);
             row[3 + 2 * i] = sinc * ph.cos();
             row[4 + 2 * i] = sinc * ph.sin();
@@ -344,6 +377,59 @@ mod tests {
     }
 
     #[test]
+    fn samples_analyse_as_the_displacement_record_they_come_from() {
+        // the velocity sampled at the grid points and the displacement whose cell averages
+        // it gives: every method returns the same amplitudes (the cell average's sinc is
+        // corrected on the displacement's side), to the sampling's O((f dt)^2)
+        let f = 1e6;
+        let dt = 1.0 / (f * 200.0);
+        let w = 2.0 * PI * f;
+        let burst = |t: f64| {
+            if (0.0..12e-6).contains(&t) {
+                (PI * t / 12e-6).sin().powi(2)
+            } else {
+                0.0
+            }
+        };
+        let v = |t: f64| burst(t) * ((w * t).sin() + 0.01 * (2.0 * w * t).cos());
+        let d = record(v, dt, 4000);
+        let samples: Vec<f64> = (0..4000).map(|k| v(k as f64 * dt)).collect();
+        let mut s = Signal {
+            quantity: Quantity::Displacement,
+            dt,
+            t0: 0.0,
+            f0: f,
+            f2: None,
+            plateau: (4e-6, 8e-6),
+        };
+        for m in [AnalysisMethod::BandPeak, AnalysisMethod::PlateauFit] {
+            s.quantity = Quantity::Displacement;
+            let recs = Records {
+                response: &d,
+                inverse: None,
+                linear: None,
+            };
+            let a = method_bands(m, &recs, &s).unwrap_or_default();
+            s.quantity = Quantity::Samples;
+            let recs = Records {
+                response: &samples,
+                inverse: None,
+                linear: None,
+            };
+            let b = method_bands(m, &recs, &s).unwrap_or_default();
+            for n in 1..=2 {
+                let e = (a.harmonic[n] / b.harmonic[n] - 1.0).abs();
+                assert!(
+                    e < 2e-3,
+                    "{m:?} A{n}: {} vs {} ({e:.2e})",
+                    a.harmonic[n],
+                    b.harmonic[n]
+                );
+            }
+        }
+    }
+
+    #[test]
     fn plateau_fit_recovers_amplitudes_next_to_a_drifting_baseline() {
         let f = 1e6;
         let dt = 1.0 / (f * 100.0);
@@ -353,6 +439,7 @@ mod tests {
         let v = |t: f64| 1e-4 * (-t * 2e5).exp() + (w * t).sin() + 1e-4 * (2.0 * w * t + 0.3).cos();
         let d = record(v, dt, 2000);
         let s = Signal {
+            quantity: Quantity::Displacement,
             dt,
             t0: 0.0,
             f0: f,
@@ -384,6 +471,7 @@ mod tests {
         let plus = record(|t| l(t) + q(t), dt, 4000);
         let minus = record(|t| -l(t) + q(t), dt, 4000);
         let s = Signal {
+            quantity: Quantity::Displacement,
             dt,
             t0: 0.0,
             f0: f,

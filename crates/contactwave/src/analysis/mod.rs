@@ -12,13 +12,15 @@
 
 mod envelope;
 pub mod fit;
+pub mod gate;
 mod low_bins;
 pub mod methods;
 pub mod projection;
 mod spectrum;
 mod summary;
 
-pub use methods::AnalysisMethod;
+pub use gate::Gate;
+pub use methods::{AnalysisMethod, Quantity};
 pub use spectrum::{
     cell_velocity, spectral_peak, velocity_bands, with_analyzer, Analyzer, BandAmplitudes, Spectrum,
 };

@@ -1,20 +1,26 @@
-//! The 2D model (`[model] kind = "solid_2d"`, model.md section 9): a scenario planned
+//! The 2D model (`[model] kind = "solid_2d"`, model.md section 15): a scenario planned
 //! into the spectral-element solver ([`crate::solver::solid_2d`]), run, and its receivers
-//! analysed by the library's band-peak analysis (A1...A5 of each receiver's velocity);
-//! files `summary.json`, `receivers.csv` and `crack.csv`.
+//! analysed by the library's methods (model.md section 6.1: band peak, pulse inversion with
+//! a second run of the negated sources, linear reference with a second run of the cracks
+//! linearised at their static state, plateau fit over the gate; A1...A5 of each
+//! receiver's velocity, after the optional time gate); files `summary.json`,
+//! `receivers.csv` and `crack.csv`.
 
+use super::half_space::methods::{linearised_law, linearised_tangential};
 use super::record::summary_record;
 use super::template::{FromSpec, SpecTemplate};
 use super::{Fields, Kind, Model, Outcome, Record, RunControl, Slot, Template, Value};
-use crate::analysis::with_analyzer;
-use crate::analysis::Summary;
-use crate::error::Result;
+use crate::analysis::methods::{method_bands, Quantity, Records, Signal};
+use crate::analysis::{AnalysisMethod, Summary};
+use crate::error::{Error, Result};
+use crate::excitation::Scaled;
+use crate::law::point::SharedLaw;
 use crate::render::{csv_columns, summary_json, time_series, OutputFile, Rows};
 use crate::scenario::solid_2d::{
     CrackSpec, LayerSpec, ModelSpec, ReceiverSpec, Solid2dScenario, Solid2dSpec, SourceSpec,
 };
 use crate::scenario::BuildCache;
-use crate::solver::solid_2d::Solid2dOutput;
+use crate::solver::solid_2d::{Solid2d, Solid2dOutput};
 use std::any::Any;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -200,11 +206,53 @@ impl Solid2dScenario {
                 c.adhesion.iter().fold(1.0f64, |a, &b| a.min(b)),
             );
         }
-        let dt = output.dt;
+        let method = self.spec.analysis.method;
+        s.set("analysis_method", method.code());
+        // the second run a method needs: the sources negated, or the cracks linearised
+        let twin = match method {
+            AnalysisMethod::PulseInversion => Some(self.inverted()),
+            AnalysisMethod::LinearReference => Some(self.linearised()?),
+            AnalysisMethod::BandPeak | AnalysisMethod::PlateauFit => None,
+        };
+        let twin = match twin {
+            Some(p) => Some(
+                p.plan(&self.file)?
+                    .run_with(control.progress.as_ref().map(|p| &*p.0))?,
+            ),
+            None => None,
+        };
+        let (dt, duration) = (output.dt, self.problem.duration);
+        let sig = Signal {
+            quantity: Quantity::Samples,
+            dt,
+            t0: output.time.first().copied().unwrap_or(0.0),
+            f0: self.f0,
+            f2: None,
+            plateau: self.gate.map_or((0.0, duration), |g| (g.start, g.end)),
+        };
+        let gated = |x: &[f64]| {
+            let mut x = x.to_vec();
+            if let Some(g) = &self.gate {
+                g.apply(&mut x, sig.t0, dt);
+            }
+            x
+        };
         for (r, spec) in self.spec.receivers.iter().enumerate() {
-            let trace = output.trace(r, self.components[r]);
-            let bands = with_analyzer(|a| a.bands(trace, dt, self.f0, None));
-            let h = bands.harmonic;
+            let c = self.components[r];
+            let response = gated(output.trace(r, c));
+            let other = twin.as_ref().map(|o| gated(o.trace(r, c)));
+            let records = Records {
+                response: &response,
+                inverse: other
+                    .as_deref()
+                    .filter(|_| method == AnalysisMethod::PulseInversion),
+                linear: other
+                    .as_deref()
+                    .filter(|_| method == AnalysisMethod::LinearReference),
+            };
+            let h = method_bands(method, &records, &sig)
+                .unwrap_or_default()
+                .harmonic;
             for (n, a) in h.iter().enumerate().skip(1) {
                 s.set(&format!("{}_A{n}", spec.name), *a);
             }
@@ -225,6 +273,43 @@ impl Solid2dScenario {
             output,
             summary: s,
         })
+    }
+}
+
+impl Solid2dScenario {
+    /// The problem with every source's signal negated (pulse inversion's twin).
+    fn inverted(&self) -> Solid2d<SharedLaw> {
+        let mut p = self.problem.clone();
+        for src in &mut p.sources {
+            src.signal = Arc::new(Scaled::negated(src.signal.clone()));
+        }
+        p
+    }
+
+    /// The problem with every crack's law linearised at its static state (linear
+    /// reference's twin; model/half_space/methods.rs): a law without a finite positive
+    /// stiffness there (a power law at zero pressure) is refused.
+    fn linearised(&self) -> Result<Solid2d<SharedLaw>> {
+        let mut p = self.problem.clone();
+        for (i, c) in p.cracks.iter_mut().enumerate() {
+            let normal = linearised_law(&c.law.normal).ok_or_else(|| {
+                Error::invalid(
+                    &self.file,
+                    "analysis.method",
+                    "linear_reference",
+                    format!(
+                        "a method other than linear_reference: crack {i}'s law has no finite \
+                         positive stiffness at its static state"
+                    ),
+                )
+            })?;
+            let p0 = c.law.normal.static_pressure;
+            c.law = SharedLaw {
+                tangential: Arc::new(linearised_tangential(&c.law.tangential, p0)),
+                normal: Arc::new(normal),
+            };
+        }
+        Ok(p)
     }
 }
 

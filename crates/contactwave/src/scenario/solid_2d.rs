@@ -4,6 +4,7 @@
 //! ([`Solid2dSpec`]) and its validation into the solver's problem
 //! ([`crate::solver::solid_2d::Solid2d`]) with every crack's law built once.
 
+use crate::analysis::{AnalysisMethod, Gate};
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::law::point::SharedLaw;
@@ -44,6 +45,28 @@ pub struct Solid2dSpec {
     /// Velocity receivers.
     #[serde(rename = "receiver", default)]
     pub receivers: Vec<ReceiverSpec>,
+    /// How the receivers' harmonics are extracted.
+    #[serde(default)]
+    pub analysis: AnalysisSpec,
+}
+
+/// `[analysis]` of a 2D scenario: the method (model.md section 6.1) and an optional time
+/// gate around the echo of interest.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnalysisSpec {
+    /// `band_peak` (default), `pulse_inversion` (a second run with every source's signal
+    /// negated), `linear_reference` (a second run with every crack's law linearised at its
+    /// static state: a Signorini crack bonded) or `plateau_fit` (needs `gate`: the fit
+    /// window).
+    #[serde(default)]
+    pub method: AnalysisMethod,
+    /// `[start, end]` of the time gate applied to every receiver's record before its
+    /// analysis, s (default: none, the whole record).
+    pub gate: Option<[f64; 2]>,
+    /// Half-cosine ramps at the gate's edges, inside it, s (default 0).
+    #[serde(default)]
+    pub taper: f64,
 }
 
 /// `[model]`.
@@ -214,6 +237,8 @@ pub struct Solid2dScenario {
     pub f0: f64,
     /// The analysed component of each receiver (index into its components).
     pub components: Vec<usize>,
+    /// The time gate of the receivers' analysis (`[analysis] gate`).
+    pub gate: Option<Gate>,
 }
 
 fn inv(file: &str, field: impl Into<String>, v: impl std::fmt::Display, allowed: &str) -> Error {
@@ -615,13 +640,57 @@ impl Solid2dScenario {
             crack_every: m.crack_every.unwrap_or(10).max(1),
         };
         problem.validate(file)?;
+        let gate = analysis_gate(&spec.analysis, file, m.duration)?;
         Ok(Solid2dScenario {
             spec,
             file: file.to_string(),
             problem,
             f0,
             components,
+            gate,
         })
+    }
+}
+
+/// The gate of `[analysis]`, checked: inside `[0, duration]` (s), a taper at most half
+/// its length; `plateau_fit` needs one (its fit window).
+fn analysis_gate(a: &AnalysisSpec, file: &str, duration: f64) -> Result<Option<Gate>> {
+    let gate = a.gate.map(|[start, end]| Gate {
+        start,
+        end,
+        taper: a.taper,
+    });
+    match gate {
+        Some(g) if !(g.is_valid() && g.start >= 0.0 && g.end <= duration) => {
+            if g.taper != 0.0 && g.start < g.end && g.end <= duration && g.start >= 0.0 {
+                Err(inv(
+                    file,
+                    "analysis.taper",
+                    g.taper,
+                    "0 <= taper <= half the gate's length, s",
+                ))
+            } else {
+                Err(inv(
+                    file,
+                    "analysis.gate",
+                    format!("[{}, {}]", g.start, g.end),
+                    "0 <= start < end <= model.duration, s",
+                ))
+            }
+        }
+        None if a.method == AnalysisMethod::PlateauFit => Err(inv(
+            file,
+            "analysis.gate",
+            "missing",
+            "plateau_fit needs the window of the echo's flat top: [start, end], s",
+        )),
+        None if a.taper != 0.0 => Err(inv(
+            file,
+            "analysis.taper",
+            a.taper,
+            "0 without a gate (`analysis.gate` sets the window)",
+        )),
+        g => Ok(g),
     }
 }
 

@@ -2,7 +2,7 @@
 //! phase-inverted burst (pulse inversion) and the response of the interface linearised at
 //! its static state (linear reference, and the floor every run reports).
 
-use crate::analysis::methods::{method_bands, method_floor, plateau, Records, Signal};
+use crate::analysis::methods::{method_bands, method_floor, plateau, Quantity, Records, Signal};
 use crate::analysis::{AnalysisMethod, BandAmplitudes};
 use crate::error::{Error, Result};
 use crate::excitation::Scaled;
@@ -118,6 +118,7 @@ pub fn signal(scenario: &Scenario, out: &HalfSpaceOutput) -> Signal {
     let inc = &scenario.incident;
     let f0 = inc.fundamental();
     Signal {
+        quantity: Quantity::Displacement,
         dt: out.dt,
         t0: out.t.first().copied().unwrap_or(0.0),
         f0,

@@ -4,7 +4,7 @@
 
 use super::methods::Derived;
 use super::shear::ShearResult;
-use crate::analysis::methods::{method_bands, plateau, Records, Signal};
+use crate::analysis::methods::{method_bands, plateau, Quantity, Records, Signal};
 use crate::analysis::{AnalysisMethod, BandAmplitudes, Summary};
 use crate::analytic::oblique::{inv2, PlaneWave};
 use crate::scenario::{ObliqueSetup, Scenario};
@@ -85,6 +85,7 @@ pub fn set_summary(
     let a_inc = o.burst.peak() / g.incident.impedance;
     let f0 = o.burst.fundamental();
     let sig = Signal {
+        quantity: Quantity::Displacement,
         dt: normal.dt,
         t0: normal.t.first().copied().unwrap_or(0.0),
         f0,

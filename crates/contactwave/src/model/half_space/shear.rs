@@ -4,7 +4,7 @@
 //! waves by the scenario's analysis method, friction dissipation and slip.
 
 use super::methods;
-use crate::analysis::methods::{method_bands, plateau, Records, Signal};
+use crate::analysis::methods::{method_bands, plateau, Quantity, Records, Signal};
 use crate::analysis::{set_shear_harmonics, AnalysisMethod, BandAmplitudes, Summary};
 use crate::error::{Error, Result};
 use crate::excitation::Scaled;
@@ -176,6 +176,7 @@ pub fn analyse(
     };
     let o = &r.interface;
     let sig = Signal {
+        quantity: Quantity::Displacement,
         dt: o.dt,
         t0: o.t.first().copied().unwrap_or(0.0),
         f0,
