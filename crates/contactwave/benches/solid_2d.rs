@@ -54,6 +54,7 @@ fn plate(cracked: bool, duration: f64) -> Solid2d<Law> {
                 end: [21e-3, 5e-3],
                 full_width: false,
                 law,
+                profile: None,
             }]
         } else {
             vec![]

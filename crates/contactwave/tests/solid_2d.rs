@@ -224,3 +224,83 @@ fn analysis_methods_reach_the_receivers() {
         assert!(!err.contains('\n'), "{err}");
     }
 }
+
+/// The crack's records of `SMALL` (1 us) with its `static_pressure` line replaced by
+/// `closure`: `(position, normal gap, normal stress)` per node and record.
+fn crack_rows(closure: &str) -> contactwave::Result<Vec<(f64, f64, f64)>> {
+    let text = SMALL
+        .replace("duration = 0.6e-6", "duration = 1.0e-6")
+        .replace("static_pressure = 0.2e6", closure);
+    let t = model::from_toml_str(&text, "closure.toml")?;
+    let outcome = t.base()?.run(&RunControl::default())?;
+    let files = outcome.files()?;
+    let crack = files.iter().find(|f| f.name == "crack.csv").unwrap();
+    Ok(crack
+        .contents
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            (v[2], v[3], v[5])
+        })
+        .collect())
+}
+
+#[test]
+fn a_closure_table_sets_the_static_state_along_the_crack() {
+    // a table of one constant value is the uniform closure, bit for bit
+    let uniform = crack_rows("static_pressure = 0.2e6").unwrap();
+    let table =
+        crack_rows("closure = { position = [0.0, 0.6e-3], pressure = [0.2e6, 0.2e6] }").unwrap();
+    assert_eq!(uniform, table);
+    // pressure rising along the crack from 0 to 100 MPa (ten times the burst): the crack
+    // opens only on its low-pressure side, and never penetrates
+    let ramp =
+        crack_rows("closure = { position = [0.0, 0.6e-3], pressure = [0.0, 100e6] }").unwrap();
+    let opened = |rows: &[(f64, f64, f64)], a: f64, b: f64| {
+        rows.iter()
+            .filter(|r| (a..=b).contains(&r.0))
+            .fold(0.0f64, |m, r| m.max(r.1))
+    };
+    assert!(opened(&ramp, 0.0, 0.1e-3) > 0.0);
+    assert_eq!(opened(&ramp, 0.3e-3, 0.6e-3), 0.0);
+    assert!(ramp.iter().all(|r| r.1 >= 0.0));
+    // an initial gap wider than the wave's motion: the faces never touch, so no stress,
+    // and the gap stays open everywhere
+    let open = crack_rows("closure = { position = [0.0], gap = [1e-6] }").unwrap();
+    assert!(
+        open.iter().all(|r| r.1 > 0.0 && r.2 == 0.0),
+        "{:?}",
+        &open[..3]
+    );
+    // a gap must sit where nothing presses
+    for (closure, key) in [
+        (
+            "closure = { position = [0.0, 0.6e-3], pressure = [1e6, 0.0], gap = [0.0, 1e-9] }",
+            "crack.0.closure.gap",
+        ),
+        (
+            "closure = { position = [0.5e-3, 0.1e-3] }",
+            "crack.0.closure.position",
+        ),
+        (
+            "closure = { position = [0.0, 0.7e-3] }",
+            "crack.0.closure.position",
+        ),
+        (
+            "closure = { position = [0.0], pressure = [-1.0] }",
+            "crack.0.closure.pressure",
+        ),
+        (
+            "closure = { position = [0.0, 0.1e-3], shear = [0.0] }",
+            "crack.0.closure.shear",
+        ),
+        (
+            "static_pressure = 1e6\nclosure = { position = [0.0], pressure = [1e6] }",
+            "crack.0.static_pressure",
+        ),
+    ] {
+        let err = crack_rows(closure).unwrap_err().to_string();
+        assert!(err.contains(key), "{closure}: {err}");
+    }
+}

@@ -34,6 +34,8 @@ pub struct CrackNodes<L> {
     pub compliance: Vec<f64>,
     /// The law of each point (`Copy` data).
     pub law: Vec<L>,
+    /// Normal gap of each point at rest, m (0: closed).
+    pub initial_gap: Vec<f64>,
     /// The state of each point.
     pub state: Vec<PointState>,
     /// Normal and tangential gaps of each point at the previous and the current level
@@ -70,11 +72,11 @@ impl<L: NormalPart + TangentialPart> CrackNodes<L> {
             let (i1, i2) = self.faces[k];
             let chi = self.compliance[k];
             let (gn, gt) = if antiplane {
-                (0.0, u[i2] - u[i1])
+                (self.initial_gap[k], u[i2] - u[i1])
             } else {
                 let dx = u[2 * i2] - u[2 * i1];
                 let dz = u[2 * i2 + 1] - u[2 * i1 + 1];
-                (dx * nx + dz * nz, dx * tx + dz * tz)
+                (self.initial_gap[k] + dx * nx + dz * nz, dx * tx + dz * tz)
             };
             let trial = Trial {
                 normal_gap: gn,

@@ -112,6 +112,17 @@ pub struct Crack<L> {
     pub full_width: bool,
     /// The contact law of its points (normal and tangential).
     pub law: L,
+    /// The static state varying along the crack (a closure table): each point's law and
+    /// initial gap from its position; `None`: `law` at every point, closed at rest.
+    pub profile: Option<Arc<dyn CrackProfile<L>>>,
+}
+
+/// A crack's static state along its length (docs/model.md section 15.2): the law of the
+/// point at `position` (m from the crack's start, along +x or +z) and its initial normal
+/// gap (m, >= 0; a point with a gap is traction-free at rest).
+pub trait CrackProfile<L>: std::fmt::Debug + Send + Sync {
+    /// The law and the initial gap (m) of the point at `position` (m).
+    fn at(&self, position: f64) -> Result<(L, f64)>;
 }
 
 /// Where a source acts and how.
@@ -645,6 +656,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 kick: Vec::new(),
                 compliance: Vec::new(),
                 law: Vec::new(),
+                initial_gap: Vec::new(),
                 state: Vec::new(),
                 gaps: Vec::new(),
                 applied: Vec::new(),
@@ -680,9 +692,16 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 nodes
                     .compliance
                     .push(dt * dt * bw * (inv_mass[g] + inv_mass[twin]));
-                nodes.law.push(c.law.clone());
-                nodes.state.push(PointState::at_rest(&c.law, Some(&c.law)));
-                nodes.gaps.push([[0.0; 2]; 2]);
+                let (law, g0) = match &c.profile {
+                    Some(p) => p.at(pos)?,
+                    None => (c.law.clone(), 0.0),
+                };
+                let mut state = PointState::at_rest(&law, Some(&law));
+                state.gap = g0;
+                nodes.state.push(state);
+                nodes.law.push(law);
+                nodes.initial_gap.push(g0);
+                nodes.gaps.push([[g0, 0.0]; 2]);
                 nodes.applied.push([0.0; 2]);
             }
             cracks.push(nodes);

@@ -56,6 +56,7 @@ fn clapping_plate(sides: Side) -> Solid2d<Signorini> {
             end: [5.5e-3, 2e-3],
             full_width: false,
             law: signorini(1e6),
+            profile: None,
         }],
         sources: vec![Source {
             kind: SourceKind::Traction {
@@ -229,6 +230,7 @@ fn reduction_errors<L: NormalPart + TangentialPart + Clone>(
                 end: [h, zc],
                 full_width: true,
                 law: law_2d.clone(),
+                profile: None,
             }],
             ..strip(
                 WaveType::PSv,
@@ -341,6 +343,7 @@ fn sh_wave_on_a_frictional_interface_slips_within_coulomb() {
             end: [h, 2.0 * lambda],
             full_width: true,
             law,
+            profile: None,
         }],
         receivers: vec![[0.0, 4.0 * lambda]],
         ..strip(
