@@ -397,7 +397,8 @@ class Solid2dResult:
     P-SV runs, ``("y",)`` in SH runs). ``cracks``: one dict per crack with ``position``
     (m along it, ``(n_nodes,)``), ``time`` (s, ``(n_records,)``) and ``normal_gap``,
     ``tangential_gap`` (m), ``normal_stress``, ``shear_stress`` (Pa, tension positive,
-    ``-p0`` at rest) and ``adhesion`` of shape ``(n_nodes, n_records)``. ``dt`` (s);
+    ``-p0`` at rest), ``adhesion`` and ``state`` (0 open, 1 stick, 2 slip) of shape
+    ``(n_nodes, n_records)``. ``dt`` (s);
     ``summary``: the keys of ``summary.json``.
     """
 

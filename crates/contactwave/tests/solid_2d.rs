@@ -226,8 +226,8 @@ fn analysis_methods_reach_the_receivers() {
 }
 
 /// The crack's records of `SMALL` (1 us) with its `static_pressure` line replaced by
-/// `closure`: `(position, normal gap, normal stress)` per node and record.
-fn crack_rows(closure: &str) -> contactwave::Result<Vec<(f64, f64, f64)>> {
+/// `closure`: `(position, normal gap, normal stress, state)` per node and record.
+fn crack_rows(closure: &str) -> contactwave::Result<Vec<(f64, f64, f64, f64)>> {
     let text = SMALL
         .replace("duration = 0.6e-6", "duration = 1.0e-6")
         .replace("static_pressure = 0.2e6", closure);
@@ -241,7 +241,7 @@ fn crack_rows(closure: &str) -> contactwave::Result<Vec<(f64, f64, f64)>> {
         .skip(1)
         .map(|l| {
             let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
-            (v[2], v[3], v[5])
+            (v[2], v[3], v[5], v[8])
         })
         .collect())
 }
@@ -257,7 +257,7 @@ fn a_closure_table_sets_the_static_state_along_the_crack() {
     // opens only on its low-pressure side, and never penetrates
     let ramp =
         crack_rows("closure = { position = [0.0, 0.6e-3], pressure = [0.0, 100e6] }").unwrap();
-    let opened = |rows: &[(f64, f64, f64)], a: f64, b: f64| {
+    let opened = |rows: &[(f64, f64, f64, f64)], a: f64, b: f64| {
         rows.iter()
             .filter(|r| (a..=b).contains(&r.0))
             .fold(0.0f64, |m, r| m.max(r.1))

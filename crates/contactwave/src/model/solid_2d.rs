@@ -356,9 +356,9 @@ impl Solid2dResult {
 
     /// `crack.csv`: one row per crack node and record: crack index, time (s), position
     /// along the crack (m), normal and tangential gaps (m), normal and shear contact
-    /// stresses (Pa), adhesion.
+    /// stresses (Pa), adhesion, state (0 open, 1 stick, 2 slip).
     fn crack_csv(&self) -> OutputFile {
-        let mut cols: [Vec<f64>; 8] = Default::default();
+        let mut cols: [Vec<f64>; 9] = Default::default();
         for (i, c) in self.output.cracks.iter().enumerate() {
             let n = c.position.len();
             for (k, &t) in c.time.iter().enumerate() {
@@ -373,6 +373,7 @@ impl Solid2dResult {
                         c.normal_stress[j],
                         c.shear_stress[j],
                         c.adhesion[j],
+                        c.state[j],
                     ];
                     for (col, v) in cols.iter_mut().zip(row) {
                         col.push(v);
@@ -384,7 +385,7 @@ impl Solid2dResult {
         OutputFile {
             name: "crack.csv".into(),
             contents: csv_columns(
-                "crack,t,position,normal_gap,tangential_gap,normal_stress,shear_stress,adhesion",
+                "crack,t,position,normal_gap,tangential_gap,normal_stress,shear_stress,adhesion,state",
                 &refs,
             ),
         }
@@ -419,7 +420,7 @@ impl Outcome for Solid2dResult {
     /// `kind`, `t` (s), `receivers` (rows: receiver-major, then component; m/s), `receiver_names`,
     /// `components`, `cracks` (per crack: `position` (m), `time` (s), and rows `(n_nodes,
     /// n_records)` of `normal_gap`, `tangential_gap` (m), `normal_stress`, `shear_stress`
-    /// (Pa), `adhesion`), `dt` (s), `summary`.
+    /// (Pa), `adhesion`, `state` (0 open, 1 stick, 2 slip)), `dt` (s), `summary`.
     fn record(&self) -> Record {
         let o = &self.output;
         let mut rows = Vec::new();
@@ -446,7 +447,8 @@ impl Outcome for Solid2dResult {
                     .with("tangential_gap", by_node(&c.tangential_gap))
                     .with("normal_stress", by_node(&c.normal_stress))
                     .with("shear_stress", by_node(&c.shear_stress))
-                    .with("adhesion", by_node(&c.adhesion)),
+                    .with("adhesion", by_node(&c.adhesion))
+                    .with("state", by_node(&c.state)),
             ));
         }
         Record::new()

@@ -255,6 +255,9 @@ pub struct CrackRecord {
     pub shear_stress: Vec<f64>,
     /// Adhesion beta.
     pub adhesion: Vec<f64>,
+    /// Contact state: 0 open (normal gap > 0), 1 stick, 2 slip (sliding, or closed
+    /// without friction).
+    pub state: Vec<f64>,
 }
 
 /// The energy audit of a run, J/m (per unit length along y).

@@ -210,6 +210,7 @@ impl Records {
                         normal_stress: Vec::with_capacity(m),
                         shear_stress: Vec::with_capacity(m),
                         adhesion: Vec::with_capacity(m),
+                        state: Vec::with_capacity(m),
                     }
                 })
                 .collect(),
@@ -249,6 +250,13 @@ impl<L: NormalPart + TangentialPart> Recorder<Run2d<'_, L>> for Records {
                     out.normal_stress.push(st.stress);
                     out.shear_stress.push(st.shear_stress(law));
                     out.adhesion.push(st.beta);
+                    out.state.push(if st.gap > 0.0 {
+                        0.0
+                    } else if st.shear.state == 0.0 {
+                        1.0
+                    } else {
+                        2.0
+                    });
                 }
             }
         }
