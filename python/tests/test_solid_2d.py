@@ -42,3 +42,6 @@ def test_a_clapping_crack_in_2d_gives_numpy_arrays():
     # the crack opens, never interpenetrates, and carries no stress while open
     assert gap.max() > 0.0 and gap.min() >= 0.0
     assert np.all((gap == 0.0) | (np.abs(stress) < 1e-3))
+    # the contact state: open (0) exactly where the gap is
+    assert c["state"].shape == gap.shape
+    assert np.array_equal(c["state"] == 0.0, gap > 0.0)
