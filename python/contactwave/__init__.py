@@ -394,7 +394,10 @@ class Solid2dResult:
     ``t``: times of the receiver samples (s, the half levels of the time step).
     ``receivers``: velocities, shape ``(n_receivers, n_components, n_t)`` (m/s), in the
     order of ``receiver_names``; ``components`` names the components (``("x", "z")`` in
-    P-SV runs, ``("y",)`` in SH runs). ``cracks``: one dict per crack with ``position``
+    P-SV runs, ``("y",)`` in SH runs). ``stresses``: the stress receivers' stresses,
+    shape ``(n_stress_receivers, n_stress_components, n_t)`` (Pa, tension positive,
+    dynamic), in the order of ``stress_names``, components ``stress_components``
+    (``("xx", "zz", "xz")`` or ``("yx", "yz")``). ``cracks``: one dict per crack with ``position``
     (m along it, ``(n_nodes,)``), ``time`` (s, ``(n_records,)``) and ``normal_gap``,
     ``tangential_gap`` (m), ``normal_stress``, ``shear_stress`` (Pa, tension positive,
     ``-p0`` at rest), ``adhesion`` and ``state`` (0 open, 1 stick, 2 slip) of shape
@@ -406,6 +409,9 @@ class Solid2dResult:
     receivers: np.ndarray
     receiver_names: List[str]
     components: List[str]
+    stresses: np.ndarray
+    stress_names: List[str]
+    stress_components: List[str]
     cracks: List[Dict[str, np.ndarray]]
     dt: float
     summary: Dict[str, Any]
@@ -416,6 +422,12 @@ class Solid2dResult:
         self.components = list(raw["components"])
         rows = np.asarray(raw["receivers"], dtype=np.float64)
         self.receivers = rows.reshape(len(self.receiver_names), len(self.components), len(self.t))
+        self.stress_names = list(raw["stress_names"])
+        self.stress_components = list(raw["stress_components"])
+        srows = np.asarray(raw["stresses"], dtype=np.float64)
+        self.stresses = srows.reshape(
+            len(self.stress_names), len(self.stress_components), len(self.t)
+        )
         self.cracks = [dict(c) for c in raw["cracks"]]
         self.dt = raw["dt"]
         self.summary = raw["summary"]
@@ -424,6 +436,13 @@ class Solid2dResult:
         """The velocity (m/s) of receiver ``name`` along ``component`` (``x``, ``z`` or
         ``y``)."""
         return self.receivers[self.receiver_names.index(name), self.components.index(component)]
+
+    def stress(self, name: str, component: str) -> np.ndarray:
+        """The stress (Pa) of stress receiver ``name``, component ``component`` (``xx``,
+        ``zz``, ``xz``, ``yx`` or ``yz``)."""
+        return self.stresses[
+            self.stress_names.index(name), self.stress_components.index(component)
+        ]
 
     def __repr__(self) -> str:
         s = self.summary

@@ -17,7 +17,8 @@ use crate::excitation::Scaled;
 use crate::law::point::SharedLaw;
 use crate::render::{csv_columns, summary_json, time_series, OutputFile, Rows};
 use crate::scenario::solid_2d::{
-    CrackSpec, LayerSpec, ModelSpec, ReceiverSpec, Solid2dScenario, Solid2dSpec, SourceSpec,
+    component_names, CrackSpec, LayerSpec, ModelSpec, ReceiverSpec, Solid2dScenario, Solid2dSpec,
+    SourceSpec,
 };
 use crate::scenario::BuildCache;
 use crate::solver::solid_2d::{Solid2d, Solid2dOutput};
@@ -167,10 +168,14 @@ pub struct Solid2dResult {
     pub file: String,
     /// The solver's output.
     pub output: Solid2dOutput,
-    /// Receiver names.
+    /// Velocity receivers' names, in the order of the output's traces.
     pub receivers: Vec<String>,
-    /// Component names of a receiver (`["x", "z"]` or `["y"]`).
+    /// Component names of a velocity receiver (`["x", "z"]` or `["y"]`).
     pub component_names: Vec<&'static str>,
+    /// Stress receivers' names, in the order of the output's stress traces.
+    pub stress_receivers: Vec<String>,
+    /// Component names of a stress receiver (`["xx", "zz", "xz"]` or `["yx", "yz"]`).
+    pub stress_component_names: Vec<&'static str>,
     /// Nodes of the mesh.
     pub nodes: usize,
     /// Summary scalars.
@@ -180,9 +185,7 @@ pub struct Solid2dResult {
 impl Solid2dScenario {
     /// Plan and run, reporting progress.
     pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
-        let mut plan = self.problem.plan(&self.file)?;
-        let nodes = plan.mesh.n_nodes;
-        let output = plan.run_with(control.progress.as_ref().map(|p| &*p.0))?;
+        let (output, nodes) = self.run_problem(&self.problem, control)?;
         let mut s = Summary::new();
         s.set("nodes", nodes as f64);
         s.set("steps", output.time.len() as f64);
@@ -215,10 +218,7 @@ impl Solid2dScenario {
             AnalysisMethod::BandPeak | AnalysisMethod::PlateauFit => None,
         };
         let twin = match twin {
-            Some(p) => Some(
-                p.plan(&self.file)?
-                    .run_with(control.progress.as_ref().map(|p| &*p.0))?,
-            ),
+            Some(p) => Some(self.run_problem(&p, control)?.0),
             None => None,
         };
         let (dt, duration) = (output.dt, self.problem.duration);
@@ -237,10 +237,16 @@ impl Solid2dScenario {
             }
             x
         };
-        for (r, spec) in self.spec.receivers.iter().enumerate() {
-            let c = self.components[r];
-            let response = gated(output.trace(r, c));
-            let other = twin.as_ref().map(|o| gated(o.trace(r, c)));
+        for spec in &self.receivers {
+            let trace = |o: &Solid2dOutput| {
+                if spec.stress {
+                    gated(o.stress_trace(spec.index, spec.component))
+                } else {
+                    gated(o.trace(spec.index, spec.component))
+                }
+            };
+            let response = trace(&output);
+            let other = twin.as_ref().map(trace);
             let records = Records {
                 response: &response,
                 inverse: other
@@ -261,14 +267,20 @@ impl Solid2dScenario {
             s.set(&format!("{}_A3_over_A1", spec.name), h[3] / a1);
             s.set(&format!("{}_beta", spec.name), h[2] / (a1 * a1));
         }
+        let names = |stress: bool| {
+            self.receivers
+                .iter()
+                .filter(|r| r.stress == stress)
+                .map(|r| r.name.clone())
+                .collect()
+        };
+        let wave = self.problem.wave;
         Ok(Solid2dResult {
             file: self.file.clone(),
-            receivers: self.spec.receivers.iter().map(|r| r.name.clone()).collect(),
-            component_names: if output.components == 1 {
-                vec!["y"]
-            } else {
-                vec!["x", "z"]
-            },
+            receivers: names(false),
+            component_names: component_names(false, wave).to_vec(),
+            stress_receivers: names(true),
+            stress_component_names: component_names(true, wave).to_vec(),
             nodes,
             output,
             summary: s,
@@ -277,6 +289,20 @@ impl Solid2dScenario {
 }
 
 impl Solid2dScenario {
+    /// Plan `problem` with the scenario's stress receivers and run it, reporting progress:
+    /// the output and the mesh's node count.
+    fn run_problem(
+        &self,
+        problem: &Solid2d<SharedLaw>,
+        control: &RunControl,
+    ) -> Result<(Solid2dOutput, usize)> {
+        let mut plan = problem.plan(&self.file)?;
+        plan.add_stress_receivers(&self.stress_points, &problem.layers, &self.file)?;
+        let nodes = plan.mesh.n_nodes;
+        let output = plan.run_with(control.progress.as_ref().map(|p| &*p.0))?;
+        Ok((output, nodes))
+    }
+
     /// The problem with every source's signal negated (pulse inversion's twin).
     fn inverted(&self) -> Solid2d<SharedLaw> {
         let mut p = self.problem.clone();
@@ -340,7 +366,8 @@ impl Model for Solid2dScenario {
 }
 
 impl Solid2dResult {
-    /// `receivers.csv`: `t` (s) and each receiver's velocity components (m/s).
+    /// `receivers.csv`: `t` (s), each velocity receiver's components `<name>_v<c>` (m/s)
+    /// and each stress receiver's `<name>_s<cc>` (Pa).
     fn receivers_csv(&self, rows: Rows) -> Option<OutputFile> {
         let o = &self.output;
         let mut header = String::from("t");
@@ -349,6 +376,12 @@ impl Solid2dResult {
             for (c, comp) in self.component_names.iter().enumerate() {
                 header.push_str(&format!(",{name}_v{comp}"));
                 cols.push(o.trace(r, c));
+            }
+        }
+        for (r, name) in self.stress_receivers.iter().enumerate() {
+            for (c, comp) in self.stress_component_names.iter().enumerate() {
+                header.push_str(&format!(",{name}_s{comp}"));
+                cols.push(o.stress_trace(r, c));
             }
         }
         time_series("receivers.csv", &header, &cols, rows)
@@ -418,7 +451,8 @@ impl Outcome for Solid2dResult {
     }
 
     /// `kind`, `t` (s), `receivers` (rows: receiver-major, then component; m/s), `receiver_names`,
-    /// `components`, `cracks` (per crack: `position` (m), `time` (s), and rows `(n_nodes,
+    /// `components`, `stresses` (rows like `receivers`, Pa), `stress_names`,
+    /// `stress_components`, `cracks` (per crack: `position` (m), `time` (s), and rows `(n_nodes,
     /// n_records)` of `normal_gap`, `tangential_gap` (m), `normal_stress`, `shear_stress`
     /// (Pa), `adhesion`, `state` (0 open, 1 stick, 2 slip)), `dt` (s), `summary`.
     fn record(&self) -> Record {
@@ -429,6 +463,15 @@ impl Outcome for Solid2dResult {
                 rows.push(o.trace(r, c).to_vec());
             }
         }
+        let mut stresses = Vec::new();
+        for r in 0..self.stress_receivers.len() {
+            for c in 0..o.stress_components {
+                stresses.push(o.stress_trace(r, c).to_vec());
+            }
+        }
+        let texts = |v: &[String]| Value::Tuple(v.iter().map(|n| Value::Text(n.clone())).collect());
+        let labels =
+            |v: &[&str]| Value::Tuple(v.iter().map(|n| Value::Text(n.to_string())).collect());
         let mut cracks = Vec::new();
         for c in &o.cracks {
             let n = c.position.len();
@@ -455,24 +498,11 @@ impl Outcome for Solid2dResult {
             .with("kind", Value::Text(KIND.name().into()))
             .with("t", o.time.clone().into())
             .with("receivers", Value::Rows(rows))
-            .with(
-                "receiver_names",
-                Value::Tuple(
-                    self.receivers
-                        .iter()
-                        .map(|n| Value::Text(n.clone()))
-                        .collect(),
-                ),
-            )
-            .with(
-                "components",
-                Value::Tuple(
-                    self.component_names
-                        .iter()
-                        .map(|n| Value::Text(n.to_string()))
-                        .collect(),
-                ),
-            )
+            .with("receiver_names", texts(&self.receivers))
+            .with("components", labels(&self.component_names))
+            .with("stresses", Value::Rows(stresses))
+            .with("stress_names", texts(&self.stress_receivers))
+            .with("stress_components", labels(&self.stress_component_names))
             .with("cracks", Value::Tuple(cracks))
             .with("dt", Value::Number(o.dt))
             .with("summary", Value::Map(summary_record(None, &self.summary)))

@@ -233,16 +233,53 @@ fn normal() -> String {
     "normal".into()
 }
 
-/// `[[receiver]]`: a point where the velocity is recorded and analysed.
+/// `[[receiver]]`: a point (or, with `to` and `count`, a line of points) where the
+/// velocity or the stress is recorded and analysed.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ReceiverSpec {
-    /// Name (summary key prefix and CSV column prefix: letters, digits, `_`).
+    /// Name (summary key prefix and CSV column prefix: letters, digits, `_`); a line's
+    /// points are `<name>_0` ... `<name>_<count - 1>`.
     pub name: String,
-    /// Position `[x, z]`, m (the nearest node).
+    /// Position `[x, z]`, m (the nearest node); a line's first point.
     pub at: [f64; 2],
-    /// The analysed component: `x`, `z` (default in P-SV runs) or `y` (SH runs).
+    /// A line's last point `[x, z]`, m (with `count`).
+    pub to: Option<[f64; 2]>,
+    /// Points of a line, evenly spaced from `at` to `to` (>= 2).
+    pub count: Option<usize>,
+    /// `velocity` (default, m/s) or `stress` (Pa).
+    #[serde(default = "velocity")]
+    pub quantity: String,
+    /// The analysed component: velocity `x`, `z` (default in P-SV runs) or `y` (SH runs);
+    /// stress `xx`, `zz` (default), `xz` (P-SV) or `yx`, `yz` (default, SH).
     pub component: Option<String>,
+}
+
+fn velocity() -> String {
+    "velocity".into()
+}
+
+/// A receiver point of a validated scenario.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Receiver2d {
+    /// Name (a line's points carry their index).
+    pub name: String,
+    /// Records the stress (Pa) rather than the velocity (m/s).
+    pub stress: bool,
+    /// Index among the solver's velocity receivers or among its stress receivers.
+    pub index: usize,
+    /// The analysed component (index into the quantity's components).
+    pub component: usize,
+}
+
+/// Component names of a velocity or stress receiver in P-SV or SH runs.
+pub fn component_names(stress: bool, wave: WaveType) -> &'static [&'static str] {
+    match (stress, wave) {
+        (false, WaveType::PSv) => &["x", "z"],
+        (false, WaveType::Sh) => &["y"],
+        (true, WaveType::PSv) => &["xx", "zz", "xz"],
+        (true, WaveType::Sh) => &["yx", "yz"],
+    }
 }
 
 /// A validated 2D scenario.
@@ -256,8 +293,10 @@ pub struct Solid2dScenario {
     pub problem: Solid2d<SharedLaw>,
     /// Fundamental of the analysis (the first source's), Hz.
     pub f0: f64,
-    /// The analysed component of each receiver (index into its components).
-    pub components: Vec<usize>,
+    /// The receiver points, in the order of the file (a line's points in a row).
+    pub receivers: Vec<Receiver2d>,
+    /// Positions of the stress receivers, `[x, z]`, m.
+    pub stress_points: Vec<[f64; 2]>,
     /// The time gate of the receivers' analysis (`[analysis] gate`).
     pub gate: Option<Gate>,
 }
@@ -604,8 +643,9 @@ impl Solid2dScenario {
                 profile: profile.map(|p| Arc::new(p) as Arc<dyn CrackProfile<SharedLaw>>),
             });
         }
-        let mut components = Vec::new();
+        let mut points = Vec::new();
         let mut receivers = Vec::new();
+        let mut stress_points = Vec::new();
         for (i, r) in spec.receivers.iter().enumerate() {
             let key = format!("receiver.{i}");
             if r.name.is_empty()
@@ -621,37 +661,92 @@ impl Solid2dScenario {
                     "letters, digits and `_`",
                 ));
             }
-            if spec.receivers[..i].iter().any(|o| o.name == r.name) {
-                return Err(inv(
-                    file,
-                    format!("{key}.name"),
-                    &r.name,
-                    "a name no other receiver has",
-                ));
-            }
-            if !(r.at[0] >= 0.0 && r.at[0] <= m.width && r.at[1] >= 0.0 && r.at[1] <= depth) {
-                return Err(inv(
-                    file,
-                    format!("{key}.at"),
-                    format!("[{}, {}]", r.at[0], r.at[1]),
-                    "inside the rectangle",
-                ));
-            }
-            let comp = match (r.component.as_deref(), wave) {
-                (None | Some("z"), WaveType::PSv) => 1,
-                (Some("x"), WaveType::PSv) => 0,
-                (None | Some("y"), WaveType::Sh) => 0,
-                (Some(v), _) => {
+            let stress = match r.quantity.as_str() {
+                "velocity" => false,
+                "stress" => true,
+                v => {
                     return Err(inv(
                         file,
-                        format!("{key}.component"),
+                        format!("{key}.quantity"),
                         v,
-                        if wave == WaveType::Sh { "y" } else { "x or z" },
+                        "velocity or stress",
                     ))
                 }
             };
-            components.push(comp);
-            receivers.push(r.at);
+            let names = component_names(stress, wave);
+            // defaults: z (P-SV) or y (SH) velocity, zz (P-SV) or yz (SH) stress
+            let comp = match r.component.as_deref() {
+                None if stress || wave == WaveType::PSv => 1,
+                None => 0,
+                Some(v) => names
+                    .iter()
+                    .position(|n| *n == v)
+                    .ok_or_else(|| inv(file, format!("{key}.component"), v, &names.join(", ")))?,
+            };
+            let line: Vec<([f64; 2], String)> = match (r.to, r.count) {
+                (None, None) => vec![(r.at, r.name.clone())],
+                (Some(to), Some(n)) if (2..=10_000).contains(&n) => (0..n)
+                    .map(|k| {
+                        let w = k as f64 / (n - 1) as f64;
+                        (
+                            [
+                                r.at[0] + w * (to[0] - r.at[0]),
+                                r.at[1] + w * (to[1] - r.at[1]),
+                            ],
+                            format!("{}_{k}", r.name),
+                        )
+                    })
+                    .collect(),
+                (Some(_), Some(n)) => {
+                    return Err(inv(file, format!("{key}.count"), n, "2 to 10000 points"))
+                }
+                (Some(_), None) => {
+                    return Err(inv(
+                        file,
+                        format!("{key}.count"),
+                        "missing",
+                        "the points of the line from `at` to `to`, >= 2",
+                    ))
+                }
+                (None, Some(_)) => {
+                    return Err(inv(
+                        file,
+                        format!("{key}.to"),
+                        "missing",
+                        "the line's last point [x, z], m (with `count`)",
+                    ))
+                }
+            };
+            for (at, name) in line {
+                if receivers.iter().any(|o: &Receiver2d| o.name == name) {
+                    return Err(inv(
+                        file,
+                        format!("{key}.name"),
+                        &name,
+                        "a name no other receiver has",
+                    ));
+                }
+                if !(at[0] >= 0.0 && at[0] <= m.width && at[1] >= 0.0 && at[1] <= depth) {
+                    return Err(inv(
+                        file,
+                        format!("{key}.at"),
+                        format!("[{}, {}]", at[0], at[1]),
+                        "inside the rectangle",
+                    ));
+                }
+                let list = if stress {
+                    &mut stress_points
+                } else {
+                    &mut points
+                };
+                receivers.push(Receiver2d {
+                    name,
+                    stress,
+                    index: list.len(),
+                    component: comp,
+                });
+                list.push(at);
+            }
         }
         let problem = Solid2d {
             width: m.width,
@@ -666,7 +761,7 @@ impl Solid2dScenario {
             max_time_step,
             cracks,
             sources,
-            receivers,
+            receivers: points,
             duration: m.duration,
             crack_every: m.crack_every.unwrap_or(10).max(1),
         };
@@ -677,7 +772,8 @@ impl Solid2dScenario {
             file: file.to_string(),
             problem,
             f0,
-            components,
+            receivers,
+            stress_points,
             gate,
         })
     }

@@ -27,6 +27,7 @@
 pub mod crack;
 pub mod kernel;
 pub mod mesh;
+pub mod probe;
 mod stepping;
 
 #[cfg(test)]
@@ -39,6 +40,7 @@ use crate::law::{NormalPart, TangentialPart};
 use crack::CrackNodes;
 use kernel::{max_frequency, ElementData, Stiffness};
 use mesh::{aperture_weight, edge_weight, CrackLine, Mesh};
+use probe::StressProbe;
 use std::sync::Arc;
 
 /// Nodes per parallel task of the node-wise updates.
@@ -235,6 +237,8 @@ pub struct Plan<L> {
     signals: Vec<Arc<dyn Excitation>>,
     /// Receiver nodes.
     pub receiver_nodes: Vec<usize>,
+    /// Stress receivers ([`Plan::add_stress_receivers`]).
+    pub stress_probes: Vec<StressProbe>,
     crack_every: usize,
 }
 
@@ -294,6 +298,12 @@ pub struct Solid2dOutput {
     pub receivers: Vec<f64>,
     /// Components per receiver.
     pub components: usize,
+    /// Stress receivers' stresses at the same times, `[receiver][component][sample]`
+    /// flattened like `receivers`, Pa (dynamic: the static closure is not in the bulk).
+    pub stresses: Vec<f64>,
+    /// Components per stress receiver: 3 in plane strain (`xx`, `zz`, `xz`), 2 in
+    /// antiplane runs (`yx`, `yz`).
+    pub stress_components: usize,
     /// Each crack's fields.
     pub cracks: Vec<CrackRecord>,
     /// Energy audit.
@@ -306,6 +316,61 @@ impl Solid2dOutput {
         let n = self.time.len();
         let i = (r * self.components + c) * n;
         &self.receivers[i..i + n]
+    }
+
+    /// The trace of stress receiver `r`, component `c`, Pa.
+    pub fn stress_trace(&self, r: usize, c: usize) -> &[f64] {
+        let n = self.time.len();
+        let i = (r * self.stress_components + c) * n;
+        &self.stresses[i..i + n]
+    }
+}
+
+impl<L> Plan<L> {
+    /// Add stress receivers at `points` (`[x, z]`, m; the nearest node, in the element to
+    /// its lower right), recorded at the receivers' times as the mean of the two levels
+    /// around each (Pa); their series' memory is checked against the budget first.
+    pub fn add_stress_receivers(
+        &mut self,
+        points: &[[f64; 2]],
+        layers: &[Layer],
+        file: &str,
+    ) -> Result<()> {
+        let sc = if self.components == 1 { 2 } else { 3 };
+        crate::budget::check(
+            file,
+            "receiver",
+            points.len() as f64,
+            (points.len() * sc) as f64 * self.steps as f64 * 8.0,
+            &format!(
+                "{} time steps of {} stress receivers",
+                self.steps,
+                points.len()
+            ),
+        )?;
+        let Some(last) = layers.last() else {
+            return Err(Error::invalid(
+                file,
+                "layer",
+                "none",
+                "at least one [[layer]]",
+            ));
+        };
+        let mesh = &self.mesh;
+        let layer_of = |ez: usize| {
+            let zmid = 0.5 * (mesh.z_edges[ez] + mesh.z_edges[ez + 1]);
+            layers
+                .iter()
+                .find(|l| zmid < l.bottom)
+                .unwrap_or(last)
+                .material
+        };
+        for p in points {
+            let (ix, iz) = (nearest(&mesh.x, p[0]), nearest(&mesh.z, p[1]));
+            self.stress_probes
+                .push(StressProbe::new(mesh, ix, iz, layer_of));
+        }
+        Ok(())
     }
 }
 
@@ -790,6 +855,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             dampers,
             signals,
             receiver_nodes,
+            stress_probes: Vec::new(),
             crack_every: self.crack_every.max(1),
         })
     }

@@ -92,6 +92,8 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
             time: recorder.time,
             receivers: recorder.receivers,
             components: c,
+            stresses: recorder.stresses,
+            stress_components: recorder.stress_components,
             cracks: recorder.cracks,
             energy: Energy2d {
                 input,
@@ -181,6 +183,11 @@ struct Records {
     time: Vec<f64>,
     /// `[receiver][component][sample]`, m/s.
     receivers: Vec<f64>,
+    /// `[stress receiver][component][sample]`, Pa.
+    stresses: Vec<f64>,
+    stress_components: usize,
+    /// Each stress receiver's stresses of the last level, Pa.
+    last_stress: Vec<f64>,
     cracks: Vec<CrackRecord>,
     /// Steps taken so far.
     steps: usize,
@@ -193,10 +200,14 @@ struct Records {
 impl Records {
     fn new<L>(plan: &Plan<L>) -> Self {
         let n_t = plan.steps;
+        let sc = if plan.components == 1 { 2 } else { 3 };
         let n_records = n_t / plan.crack_every + 2;
         Records {
             time: Vec::with_capacity(n_t),
             receivers: vec![0.0; plan.receiver_nodes.len() * plan.components * n_t],
+            stresses: vec![0.0; plan.stress_probes.len() * sc * n_t],
+            stress_components: sc,
+            last_stress: vec![0.0; plan.stress_probes.len() * sc],
             cracks: plan
                 .cracks
                 .iter()
@@ -239,6 +250,17 @@ impl<L: NormalPart + TangentialPart> Recorder<Run2d<'_, L>> for Records {
         for (r, &g) in p.receiver_nodes.iter().enumerate() {
             for cc in 0..c {
                 self.receivers[(r * c + cc) * self.n_t + n] = s.v[c * g + cc];
+            }
+        }
+        // stresses of the half level: the mean of the levels around it
+        let sc = self.stress_components;
+        let mut now = [0.0; 3];
+        for (r, probe) in p.stress_probes.iter().enumerate() {
+            probe.stress(&s.u, c, &mut now);
+            for (cc, &new) in now.iter().enumerate().take(sc) {
+                let last = &mut self.last_stress[r * sc + cc];
+                self.stresses[(r * sc + cc) * self.n_t + n] = 0.5 * (*last + new);
+                *last = new;
             }
         }
         if n % self.crack_every == 0 || n + 1 == self.n_t {
