@@ -691,6 +691,15 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
         closure,
         1e-9,
     ));
+    let conv = crack_convergence(&[0.5e-3, 0.25e-3, 0.125e-3])?;
+    for (h, e, tol) in [(0.5, conv[0], 0.05), (0.25, conv[1], 0.01)] {
+        v.push(ValidationCase::new(
+            format!("2D: linear finite crack, trace at B vs 0.125 mm elements, {h} mm elements"),
+            0.0,
+            e,
+            tol,
+        ));
+    }
     let shut = held_shut()?;
     v.push(ValidationCase::new(
         "2D: crack under 100 MPa closure, max gap + max slip (m)",
