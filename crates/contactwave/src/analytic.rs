@@ -19,6 +19,7 @@
 //! it over periods gives the periodic steady state (times T1, T2 of eqs. 5.11-5.15).
 
 pub mod friction;
+pub mod guided;
 pub mod oblique;
 
 /// Parameters of the bilinear problem, SI units.

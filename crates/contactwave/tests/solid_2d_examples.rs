@@ -1,0 +1,71 @@
+//! The 2D examples: every file under examples/solid_2d/ parses and builds, and shortened
+//! runs of the SH friction and Lamb delamination examples show their physics (the
+//! frictional crack slips and never opens, the delamination claps, the energy closes).
+
+use contactwave::model;
+use std::path::PathBuf;
+
+fn dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples/solid_2d")
+}
+
+fn load(name: &str) -> (String, String) {
+    let path = dir().join(name);
+    let text = std::fs::read_to_string(&path).unwrap();
+    (text, path.display().to_string())
+}
+
+#[test]
+fn every_2d_example_parses_and_builds() {
+    let mut names: Vec<String> = std::fs::read_dir(dir())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".toml"))
+        .collect();
+    names.sort();
+    for name in [
+        "lamb_delamination.toml",
+        "plate_crack.toml",
+        "sh_friction.toml",
+    ] {
+        assert!(names.iter().any(|n| n == name), "{name} missing: {names:?}");
+    }
+    for name in &names {
+        let (text, path) = load(name);
+        let t = model::from_toml_str(&text, &path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(t.kind(), "solid_2d", "{name}");
+        t.base().unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}
+
+/// The summary of `name` run for `duration` s.
+fn shortened(name: &str, duration: f64) -> contactwave::analysis::Summary {
+    let (text, path) = load(name);
+    let t = model::from_toml_str(&text, &path).unwrap();
+    let d = t.param("model.duration").unwrap();
+    t.build(&[(&d, duration)]).unwrap().summary().unwrap()
+}
+
+/// SH on a frictional crack under closure and static shear: it slips (friction takes
+/// energy), never opens, and the energy audit closes at round-off.
+#[test]
+fn sh_friction_example_slips_and_closes_its_energy() {
+    let s = shortened("sh_friction.toml", 6e-6);
+    let get = |k: &str| s.get(k).unwrap_or(f64::NAN);
+    assert!(get("energy_closure_error") < 1e-9, "{s:?}");
+    assert!(get("crack_max_slip_0") > 1e-9, "{s:?}");
+    assert_eq!(get("crack_max_gap_0"), 0.0);
+    assert!(get("energy_cracks") > 1e-3 * get("energy_input"), "{s:?}");
+    assert!(get("bottom_A3_over_A1") > 0.0);
+}
+
+/// A0 on a delamination: the sub-laminate claps (the delamination opens), and the energy
+/// audit closes at round-off.
+#[test]
+fn lamb_delamination_example_opens_and_closes_its_energy() {
+    let s = shortened("lamb_delamination.toml", 25e-6);
+    let get = |k: &str| s.get(k).unwrap_or(f64::NAN);
+    assert!(get("energy_closure_error") < 1e-9, "{s:?}");
+    assert!(get("crack_max_gap_0") > 1e-9, "{s:?}");
+    assert!(get("energy_input") > 0.0);
+}
