@@ -11,7 +11,9 @@ use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 use crate::material::Material;
 use crate::scenario::spec::IncidentSpec;
 use crate::scenario::BuildCache;
-use crate::solver::solid_2d::{Crack, Elastic, Layer, Side, Solid2d, Source, SourceKind, WaveType};
+use crate::solver::solid_2d::{
+    Crack, Elastic, Incidence, Layer, Side, Solid2d, Source, SourceKind, WaveType,
+};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::sync::Arc;
@@ -174,6 +176,11 @@ pub struct SourceSpec {
     pub at: Option<[f64; 2]>,
     /// Force: direction `[x, z]` (normalised; ignored in SH runs), default `[0, 1]`.
     pub direction: Option<[f64; 2]>,
+    /// Plane wave: `P` (default in P-SV runs), `SV`, or `SH` (SH runs).
+    pub wave: Option<String>,
+    /// Plane wave: depth of the total-field/scattered-field line, m (an element edge is
+    /// put there; the wave travels down from it at `angle` from the z axis).
+    pub z: Option<f64>,
     /// The time function: the keys of a half-space `[incident]` (tone burst, two-tone or
     /// file; `amplitude` in Pa for a transducer, N/m for a force; no xi).
     pub signal: IncidentSpec,
@@ -466,7 +473,42 @@ impl Solid2dScenario {
                         direction: [d[0] / n, d[1] / n],
                     }
                 }
-                v => return Err(inv(file, format!("{key}.kind"), v, "transducer or force")),
+                "plane_wave" => {
+                    let incidence = match (s.wave.as_deref(), wave) {
+                        (None | Some("P"), WaveType::PSv) => Incidence::P,
+                        (Some("SV"), WaveType::PSv) => Incidence::Sv,
+                        (None | Some("SH"), WaveType::Sh) => Incidence::Sh,
+                        (v, _) => {
+                            return Err(inv(
+                                file,
+                                format!("{key}.wave"),
+                                v.unwrap_or("P"),
+                                "P or SV in a P-SV run, SH in an SH run",
+                            ))
+                        }
+                    };
+                    let z = s.z.ok_or_else(|| {
+                        inv(
+                            file,
+                            format!("{key}.z"),
+                            "missing",
+                            "the depth of the total-field/scattered-field line, m",
+                        )
+                    })?;
+                    SourceKind::PlaneWave {
+                        incidence,
+                        angle: s.angle.to_radians(),
+                        z,
+                    }
+                }
+                v => {
+                    return Err(inv(
+                        file,
+                        format!("{key}.kind"),
+                        v,
+                        "transducer, force or plane_wave",
+                    ))
+                }
             };
             sources.push(Source { kind, signal });
         }
