@@ -5,6 +5,7 @@
 
 pub mod oblique;
 pub mod shear;
+pub mod solid_2d_plane;
 
 use crate::analysis::fit::fit_power_law;
 use crate::analysis::AnalysisMethod;
@@ -459,6 +460,7 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
     v.extend(weak_nonlinearity()?);
     v.extend(shear::run_all()?);
     v.extend(oblique::run_all()?);
+    v.extend(solid_2d_plane::run_all()?);
     Ok(v)
 }
 
