@@ -337,6 +337,8 @@ fn p_reduction(law: SharedLaw, amplitude: f64, sizes: &[f64]) -> Vec<Reduction> 
     let ex = HalfSpace::new(medium(), Some(medium()), normal, signal.clone())
         .solve(&settings())
         .unwrap();
+    let beta = ex.beta.iter().fold(1.0f64, |a, &b| a.min(b));
+    eprintln!("exact min beta {beta}");
     reduction(
         WaveType::PSv,
         Incidence::P,
@@ -443,11 +445,11 @@ fn plane_p_wave_reduction_every_law() {
         ),
         (
             "rccm",
-            1e6,
+            3e6,
             law(
-                0.082e6,
+                0.3e6,
                 "law = \"rigid\"",
-                "law = \"rccm\"\nstiffness = 2e13\nenergy = 0.1\nviscosity = 1e-8",
+                "law = \"rccm\"\nstiffness = 2e13\nenergy = 0.01\nviscosity = 1e-8",
                 FREE,
             ),
         ),
