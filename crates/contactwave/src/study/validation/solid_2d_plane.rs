@@ -184,10 +184,11 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
     let mut v = Vec::new();
     for (inc, deg) in [(Incidence::P, 40.0), (Incidence::Sv, 20.0)] {
         let (m, e) = oblique_case(inc, deg, 1.5e-3)?;
+        let label = if inc == Incidence::P { "P" } else { "SV" };
         for (k, name) in ["R_P", "R_SV", "T_P", "T_SV"].iter().enumerate() {
             v.push(ValidationCase::new(
                 format!(
-                    "2D plane wave (TF/SF), {inc:?} {deg} deg on linear springs: |{name}| vs closed form"
+                    "2D plane wave (TF/SF), {label} {deg} deg on linear springs: |{name}| vs closed form"
                 ),
                 e[k],
                 m[k],
