@@ -74,3 +74,30 @@ fn interface_reduction_example_matches_the_exact_solver() {
     eprintln!("reflected A2/A1 2D {r2}, exact {r1}");
     assert!((r2 / r1 - 1.0).abs() < 0.02, "2D {r2} exact {r1}");
 }
+
+/// A bad plane-wave source is a one-line error naming its key, before any step.
+#[test]
+fn bad_plane_wave_sources_are_errors_naming_the_key() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/solid_2d/interface_reduction.toml"
+    );
+    let text = std::fs::read_to_string(path).unwrap();
+    for (from, to, key) in [
+        ("wave = \"P\" ", "wave = \"SH\" ", "source.0.wave"),
+        ("angle = 0 ", "angle = 10 ", "source.0.angle"),
+        ("z = 6e-3 ", "z = 16e-3 ", "source.0.z"),
+        ("z = 6e-3 ", "z = 40e-3 ", "source.0.z"),
+        ("z = 6e-3 ", "# ", "source.0.z"),
+    ] {
+        assert!(text.contains(from), "{from}");
+        let bad = text.replace(from, to);
+        let err = model::from_toml_str(&bad, "bad.toml")
+            .and_then(|t| t.base()?.run(&RunControl::default()).map(|_| ()))
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains(key), "{key}: {err}");
+        assert!(err.starts_with("bad.toml"), "{err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
+}

@@ -1,6 +1,6 @@
 //! 2D scenarios (`[model] kind = "solid_2d"`, model.md section 9): a rectangle of
 //! horizontal layers, plane-strain P-SV or antiplane SH waves, cracks with any law of the
-//! library, transducer and point-force sources, velocity receivers. The serde-level spec
+//! library, transducer, point-force and plane-wave sources, velocity receivers. The serde-level spec
 //! ([`Solid2dSpec`]) and its validation into the solver's problem
 //! ([`crate::solver::solid_2d::Solid2d`]) with every crack's law built once.
 
@@ -149,12 +149,12 @@ pub struct CrackSpec {
     pub tangential: TangentialSpec,
 }
 
-/// `[[source]]`: a transducer (a traction over an aperture of the top or bottom surface)
-/// or a point force, with its time function.
+/// `[[source]]`: a transducer (a traction over an aperture of the top or bottom surface),
+/// a point force or a plane wave (total-field/scattered-field), with its time function.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SourceSpec {
-    /// `transducer` (default) or `force`.
+    /// `transducer` (default), `force` or `plane_wave`.
     #[serde(default = "transducer")]
     pub kind: String,
     /// Transducer: aperture start and end along x, m.
