@@ -123,15 +123,15 @@ pub struct Injection {
     /// is the sum of `weight * u_inc(sample)` (N/m per m).
     pairs: Vec<(u32, u32, f64)>,
     /// The dofs the forces act on (increasing).
-    pub targets: Vec<usize>,
+    targets: Vec<usize>,
     /// The time integral of the signal.
     integral: Integral,
     /// Scratch: each sample's incident displacement of the step, m.
     u_inc: Vec<f64>,
     /// Scratch: each target's force of the step, N/m.
-    pub force: Vec<f64>,
+    force: Vec<f64>,
     /// Each target's velocity of the previous half level (the forces' work).
-    pub v_prev: Vec<f64>,
+    v_prev: Vec<f64>,
     /// Speed of the wave, m/s.
     speed: f64,
     /// Unit propagation direction `[x, z]`.
