@@ -1,6 +1,6 @@
 //! 2D scenarios (`[model] kind = "solid_2d"`, model.md section 9): a rectangle of
 //! horizontal layers, plane-strain P-SV or antiplane SH waves, cracks with any law of the
-//! library, transducer and point-force sources, velocity receivers. The serde-level spec
+//! library, transducer, point-force and plane-wave sources, velocity receivers. The serde-level spec
 //! ([`Solid2dSpec`]) and its validation into the solver's problem
 //! ([`crate::solver::solid_2d::Solid2d`]) with every crack's law built once.
 
@@ -13,7 +13,7 @@ use crate::material::Material;
 use crate::scenario::spec::IncidentSpec;
 use crate::scenario::BuildCache;
 use crate::solver::solid_2d::{
-    Crack, CrackProfile, Elastic, Layer, Side, Solid2d, Source, SourceKind, WaveType,
+    Crack, CrackProfile, Elastic, Incidence, Layer, Side, Solid2d, Source, SourceKind, WaveType,
 };
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -191,12 +191,12 @@ pub struct ClosureSpec {
     pub gap: Option<Vec<f64>>,
 }
 
-/// `[[source]]`: a transducer (a traction over an aperture of the top or bottom surface)
-/// or a point force, with its time function.
+/// `[[source]]`: a transducer (a traction over an aperture of the top or bottom surface),
+/// a point force or a plane wave (total-field/scattered-field), with its time function.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SourceSpec {
-    /// `transducer` (default) or `force`.
+    /// `transducer` (default), `force` or `plane_wave`.
     #[serde(default = "transducer")]
     pub kind: String,
     /// Transducer: aperture start and end along x, m.
@@ -218,6 +218,11 @@ pub struct SourceSpec {
     pub at: Option<[f64; 2]>,
     /// Force: direction `[x, z]` (normalised; ignored in SH runs), default `[0, 1]`.
     pub direction: Option<[f64; 2]>,
+    /// Plane wave: `P` (default in P-SV runs), `SV`, or `SH` (SH runs).
+    pub wave: Option<String>,
+    /// Plane wave: depth of the total-field/scattered-field line, m (an element edge is
+    /// put there; the wave travels down from it at `angle` from the z axis).
+    pub z: Option<f64>,
     /// The time function: the keys of a half-space `[incident]` (tone burst, two-tone or
     /// file; `amplitude` in Pa for a transducer, N/m for a force; no xi).
     pub signal: IncidentSpec,
@@ -551,7 +556,42 @@ impl Solid2dScenario {
                         direction: [d[0] / n, d[1] / n],
                     }
                 }
-                v => return Err(inv(file, format!("{key}.kind"), v, "transducer or force")),
+                "plane_wave" => {
+                    let incidence = match (s.wave.as_deref(), wave) {
+                        (None | Some("P"), WaveType::PSv) => Incidence::P,
+                        (Some("SV"), WaveType::PSv) => Incidence::Sv,
+                        (None | Some("SH"), WaveType::Sh) => Incidence::Sh,
+                        (v, _) => {
+                            return Err(inv(
+                                file,
+                                format!("{key}.wave"),
+                                v.unwrap_or("P"),
+                                "P or SV in a P-SV run, SH in an SH run",
+                            ))
+                        }
+                    };
+                    let z = s.z.ok_or_else(|| {
+                        inv(
+                            file,
+                            format!("{key}.z"),
+                            "missing",
+                            "the depth of the total-field/scattered-field line, m",
+                        )
+                    })?;
+                    SourceKind::PlaneWave {
+                        incidence,
+                        angle: s.angle.to_radians(),
+                        z,
+                    }
+                }
+                v => {
+                    return Err(inv(
+                        file,
+                        format!("{key}.kind"),
+                        v,
+                        "transducer, force or plane_wave",
+                    ))
+                }
             };
             sources.push(Source { kind, signal });
         }

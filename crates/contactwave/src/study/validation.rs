@@ -6,6 +6,7 @@
 pub mod oblique;
 pub mod shear;
 pub mod solid_2d;
+pub mod solid_2d_plane;
 
 use crate::analysis::fit::fit_power_law;
 use crate::analysis::AnalysisMethod;
@@ -461,6 +462,7 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
     v.extend(shear::run_all()?);
     v.extend(oblique::run_all()?);
     v.extend(solid_2d::run_all()?);
+    v.extend(solid_2d_plane::run_all()?);
     Ok(v)
 }
 

@@ -27,9 +27,12 @@
 pub mod crack;
 pub mod kernel;
 pub mod mesh;
+pub mod plane_wave;
 pub mod probe;
 mod stepping;
 
+#[cfg(test)]
+mod reduction_tests;
 #[cfg(test)]
 mod tests;
 
@@ -40,6 +43,7 @@ use crate::law::{NormalPart, TangentialPart};
 use crack::CrackNodes;
 use kernel::{max_frequency, ElementData, Stiffness};
 use mesh::{aperture_weight, edge_weight, CrackLine, Mesh};
+pub use plane_wave::Incidence;
 use probe::StressProbe;
 use std::sync::Arc;
 
@@ -154,6 +158,19 @@ pub enum SourceKind {
         /// Linear delay law, s/m.
         delay_per_m: f64,
     },
+    /// A plane wave injected across the horizontal line `z` (m, an element edge strictly
+    /// inside the rectangle) by total-field/scattered-field ([`plane_wave`]): it travels
+    /// down at `angle` (rad from +z, toward +x; 0 with periodic sides) in the total field
+    /// below the line, the field above holds only what is scattered. Its signal is the
+    /// wave's stress (Pa): particle velocity `-s / (rho c)` along its polarisation.
+    PlaneWave {
+        /// P, SV (P-SV runs) or SH (SH runs).
+        incidence: Incidence,
+        /// Angle from the z axis, rad, in (-pi/2, pi/2).
+        angle: f64,
+        /// Depth of the total-field/scattered-field line, m.
+        z: f64,
+    },
 }
 
 /// A source: where, and its time function.
@@ -240,6 +257,8 @@ pub struct Plan<L> {
     /// Stress receivers ([`Plan::add_stress_receivers`]).
     pub stress_probes: Vec<StressProbe>,
     crack_every: usize,
+    /// The plane-wave sources.
+    pub plane_waves: Vec<plane_wave::Injection>,
 }
 
 /// One crack's recorded fields, `[record][point]` flattened point-fastest.
@@ -469,9 +488,18 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             xs.extend([c.start[0], c.end[0]]);
             zs.extend([c.start[1], c.end[1]]);
         }
-        for s in &self.sources {
-            if let SourceKind::Traction { x0, x1, .. } = s.kind {
-                xs.extend([x0, x1]);
+        for (i, s) in self.sources.iter().enumerate() {
+            match s.kind {
+                SourceKind::Traction { x0, x1, .. } => xs.extend([x0, x1]),
+                SourceKind::PlaneWave {
+                    incidence,
+                    angle,
+                    z,
+                } => {
+                    self.check_plane_wave(file, i, incidence, angle, z)?;
+                    zs.push(z);
+                }
+                SourceKind::Force { .. } => {}
             }
         }
         // the mesh's size before it is built: elements along each side (at most one more
@@ -777,6 +805,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         // loads
         let mut loads = Vec::new();
         let mut signals = Vec::new();
+        let mut plane_waves = Vec::new();
         for (si, s) in self.sources.iter().enumerate() {
             signals.push(s.signal.clone());
             match s.kind {
@@ -801,6 +830,28 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                             }
                         }
                     }
+                }
+                SourceKind::PlaneWave {
+                    incidence,
+                    angle,
+                    z,
+                } => {
+                    let iz = mesh::edge_index(&mesh.z_edges, z).unwrap_or(1).max(1);
+                    let zmid = 0.5 * (mesh.z_edges[iz - 1] + mesh.z_edges[iz]);
+                    plane_waves.push(plane_wave::Injection::new(
+                        &mesh,
+                        &stiffness,
+                        self.layers[layer_of(zmid)].material,
+                        incidence,
+                        angle,
+                        z,
+                        &s.signal,
+                        si,
+                        dt,
+                        self.duration,
+                        file,
+                        &format!("source.{si}"),
+                    )?);
                 }
                 SourceKind::Traction {
                     top,
@@ -857,6 +908,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             receiver_nodes,
             stress_probes: Vec::new(),
             crack_every: self.crack_every.max(1),
+            plane_waves,
         })
     }
 }

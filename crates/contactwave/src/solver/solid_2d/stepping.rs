@@ -50,6 +50,9 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
         let len = c * self.mesh.n_nodes;
         let (dt, n_t) = (self.dt, self.steps);
         let mut recorder = Records::new(self);
+        for pw in &mut self.plane_waves {
+            pw.reset();
+        }
         let mut run = Run2d {
             u: vec![0.0; len],
             v: vec![0.0; len],
@@ -115,6 +118,9 @@ impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
         for l in &p.loads {
             f[l.index] += p.load_value(l, t);
         }
+        for pw in &mut p.plane_waves {
+            pw.add_forces(t, f);
+        }
         for (vd, &(i, _)) in self.v_damped.iter_mut().zip(&p.dampers) {
             *vd = v[i];
         }
@@ -156,6 +162,9 @@ impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
             let fv = l.weight * p.signals[l.source].stress(t - l.delay);
             self.input += fv * dt * 0.5 * (v[l.index] + *vo);
             *vo = v[l.index];
+        }
+        for pw in &mut p.plane_waves {
+            self.input += pw.work(v, dt);
         }
         Ok(())
     }

@@ -11,15 +11,15 @@ use crate::law::traction::Free;
 use crate::material::Material;
 use crate::solver::half_space::{HalfSpace, HalfSpaceSettings};
 
-type Signorini = PointLaw<Rigid, Free, FreeSliding>;
+pub(super) type Signorini = PointLaw<Rigid, Free, FreeSliding>;
 
-const ALUMINIUM: Elastic = Elastic {
+pub(super) const ALUMINIUM: Elastic = Elastic {
     density: 2700.0,
     p_speed: 6320.0,
     s_speed: 3130.0,
 };
 
-fn signorini(p0: f64) -> Signorini {
+pub(super) fn signorini(p0: f64) -> Signorini {
     PointLaw::normal(
         p0,
         Rigid {
@@ -30,7 +30,7 @@ fn signorini(p0: f64) -> Signorini {
     )
 }
 
-fn burst(amplitude: f64, f0: f64, cycles: f64) -> Arc<dyn Excitation> {
+pub(super) fn burst(amplitude: f64, f0: f64, cycles: f64) -> Arc<dyn Excitation> {
     Arc::new(ToneBurst::new(amplitude, f0, cycles, Window::Hann))
 }
 
@@ -143,7 +143,7 @@ fn results_are_bit_identical_for_any_thread_count() {
 /// A periodic strip `h` wide (one element) and `depth` deep (m; free top and bottom,
 /// order 4, courant 0.5, no cap on the time step), driven by a traction over the whole top
 /// (`normal`, else shear) with `signal` for `duration` s; no crack, no receiver.
-fn strip<L>(
+pub(super) fn strip<L>(
     wave: WaveType,
     h: f64,
     depth: f64,
