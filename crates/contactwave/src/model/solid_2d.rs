@@ -1,9 +1,11 @@
 //! The 2D model (`[model] kind = "solid_2d"`, model.md section 9): a scenario planned
 //! into the spectral-element solver ([`crate::solver::solid_2d`]), run, and its receivers
 //! analysed by the library's band-peak analysis (A1...A5 of each receiver's velocity);
-//! files `summary.json`, `receivers.csv` and `crack.csv`.
+//! files `summary.json`, `receivers.csv` and `crack.csv`, and with the `plot` feature the
+//! plots and pictures of [`super::solid_2d_pictures`].
 
 use super::record::summary_record;
+use super::solid_2d_pictures::{Geometry, Snapshots2d};
 use super::template::{FromSpec, SpecTemplate};
 use super::{Fields, Kind, Model, Outcome, Record, RunControl, Slot, Template, Value};
 use crate::analysis::with_analyzer;
@@ -169,6 +171,12 @@ pub struct Solid2dResult {
     pub nodes: usize,
     /// Summary scalars.
     pub summary: Summary,
+    /// The wavefield snapshots (`[snapshots]`), on their pixel grid.
+    pub snapshots: Option<Snapshots2d>,
+    /// What the pictures draw besides the field.
+    pub geometry: Geometry,
+    /// Fundamental of the analysis, Hz.
+    pub f0: f64,
 }
 
 impl Solid2dScenario {
@@ -176,7 +184,11 @@ impl Solid2dScenario {
     pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
         let mut plan = self.problem.plan(&self.file)?;
         let nodes = plan.mesh.n_nodes;
-        let output = plan.run_with(control.progress.as_ref().map(|p| &*p.0))?;
+        self.prepare_snapshots(&mut plan)?;
+        let mut output = plan.run_with(control.progress.as_ref().map(|p| &*p.0))?;
+        let snapshots = self.snapshots_of(&plan, &output.snapshots);
+        // the nodal fields are on the pixel grid now
+        output.snapshots = Default::default();
         let mut s = Summary::new();
         s.set("nodes", nodes as f64);
         s.set("steps", output.time.len() as f64);
@@ -224,6 +236,9 @@ impl Solid2dScenario {
             nodes,
             output,
             summary: s,
+            snapshots,
+            geometry: Geometry::of(self),
+            f0: self.f0,
         })
     }
 }
@@ -328,15 +343,28 @@ impl Outcome for Solid2dResult {
         if !self.output.cracks.is_empty() {
             files.push(self.crack_csv());
         }
+        #[cfg(feature = "plot")]
+        files.extend(super::solid_2d_pictures::text_files(self, self.f0)?);
         Ok(files)
+    }
+
+    /// The PNG frames and GIF of the snapshots, and the crack maps (the `plot` feature).
+    fn binary_files(&self) -> Result<Vec<crate::render::BinaryFile>> {
+        #[cfg(feature = "plot")]
+        return super::solid_2d_pictures::binary_files(self);
+        #[cfg(not(feature = "plot"))]
+        Ok(Vec::new())
     }
 
     /// `kind`, `t` (s), `receivers` (rows: receiver-major, then component; m/s), `receiver_names`,
     /// `components`, `cracks` (per crack: `position` (m), `time` (s), and rows `(n_nodes,
     /// n_records)` of `normal_gap`, `tangential_gap` (m), `normal_stress`, `shear_stress`
-    /// (Pa), `adhesion`), `dt` (s), `summary`.
+    /// (Pa), `adhesion`), `dt` (s), `summary`; `snapshots` (the frames `[frame][iz][ix]`
+    /// flattened, m/s; empty without `[snapshots]`), `snapshot_times` (s), `snapshot_x`,
+    /// `snapshot_z` (pixel centres, m), `snapshot_field`.
     fn record(&self) -> Record {
         let o = &self.output;
+        let snap = self.snapshots.as_ref();
         let mut rows = Vec::new();
         for r in 0..self.receivers.len() {
             for c in 0..o.components {
@@ -388,6 +416,26 @@ impl Outcome for Solid2dResult {
             )
             .with("cracks", Value::Tuple(cracks))
             .with("dt", Value::Number(o.dt))
+            .with(
+                "snapshots",
+                Value::Array(snap.map(|s| s.raster.values.clone()).unwrap_or_default()),
+            )
+            .with(
+                "snapshot_times",
+                Value::Array(snap.map(|s| s.times.clone()).unwrap_or_default()),
+            )
+            .with(
+                "snapshot_x",
+                Value::Array(snap.map(|s| s.raster.x.clone()).unwrap_or_default()),
+            )
+            .with(
+                "snapshot_z",
+                Value::Array(snap.map(|s| s.raster.z.clone()).unwrap_or_default()),
+            )
+            .with(
+                "snapshot_field",
+                Value::Text(snap.map(|s| s.field.clone()).unwrap_or_default()),
+            )
             .with("summary", Value::Map(summary_record(None, &self.summary)))
     }
 

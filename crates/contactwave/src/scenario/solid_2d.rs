@@ -44,6 +44,9 @@ pub struct Solid2dSpec {
     /// Velocity receivers.
     #[serde(rename = "receiver", default)]
     pub receivers: Vec<ReceiverSpec>,
+    /// Wavefield pictures (`[snapshots]`; none without the table).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub snapshots: Option<crate::scenario::snapshots::SnapshotsSpec>,
 }
 
 /// `[model]`.
@@ -214,6 +217,8 @@ pub struct Solid2dScenario {
     pub f0: f64,
     /// The analysed component of each receiver (index into its components).
     pub components: Vec<usize>,
+    /// The checked `[snapshots]`, if any.
+    pub snapshots: Option<crate::scenario::snapshots::Snapshots>,
 }
 
 fn inv(file: &str, field: impl Into<String>, v: impl std::fmt::Display, allowed: &str) -> Error {
@@ -615,12 +620,17 @@ impl Solid2dScenario {
             crack_every: m.crack_every.unwrap_or(10).max(1),
         };
         problem.validate(file)?;
+        let snapshots = match &spec.snapshots {
+            Some(s) => Some(s.check(file, m.duration, wave)?),
+            None => None,
+        };
         Ok(Solid2dScenario {
             spec,
             file: file.to_string(),
             problem,
             f0,
             components,
+            snapshots,
         })
     }
 }

@@ -27,6 +27,7 @@
 pub mod crack;
 pub mod kernel;
 pub mod mesh;
+pub mod snapshot;
 mod stepping;
 
 #[cfg(test)]
@@ -225,6 +226,8 @@ pub struct Plan<L> {
     /// Receiver nodes.
     pub receiver_nodes: Vec<usize>,
     crack_every: usize,
+    /// Steps after which the whole velocity field is kept ([`Plan::capture_at`]).
+    snapshot_steps: Vec<usize>,
 }
 
 /// One crack's recorded fields, `[record][point]` flattened point-fastest.
@@ -284,6 +287,8 @@ pub struct Solid2dOutput {
     pub cracks: Vec<CrackRecord>,
     /// Energy audit.
     pub energy: Energy2d,
+    /// The velocity fields kept at the plan's snapshot steps ([`Plan::capture_at`]).
+    pub snapshots: snapshot::Capture,
 }
 
 impl Solid2dOutput {
@@ -769,6 +774,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             signals,
             receiver_nodes,
             crack_every: self.crack_every.max(1),
+            snapshot_steps: Vec::new(),
         })
     }
 }

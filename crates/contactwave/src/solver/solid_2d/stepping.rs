@@ -4,6 +4,7 @@
 //! split-node update and the energy audit; a recorder keeps the receivers' velocities and
 //! the cracks' fields.
 
+use super::snapshot::Capture;
 use super::{CrackRecord, Energy2d, Load, Plan, Solid2dOutput, CHUNK};
 use crate::error::{Error, Result};
 use crate::law::{NormalPart, TangentialPart};
@@ -93,6 +94,7 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
             receivers: recorder.receivers,
             components: c,
             cracks: recorder.cracks,
+            snapshots: recorder.snapshots,
             energy: Energy2d {
                 input,
                 solid,
@@ -188,6 +190,8 @@ struct Records {
     started: bool,
     n_t: usize,
     crack_every: usize,
+    /// The whole velocity field at the plan's snapshot steps.
+    snapshots: Capture,
 }
 
 impl Records {
@@ -217,6 +221,10 @@ impl Records {
             started: false,
             n_t,
             crack_every: plan.crack_every,
+            snapshots: Capture::new(
+                plan.snapshot_steps.clone(),
+                plan.components * plan.mesh.n_nodes,
+            ),
         }
     }
 }
@@ -240,6 +248,7 @@ impl<L: NormalPart + TangentialPart> Recorder<Run2d<'_, L>> for Records {
                 self.receivers[(r * c + cc) * self.n_t + n] = s.v[c * g + cc];
             }
         }
+        self.snapshots.take(n, n as f64 * p.dt + 0.5 * p.dt, &s.v);
         if n % self.crack_every == 0 || n + 1 == self.n_t {
             for (cr, out) in p.cracks.iter().zip(&mut self.cracks) {
                 out.time.push(t);

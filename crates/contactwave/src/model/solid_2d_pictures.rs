@@ -1,0 +1,413 @@
+//! Pictures of a 2D run (docs/scenario.md section 2b `[snapshots]`): the wavefield kept at
+//! chosen times and resampled on a pixel grid; with the `plot` feature, the files
+//! `snapshots/frame_NNNN.png` (the field, the cracks drawn, a colour bar in m/s, the time in
+//! us, axes in mm, receivers and transducers marked), `snapshots/snapshots.gif`,
+//! `snapshots/frame_NNNN.vti` with `snapshots/snapshots.pvd` (ParaView), and for every run
+//! `receivers.svg`, `spectra.svg` and `crack_map.png` (each crack's normal gap along it
+//! against time).
+
+use crate::error::Result;
+use crate::scenario::snapshots::Snapshots;
+use crate::scenario::solid_2d::Solid2dScenario;
+use crate::solver::solid_2d::snapshot::{self, Capture, Field, Raster};
+use crate::solver::solid_2d::Plan;
+
+/// Margins and colour bar around a frame's field, px (an upper bound, for the budget).
+const FRAME_EXTRA: (f64, f64) = (180.0, 120.0);
+
+/// The snapshots of a run: the frames on their pixel grid and how they are drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Snapshots2d {
+    /// Times of the frames, s (the half levels nearest the times asked for).
+    pub times: Vec<f64>,
+    /// The value drawn: `magnitude`, `vx`, `vz` or `vy`.
+    pub field: String,
+    /// The frames, `[frame][iz][ix]`, m/s, with their pixel-centre coordinates (m).
+    pub raster: Raster,
+    /// The colour scale, m/s: `[0, scale]` for the magnitude, `[-scale, scale]` for a
+    /// component (the same for every frame).
+    pub scale: f64,
+    /// The value is signed (a component): a diverging colour map.
+    pub signed: bool,
+    /// Write the GIF.
+    pub gif: bool,
+    /// Write the VTK files.
+    pub vtk: bool,
+}
+
+impl Solid2dScenario {
+    /// Before a run: check the snapshots' memory against the budget (the key named is the
+    /// one that sets their number) and have `plan` keep the fields at their steps.
+    pub(crate) fn prepare_snapshots<L>(&self, plan: &mut Plan<L>) -> Result<()> {
+        let Some(s) = &self.snapshots else {
+            return Ok(());
+        };
+        let steps: Vec<usize> = s.times.iter().map(|&t| plan.step_at(t)).collect();
+        let frames = steps.len() as f64;
+        let len = plan.components * plan.mesh.n_nodes;
+        let width = self.problem.width;
+        let depth = self.problem.depth();
+        let nx = s.pixels as f64;
+        let nz = (nx * depth / width).round().max(1.0);
+        // the kept fields, their pixels, and the pictures (RGB and RGBA for the GIF)
+        let pictures = (nx + FRAME_EXTRA.0) * (nz.max(120.0) + FRAME_EXTRA.1) * 7.0;
+        let bytes = Capture::bytes(steps.len(), len) + frames * (nx * nz * 16.0 + pictures);
+        crate::budget::check(
+            &self.file,
+            s.key,
+            format!("{} frames", steps.len()),
+            bytes,
+            &format!(
+                "{} snapshots of {len} values and {} x {} pixels",
+                steps.len(),
+                nx,
+                nz
+            ),
+        )?;
+        plan.capture_at(steps);
+        Ok(())
+    }
+
+    /// After a run: the kept fields on the pixel grid.
+    pub(crate) fn snapshots_of<L>(&self, plan: &Plan<L>, capture: &Capture) -> Option<Snapshots2d> {
+        let s: &Snapshots = self.snapshots.as_ref()?;
+        let raster = snapshot::raster(&plan.mesh, plan.components, capture, s.field, s.pixels);
+        let largest = raster.values.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let scale = s.scale.unwrap_or(if largest > 0.0 { largest } else { 1.0 });
+        Some(Snapshots2d {
+            times: capture.times.clone(),
+            field: s.field_name.clone(),
+            raster,
+            scale,
+            signed: s.field != Field::Magnitude,
+            gif: s.gif,
+            vtk: s.vtk,
+        })
+    }
+}
+
+#[cfg(feature = "plot")]
+pub(crate) use files::{binary_files, text_files};
+
+#[cfg(feature = "plot")]
+mod files {
+    use super::*;
+    use crate::model::solid_2d::Solid2dResult;
+    use crate::render::picture::{self, Heatmap};
+    use crate::render::svg::{figure, Panel, Series};
+    use crate::render::{vtk, BinaryFile, OutputFile};
+    use crate::solver::solid_2d::SourceKind;
+
+    /// Frame delay of the GIF, ms.
+    const GIF_DELAY_MS: u32 = 150;
+
+    fn frame_name(k: usize, ext: &str) -> String {
+        format!("snapshots/frame_{k:04}.{ext}")
+    }
+
+    /// The label of the drawn value with its unit.
+    fn field_label(s: &Snapshots2d) -> String {
+        match s.field.as_str() {
+            "magnitude" => "|v| (m/s)".into(),
+            f => format!("{f} (m/s)"),
+        }
+    }
+
+    /// The picture of frame `k`: the field in mm, the cracks, receivers and transducers.
+    fn frame(r: &Solid2dResult, s: &Snapshots2d, k: usize) -> image::RgbImage {
+        let mm = 1e3;
+        let (nx, nz) = (s.raster.x.len(), s.raster.z.len());
+        let (width, depth) = (r.geometry.width, r.geometry.depth);
+        let h = Heatmap {
+            nx,
+            nz,
+            values: s.raster.frame(k),
+            x_range: (0.0, width * mm),
+            y_range: (0.0, depth * mm),
+            scale: if s.signed {
+                (-s.scale, s.scale)
+            } else {
+                (0.0, s.scale)
+            },
+            diverging: s.signed,
+            title: format!("t = {:.2} \u{b5}s", s.times[k] * 1e6),
+            xlabel: "x (mm)".into(),
+            ylabel: "z (mm)".into(),
+            bar_label: field_label(s),
+            lines: r
+                .geometry
+                .cracks
+                .iter()
+                .map(|c| [(c[0] * mm, c[1] * mm), (c[2] * mm, c[3] * mm)])
+                .collect(),
+            marks: r
+                .geometry
+                .receivers
+                .iter()
+                .map(|p| (p[0] * mm, p[1] * mm))
+                .collect(),
+            sources: r
+                .geometry
+                .sources
+                .iter()
+                .map(|c| [(c[0] * mm, c[1] * mm), (c[2] * mm, c[3] * mm)])
+                .collect(),
+        };
+        picture::heatmap(&h)
+    }
+
+    /// The crack's normal gap along it (mm) against time (us, downwards), nm.
+    fn crack_map(r: &Solid2dResult, i: usize) -> image::RgbImage {
+        let c = &r.output.cracks[i];
+        let (n, m) = (c.position.len(), c.time.len());
+        let (nx, nz) = (600usize, 400usize);
+        let mut values = vec![0.0; nx * nz];
+        let (p0, p1) = (
+            c.position.first().copied().unwrap_or(0.0),
+            c.position.last().copied().unwrap_or(1.0),
+        );
+        let t1 = c.time.last().copied().unwrap_or(1.0);
+        // nearest record and point of each pixel: the map shows the data as recorded
+        for iz in 0..nz {
+            let t = (iz as f64 + 0.5) / nz as f64 * t1;
+            let k = c.time.partition_point(|&v| v < t).min(m.saturating_sub(1));
+            for ix in 0..nx {
+                let p = p0 + (ix as f64 + 0.5) / nx as f64 * (p1 - p0);
+                let j = c
+                    .position
+                    .partition_point(|&v| v < p)
+                    .min(n.saturating_sub(1));
+                let j = if j > 0 && (p - c.position[j - 1]) < (c.position[j] - p) {
+                    j - 1
+                } else {
+                    j
+                };
+                values[iz * nx + ix] = c.normal_gap.get(k * n + j).copied().unwrap_or(0.0) * 1e9;
+            }
+        }
+        let top = values.iter().fold(0.0f64, |a, &b| a.max(b));
+        picture::heatmap(&Heatmap {
+            nx,
+            nz,
+            values: &values,
+            x_range: (p0 * 1e3, p1 * 1e3),
+            y_range: (0.0, t1 * 1e6),
+            scale: (0.0, if top > 0.0 { top } else { 1.0 }),
+            diverging: false,
+            title: format!("crack {i}: normal gap"),
+            xlabel: "position along the crack (mm)".into(),
+            ylabel: "t (\u{b5}s)".into(),
+            bar_label: "gap (nm)".into(),
+            ..Default::default()
+        })
+    }
+
+    /// The PNG frames, the GIF and the crack maps.
+    pub(crate) fn binary_files(r: &Solid2dResult) -> Result<Vec<BinaryFile>> {
+        let mut out = Vec::new();
+        if let Some(s) = &r.snapshots {
+            let frames: Vec<image::RgbImage> = (0..s.times.len()).map(|k| frame(r, s, k)).collect();
+            for (k, f) in frames.iter().enumerate() {
+                let name = frame_name(k, "png");
+                out.push(BinaryFile {
+                    bytes: picture::png(&name, f)?,
+                    name,
+                });
+            }
+            if s.gif && !frames.is_empty() {
+                let name = "snapshots/snapshots.gif".to_string();
+                out.push(BinaryFile {
+                    bytes: picture::gif(&name, &frames, GIF_DELAY_MS)?,
+                    name,
+                });
+            }
+        }
+        for i in 0..r.output.cracks.len() {
+            let name = if i == 0 {
+                "crack_map.png".to_string()
+            } else {
+                format!("crack_map_{i}.png")
+            };
+            if r.output.cracks[i].time.is_empty() {
+                continue;
+            }
+            out.push(BinaryFile {
+                bytes: picture::png(&name, &crack_map(r, i))?,
+                name,
+            });
+        }
+        Ok(out)
+    }
+
+    /// `receivers.svg`, `spectra.svg`, and the VTK files of the snapshots.
+    pub(crate) fn text_files(r: &Solid2dResult, f0: f64) -> Result<Vec<OutputFile>> {
+        let o = &r.output;
+        let mut out = Vec::new();
+        let us: Vec<f64> = o.time.iter().map(|t| t * 1e6).collect();
+        if !r.receivers.is_empty() && !o.time.is_empty() {
+            let panels: Vec<Panel> = r
+                .receivers
+                .iter()
+                .enumerate()
+                .map(|(i, name)| Panel {
+                    title: format!("receiver {name}"),
+                    xlabel: "t (\u{b5}s)".into(),
+                    ylabel: "velocity (m/s)".into(),
+                    series: r
+                        .component_names
+                        .iter()
+                        .enumerate()
+                        .map(|(c, comp)| Series::new(format!("v{comp}"), &us, o.trace(i, c)))
+                        .collect(),
+                    markers: Vec::new(),
+                })
+                .collect();
+            out.push(OutputFile::new(
+                "receivers.svg",
+                figure("receivers.svg", 900, &panels)?,
+            ));
+            // spectra in dB re. the largest magnitude of all, markers at n f0
+            let f_max = 6.0 * f0;
+            let spectra: Vec<Vec<(Vec<f64>, Vec<f64>)>> = (0..r.receivers.len())
+                .map(|i| {
+                    (0..o.components)
+                        .map(|c| {
+                            let s = crate::analysis::with_analyzer(|a| {
+                                a.spectrum(o.trace(i, c), o.dt, f_max)
+                            });
+                            (s.frequency, s.magnitude)
+                        })
+                        .collect()
+                })
+                .collect();
+            let top = spectra
+                .iter()
+                .flatten()
+                .flat_map(|s| s.1.iter())
+                .fold(0.0f64, |a, &b| a.max(b.abs()))
+                .max(f64::MIN_POSITIVE);
+            let panels: Vec<Panel> = r
+                .receivers
+                .iter()
+                .zip(&spectra)
+                .map(|(name, sp)| Panel {
+                    title: format!("receiver {name} (dashed: harmonics n f0)"),
+                    xlabel: "frequency (MHz)".into(),
+                    ylabel: "magnitude (dB re. the largest)".into(),
+                    series: sp
+                        .iter()
+                        .zip(&r.component_names)
+                        .map(|((f, m), comp)| {
+                            let mhz: Vec<f64> = f.iter().map(|v| v * 1e-6).collect();
+                            let db: Vec<f64> = m
+                                .iter()
+                                .map(|v| (20.0 * (v.abs() / top).log10()).max(-160.0))
+                                .collect();
+                            Series::new(format!("v{comp}"), &mhz, &db)
+                        })
+                        .collect(),
+                    markers: (1..=5).map(|n| n as f64 * f0 * 1e-6).collect(),
+                })
+                .collect();
+            out.push(OutputFile::new(
+                "spectra.svg",
+                figure("spectra.svg", 900, &panels)?,
+            ));
+        }
+        if let Some(s) = r.snapshots.as_ref().filter(|s| s.vtk) {
+            let (x, z) = (&s.raster.x, &s.raster.z);
+            let (nx, nz) = (x.len(), z.len());
+            let dx = if nx > 1 { x[1] - x[0] } else { 2.0 * x[0] };
+            let dz = if nz > 1 { z[1] - z[0] } else { 2.0 * z[0] };
+            let depth = r.geometry.depth;
+            let mut entries = Vec::new();
+            for (k, &t) in s.times.iter().enumerate() {
+                // VTK's y is the height above the bottom face (y = depth - z): its rows
+                // go from the bottom up
+                let f = s.raster.frame(k);
+                let mut values = Vec::with_capacity(nx * nz);
+                for iz in (0..nz).rev() {
+                    values.extend_from_slice(&f[iz * nx..(iz + 1) * nx]);
+                }
+                let name = frame_name(k, "vti");
+                let text = vtk::image_data(
+                    &name,
+                    &s.field,
+                    nx,
+                    nz,
+                    [x[0], depth - z[nz - 1]],
+                    [dx, dz],
+                    values,
+                )?;
+                entries.push((t, name.trim_start_matches("snapshots/").to_string()));
+                out.push(OutputFile::new(&name, text));
+            }
+            out.push(OutputFile::new(
+                "snapshots/snapshots.pvd",
+                vtk::collection(&entries),
+            ));
+        }
+        Ok(out)
+    }
+
+    /// Transducer apertures as segments `[x0, z, x1, z]`, m.
+    pub(crate) fn apertures(
+        sources: &[crate::solver::solid_2d::Source],
+        depth: f64,
+    ) -> Vec<[f64; 4]> {
+        sources
+            .iter()
+            .filter_map(|s| match s.kind {
+                SourceKind::Traction { top, x0, x1, .. } => {
+                    let z = if top { 0.0 } else { depth };
+                    Some([x0, z, x1, z])
+                }
+                SourceKind::Force { .. } => None,
+            })
+            .collect()
+    }
+}
+
+/// What the pictures draw besides the field: the model's size, the cracks, receivers and
+/// transducer apertures, m.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Geometry {
+    /// Width, m.
+    pub width: f64,
+    /// Depth, m.
+    pub depth: f64,
+    /// Cracks `[x0, z0, x1, z1]`.
+    pub cracks: Vec<[f64; 4]>,
+    /// Receivers `[x, z]`.
+    pub receivers: Vec<[f64; 2]>,
+    /// Transducer apertures `[x0, z, x1, z]`.
+    pub sources: Vec<[f64; 4]>,
+}
+
+impl Geometry {
+    /// The geometry of a scenario.
+    pub fn of(s: &Solid2dScenario) -> Geometry {
+        let p = &s.problem;
+        let depth = p.depth();
+        Geometry {
+            width: p.width,
+            depth,
+            cracks: p
+                .cracks
+                .iter()
+                .map(|c| {
+                    if c.full_width {
+                        [0.0, c.start[1], p.width, c.start[1]]
+                    } else {
+                        [c.start[0], c.start[1], c.end[0], c.end[1]]
+                    }
+                })
+                .collect(),
+            receivers: p.receivers.clone(),
+            #[cfg(feature = "plot")]
+            sources: files::apertures(&p.sources, depth),
+            #[cfg(not(feature = "plot"))]
+            sources: Vec::new(),
+        }
+    }
+}
