@@ -411,3 +411,173 @@ impl Geometry {
         }
     }
 }
+
+#[cfg(all(test, feature = "plot"))]
+mod tests {
+    use crate::model::{self, RunControl, Value};
+    use image::AnimationDecoder;
+
+    /// A 2 x 1 mm plate with a clapping 0.6 mm crack under a 10 MHz burst (as
+    /// tests/solid_2d.rs), with `extra` appended.
+    fn small(extra: &str) -> String {
+        format!(
+            r#"
+[model]
+kind = "solid_2d"
+width = 2e-3
+duration = 0.6e-6
+element_size = 0.1e-3
+
+[[layer]]
+thickness = 1e-3
+material = "aluminium"
+
+[[crack]]
+start = [0.7e-3, 0.5e-3]
+end = [1.3e-3, 0.5e-3]
+static_pressure = 0.2e6
+tangential = {{ law = "coulomb", friction = 0.3 }}
+
+[[source]]
+x0 = 0.6e-3
+x1 = 1.4e-3
+signal = {{ frequency = 10e6, cycles = 2, amplitude = 10e6, window = "hann" }}
+
+[[receiver]]
+name = "top"
+at = [1e-3, 0.0]
+
+[[receiver]]
+name = "under"
+at = [1e-3, 1e-3]
+{extra}
+"#
+        )
+    }
+
+    fn run(text: &str) -> Box<dyn model::Outcome> {
+        let t = model::from_toml_str(text, "small.toml").unwrap();
+        t.base().unwrap().run(&RunControl::default()).unwrap()
+    }
+
+    /// A run with snapshots writes its PNG frames (decoding at the expected size), a GIF of
+    /// as many frames, VTK frames that parse back to the raster's values, the plots and the
+    /// crack map; keeping the snapshots changes no other output.
+    #[test]
+    fn snapshots_write_their_pictures_and_change_nothing_else() {
+        let with = run(&small(
+            "[snapshots]\ntimes = [0.2e-6, 0.4e-6, 0.6e-6]\nfield = \"vz\"\npixels = 100\n",
+        ));
+        let without = run(&small(""));
+        // the same receivers, crack fields and summary, bit for bit
+        for key in ["receivers", "cracks", "t", "summary"] {
+            assert_eq!(with.record().get(key), without.record().get(key), "{key}");
+        }
+        let (fw, fo) = (with.files().unwrap(), without.files().unwrap());
+        for f in &fo {
+            let g = fw.iter().find(|g| g.name == f.name).unwrap();
+            assert_eq!(g.contents, f.contents, "{}", f.name);
+        }
+        let r = with
+            .as_any()
+            .downcast_ref::<crate::model::solid_2d::Solid2dResult>()
+            .unwrap();
+        let s = r.snapshots.as_ref().unwrap();
+        let dt = r.output.dt;
+        for (t, want) in s.times.iter().zip([0.2e-6, 0.4e-6, 0.6e-6]) {
+            assert!((t - want).abs() <= 0.5 * dt + 1e-15, "{t} {want}");
+        }
+        // 100 px across 2 mm: 50 rows; the field is a component, the scale symmetric
+        assert_eq!(
+            (s.raster.x.len(), s.raster.z.len(), s.raster.frames()),
+            (100, 50, 3)
+        );
+        let largest = s.raster.values.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        assert!(s.signed && s.scale == largest && largest > 0.0);
+        let bin = with.binary_files().unwrap();
+        let names: Vec<&str> = bin.iter().map(|f| f.name.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "snapshots/frame_0000.png",
+                "snapshots/frame_0001.png",
+                "snapshots/frame_0002.png",
+                "snapshots/snapshots.gif",
+                "crack_map.png"
+            ]
+        );
+        // the field's 100 x 50 px, margins of 176 x 88 px around it (colour bar at least
+        // 120 px high)
+        let png = image::load_from_memory(&bin[1].bytes).unwrap();
+        assert_eq!((png.width(), png.height()), (100 + 176, 120 + 88));
+        let gif = image::codecs::gif::GifDecoder::new(std::io::Cursor::new(&bin[3].bytes))
+            .unwrap()
+            .into_frames()
+            .collect_frames()
+            .unwrap();
+        assert_eq!(gif.len(), 3);
+        assert_eq!(gif[0].buffer().dimensions(), (276, 208));
+        // the VTK frame parses back with the raster's values (rows from the bottom up)
+        let vti = fw
+            .iter()
+            .find(|f| f.name == "snapshots/frame_0001.vti")
+            .unwrap();
+        let back = vtkio::Vtk::parse_xml(vti.contents.as_bytes()).unwrap();
+        let vtkio::model::DataSet::ImageData { pieces, .. } = back.data else {
+            panic!("not image data")
+        };
+        let vtkio::model::Piece::Inline(p) = &pieces[0] else {
+            panic!("not inline")
+        };
+        let vtkio::model::Attribute::DataArray(a) = &p.data.point[0] else {
+            panic!("no array")
+        };
+        let vtkio::model::IOBuffer::F64(v) = &a.data else {
+            panic!("not f64")
+        };
+        let f = s.raster.frame(1);
+        assert_eq!(v.len(), 100 * 50);
+        assert_eq!(v[..100], f[49 * 100..50 * 100]);
+        assert_eq!(v[49 * 100..], f[..100]);
+        let pvd = fw
+            .iter()
+            .find(|f| f.name == "snapshots/snapshots.pvd")
+            .unwrap();
+        assert_eq!(pvd.contents.matches("<DataSet ").count(), 3);
+        for name in ["receivers.svg", "spectra.svg"] {
+            assert!(fw
+                .iter()
+                .any(|f| f.name == name && f.contents.contains("<svg")));
+        }
+        // Python's arrays: the frames flattened with their coordinates
+        let rec = with.record();
+        let Some(Value::Array(frames)) = rec.get("snapshots") else {
+            panic!("snapshots")
+        };
+        assert_eq!(frames.len(), 3 * 50 * 100);
+        let Some(Value::Array(z)) = rec.get("snapshot_z") else {
+            panic!("snapshot_z")
+        };
+        assert!((z[0] - 1e-5).abs() < 1e-18);
+    }
+
+    /// Bad `[snapshots]` keys are one-line errors naming the key and the allowed values.
+    #[test]
+    fn bad_snapshot_keys_are_refused() {
+        for (extra, key) in [
+            ("field = \"vy\"", "snapshots.field"),
+            ("pixels = 5", "snapshots.pixels"),
+            ("times = [1.0]", "snapshots.times"),
+            ("every = -1e-7", "snapshots.every"),
+            ("scale = 0.0", "snapshots.scale"),
+            ("colour = 1", "colour"),
+        ] {
+            let text = small(&format!("[snapshots]\n{extra}\n"));
+            let e = model::from_toml_str(&text, "small.toml")
+                .and_then(|t| t.base().map(|_| ()))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(key), "{extra}: {e}");
+        }
+    }
+}
