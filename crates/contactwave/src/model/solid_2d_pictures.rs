@@ -52,7 +52,12 @@ impl Solid2dScenario {
         // the kept fields, their pixels, and the pictures (RGB and RGBA for the GIF)
         let pictures = (nx + FRAME_EXTRA.0) * (nz.max(120.0) + FRAME_EXTRA.1) * 7.0;
         let bytes = Capture::bytes(steps.len(), len) + frames * (nx * nz * 16.0 + pictures);
-        crate::budget::check(
+        let change = if s.key == "snapshots.every" {
+            "raise `snapshots.every` or lower `snapshots.pixels`"
+        } else {
+            "give fewer `snapshots.times` or lower `snapshots.pixels`"
+        };
+        crate::budget::check_or(
             &self.file,
             s.key,
             format!("{} frames", steps.len()),
@@ -63,6 +68,7 @@ impl Solid2dScenario {
                 nx,
                 nz
             ),
+            change,
         )?;
         plan.capture_at(steps);
         Ok(())
@@ -559,6 +565,21 @@ at = [1e-3, 1e-3]
             panic!("snapshot_z")
         };
         assert!((z[0] - 1e-5).abs() < 1e-18);
+    }
+
+    /// Snapshots beyond the memory budget are refused before the run, naming the key.
+    #[test]
+    fn too_many_snapshots_are_refused_before_the_run() {
+        // 2000 frames of 4096 x 2048 px: hundreds of GB
+        let text = small("[snapshots]\nevery = 0.0003e-6\npixels = 4096\n");
+        let t = model::from_toml_str(&text, "small.toml").unwrap();
+        let e = t
+            .base()
+            .unwrap()
+            .run(&RunControl::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("snapshots.every") && e.contains("raise"), "{e}");
     }
 
     /// Bad `[snapshots]` keys are one-line errors naming the key and the allowed values.
