@@ -402,7 +402,10 @@ class Solid2dResult:
     ``tangential_gap`` (m), ``normal_stress``, ``shear_stress`` (Pa, tension positive,
     ``-p0`` at rest), ``adhesion`` and ``state`` (0 open, 1 stick, 2 slip) of shape
     ``(n_nodes, n_records)``. ``dt`` (s);
-    ``summary``: the keys of ``summary.json``.
+    ``summary``: the keys of ``summary.json``. ``snapshots``: with a ``[snapshots]`` table,
+    the wavefield frames on their pixel grid, shape ``(n_snapshots, n_z, n_x)`` (m/s, the
+    top row first; ``(0, 0, 0)`` without), at ``snapshot_times`` (s), pixel centres
+    ``snapshot_x``, ``snapshot_z`` (m); ``snapshot_field`` names the value drawn.
     """
 
     t: np.ndarray
@@ -415,6 +418,11 @@ class Solid2dResult:
     cracks: List[Dict[str, np.ndarray]]
     dt: float
     summary: Dict[str, Any]
+    snapshots: np.ndarray
+    snapshot_times: np.ndarray
+    snapshot_x: np.ndarray
+    snapshot_z: np.ndarray
+    snapshot_field: str
 
     def __init__(self, raw: Dict[str, Any]) -> None:
         self.t = raw["t"]
@@ -431,6 +439,14 @@ class Solid2dResult:
         self.cracks = [dict(c) for c in raw["cracks"]]
         self.dt = raw["dt"]
         self.summary = raw["summary"]
+        self.snapshot_times = np.asarray(raw["snapshot_times"], dtype=np.float64)
+        self.snapshot_x = np.asarray(raw["snapshot_x"], dtype=np.float64)
+        self.snapshot_z = np.asarray(raw["snapshot_z"], dtype=np.float64)
+        self.snapshot_field = raw["snapshot_field"]
+        frames = np.asarray(raw["snapshots"], dtype=np.float64)
+        self.snapshots = frames.reshape(
+            len(self.snapshot_times), len(self.snapshot_z), len(self.snapshot_x)
+        )
 
     def velocity(self, name: str, component: str) -> np.ndarray:
         """The velocity (m/s) of receiver ``name`` along ``component`` (``x``, ``z`` or

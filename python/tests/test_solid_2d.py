@@ -47,3 +47,20 @@ def test_a_clapping_crack_in_2d_gives_numpy_arrays():
     # the contact state: open (0) exactly where the gap is
     assert c["state"].shape == gap.shape
     assert np.array_equal(c["state"] == 0.0, gap > 0.0)
+
+
+def test_snapshots_come_as_an_image_stack_with_coordinates():
+    d = {**SMALL, "snapshots": {"times": [0.3e-6, 0.6e-6], "pixels": 40, "field": "vz"}}
+    r = cw.run(d)
+    # 40 px across 2 mm: 20 rows of 50 um; the pixel centres
+    assert r.snapshots.shape == (2, 20, 40) and r.snapshots.dtype == np.float64
+    assert np.allclose(r.snapshot_x, (np.arange(40) + 0.5) * 50e-6)
+    assert np.allclose(r.snapshot_z, (np.arange(20) + 0.5) * 50e-6)
+    assert r.snapshot_field == "vz"
+    assert np.all(np.abs(r.snapshot_times - [0.3e-6, 0.6e-6]) <= r.dt / 2 + 1e-18)
+    # the burst has reached the plate by then: the field moves, and snapshots change no
+    # other output
+    assert np.abs(r.snapshots).max() > 0.0
+    plain = cw.run(SMALL)
+    assert np.array_equal(plain.receivers, r.receivers)
+    assert plain.snapshots.shape == (0, 0, 0)

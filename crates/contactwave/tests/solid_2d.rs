@@ -52,7 +52,12 @@ fn a_scenario_runs_closes_its_energy_and_writes_its_files() {
     }
     let files = outcome.files().unwrap();
     let names: Vec<&str> = files.iter().map(|f| f.name.as_str()).collect();
-    assert_eq!(names, ["summary.json", "receivers.csv", "crack.csv"]);
+    assert_eq!(names[..3], ["summary.json", "receivers.csv", "crack.csv"]);
+    // the plots (the `plot` feature); no snapshots without `[snapshots]`
+    #[cfg(feature = "plot")]
+    assert_eq!(names[3..], ["receivers.svg", "spectra.svg"]);
+    #[cfg(not(feature = "plot"))]
+    assert_eq!(names.len(), 3);
     assert!(files[1]
         .contents
         .starts_with("t,top_vx,top_vz,under_vx,under_vz\n"));

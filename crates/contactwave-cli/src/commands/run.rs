@@ -77,13 +77,18 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let outcome = outcome?;
     let wall = t0.elapsed();
     let files = recording::files(&*outcome, &recording)?;
+    // every file is rendered before the first is written: an error writes nothing
+    let binary = outcome.binary_files()?;
     output::write_files(out, &files)?;
-    super::claim_files(out, "run", &files)?;
+    output::write_binary_files(out, &binary)?;
+    let mut names: Vec<String> = files.iter().map(|f| f.name.clone()).collect();
+    names.extend(binary.iter().map(|f| f.name.clone()));
+    super::claim_out(out, "run", &names)?;
     println!("scenario               {}", path.display());
     for line in outcome.report() {
         println!("{line}");
     }
     println!("wall time              {:.1} ms", wall.as_secs_f64() * 1e3);
-    println!("wrote {} files to {}", files.len(), out.display());
+    println!("wrote {} files to {}", names.len(), out.display());
     Ok(EXIT_OK)
 }

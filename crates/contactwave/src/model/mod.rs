@@ -58,6 +58,7 @@ pub mod half_space;
 mod param;
 mod record;
 pub mod solid_2d;
+pub mod solid_2d_pictures;
 mod template;
 
 pub use fields::{Fields, Slot};
@@ -363,6 +364,11 @@ pub trait Outcome: Debug + Send + Sync {
             .into_iter()
             .filter_map(|f| crate::render::pick_rows(f, rows))
             .collect())
+    }
+    /// The run's binary files (images: PNG frames, GIF), rendered in memory; none by
+    /// default. Written beside [`Outcome::files`] (names may hold a subfolder).
+    fn binary_files(&self) -> Result<Vec<crate::render::BinaryFile>> {
+        Ok(Vec::new())
     }
     /// The run as plain named values and arrays (what Python receives as numpy arrays).
     ///

@@ -4,10 +4,12 @@
 //! a second run of the negated sources, linear reference with a second run of the cracks
 //! linearised at their static state, plateau fit over the gate; A1...A5 of each
 //! receiver's velocity, after the optional time gate); files `summary.json`,
-//! `receivers.csv` and `crack.csv`.
+//! `receivers.csv` and `crack.csv`, and with the `plot` feature the plots
+//! and pictures of [`super::solid_2d_pictures`].
 
 use super::half_space::methods::{linearised_law, linearised_tangential};
 use super::record::summary_record;
+use super::solid_2d_pictures::{Geometry, Snapshots2d};
 use super::template::{FromSpec, SpecTemplate};
 use super::{Fields, Kind, Model, Outcome, Record, RunControl, Slot, Template, Value};
 use crate::analysis::methods::{method_bands, Quantity, Records, Signal};
@@ -180,12 +182,25 @@ pub struct Solid2dResult {
     pub nodes: usize,
     /// Summary scalars.
     pub summary: Summary,
+    /// The wavefield snapshots (`[snapshots]`), on their pixel grid.
+    pub snapshots: Option<Snapshots2d>,
+    /// What the pictures draw besides the field.
+    pub geometry: Geometry,
+    /// Fundamental of the analysis, Hz.
+    pub f0: f64,
 }
 
 impl Solid2dScenario {
     /// Plan and run, reporting progress.
     pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
-        let (output, nodes) = self.run_problem(&self.problem, control)?;
+        let mut plan = self.problem.plan(&self.file)?;
+        plan.add_stress_receivers(&self.stress_points, &self.problem.layers, &self.file)?;
+        let nodes = plan.mesh.n_nodes;
+        self.prepare_snapshots(&mut plan)?;
+        let mut output = plan.run_with(control.progress.as_ref().map(|p| &*p.0))?;
+        let snapshots = self.snapshots_of(&plan, &output.snapshots);
+        // the nodal fields are on the pixel grid now
+        output.snapshots = Default::default();
         let mut s = Summary::new();
         s.set("nodes", nodes as f64);
         s.set("steps", output.time.len() as f64);
@@ -284,6 +299,9 @@ impl Solid2dScenario {
             nodes,
             output,
             summary: s,
+            snapshots,
+            geometry: Geometry::of(self),
+            f0: self.f0,
         })
     }
 }
@@ -447,16 +465,29 @@ impl Outcome for Solid2dResult {
         if !self.output.cracks.is_empty() {
             files.push(self.crack_csv());
         }
+        #[cfg(feature = "plot")]
+        files.extend(super::solid_2d_pictures::text_files(self, self.f0)?);
         Ok(files)
+    }
+
+    /// The PNG frames and GIF of the snapshots, and the crack maps (the `plot` feature).
+    fn binary_files(&self) -> Result<Vec<crate::render::BinaryFile>> {
+        #[cfg(feature = "plot")]
+        return super::solid_2d_pictures::binary_files(self);
+        #[cfg(not(feature = "plot"))]
+        Ok(Vec::new())
     }
 
     /// `kind`, `t` (s), `receivers` (rows: receiver-major, then component; m/s), `receiver_names`,
     /// `components`, `stresses` (rows like `receivers`, Pa), `stress_names`,
     /// `stress_components`, `cracks` (per crack: `position` (m), `time` (s), and rows `(n_nodes,
     /// n_records)` of `normal_gap`, `tangential_gap` (m), `normal_stress`, `shear_stress`
-    /// (Pa), `adhesion`, `state` (0 open, 1 stick, 2 slip)), `dt` (s), `summary`.
+    /// (Pa), `adhesion`, `state` (0 open, 1 stick, 2 slip)), `dt` (s), `summary`; `snapshots` (the frames `[frame][iz][ix]`
+    /// flattened, m/s; empty without `[snapshots]`), `snapshot_times` (s), `snapshot_x`,
+    /// `snapshot_z` (pixel centres, m), `snapshot_field`.
     fn record(&self) -> Record {
         let o = &self.output;
+        let snap = self.snapshots.as_ref();
         let mut rows = Vec::new();
         for r in 0..self.receivers.len() {
             for c in 0..o.components {
@@ -505,6 +536,26 @@ impl Outcome for Solid2dResult {
             .with("stress_components", labels(&self.stress_component_names))
             .with("cracks", Value::Tuple(cracks))
             .with("dt", Value::Number(o.dt))
+            .with(
+                "snapshots",
+                Value::Array(snap.map(|s| s.raster.values.clone()).unwrap_or_default()),
+            )
+            .with(
+                "snapshot_times",
+                Value::Array(snap.map(|s| s.times.clone()).unwrap_or_default()),
+            )
+            .with(
+                "snapshot_x",
+                Value::Array(snap.map(|s| s.raster.x.clone()).unwrap_or_default()),
+            )
+            .with(
+                "snapshot_z",
+                Value::Array(snap.map(|s| s.raster.z.clone()).unwrap_or_default()),
+            )
+            .with(
+                "snapshot_field",
+                Value::Text(snap.map(|s| s.field.clone()).unwrap_or_default()),
+            )
             .with("summary", Value::Map(summary_record(None, &self.summary)))
     }
 

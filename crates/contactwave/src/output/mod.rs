@@ -31,7 +31,7 @@ pub mod recording;
 use crate::error::{Error, Result};
 use crate::law::ContactLaw;
 use crate::model::Outcome;
-pub use crate::render::{csv_columns, summary_json, OutputFile};
+pub use crate::render::{csv_columns, summary_json, BinaryFile, OutputFile};
 use std::path::{Path, PathBuf};
 
 /// Header of `law_curve.csv`.
@@ -153,16 +153,47 @@ pub fn merged_sweep_svg(sweep: Option<&crate::study::Sweep>, csv: &Path) -> Resu
 /// Create `dir` (and its parents) and write the files into it, each through a temporary
 /// name and a rename. Returns the paths written.
 pub fn write_files(dir: &Path, files: &[OutputFile]) -> Result<Vec<PathBuf>> {
+    write_named(
+        dir,
+        files
+            .iter()
+            .map(|f| (f.name.as_str(), f.contents.as_bytes())),
+    )
+}
+
+/// [`write_files`] for binary files (names may hold a subfolder, created if needed).
+pub fn write_binary_files(dir: &Path, files: &[BinaryFile]) -> Result<Vec<PathBuf>> {
+    write_named(
+        dir,
+        files.iter().map(|f| (f.name.as_str(), f.bytes.as_slice())),
+    )
+}
+
+/// Write `(name, bytes)` pairs into `dir`, each through a temporary name beside it and a
+/// rename; a name with a subfolder (`snapshots/frame_0000.png`) creates the subfolder.
+fn write_named<'a>(
+    dir: &Path,
+    files: impl ExactSizeIterator<Item = (&'a str, &'a [u8])>,
+) -> Result<Vec<PathBuf>> {
     crate::interrupt::check()?;
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let mut written = Vec::with_capacity(files.len());
-    for f in files {
+    for (name, bytes) in files {
         // an interruption stops between files: those written are complete
         crate::interrupt::check()?;
         let _writing = crate::interrupt::Writing::start();
-        let path = dir.join(&f.name);
-        let tmp = dir.join(format!(".{}.tmp{}", f.name, std::process::id()));
-        std::fs::write(&tmp, &f.contents).map_err(|e| Error::write_in(dir, e))?;
+        let path = dir.join(name);
+        let folder = path.parent().unwrap_or(dir).to_path_buf();
+        if folder != dir {
+            std::fs::create_dir_all(&folder).map_err(|e| Error::io(&folder, e))?;
+        }
+        let base = path.file_name().map(|n| n.to_string_lossy().into_owned());
+        let tmp = folder.join(format!(
+            ".{}.tmp{}",
+            base.unwrap_or_default(),
+            std::process::id()
+        ));
+        std::fs::write(&tmp, bytes).map_err(|e| Error::write_in(dir, e))?;
         std::fs::rename(&tmp, &path).map_err(|e| {
             let _ = std::fs::remove_file(&tmp);
             Error::io(&path, e)
@@ -175,7 +206,10 @@ pub fn write_files(dir: &Path, files: &[OutputFile]) -> Result<Vec<PathBuf>> {
 /// Render and write every file of a run's outcome into `dir` (created if needed).
 pub fn write_outcome(outcome: &dyn Outcome, dir: &Path) -> Result<Vec<PathBuf>> {
     let files = outcome.files()?;
-    write_files(dir, &files)
+    let binary = outcome.binary_files()?;
+    let mut written = write_files(dir, &files)?;
+    written.extend(write_binary_files(dir, &binary)?);
+    Ok(written)
 }
 
 /// Render and write the files of a law ([`law_files`]) into `dir` (created if needed).

@@ -4,7 +4,11 @@
 //! writes them.
 
 #[cfg(feature = "plot")]
+pub mod picture;
+#[cfg(feature = "plot")]
 pub mod svg;
+#[cfg(feature = "plot")]
+pub mod vtk;
 
 use crate::analysis::Summary;
 use serde::ser::{Serialize, SerializeMap, Serializer};
@@ -26,6 +30,16 @@ impl OutputFile {
             contents,
         }
     }
+}
+
+/// A rendered binary file (a PNG image, a GIF animation): its name in the output folder
+/// (a subfolder allowed: `snapshots/frame_0000.png`) and its bytes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BinaryFile {
+    /// File name, relative to the output folder.
+    pub name: String,
+    /// Contents.
+    pub bytes: Vec<u8>,
 }
 
 /// CSV text from a header and equally long columns (the shortest column sets the length).

@@ -7,6 +7,7 @@ pub mod budget;
 mod cache;
 mod oblique;
 mod plausible;
+pub mod snapshots;
 pub mod solid_2d;
 pub mod spec;
 pub mod units;

@@ -47,6 +47,9 @@ pub struct Solid2dSpec {
     /// Velocity receivers.
     #[serde(rename = "receiver", default)]
     pub receivers: Vec<ReceiverSpec>,
+    /// Wavefield pictures (`[snapshots]`; none without the table).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub snapshots: Option<crate::scenario::snapshots::SnapshotsSpec>,
     /// How the receivers' harmonics are extracted.
     #[serde(default)]
     pub analysis: AnalysisSpec,
@@ -304,6 +307,8 @@ pub struct Solid2dScenario {
     pub stress_points: Vec<[f64; 2]>,
     /// The time gate of the receivers' analysis (`[analysis] gate`).
     pub gate: Option<Gate>,
+    /// The checked `[snapshots]`, if any.
+    pub snapshots: Option<crate::scenario::snapshots::Snapshots>,
 }
 
 fn inv(file: &str, field: impl Into<String>, v: impl std::fmt::Display, allowed: &str) -> Error {
@@ -807,6 +812,10 @@ impl Solid2dScenario {
         };
         problem.validate(file)?;
         let gate = analysis_gate(&spec.analysis, file, m.duration)?;
+        let snapshots = match &spec.snapshots {
+            Some(s) => Some(s.check(file, m.duration, wave)?),
+            None => None,
+        };
         Ok(Solid2dScenario {
             spec,
             file: file.to_string(),
@@ -815,6 +824,7 @@ impl Solid2dScenario {
             receivers,
             stress_points,
             gate,
+            snapshots,
         })
     }
 }

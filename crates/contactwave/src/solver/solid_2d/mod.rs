@@ -29,6 +29,7 @@ pub mod kernel;
 pub mod mesh;
 pub mod plane_wave;
 pub mod probe;
+pub mod snapshot;
 mod stepping;
 
 #[cfg(test)]
@@ -259,6 +260,8 @@ pub struct Plan<L> {
     crack_every: usize,
     /// The plane-wave sources.
     pub plane_waves: Vec<plane_wave::Injection>,
+    /// Steps after which the whole velocity field is kept ([`Plan::capture_at`]).
+    snapshot_steps: Vec<usize>,
 }
 
 /// One crack's recorded fields, `[record][point]` flattened point-fastest.
@@ -327,6 +330,8 @@ pub struct Solid2dOutput {
     pub cracks: Vec<CrackRecord>,
     /// Energy audit.
     pub energy: Energy2d,
+    /// The velocity fields kept at the plan's snapshot steps ([`Plan::capture_at`]).
+    pub snapshots: snapshot::Capture,
 }
 
 impl Solid2dOutput {
@@ -909,6 +914,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             stress_probes: Vec::new(),
             crack_every: self.crack_every.max(1),
             plane_waves,
+            snapshot_steps: Vec::new(),
         })
     }
 }

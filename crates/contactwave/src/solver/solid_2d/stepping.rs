@@ -4,6 +4,7 @@
 //! split-node update and the energy audit; a recorder keeps the receivers' velocities and
 //! the cracks' fields.
 
+use super::snapshot::Capture;
 use super::{CrackRecord, Energy2d, Load, Plan, Solid2dOutput, CHUNK};
 use crate::error::{Error, Result};
 use crate::law::{NormalPart, TangentialPart};
@@ -98,6 +99,7 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
             stresses: recorder.stresses,
             stress_components: recorder.stress_components,
             cracks: recorder.cracks,
+            snapshots: recorder.snapshots,
             energy: Energy2d {
                 input,
                 solid,
@@ -204,6 +206,8 @@ struct Records {
     started: bool,
     n_t: usize,
     crack_every: usize,
+    /// The whole velocity field at the plan's snapshot steps.
+    snapshots: Capture,
 }
 
 impl Records {
@@ -238,6 +242,10 @@ impl Records {
             started: false,
             n_t,
             crack_every: plan.crack_every,
+            snapshots: Capture::new(
+                plan.snapshot_steps.clone(),
+                plan.components * plan.mesh.n_nodes,
+            ),
         }
     }
 }
@@ -272,6 +280,7 @@ impl<L: NormalPart + TangentialPart> Recorder<Run2d<'_, L>> for Records {
                 *last = new;
             }
         }
+        self.snapshots.take(n, n as f64 * p.dt + 0.5 * p.dt, &s.v);
         if n % self.crack_every == 0 || n + 1 == self.n_t {
             for (cr, out) in p.cracks.iter().zip(&mut self.cracks) {
                 out.time.push(t);

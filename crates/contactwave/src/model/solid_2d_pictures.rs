@@ -1,0 +1,604 @@
+//! Pictures of a 2D run (docs/scenario.md section 2b `[snapshots]`): the wavefield kept at
+//! chosen times and resampled on a pixel grid; with the `plot` feature, the files
+//! `snapshots/frame_NNNN.png` (the field, the cracks drawn, a colour bar in m/s, the time in
+//! us, axes in mm, receivers and transducers marked), `snapshots/snapshots.gif`,
+//! `snapshots/frame_NNNN.vti` with `snapshots/snapshots.pvd` (ParaView), and for every run
+//! `receivers.svg`, `spectra.svg` and `crack_map.png` (each crack's normal gap along it
+//! against time).
+
+use crate::error::Result;
+use crate::scenario::snapshots::Snapshots;
+use crate::scenario::solid_2d::Solid2dScenario;
+use crate::solver::solid_2d::snapshot::{self, Capture, Field, Raster};
+use crate::solver::solid_2d::Plan;
+
+/// Margins and colour bar around a frame's field, px (an upper bound, for the budget).
+const FRAME_EXTRA: (f64, f64) = (180.0, 120.0);
+
+/// The snapshots of a run: the frames on their pixel grid and how they are drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Snapshots2d {
+    /// Times of the frames, s (the half levels nearest the times asked for).
+    pub times: Vec<f64>,
+    /// The value drawn: `magnitude`, `vx`, `vz` or `vy`.
+    pub field: String,
+    /// The frames, `[frame][iz][ix]`, m/s, with their pixel-centre coordinates (m).
+    pub raster: Raster,
+    /// The colour scale, m/s: `[0, scale]` for the magnitude, `[-scale, scale]` for a
+    /// component (the same for every frame).
+    pub scale: f64,
+    /// The value is signed (a component): a diverging colour map.
+    pub signed: bool,
+    /// Write the GIF.
+    pub gif: bool,
+    /// Write the VTK files.
+    pub vtk: bool,
+}
+
+impl Solid2dScenario {
+    /// Before a run: check the snapshots' memory against the budget (the key named is the
+    /// one that sets their number) and have `plan` keep the fields at their steps.
+    pub(crate) fn prepare_snapshots<L>(&self, plan: &mut Plan<L>) -> Result<()> {
+        let Some(s) = &self.snapshots else {
+            return Ok(());
+        };
+        let steps: Vec<usize> = s.times.iter().map(|&t| plan.step_at(t)).collect();
+        let frames = steps.len() as f64;
+        let len = plan.components * plan.mesh.n_nodes;
+        let width = self.problem.width;
+        let depth = self.problem.depth();
+        let nx = s.pixels as f64;
+        let nz = (nx * depth / width).round().max(1.0);
+        // the kept fields, their pixels, and the pictures (RGB and RGBA for the GIF)
+        let pictures = (nx + FRAME_EXTRA.0) * (nz.max(120.0) + FRAME_EXTRA.1) * 7.0;
+        let bytes = Capture::bytes(steps.len(), len) + frames * (nx * nz * 16.0 + pictures);
+        let change = if s.key == "snapshots.every" {
+            "raise `snapshots.every` or lower `snapshots.pixels`"
+        } else {
+            "give fewer `snapshots.times` or lower `snapshots.pixels`"
+        };
+        crate::budget::check_or(
+            &self.file,
+            s.key,
+            format!("{} frames", steps.len()),
+            bytes,
+            &format!(
+                "{} snapshots of {len} values and {} x {} pixels",
+                steps.len(),
+                nx,
+                nz
+            ),
+            change,
+        )?;
+        plan.capture_at(steps);
+        Ok(())
+    }
+
+    /// After a run: the kept fields on the pixel grid.
+    pub(crate) fn snapshots_of<L>(&self, plan: &Plan<L>, capture: &Capture) -> Option<Snapshots2d> {
+        let s: &Snapshots = self.snapshots.as_ref()?;
+        let raster = snapshot::raster(&plan.mesh, plan.components, capture, s.field, s.pixels);
+        let largest = raster.values.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let scale = s.scale.unwrap_or(if largest > 0.0 { largest } else { 1.0 });
+        Some(Snapshots2d {
+            times: capture.times.clone(),
+            field: s.field_name.clone(),
+            raster,
+            scale,
+            signed: s.field != Field::Magnitude,
+            gif: s.gif,
+            vtk: s.vtk,
+        })
+    }
+}
+
+#[cfg(feature = "plot")]
+pub(crate) use files::{binary_files, text_files};
+
+#[cfg(feature = "plot")]
+mod files {
+    use super::*;
+    use crate::model::solid_2d::Solid2dResult;
+    use crate::render::picture::{self, Heatmap};
+    use crate::render::svg::{figure, Panel, Series};
+    use crate::render::{vtk, BinaryFile, OutputFile};
+    use crate::solver::solid_2d::SourceKind;
+
+    /// Frame delay of the GIF, ms.
+    const GIF_DELAY_MS: u32 = 150;
+
+    fn frame_name(k: usize, ext: &str) -> String {
+        format!("snapshots/frame_{k:04}.{ext}")
+    }
+
+    /// The label of the drawn value with its unit.
+    fn field_label(s: &Snapshots2d) -> String {
+        match s.field.as_str() {
+            "magnitude" => "|v| (m/s)".into(),
+            f => format!("{f} (m/s)"),
+        }
+    }
+
+    /// The picture of frame `k`: the field in mm, the cracks, receivers and transducers.
+    fn frame(r: &Solid2dResult, s: &Snapshots2d, k: usize) -> image::RgbImage {
+        let mm = 1e3;
+        let (nx, nz) = (s.raster.x.len(), s.raster.z.len());
+        let (width, depth) = (r.geometry.width, r.geometry.depth);
+        let h = Heatmap {
+            nx,
+            nz,
+            values: s.raster.frame(k),
+            x_range: (0.0, width * mm),
+            y_range: (0.0, depth * mm),
+            scale: if s.signed {
+                (-s.scale, s.scale)
+            } else {
+                (0.0, s.scale)
+            },
+            diverging: s.signed,
+            title: format!("t = {:.2} \u{b5}s", s.times[k] * 1e6),
+            xlabel: "x (mm)".into(),
+            ylabel: "z (mm)".into(),
+            bar_label: field_label(s),
+            lines: r
+                .geometry
+                .cracks
+                .iter()
+                .map(|c| [(c[0] * mm, c[1] * mm), (c[2] * mm, c[3] * mm)])
+                .collect(),
+            marks: r
+                .geometry
+                .receivers
+                .iter()
+                .map(|p| (p[0] * mm, p[1] * mm))
+                .collect(),
+            sources: r
+                .geometry
+                .sources
+                .iter()
+                .map(|c| [(c[0] * mm, c[1] * mm), (c[2] * mm, c[3] * mm)])
+                .collect(),
+        };
+        picture::heatmap(&h)
+    }
+
+    /// The crack's normal gap along it (mm) against time (us, downwards), nm.
+    fn crack_map(r: &Solid2dResult, i: usize) -> image::RgbImage {
+        let c = &r.output.cracks[i];
+        let (n, m) = (c.position.len(), c.time.len());
+        let (nx, nz) = (600usize, 400usize);
+        let mut values = vec![0.0; nx * nz];
+        let (p0, p1) = (
+            c.position.first().copied().unwrap_or(0.0),
+            c.position.last().copied().unwrap_or(1.0),
+        );
+        let t1 = c.time.last().copied().unwrap_or(1.0);
+        // nearest record and point of each pixel: the map shows the data as recorded
+        for iz in 0..nz {
+            let t = (iz as f64 + 0.5) / nz as f64 * t1;
+            let k = c.time.partition_point(|&v| v < t).min(m.saturating_sub(1));
+            for ix in 0..nx {
+                let p = p0 + (ix as f64 + 0.5) / nx as f64 * (p1 - p0);
+                let j = c
+                    .position
+                    .partition_point(|&v| v < p)
+                    .min(n.saturating_sub(1));
+                let j = if j > 0 && (p - c.position[j - 1]) < (c.position[j] - p) {
+                    j - 1
+                } else {
+                    j
+                };
+                values[iz * nx + ix] = c.normal_gap.get(k * n + j).copied().unwrap_or(0.0) * 1e9;
+            }
+        }
+        let top = values.iter().fold(0.0f64, |a, &b| a.max(b));
+        picture::heatmap(&Heatmap {
+            nx,
+            nz,
+            values: &values,
+            x_range: (p0 * 1e3, p1 * 1e3),
+            y_range: (0.0, t1 * 1e6),
+            scale: (0.0, if top > 0.0 { top } else { 1.0 }),
+            diverging: false,
+            title: format!("crack {i}: normal gap"),
+            xlabel: "position along the crack (mm)".into(),
+            ylabel: "t (\u{b5}s)".into(),
+            bar_label: "gap (nm)".into(),
+            ..Default::default()
+        })
+    }
+
+    /// The PNG frames, the GIF and the crack maps.
+    pub(crate) fn binary_files(r: &Solid2dResult) -> Result<Vec<BinaryFile>> {
+        let mut out = Vec::new();
+        if let Some(s) = &r.snapshots {
+            let frames: Vec<image::RgbImage> = (0..s.times.len()).map(|k| frame(r, s, k)).collect();
+            for (k, f) in frames.iter().enumerate() {
+                let name = frame_name(k, "png");
+                out.push(BinaryFile {
+                    bytes: picture::png(&name, f)?,
+                    name,
+                });
+            }
+            if s.gif && !frames.is_empty() {
+                let name = "snapshots/snapshots.gif".to_string();
+                out.push(BinaryFile {
+                    bytes: picture::gif(&name, &frames, GIF_DELAY_MS)?,
+                    name,
+                });
+            }
+        }
+        for i in 0..r.output.cracks.len() {
+            let name = if i == 0 {
+                "crack_map.png".to_string()
+            } else {
+                format!("crack_map_{i}.png")
+            };
+            if r.output.cracks[i].time.is_empty() {
+                continue;
+            }
+            out.push(BinaryFile {
+                bytes: picture::png(&name, &crack_map(r, i))?,
+                name,
+            });
+        }
+        Ok(out)
+    }
+
+    /// `receivers.svg`, `spectra.svg`, and the VTK files of the snapshots.
+    pub(crate) fn text_files(r: &Solid2dResult, f0: f64) -> Result<Vec<OutputFile>> {
+        let o = &r.output;
+        let mut out = Vec::new();
+        let us: Vec<f64> = o.time.iter().map(|t| t * 1e6).collect();
+        if !r.receivers.is_empty() && !o.time.is_empty() {
+            let panels: Vec<Panel> = r
+                .receivers
+                .iter()
+                .enumerate()
+                .map(|(i, name)| Panel {
+                    title: format!("receiver {name}"),
+                    xlabel: "t (\u{b5}s)".into(),
+                    ylabel: "velocity (m/s)".into(),
+                    series: r
+                        .component_names
+                        .iter()
+                        .enumerate()
+                        .map(|(c, comp)| Series::new(format!("v{comp}"), &us, o.trace(i, c)))
+                        .collect(),
+                    markers: Vec::new(),
+                })
+                .collect();
+            out.push(OutputFile::new(
+                "receivers.svg",
+                figure("receivers.svg", 900, &panels)?,
+            ));
+            // spectra in dB re. the largest magnitude of all, markers at n f0
+            let f_max = 6.0 * f0;
+            let spectra: Vec<Vec<(Vec<f64>, Vec<f64>)>> = (0..r.receivers.len())
+                .map(|i| {
+                    (0..o.components)
+                        .map(|c| {
+                            let s = crate::analysis::with_analyzer(|a| {
+                                a.spectrum(o.trace(i, c), o.dt, f_max)
+                            });
+                            (s.frequency, s.magnitude)
+                        })
+                        .collect()
+                })
+                .collect();
+            let top = spectra
+                .iter()
+                .flatten()
+                .flat_map(|s| s.1.iter())
+                .fold(0.0f64, |a, &b| a.max(b.abs()))
+                .max(f64::MIN_POSITIVE);
+            let panels: Vec<Panel> = r
+                .receivers
+                .iter()
+                .zip(&spectra)
+                .map(|(name, sp)| Panel {
+                    title: format!("receiver {name} (dashed: harmonics n f0)"),
+                    xlabel: "frequency (MHz)".into(),
+                    ylabel: "magnitude (dB re. the largest)".into(),
+                    series: sp
+                        .iter()
+                        .zip(&r.component_names)
+                        .map(|((f, m), comp)| {
+                            let mhz: Vec<f64> = f.iter().map(|v| v * 1e-6).collect();
+                            let db: Vec<f64> = m
+                                .iter()
+                                .map(|v| (20.0 * (v.abs() / top).log10()).max(-160.0))
+                                .collect();
+                            Series::new(format!("v{comp}"), &mhz, &db)
+                        })
+                        .collect(),
+                    markers: (1..=5).map(|n| n as f64 * f0 * 1e-6).collect(),
+                })
+                .collect();
+            out.push(OutputFile::new(
+                "spectra.svg",
+                figure("spectra.svg", 900, &panels)?,
+            ));
+        }
+        if let Some(s) = r.snapshots.as_ref().filter(|s| s.vtk) {
+            let (x, z) = (&s.raster.x, &s.raster.z);
+            let (nx, nz) = (x.len(), z.len());
+            let dx = if nx > 1 { x[1] - x[0] } else { 2.0 * x[0] };
+            let dz = if nz > 1 { z[1] - z[0] } else { 2.0 * z[0] };
+            let depth = r.geometry.depth;
+            let mut entries = Vec::new();
+            for (k, &t) in s.times.iter().enumerate() {
+                // VTK's y is the height above the bottom face (y = depth - z): its rows
+                // go from the bottom up
+                let f = s.raster.frame(k);
+                let mut values = Vec::with_capacity(nx * nz);
+                for iz in (0..nz).rev() {
+                    values.extend_from_slice(&f[iz * nx..(iz + 1) * nx]);
+                }
+                let name = frame_name(k, "vti");
+                let text = vtk::image_data(
+                    &name,
+                    &s.field,
+                    nx,
+                    nz,
+                    [x[0], depth - z[nz - 1]],
+                    [dx, dz],
+                    values,
+                )?;
+                entries.push((t, name.trim_start_matches("snapshots/").to_string()));
+                out.push(OutputFile::new(&name, text));
+            }
+            out.push(OutputFile::new(
+                "snapshots/snapshots.pvd",
+                vtk::collection(&entries),
+            ));
+        }
+        Ok(out)
+    }
+
+    /// Transducer apertures as segments `[x0, z, x1, z]`, m.
+    pub(crate) fn apertures(
+        sources: &[crate::solver::solid_2d::Source],
+        depth: f64,
+    ) -> Vec<[f64; 4]> {
+        sources
+            .iter()
+            .filter_map(|s| match s.kind {
+                SourceKind::Traction { top, x0, x1, .. } => {
+                    let z = if top { 0.0 } else { depth };
+                    Some([x0, z, x1, z])
+                }
+                SourceKind::Force { .. } | SourceKind::PlaneWave { .. } => None,
+            })
+            .collect()
+    }
+}
+
+/// What the pictures draw besides the field: the model's size, the cracks, receivers and
+/// transducer apertures, m.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Geometry {
+    /// Width, m.
+    pub width: f64,
+    /// Depth, m.
+    pub depth: f64,
+    /// Cracks `[x0, z0, x1, z1]`.
+    pub cracks: Vec<[f64; 4]>,
+    /// Receivers `[x, z]`.
+    pub receivers: Vec<[f64; 2]>,
+    /// Transducer apertures `[x0, z, x1, z]`.
+    pub sources: Vec<[f64; 4]>,
+}
+
+impl Geometry {
+    /// The geometry of a scenario.
+    pub fn of(s: &Solid2dScenario) -> Geometry {
+        let p = &s.problem;
+        let depth = p.depth();
+        Geometry {
+            width: p.width,
+            depth,
+            cracks: p
+                .cracks
+                .iter()
+                .map(|c| {
+                    if c.full_width {
+                        [0.0, c.start[1], p.width, c.start[1]]
+                    } else {
+                        [c.start[0], c.start[1], c.end[0], c.end[1]]
+                    }
+                })
+                .collect(),
+            receivers: p.receivers.clone(),
+            #[cfg(feature = "plot")]
+            sources: files::apertures(&p.sources, depth),
+            #[cfg(not(feature = "plot"))]
+            sources: Vec::new(),
+        }
+    }
+}
+
+#[cfg(all(test, feature = "plot"))]
+mod tests {
+    use crate::model::{self, RunControl, Value};
+    use image::AnimationDecoder;
+
+    /// A 2 x 1 mm plate with a clapping 0.6 mm crack under a 10 MHz burst (as
+    /// tests/solid_2d.rs), with `extra` appended.
+    fn small(extra: &str) -> String {
+        format!(
+            r#"
+[model]
+kind = "solid_2d"
+width = 2e-3
+duration = 0.6e-6
+element_size = 0.1e-3
+
+[[layer]]
+thickness = 1e-3
+material = "aluminium"
+
+[[crack]]
+start = [0.7e-3, 0.5e-3]
+end = [1.3e-3, 0.5e-3]
+static_pressure = 0.2e6
+tangential = {{ law = "coulomb", friction = 0.3 }}
+
+[[source]]
+x0 = 0.6e-3
+x1 = 1.4e-3
+signal = {{ frequency = 10e6, cycles = 2, amplitude = 10e6, window = "hann" }}
+
+[[receiver]]
+name = "top"
+at = [1e-3, 0.0]
+
+[[receiver]]
+name = "under"
+at = [1e-3, 1e-3]
+{extra}
+"#
+        )
+    }
+
+    fn run(text: &str) -> Box<dyn model::Outcome> {
+        let t = model::from_toml_str(text, "small.toml").unwrap();
+        t.base().unwrap().run(&RunControl::default()).unwrap()
+    }
+
+    /// A run with snapshots writes its PNG frames (decoding at the expected size), a GIF of
+    /// as many frames, VTK frames that parse back to the raster's values, the plots and the
+    /// crack map; keeping the snapshots changes no other output.
+    #[test]
+    fn snapshots_write_their_pictures_and_change_nothing_else() {
+        let with = run(&small(
+            "[snapshots]\ntimes = [0.2e-6, 0.4e-6, 0.6e-6]\nfield = \"vz\"\npixels = 100\n",
+        ));
+        let without = run(&small(""));
+        // the same receivers, crack fields and summary, bit for bit
+        for key in ["receivers", "cracks", "t", "summary"] {
+            assert_eq!(with.record().get(key), without.record().get(key), "{key}");
+        }
+        let (fw, fo) = (with.files().unwrap(), without.files().unwrap());
+        for f in &fo {
+            let g = fw.iter().find(|g| g.name == f.name).unwrap();
+            assert_eq!(g.contents, f.contents, "{}", f.name);
+        }
+        let r = with
+            .as_any()
+            .downcast_ref::<crate::model::solid_2d::Solid2dResult>()
+            .unwrap();
+        let s = r.snapshots.as_ref().unwrap();
+        let dt = r.output.dt;
+        for (t, want) in s.times.iter().zip([0.2e-6, 0.4e-6, 0.6e-6]) {
+            assert!((t - want).abs() <= 0.5 * dt + 1e-15, "{t} {want}");
+        }
+        // 100 px across 2 mm: 50 rows; the field is a component, the scale symmetric
+        assert_eq!(
+            (s.raster.x.len(), s.raster.z.len(), s.raster.frames()),
+            (100, 50, 3)
+        );
+        let largest = s.raster.values.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        assert!(s.signed && s.scale == largest && largest > 0.0);
+        let bin = with.binary_files().unwrap();
+        let names: Vec<&str> = bin.iter().map(|f| f.name.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "snapshots/frame_0000.png",
+                "snapshots/frame_0001.png",
+                "snapshots/frame_0002.png",
+                "snapshots/snapshots.gif",
+                "crack_map.png"
+            ]
+        );
+        // the field's 100 x 50 px, margins of 176 x 88 px around it (colour bar at least
+        // 120 px high)
+        let png = image::load_from_memory(&bin[1].bytes).unwrap();
+        assert_eq!((png.width(), png.height()), (100 + 176, 120 + 88));
+        let gif = image::codecs::gif::GifDecoder::new(std::io::Cursor::new(&bin[3].bytes))
+            .unwrap()
+            .into_frames()
+            .collect_frames()
+            .unwrap();
+        assert_eq!(gif.len(), 3);
+        assert_eq!(gif[0].buffer().dimensions(), (276, 208));
+        // the VTK frame parses back with the raster's values (rows from the bottom up)
+        let vti = fw
+            .iter()
+            .find(|f| f.name == "snapshots/frame_0001.vti")
+            .unwrap();
+        let back = vtkio::Vtk::parse_xml(vti.contents.as_bytes()).unwrap();
+        let vtkio::model::DataSet::ImageData { pieces, .. } = back.data else {
+            panic!("not image data")
+        };
+        let vtkio::model::Piece::Inline(p) = &pieces[0] else {
+            panic!("not inline")
+        };
+        let vtkio::model::Attribute::DataArray(a) = &p.data.point[0] else {
+            panic!("no array")
+        };
+        let vtkio::model::IOBuffer::F64(v) = &a.data else {
+            panic!("not f64")
+        };
+        let f = s.raster.frame(1);
+        assert_eq!(v.len(), 100 * 50);
+        assert_eq!(v[..100], f[49 * 100..50 * 100]);
+        assert_eq!(v[49 * 100..], f[..100]);
+        let pvd = fw
+            .iter()
+            .find(|f| f.name == "snapshots/snapshots.pvd")
+            .unwrap();
+        assert_eq!(pvd.contents.matches("<DataSet ").count(), 3);
+        for name in ["receivers.svg", "spectra.svg"] {
+            assert!(fw
+                .iter()
+                .any(|f| f.name == name && f.contents.contains("<svg")));
+        }
+        // Python's arrays: the frames flattened with their coordinates
+        let rec = with.record();
+        let Some(Value::Array(frames)) = rec.get("snapshots") else {
+            panic!("snapshots")
+        };
+        assert_eq!(frames.len(), 3 * 50 * 100);
+        let Some(Value::Array(z)) = rec.get("snapshot_z") else {
+            panic!("snapshot_z")
+        };
+        assert!((z[0] - 1e-5).abs() < 1e-18);
+    }
+
+    /// Snapshots beyond the memory budget are refused before the run, naming the key.
+    #[test]
+    fn too_many_snapshots_are_refused_before_the_run() {
+        // 2000 frames of 4096 x 2048 px: hundreds of GB
+        let text = small("[snapshots]\nevery = 0.0003e-6\npixels = 4096\n");
+        let t = model::from_toml_str(&text, "small.toml").unwrap();
+        let e = t
+            .base()
+            .unwrap()
+            .run(&RunControl::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("snapshots.every") && e.contains("raise"), "{e}");
+    }
+
+    /// Bad `[snapshots]` keys are one-line errors naming the key and the allowed values.
+    #[test]
+    fn bad_snapshot_keys_are_refused() {
+        for (extra, key) in [
+            ("field = \"vy\"", "snapshots.field"),
+            ("pixels = 5", "snapshots.pixels"),
+            ("times = [1.0]", "snapshots.times"),
+            ("every = -1e-7", "snapshots.every"),
+            ("scale = 0.0", "snapshots.scale"),
+            ("colour = 1", "colour"),
+        ] {
+            let text = small(&format!("[snapshots]\n{extra}\n"));
+            let e = model::from_toml_str(&text, "small.toml")
+                .and_then(|t| t.base().map(|_| ()))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(key), "{extra}: {e}");
+        }
+    }
+}
