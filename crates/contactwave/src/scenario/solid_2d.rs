@@ -11,7 +11,9 @@ use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 use crate::material::Material;
 use crate::scenario::spec::IncidentSpec;
 use crate::scenario::BuildCache;
-use crate::solver::solid_2d::{Crack, Elastic, Layer, Side, Solid2d, Source, SourceKind, WaveType};
+use crate::solver::solid_2d::{
+    pml, Crack, Elastic, Layer, Pml, Side, Solid2d, Source, SourceKind, WaveType,
+};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::sync::Arc;
@@ -72,7 +74,8 @@ pub struct ModelSpec {
     /// Time step, s (default: the smaller of the stability limit times `courant` and
     /// [`PHASE_STEP`] over the angular frequency of the highest analysed harmonic).
     pub time_step: Option<f64>,
-    /// Top side: `free` (default), `rigid` or `absorbing` (dashpots).
+    /// Top side: `free` (default), `rigid` or `absorbing` (a perfectly matched layer
+    /// outside the rectangle).
     #[serde(default = "free")]
     pub top: String,
     /// Bottom side: `free` (default), `rigid` or `absorbing`.
@@ -83,6 +86,12 @@ pub struct ModelSpec {
     pub sides: String,
     /// Record the cracks' fields every this many time steps (default 10).
     pub crack_every: Option<usize>,
+    /// Thickness of the absorbing sides' perfectly matched layers, m (default
+    /// [`pml::DEFAULT_ELEMENTS`] element sizes).
+    pub pml_thickness: Option<f64>,
+    /// Target reflection R0 of the layers' damping profile, in (0, 1) (default
+    /// [`pml::DEFAULT_REFLECTION`]).
+    pub pml_reflection: Option<f64>,
 }
 
 fn p_sv() -> String {
@@ -613,6 +622,13 @@ impl Solid2dScenario {
             receivers,
             duration: m.duration,
             crack_every: m.crack_every.unwrap_or(10).max(1),
+            pml: Pml {
+                thickness: match m.pml_thickness {
+                    Some(l) => positive(file, "model.pml_thickness", l)?,
+                    None => pml::DEFAULT_ELEMENTS * element_size,
+                },
+                reflection: m.pml_reflection.unwrap_or(pml::DEFAULT_REFLECTION),
+            },
         };
         problem.validate(file)?;
         Ok(Solid2dScenario {
