@@ -89,7 +89,7 @@ pub enum Side {
     /// Periodic (the x sides only, both together).
     Periodic,
     /// Absorbing: a perfectly matched layer ([`pml`]) of [`Solid2d::pml`]'s thickness
-    /// added outside the rectangle along the side (its outer edge free); its reflection
+    /// added outside the rectangle along the side (its outer edge fixed); its reflection
     /// against angle is measured in docs/model.md section 15.7.
     Absorbing,
 }

@@ -10,7 +10,9 @@
 //! ```
 //!
 //! `F^x` (`F^z`) is the part of the elements' internal force taken by the x (z) derivative
-//! of the test functions, the damping terms by the midpoint rule
+//! of the test functions; each direction's damping also takes [`MULTIAXIAL`] times the
+//! other's (a multiaxial PML: the classical one lets a P-SV mode grow in long runs); the
+//! layers' outer edges are fixed. The damping terms are taken by the midpoint rule
 //! (`y+ = ((1 - a) y- + dt r) / (1 + a)`, `a = d dt / 2`). Without damping the stresses
 //! `sigma^{n+1} = sigma^n + dt C grad v^{n+1/2}` are exactly `C grad u^{n+1}`: the band is
 //! the interior's scheme continued. The nodes on the inner boundary (`d = 0`) are the
