@@ -72,6 +72,7 @@ fn plate(cracked: bool, duration: f64) -> Solid2d<Law> {
         receivers: vec![[30e-3, 0.0]],
         duration,
         crack_every: 10,
+        pml: contactwave::solver::solid_2d::Pml::elements(4.0, 0.14e-3),
     }
 }
 

@@ -13,7 +13,8 @@ use crate::material::Material;
 use crate::scenario::spec::IncidentSpec;
 use crate::scenario::BuildCache;
 use crate::solver::solid_2d::{
-    Crack, CrackProfile, Elastic, Incidence, Layer, Side, Solid2d, Source, SourceKind, WaveType,
+    pml, Crack, CrackProfile, Elastic, Incidence, Layer, Pml, Side, Solid2d, Source, SourceKind,
+    WaveType,
 };
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -100,7 +101,8 @@ pub struct ModelSpec {
     /// Time step, s (default: the smaller of the stability limit times `courant` and
     /// [`PHASE_STEP`] over the angular frequency of the highest analysed harmonic).
     pub time_step: Option<f64>,
-    /// Top side: `free` (default), `rigid` or `absorbing` (dashpots).
+    /// Top side: `free` (default), `rigid` or `absorbing` (a perfectly matched layer
+    /// outside the rectangle).
     #[serde(default = "free")]
     pub top: String,
     /// Bottom side: `free` (default), `rigid` or `absorbing`.
@@ -111,6 +113,12 @@ pub struct ModelSpec {
     pub sides: String,
     /// Record the cracks' fields every this many time steps (default 10).
     pub crack_every: Option<usize>,
+    /// Thickness of the absorbing sides' perfectly matched layers, m (default
+    /// [`pml::DEFAULT_ELEMENTS`] element sizes).
+    pub pml_thickness: Option<f64>,
+    /// Target reflection R0 of the layers' damping profile, in (0, 1) (default
+    /// [`pml::DEFAULT_REFLECTION`]).
+    pub pml_reflection: Option<f64>,
 }
 
 fn p_sv() -> String {
@@ -809,6 +817,13 @@ impl Solid2dScenario {
             receivers: points,
             duration: m.duration,
             crack_every: m.crack_every.unwrap_or(10).max(1),
+            pml: Pml {
+                thickness: match m.pml_thickness {
+                    Some(l) => positive(file, "model.pml_thickness", l)?,
+                    None => pml::DEFAULT_ELEMENTS * element_size,
+                },
+                reflection: m.pml_reflection.unwrap_or(pml::DEFAULT_REFLECTION),
+            },
         };
         problem.validate(file)?;
         let gate = analysis_gate(&spec.analysis, file, m.duration)?;

@@ -28,10 +28,13 @@ pub mod crack;
 pub mod kernel;
 pub mod mesh;
 pub mod plane_wave;
+pub mod pml;
 pub mod probe;
 pub mod snapshot;
 mod stepping;
 
+#[cfg(test)]
+mod pml_tests;
 #[cfg(test)]
 mod reduction_tests;
 #[cfg(test)]
@@ -45,6 +48,7 @@ use crack::CrackNodes;
 use kernel::{max_frequency, ElementData, Stiffness};
 use mesh::{aperture_weight, edge_weight, CrackLine, Mesh};
 pub use plane_wave::Incidence;
+pub use pml::Pml;
 use probe::StressProbe;
 use std::sync::Arc;
 
@@ -91,10 +95,9 @@ pub enum Side {
     Rigid,
     /// Periodic (the x sides only, both together).
     Periodic,
-    /// Absorbing: viscous dashpots `rho c_P` normal and `rho c_S` tangential to the side
-    /// per unit length (Lysmer and Kuhlemeyer's paraxial condition: no reflection of a
-    /// plane wave at normal incidence in the continuum; the discrete reflection is measured
-    /// in docs/model.md section 15). Not a perfectly matched layer.
+    /// Absorbing: a perfectly matched layer ([`pml`]) of [`Solid2d::pml`]'s thickness
+    /// added outside the rectangle along the side (its outer edge fixed); its reflection
+    /// against angle is measured in docs/model.md section 15.7.
     Absorbing,
 }
 
@@ -220,6 +223,8 @@ pub struct Solid2d<L> {
     pub duration: f64,
     /// Record the crack fields every this many steps.
     pub crack_every: usize,
+    /// The absorbing sides' perfectly matched layers.
+    pub pml: Pml,
 }
 
 /// A force applied at one node component: `(index into u, weight, source, delay s)`.
@@ -249,9 +254,8 @@ pub struct Plan<L> {
     pub components: usize,
     cracks: Vec<CrackNodes<L>>,
     loads: Vec<Load>,
-    /// The absorbing sides' dashpots: `(dof, C)` with C in N s/m per m (kg/(m s)), one
-    /// per degree of freedom, in increasing dof order.
-    dampers: Vec<(usize, f64)>,
+    /// The absorbing sides' perfectly matched layers (their elements; none without).
+    band: pml::Band,
     signals: Vec<Arc<dyn Excitation>>,
     /// Receiver nodes.
     pub receiver_nodes: Vec<usize>,
@@ -296,7 +300,8 @@ pub struct Energy2d {
     /// Energy taken by the cracks (stored in their laws, dissipated by friction, damage
     /// and the discrete impacts of rigid contact).
     pub cracks: f64,
-    /// Energy absorbed by the absorbing sides (their dashpots' work).
+    /// Energy that flowed into the absorbing layers: the work done on them through the
+    /// nodes of their inner boundary (discrete, exact).
     pub absorbed: f64,
 }
 
@@ -414,6 +419,19 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         self.layers.last().map_or(0.0, |l| l.bottom)
     }
 
+    /// The absorbing layers' thicknesses (m; 0 where a side is not absorbing): top,
+    /// bottom, and each x side.
+    pub fn pml_thicknesses(&self) -> (f64, f64, f64) {
+        let l = |s: Side| {
+            if s == Side::Absorbing {
+                self.pml.thickness
+            } else {
+                0.0
+            }
+        };
+        (l(self.top), l(self.bottom), l(self.sides))
+    }
+
     /// Check the problem without building anything: sizes, materials, cracks inside the
     /// rectangle and along x or z, and the mesh against the memory budget. Returns the x
     /// and z lines the element edges must follow.
@@ -455,6 +473,39 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         if !(self.duration > 0.0 && self.duration.is_finite()) {
             return bad("model.duration", self.duration.to_string(), "> 0 s, finite");
         }
+        let (lt, lb, ls) = self.pml_thicknesses();
+        if [self.top, self.bottom, self.sides].contains(&Side::Absorbing) {
+            let l = self.pml.thickness;
+            if !(l > 0.0 && l.is_finite()) {
+                return bad("model.pml_thickness", l.to_string(), "> 0 m, finite");
+            }
+            let r = self.pml.reflection;
+            if !(r > 0.0 && r < 1.0) {
+                return bad("model.pml_reflection", r.to_string(), "in (0, 1)");
+            }
+        }
+        let inside =
+            |p: [f64; 2]| p[0] >= 0.0 && p[0] <= self.width && p[1] >= 0.0 && p[1] <= depth;
+        for (i, r) in self.receivers.iter().enumerate() {
+            if !inside(*r) {
+                return bad(
+                    &format!("receiver.{i}.at"),
+                    format!("{r:?}"),
+                    "inside the rectangle (not in an absorbing layer outside it)",
+                );
+            }
+        }
+        for (i, s) in self.sources.iter().enumerate() {
+            if let SourceKind::Force { at, .. } = s.kind {
+                if !inside(at) {
+                    return bad(
+                        &format!("source.{i}.at"),
+                        format!("{at:?}"),
+                        "inside the rectangle (not in an absorbing layer outside it)",
+                    );
+                }
+            }
+        }
         for (i, l) in self.layers.iter().enumerate() {
             let m = l.material;
             if !(m.density > 0.0 && m.s_speed > 0.0 && m.p_speed > m.s_speed * 2f64.sqrt()) {
@@ -490,6 +541,13 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                     );
                 }
             }
+            if !horizontal && ls > 0.0 && (c.start[0] <= 0.0 || c.start[0] >= self.width) {
+                return bad(
+                    &format!("crack.{i}.start"),
+                    format!("{:?}", c.start),
+                    "a vertical crack away from the absorbing x sides (0 < x < model.width)",
+                );
+            }
             xs.extend([c.start[0], c.end[0]]);
             zs.extend([c.start[1], c.end[1]]);
         }
@@ -513,10 +571,16 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         let n = self.order;
         let count = |len: f64, lines: usize| (len / self.element_size).ceil() + lines as f64 + 1.0;
         let (ex, ez) = (count(self.width, xs.len()), count(depth, zs.len()));
+        // the absorbing layers' elements (each holds its stresses, forces and damping)
+        let bands = |l: f64| if l > 0.0 { count(l, 0) } else { 0.0 };
+        let (bx, bz) = (2.0 * bands(ls), bands(lt) + bands(lb));
+        let band = (ex + bx) * (ez + bz) - ex * ez;
+        let (ex, ez) = (ex + bx, ez + bz);
         let nodes = (ex * n as f64 + 1.0) * (ez * n as f64 + 1.0);
         let comps = if self.wave == WaveType::Sh { 1.0 } else { 2.0 };
-        let bytes =
-            nodes * (3.0 * comps + 2.0) * 8.0 + ex * ez * ((n + 1) * (n + 1) * 4 + 32) as f64;
+        let bytes = nodes * (3.0 * comps + 2.0) * 8.0
+            + ex * ez * ((n + 1) * (n + 1) * 4 + 32) as f64
+            + band * ((n + 1) * (n + 1) * 14 * 8) as f64;
         crate::budget::check(
             file,
             "model.element_size",
@@ -540,8 +604,14 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         let depth = self.depth();
         let n = self.order;
         let comps = if self.wave == WaveType::Sh { 1.0 } else { 2.0 };
-        let x_edges = mesh::edges(self.width, &xs, self.element_size);
-        let z_edges = mesh::edges(depth, &zs, self.element_size);
+        // the physical rectangle's edges, and the absorbing layers' bands outside it
+        let (lt, lb, ls) = self.pml_thicknesses();
+        let h = self.element_size;
+        let x_in = mesh::edges(self.width, &xs, h);
+        let z_in = mesh::edges(depth, &zs, h);
+        let (nx_in, nz_in) = (x_in.len() - 1, z_in.len() - 1);
+        let (x_edges, bx) = pml::extend(x_in, ls, ls, h);
+        let (z_edges, bz) = pml::extend(z_in, lt, lb, h);
         let periodic = self.sides == Side::Periodic;
         let mut lines = Vec::new();
         for (i, c) in self.cracks.iter().enumerate() {
@@ -631,78 +701,24 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             .iter()
             .map(|&m| if m > 0.0 { 1.0 / m } else { 0.0 })
             .collect();
+        // (rigid sides, and the absorbing layers' outer edges)
+        let fixed = |s: Side| s == Side::Rigid || (s == Side::Absorbing && pml::RIGID_EDGE);
         let mut fix = |ix: usize, iz: usize| inv_mass[mesh.grid_node(ix, iz)] = 0.0;
         for ix in 0..nxn {
-            if self.top == Side::Rigid {
+            if fixed(self.top) {
                 fix(ix, 0);
             }
-            if self.bottom == Side::Rigid {
+            if fixed(self.bottom) {
                 fix(ix, nzn - 1);
             }
         }
-        if self.sides == Side::Rigid {
+        if fixed(self.sides) {
             for iz in 0..nzn {
                 fix(0, iz);
                 fix(nxn - 1, iz);
             }
         }
         let components = if self.wave == WaveType::Sh { 1 } else { 2 };
-        // the absorbing sides' dashpots, per dof: rho c_P B along the side's normal, rho c_S B
-        // along it (B the node's boundary weight)
-        let mut dampers: Vec<(usize, f64)> = Vec::new();
-        {
-            let gw = &mesh.gll.weights;
-            let layer_at = |z: f64| self.layers[layer_of(z.min(depth * (1.0 - 1e-12)))].material;
-            let mut side_dashpots = |node: usize, b: f64, m: Elastic, normal_is_z: bool| {
-                let z = m.density * m.p_speed * b;
-                let zs = m.density * m.s_speed * b;
-                if components == 1 {
-                    dampers.push((node, zs));
-                } else {
-                    let (dn, dt_) = if normal_is_z {
-                        (2 * node + 1, 2 * node)
-                    } else {
-                        (2 * node, 2 * node + 1)
-                    };
-                    dampers.push((dn, z));
-                    dampers.push((dt_, zs));
-                }
-            };
-            for (absorbing, iz) in [
-                (self.top == Side::Absorbing, 0),
-                (self.bottom == Side::Absorbing, nzn - 1),
-            ] {
-                if absorbing {
-                    let m = layer_at(mesh.z[iz]);
-                    for ix in 0..nxn {
-                        if periodic && ix == nxn - 1 {
-                            continue;
-                        }
-                        let b = edge_weight(&mesh.x_edges, gw, n, ix, periodic);
-                        side_dashpots(mesh.grid_node(ix, iz), b, m, true);
-                    }
-                }
-            }
-            if self.sides == Side::Absorbing {
-                for ix in [0, nxn - 1] {
-                    for iz in 0..nzn {
-                        let b = edge_weight(&mesh.z_edges, gw, n, iz, false);
-                        side_dashpots(mesh.grid_node(ix, iz), b, layer_at(mesh.z[iz]), false);
-                    }
-                }
-            }
-            dampers.sort_by_key(|d| d.0);
-            let mut merged: Vec<(usize, f64)> = Vec::with_capacity(dampers.len());
-            for (i, c) in dampers {
-                match merged.last_mut() {
-                    Some(last) if last.0 == i => last.1 += c,
-                    _ => merged.push((i, c)),
-                }
-            }
-            // (no dashpot on a fixed node)
-            merged.retain(|&(i, _)| inv_mass[i / components] > 0.0);
-            dampers = merged;
-        }
         let stiffness = Stiffness {
             order: n,
             dims: (nex, nez),
@@ -722,6 +738,31 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             .collect();
         let omega_max = max_frequency(&stiffness, &densities);
         let dt = (self.courant * 2.0 / omega_max).min(self.max_time_step);
+        // the interior's operator and the absorbing layers' elements
+        let c_max = self
+            .layers
+            .iter()
+            .map(|l| l.material.p_speed)
+            .fold(0.0, f64::max);
+        let profile = |lo: f64, hi: f64, l_lo: f64, l_hi: f64| pml::Profile {
+            lo,
+            hi,
+            l_lo,
+            l_hi,
+            c: c_max,
+            r0: self.pml.reflection,
+        };
+        let (stiffness, band) = pml::split(
+            stiffness,
+            (bx, nx_in, bz, nz_in),
+            &densities,
+            &mesh.x,
+            &mesh.z,
+            mesh.grid_dims(),
+            &profile(0.0, self.width, ls, ls),
+            &profile(0.0, depth, lt, lb),
+            &mut mass,
+        );
         let steps = (self.duration / dt).ceil();
         // the recorded series: receivers and the cracks' fields
         let crack_points: usize = mesh.splits.iter().map(Vec::len).sum();
@@ -846,6 +887,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                     plane_waves.push(plane_wave::Injection::new(
                         &mesh,
                         &stiffness,
+                        (bx, bz),
                         self.layers[layer_of(zmid)].material,
                         incidence,
                         angle,
@@ -865,7 +907,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                     normal,
                     delay_per_m,
                 } => {
-                    let iz = if top { 0 } else { nzn - 1 };
+                    let iz = if top { bz * n } else { (bz + nz_in) * n };
                     // a traction t on the top surface (outward normal -z) is sigma_zz = -t_z... the
                     // force on the surface node is B times the traction vector sigma . n_out;
                     // for sigma_zz = s on the top surface: f_z = -s B (pull up for s > 0)
@@ -908,7 +950,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             components,
             cracks,
             loads,
-            dampers,
+            band,
             signals,
             receiver_nodes,
             stress_probes: Vec::new(),

@@ -143,12 +143,15 @@ pub struct Injection {
 impl Injection {
     /// Plan the injection of `incidence` at `angle` (rad from +z, toward +x) in `material`
     /// across the element edge line `z_line` (m) of `mesh` (whose element row above it is in
-    /// `stiffness`), with `signal` (the wave's stress at the front, Pa) tabulated over
+    /// `stiffness`, the rectangle's operator: its element `(ex, ez)` is the mesh's
+    /// `(ex + offset.0, ez + offset.1)`, the absorbing layers' bands before it; the line
+    /// spans the rectangle only), with `signal` (the wave's stress at the front, Pa) tabulated over
     /// `duration` s at a step `dt / 8`. Errors name `key` (the source's scenario key).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn new(
         mesh: &Mesh,
         stiffness: &Stiffness,
+        offset: (usize, usize),
         material: Elastic,
         incidence: Incidence,
         angle: f64,
@@ -163,6 +166,8 @@ impl Injection {
         let n = mesh.gll.order;
         let m = n + 1;
         let (nex, _) = mesh.element_dims();
+        let (bx, bz) = offset;
+        let nx_in = stiffness.dims.0;
         let comps = if stiffness.antiplane { 1 } else { 2 };
         let ez_line = super::mesh::edge_index(&mesh.z_edges, z_line)
             .filter(|&k| k > 0 && k + 1 < mesh.z_edges.len())
@@ -198,9 +203,9 @@ impl Injection {
         let mut scale = Vec::new();
         let mut kx = Vec::new();
         let mut raw: Vec<(usize, usize, f64)> = Vec::new();
-        for ex in 0..nex {
+        for ex in bx..bx + nx_in {
             let e = ez * nex + ex;
-            let el: ElementData = stiffness.elements[e];
+            let el: ElementData = stiffness.elements[(ez - bz) * nx_in + ex - bx];
             let one = Stiffness {
                 order: n,
                 dims: (1, 1),

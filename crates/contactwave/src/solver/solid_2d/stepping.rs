@@ -1,6 +1,6 @@
 //! A 2D plan's step (docs/model.md section 15, eqs. 15.2-15.5) as a scheme of the one time
 //! loop of the explicit solvers ([`crate::solver::stepping`]): the kernel's forces, the
-//! sources, the node-wise predicted motion, the absorbing sides' dashpots, the cracks'
+//! sources, the node-wise predicted motion, the absorbing layers ([`super::pml`]), the cracks'
 //! split-node update and the energy audit; a recorder keeps the receivers' velocities and
 //! the cracks' fields.
 
@@ -24,8 +24,6 @@ struct Run2d<'p, L> {
     f: Vec<f64>,
     /// Each load's velocity of the previous half level (its work).
     v_load: Vec<f64>,
-    /// Each dashpot's velocity of the previous half level.
-    v_damped: Vec<f64>,
     input: f64,
     absorbed: f64,
 }
@@ -59,7 +57,6 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
             v: vec![0.0; len],
             f: vec![0.0; len],
             v_load: vec![0.0; self.loads.len()],
-            v_damped: vec![0.0; self.dampers.len()],
             input: 0.0,
             absorbed: 0.0,
             plan: self,
@@ -123,9 +120,9 @@ impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
         for pw in &mut p.plane_waves {
             pw.add_forces(t, f);
         }
-        for (vd, &(i, _)) in self.v_damped.iter_mut().zip(&p.dampers) {
-            *vd = v[i];
-        }
+        // the absorbing layers' forces of level n on their nodes
+        p.band
+            .forces(&p.stiffness.weights, &p.stiffness.derivative, v, f);
         // the predicted velocities and displacements of the new level, without the
         // cracks' tractions (node-wise: parallel and deterministic)
         u.par_chunks_mut(CHUNK * c)
@@ -145,17 +142,11 @@ impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
                     }
                 }
             });
-        // the dashpots at the mean velocity of the step: v = (v~ - a v_old) / (1 + a),
-        // a = dt C / (2 M); their work dt C v_mean^2 leaves the solid
-        for (&vo, &(i, cd)) in self.v_damped.iter().zip(&p.dampers) {
-            let a = 0.5 * dt * cd * p.inv_mass[i / c];
-            let pred = v[i];
-            let new = (pred - a * vo) / (1.0 + a);
-            u[i] += dt * (new - pred);
-            v[i] = new;
-            let mean = 0.5 * (new + vo);
-            self.absorbed += dt * cd * mean * mean;
-        }
+        // the absorbing layers: their nodes' split velocities, the flux into them, and
+        // their stresses of level n + 1
+        self.absorbed += p.band.nodes(u, v, &p.inv_mass, dt);
+        p.band
+            .stresses(&p.stiffness.weights, &p.stiffness.derivative, v, dt);
         for cr in &mut p.cracks {
             cr.update(u, v, dt, t1, c == 1)?;
         }

@@ -71,6 +71,7 @@ fn clapping_plate(sides: Side) -> Solid2d<Signorini> {
         receivers: vec![[4e-3, 0.0], [4e-3, 4e-3]],
         duration: 4e-6,
         crack_every: 1,
+        pml: Pml::elements(pml::DEFAULT_ELEMENTS, 0.5e-3),
     }
 }
 
@@ -179,6 +180,7 @@ pub(super) fn strip<L>(
         receivers: vec![],
         duration,
         crack_every: 1,
+        pml: Pml::elements(pml::DEFAULT_ELEMENTS, h),
     }
 }
 
@@ -511,7 +513,7 @@ fn default_resolution_disperses_less_than_1e_3_at_3_f0() {
 
 /// The absorbing bottom at normal incidence: a plane P (and SH) burst from the top of a
 /// periodic strip comes back from an absorbing bottom at most -40 dB of its amplitude, and
-/// the energy audit (with the dashpots' work) still closes at round-off.
+/// the energy audit (with the flux into the layer) still closes at round-off.
 #[test]
 fn absorbing_side_reflects_less_than_40_db_at_normal_incidence() {
     let f0 = 1e6;

@@ -98,6 +98,10 @@ fn oblique_run(
         bottom: Side::Absorbing,
         sides: Side::Absorbing,
         element_size: h,
+        pml: crate::solver::solid_2d::Pml::elements(
+            crate::solver::solid_2d::pml::DEFAULT_ELEMENTS,
+            h,
+        ),
         order: 4,
         courant: 0.8,
         max_time_step: f64::INFINITY,
