@@ -1,0 +1,182 @@
+//! A crack's static state along it as a table (`[[crack]] closure`, docs/scenario.md
+//! section 2b, docs/model.md section 15.2): the spec, and the solver profile that builds
+//! each split node's law at its interpolated pressure and shear, with its initial gap.
+
+use super::solid_2d::CrackSpec;
+use crate::error::{Error, Result};
+use crate::law::point::SharedLaw;
+use crate::law::spec::TractionSpec;
+use crate::scenario::BuildCache;
+use crate::solver::solid_2d::CrackProfile;
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+
+fn inv(file: &str, field: impl Into<String>, v: impl std::fmt::Display, allowed: &str) -> Error {
+    Error::invalid(file, field, v, allowed)
+}
+
+/// `closure` of a `[[crack]]`: the static state at points along the crack, linear between
+/// them and constant beyond the first and the last.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ClosureSpec {
+    /// Positions from the crack's start along it, m (increasing, within its length).
+    pub position: Vec<f64>,
+    /// Static closure pressure p0 at each position, Pa (>= 0; default `static_pressure`).
+    pub pressure: Option<Vec<f64>>,
+    /// Static shear q0 at each position, Pa (default `static_shear`).
+    pub shear: Option<Vec<f64>>,
+    /// Initial normal gap at each position, m (>= 0, default 0); a point with a gap has
+    /// no pressure, no shear and a traction-free law there.
+    pub gap: Option<Vec<f64>>,
+}
+
+/// A crack's closure table as its solver profile: each point's law built (and cached by
+/// its static pressure) from the crack's branches at the interpolated state.
+#[derive(Debug)]
+pub(super) struct ClosureProfile {
+    crack: CrackSpec,
+    table: ClosureSpec,
+    file: String,
+    key: String,
+    cache: BuildCache,
+}
+
+/// `v` at `x` from the table `(xs, vs)`: linear between its points, constant beyond.
+fn interpolate(xs: &[f64], vs: &[f64], x: f64) -> f64 {
+    let i = xs.partition_point(|&p| p <= x);
+    if i == 0 {
+        vs[0]
+    } else if i == xs.len() {
+        vs[xs.len() - 1]
+    } else {
+        let w = (x - xs[i - 1]) / (xs[i] - xs[i - 1]);
+        vs[i - 1] + w * (vs[i] - vs[i - 1])
+    }
+}
+
+impl ClosureProfile {
+    /// The table of crack `c` (`length` m), checked: positions increasing within the
+    /// crack, one value per position, pressures and gaps >= 0, a gap only where pressure,
+    /// shear and the traction branch are all zero, and every table point's law valid.
+    pub(super) fn new(
+        c: &CrackSpec,
+        t: &ClosureSpec,
+        length: f64,
+        file: &str,
+        key: &str,
+    ) -> Result<Self> {
+        let k = |f: &str| format!("{key}.closure.{f}");
+        let xs = &t.position;
+        if xs.is_empty()
+            || xs
+                .iter()
+                .any(|x| !(x.is_finite() && (0.0..=length).contains(x)))
+            || xs.windows(2).any(|w| w[1] <= w[0])
+        {
+            return Err(inv(
+                file,
+                k("position"),
+                format!("{xs:?}"),
+                &format!("increasing positions along the crack, within [0, {length}] m"),
+            ));
+        }
+        for (name, v, uniform) in [
+            ("pressure", &t.pressure, c.static_pressure),
+            ("shear", &t.shear, c.static_shear),
+            ("gap", &t.gap, 0.0),
+        ] {
+            let Some(v) = v else { continue };
+            if v.len() != xs.len() || v.iter().any(|x| !x.is_finite()) {
+                return Err(inv(
+                    file,
+                    k(name),
+                    format!("{} values", v.len()),
+                    &format!("{} finite values, one per position", xs.len()),
+                ));
+            }
+            if name != "gap" && uniform != 0.0 {
+                return Err(inv(
+                    file,
+                    format!("{key}.static_{name}"),
+                    uniform,
+                    &format!("0 (the closure table gives the {name})"),
+                ));
+            }
+            if name != "shear" && v.iter().any(|&x| x < 0.0) {
+                return Err(inv(
+                    file,
+                    k(name),
+                    format!("{v:?}"),
+                    ">= 0 at every position",
+                ));
+            }
+        }
+        let profile = ClosureProfile {
+            crack: c.clone(),
+            table: t.clone(),
+            file: file.to_string(),
+            key: key.to_string(),
+            cache: BuildCache::new(),
+        };
+        for &x in xs {
+            let (p0, q0, g0) = profile.state(x);
+            if g0 > 0.0 && (p0 != 0.0 || q0 != 0.0 || c.traction != TractionSpec::default()) {
+                return Err(inv(
+                    file,
+                    k("gap"),
+                    g0,
+                    "0 where the pressure or the shear is not 0 or the traction branch is not free (an open point carries no stress)",
+                ));
+            }
+            profile.at(x)?;
+        }
+        Ok(profile)
+    }
+
+    /// `(p0, q0, g0)` (Pa, Pa, m) at `position` (m).
+    fn state(&self, position: f64) -> (f64, f64, f64) {
+        let t = &self.table;
+        let at = |v: &Option<Vec<f64>>, uniform: f64| {
+            v.as_ref()
+                .map_or(uniform, |v| interpolate(&t.position, v, position))
+        };
+        (
+            at(&t.pressure, self.crack.static_pressure),
+            at(&t.shear, self.crack.static_shear),
+            at(&t.gap, 0.0),
+        )
+    }
+}
+
+impl CrackProfile<SharedLaw> for ClosureProfile {
+    fn at(&self, position: f64) -> Result<(SharedLaw, f64)> {
+        let (p0, q0, g0) = self.state(position);
+        if g0 > 0.0 && (p0 != 0.0 || q0 != 0.0) {
+            return Err(inv(
+                &self.file,
+                format!("{}.closure.gap", self.key),
+                format!("{g0} m at {position} m where p0 = {p0} Pa, q0 = {q0} Pa"),
+                "a gap only where the interpolated pressure and shear are 0",
+            ));
+        }
+        let c = &self.crack;
+        let normal = self
+            .cache
+            .law(p0, &c.compression, &c.traction, &self.file, &self.key)?;
+        let tangential = crate::law::registry::build_tangential(
+            &c.tangential,
+            q0,
+            &normal,
+            &self.file,
+            &self.key,
+        )?;
+        Ok((
+            SharedLaw {
+                normal,
+                tangential: Arc::new(tangential),
+            },
+            g0,
+        ))
+    }
+}
