@@ -3,7 +3,7 @@
 //! `snapshots/frame_NNNN.png` (the field, the cracks drawn, a colour bar in m/s, the time in
 //! us, axes in mm, receivers and transducers marked), `snapshots/snapshots.gif`,
 //! `snapshots/frame_NNNN.vti` with `snapshots/snapshots.pvd` (ParaView), and for every run
-//! `receivers.svg`, `spectra.svg` and `crack_map.png` (each crack's normal gap along it
+//! `receivers.svg`, `spectra.svg`, `crack_map.png` and `crack_state.png` (each crack's normal gap, and its open/stick/slip state, along it
 //! against time).
 
 use crate::error::Result;
@@ -162,9 +162,15 @@ mod files {
         picture::heatmap(&h)
     }
 
-    /// The crack's normal gap along it (mm) against time (us, downwards), nm.
-    fn crack_map(r: &Solid2dResult, i: usize) -> image::RgbImage {
+    /// The crack's normal gap (nm; `state` false) or its contact state (0 open, 1 stick,
+    /// 2 slip; `state` true) along it (mm) against time (us, downwards).
+    fn crack_map(r: &Solid2dResult, i: usize, state: bool) -> image::RgbImage {
         let c = &r.output.cracks[i];
+        let (field, unit) = if state {
+            (&c.state, 1.0)
+        } else {
+            (&c.normal_gap, 1e9)
+        };
         let (n, m) = (c.position.len(), c.time.len());
         let (nx, nz) = (600usize, 400usize);
         let mut values = vec![0.0; nx * nz];
@@ -188,10 +194,19 @@ mod files {
                 } else {
                     j
                 };
-                values[iz * nx + ix] = c.normal_gap.get(k * n + j).copied().unwrap_or(0.0) * 1e9;
+                values[iz * nx + ix] = field.get(k * n + j).copied().unwrap_or(0.0) * unit;
             }
         }
-        let top = values.iter().fold(0.0f64, |a, &b| a.max(b));
+        let top = if state {
+            2.0
+        } else {
+            values.iter().fold(0.0f64, |a, &b| a.max(b))
+        };
+        let (title, bar) = if state {
+            ("contact state", "0 open, 1 stick, 2 slip")
+        } else {
+            ("normal gap", "gap (nm)")
+        };
         picture::heatmap(&Heatmap {
             nx,
             nz,
@@ -200,10 +215,10 @@ mod files {
             y_range: (0.0, t1 * 1e6),
             scale: (0.0, if top > 0.0 { top } else { 1.0 }),
             diverging: false,
-            title: format!("crack {i}: normal gap"),
+            title: format!("crack {i}: {title}"),
             xlabel: "position along the crack (mm)".into(),
             ylabel: "t (\u{b5}s)".into(),
-            bar_label: "gap (nm)".into(),
+            bar_label: bar.into(),
             ..Default::default()
         })
     }
@@ -229,18 +244,20 @@ mod files {
             }
         }
         for i in 0..r.output.cracks.len() {
-            let name = if i == 0 {
-                "crack_map.png".to_string()
-            } else {
-                format!("crack_map_{i}.png")
-            };
             if r.output.cracks[i].time.is_empty() {
                 continue;
             }
-            out.push(BinaryFile {
-                bytes: picture::png(&name, &crack_map(r, i))?,
-                name,
-            });
+            for (stem, state) in [("crack_map", false), ("crack_state", true)] {
+                let name = if i == 0 {
+                    format!("{stem}.png")
+                } else {
+                    format!("{stem}_{i}.png")
+                };
+                out.push(BinaryFile {
+                    bytes: picture::png(&name, &crack_map(r, i, state))?,
+                    name,
+                });
+            }
         }
         Ok(out)
     }
@@ -509,7 +526,8 @@ at = [1e-3, 1e-3]
                 "snapshots/frame_0001.png",
                 "snapshots/frame_0002.png",
                 "snapshots/snapshots.gif",
-                "crack_map.png"
+                "crack_map.png",
+                "crack_state.png"
             ]
         );
         // the field's 100 x 50 px, margins of 176 x 88 px around it (colour bar at least
