@@ -58,7 +58,6 @@ pub mod half_space;
 mod param;
 mod record;
 pub mod solid_2d;
-pub mod solid_2d_pictures;
 mod template;
 
 pub use fields::{Fields, Slot};

@@ -9,7 +9,6 @@ mod oblique;
 mod plausible;
 pub mod snapshots;
 pub mod solid_2d;
-mod solid_2d_closure;
 pub mod spec;
 pub mod units;
 mod value;

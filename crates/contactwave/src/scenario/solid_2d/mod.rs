@@ -4,8 +4,8 @@
 //! ([`Solid2dSpec`]) and its validation into the solver's problem
 //! ([`crate::solver::solid_2d::Solid2d`]) with every crack's law built once.
 
-use super::solid_2d_closure::ClosureProfile;
-pub use super::solid_2d_closure::ClosureSpec;
+mod closure;
+
 use crate::analysis::{AnalysisMethod, Gate};
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
@@ -18,6 +18,8 @@ use crate::solver::solid_2d::{
     pml, Crack, CrackProfile, Elastic, Incidence, Layer, Pml, Side, Solid2d, Source, SourceKind,
     WaveType,
 };
+use closure::ClosureProfile;
+pub use closure::ClosureSpec;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::sync::Arc;

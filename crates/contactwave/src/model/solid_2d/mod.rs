@@ -5,18 +5,19 @@
 //! linearised at their static state, plateau fit over the gate; A1...A5 of each
 //! receiver's velocity, after the optional time gate); files `summary.json`,
 //! `receivers.csv` and `crack.csv`, and with the `plot` feature the plots
-//! and pictures of [`super::solid_2d_pictures`].
+//! and pictures of [`pictures`].
 
-use super::half_space::methods::{linearised_law, linearised_tangential};
-use super::record::summary_record;
-use super::solid_2d_pictures::{Geometry, Snapshots2d};
-use super::template::{FromSpec, SpecTemplate};
-use super::{Fields, Kind, Model, Outcome, Record, RunControl, Slot, Template, Value};
+pub mod pictures;
+
 use crate::analysis::methods::{method_bands, Quantity, Records, Signal};
 use crate::analysis::{AnalysisMethod, Summary};
 use crate::error::{Error, Result};
 use crate::excitation::Scaled;
 use crate::law::point::SharedLaw;
+use crate::model::half_space::methods::{linearised_law, linearised_tangential};
+use crate::model::record::summary_record;
+use crate::model::template::{FromSpec, SpecTemplate};
+use crate::model::{Fields, Kind, Model, Outcome, Record, RunControl, Slot, Template, Value};
 use crate::render::{csv_columns, summary_json, time_series, OutputFile, Rows};
 use crate::scenario::solid_2d::{
     component_names, CrackSpec, LayerSpec, ModelSpec, ReceiverSpec, Solid2dScenario, Solid2dSpec,
@@ -24,6 +25,7 @@ use crate::scenario::solid_2d::{
 };
 use crate::scenario::BuildCache;
 use crate::solver::solid_2d::{Solid2d, Solid2dOutput};
+use pictures::{Geometry, Snapshots2d};
 use std::any::Any;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -466,14 +468,14 @@ impl Outcome for Solid2dResult {
             files.push(self.crack_csv());
         }
         #[cfg(feature = "plot")]
-        files.extend(super::solid_2d_pictures::text_files(self, self.f0)?);
+        files.extend(pictures::text_files(self, self.f0)?);
         Ok(files)
     }
 
     /// The PNG frames and GIF of the snapshots, and the crack maps (the `plot` feature).
     fn binary_files(&self) -> Result<Vec<crate::render::BinaryFile>> {
         #[cfg(feature = "plot")]
-        return super::solid_2d_pictures::binary_files(self);
+        return pictures::binary_files(self);
         #[cfg(not(feature = "plot"))]
         Ok(Vec::new())
     }

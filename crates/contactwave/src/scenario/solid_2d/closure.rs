@@ -2,7 +2,7 @@
 //! section 2b, docs/model.md section 15.2): the spec, and the solver profile that builds
 //! each split node's law at its interpolated pressure and shear, with its initial gap.
 
-use super::solid_2d::CrackSpec;
+use super::CrackSpec;
 use crate::error::{Error, Result};
 use crate::law::point::SharedLaw;
 use crate::law::spec::TractionSpec;
