@@ -7,6 +7,7 @@ pub mod oblique;
 pub mod shear;
 pub mod solid_2d;
 pub mod solid_2d_plane;
+pub mod solid_2d_pml;
 
 use crate::analysis::fit::fit_power_law;
 use crate::analysis::AnalysisMethod;
@@ -463,6 +464,7 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
     v.extend(oblique::run_all()?);
     v.extend(solid_2d::run_all()?);
     v.extend(solid_2d_plane::run_all()?);
+    v.extend(solid_2d_pml::run_all()?);
     Ok(v)
 }
 

@@ -34,8 +34,6 @@ pub mod snapshot;
 mod stepping;
 
 #[cfg(test)]
-mod pml_tests;
-#[cfg(test)]
 mod reduction_tests;
 #[cfg(test)]
 mod tests;
