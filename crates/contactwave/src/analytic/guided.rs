@@ -150,41 +150,26 @@ pub fn lamb_phase_velocity(speeds: Speeds, mode: LambMode, fd: f64) -> Option<f6
     let omega = 2.0 * PI * fd;
     let f = |c: f64| rayleigh_lamb(speeds, mode, omega, 1.0, c);
     let n = 4000;
-    match mode {
-        LambMode::A0 => {
-            // the lowest root in (0, c_R)
-            let (lo, hi) = (1e-4 * cr, cr * (1.0 - 1e-12));
-            let mut a = lo;
-            let mut fa = f(a);
-            for i in 1..=n {
-                let b = lo + (hi - lo) * i as f64 / n as f64;
-                let fb = f(b);
-                if fa * fb <= 0.0 {
-                    return bisect(f, a, b);
-                }
-                a = b;
-                fa = fb;
-            }
-            None
+    let (lo, hi) = match mode {
+        // the lowest root in (0, c_R)
+        LambMode::A0 => (1e-4 * cr, cr * (1.0 - 1e-12)),
+        // the lowest root in (c_R, c_plate] (the higher symmetric modes stay above c_S,
+        // which S0 crosses from above)
+        LambMode::S0 => (cr * (1.0 + 1e-12), speeds.plate() * (1.0 + 1e-9)),
+    };
+    // scan for the first sign change, then bisect it
+    let mut a = lo;
+    let mut fa = f(a);
+    for i in 1..=n {
+        let b = lo + (hi - lo) * i as f64 / n as f64;
+        let fb = f(b);
+        if fa * fb <= 0.0 {
+            return bisect(f, a, b);
         }
-        LambMode::S0 => {
-            // the lowest root in (c_R, c_plate] (the higher symmetric modes stay above
-            // c_S, which S0 crosses from above)
-            let (lo, hi) = (cr * (1.0 + 1e-12), speeds.plate() * (1.0 + 1e-9));
-            let mut a = lo;
-            let mut fa = f(a);
-            for i in 1..=n {
-                let b = lo + (hi - lo) * i as f64 / n as f64;
-                let fb = f(b);
-                if fa * fb <= 0.0 {
-                    return bisect(f, a, b);
-                }
-                a = b;
-                fa = fb;
-            }
-            None
-        }
+        a = b;
+        fa = fb;
     }
+    None
 }
 
 #[cfg(test)]
