@@ -15,8 +15,8 @@ mod commands;
 
 use clap::{Parser, Subcommand};
 use commands::{
-    bench, convergence, fit, identify, law, merge, reproduce, run, sweep, validate, EXIT_FAILED,
-    EXIT_INTERRUPTED, EXIT_INVALID_INPUT,
+    analyze, bench, convergence, fit, identify, law, merge, reproduce, run, sweep, validate,
+    EXIT_FAILED, EXIT_INTERRUPTED, EXIT_INVALID_INPUT,
 };
 use contactwave::Error;
 use std::process::ExitCode;
@@ -52,6 +52,7 @@ struct Cli {
 enum Command {
     Reproduce(reproduce::Args),
     Fit(fit::Args),
+    Analyze(analyze::Args),
     Run(run::Args),
     Law(law::Args),
     Sweep(sweep::Args),
@@ -107,6 +108,7 @@ fn dispatch(cmd: Command) -> contactwave::Result<u8> {
     match cmd {
         Command::Reproduce(args) => reproduce::run(args),
         Command::Fit(args) => fit::run(args),
+        Command::Analyze(args) => analyze::run(args),
         Command::Run(args) => run::run(args),
         Command::Law(args) => law::run(args),
         Command::Sweep(args) => sweep::run(args),

@@ -55,6 +55,7 @@ pub mod interrupt;
 pub mod inverse;
 pub mod law;
 pub mod material;
+pub mod measured;
 pub mod model;
 pub mod numeric;
 pub mod output;

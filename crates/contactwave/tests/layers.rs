@@ -1,7 +1,7 @@
 //! The library's layering, checked on its source: modules import downwards only
 //!
 //! ```text
-//! error → numeric, material, analytic → analysis, law → excitation, render → solver
+//! error → numeric, material, analytic → analysis, law → excitation, measured, render → solver
 //!       → scenario, model → run → study, inverse → output, reproduce
 //! ```
 //!
@@ -23,6 +23,7 @@ const LAYERS: &[(&str, u32)] = &[
     ("analysis", 2),
     ("law", 2),
     ("excitation", 3),
+    ("measured", 3),
     ("render", 3),
     ("solver", 4),
     ("scenario", 5),

@@ -2,6 +2,7 @@
 //! the command's help text, and its `run`), and what they share: exit codes, the output
 //! folder check and file writing, progress bars and Ctrl-C handling.
 
+pub mod analyze;
 pub mod bench;
 pub mod convergence;
 pub mod fit;

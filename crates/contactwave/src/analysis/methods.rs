@@ -122,7 +122,7 @@ fn combine(a: &[f64], b: &[f64], wa: f64, wb: f64) -> Vec<f64> {
 fn band(x: &[f64], s: &Signal) -> BandAmplitudes {
     with_analyzer(|a| match s.quantity {
         Quantity::Displacement => a.displacement_bands(x, s.dt, s.f0, s.f2),
-        Quantity::Samples => a.bands(x, s.dt, s.f0, s.f2),
+        Quantity::Samples => a.point_bands(x, s.dt, s.f0, s.f2),
     })
 }
 
@@ -147,6 +147,35 @@ pub fn method_bands(method: AnalysisMethod, r: &Records, s: &Signal) -> Option<B
         }
         AnalysisMethod::PlateauFit => plateau_fit(r.response, s),
     })
+}
+
+/// [`method_bands`] of records gated by `gate` (each record a copy, weighted by the gate
+/// at `s.t0 + k s.dt`): the one analysis of a receiver, simulated (2D runs) or measured
+/// (`contactwave analyze`). `None` when a record the method needs is missing.
+pub fn gated_bands(
+    method: AnalysisMethod,
+    gate: Option<&super::Gate>,
+    s: &Signal,
+    response: &[f64],
+    inverse: Option<&[f64]>,
+    linear: Option<&[f64]>,
+) -> Option<BandAmplitudes> {
+    let gated = |x: &[f64]| {
+        let mut x = x.to_vec();
+        if let Some(g) = gate {
+            g.apply(&mut x, s.t0, s.dt);
+        }
+        x
+    };
+    let response = gated(response);
+    let inverse = inverse.map(gated);
+    let linear = linear.map(gated);
+    let records = Records {
+        response: &response,
+        inverse: inverse.as_deref(),
+        linear: linear.as_deref(),
+    };
+    method_bands(method, &records, s)
 }
 
 fn pulse_inversion_parts(

@@ -90,6 +90,8 @@ pub struct Analyzer {
     sinc_key: (usize, u64),
     /// The cell-average response `max(sin(a)/a, 1e-3)`, `a = pi k df dt`, of bins `k`.
     sinc: Vec<f64>,
+    /// The input holds point samples (no cell-average response to divide out).
+    point: bool,
 }
 
 /// Most [`LowBins`] (and [`EnvelopePeak`]) plans an analyser keeps.
@@ -118,6 +120,7 @@ impl Analyzer {
             band: Vec::new(),
             scratch: Vec::new(),
             low: Vec::new(),
+            point: false,
             envelopes: Vec::new(),
             sinc_key: (0, 0),
             sinc: Vec::new(),
@@ -210,11 +213,12 @@ impl Analyzer {
         // divide out the cell-average response sinc(pi f dt)
         self.tabulate_sinc(n_fft, df, dt, k_hi);
         self.band.clear();
+        let point = self.point;
         self.band.extend(
             self.spec[k_lo..k_hi]
                 .iter()
                 .zip(&self.sinc[k_lo..k_hi])
-                .map(|(c, s)| c / s),
+                .map(|(c, s)| if point { *c } else { c / s }),
         );
         let i = match self.envelopes.iter().position(|p| p.size() == m) {
             Some(i) => i,
@@ -240,6 +244,15 @@ impl Analyzer {
         self.input.clear();
         self.input.extend_from_slice(x);
         self.input_bands(dt, f0, f2)
+    }
+
+    /// [`Self::bands`] of point samples `x` (a signal sampled at `t0 + k dt`, as a 2D
+    /// receiver or an oscilloscope records it): no cell-average response is divided out.
+    pub fn point_bands(&mut self, x: &[f64], dt: f64, f0: f64, f2: Option<f64>) -> BandAmplitudes {
+        self.point = true;
+        let b = self.bands(x, dt, f0, f2);
+        self.point = false;
+        b
     }
 
     /// [`Self::bands`] of the cell-averaged velocity (m/s) of a displacement record (m,

@@ -90,6 +90,20 @@ pub fn set_shear_harmonics(
     );
 }
 
+/// The harmonic keys of one record (a 2D receiver, a measured record), each after
+/// `prefix` (e.g. `"top_"`, or `""`): `A1` ... `A5` (the record's unit: m/s for a
+/// velocity), `A2_over_A1`, `A3_over_A1` and `beta_star` = A2/A1^2 (the inverse of the
+/// record's unit).
+pub fn set_record_harmonics(s: &mut Summary, prefix: &str, h: &[f64; 6]) {
+    for (n, a) in h.iter().enumerate().skip(1) {
+        s.set(&format!("{prefix}A{n}"), *a);
+    }
+    let a1 = h[1];
+    s.set(&format!("{prefix}A2_over_A1"), h[2] / a1);
+    s.set(&format!("{prefix}A3_over_A1"), h[3] / a1);
+    s.set(&format!("{prefix}beta_star"), h[2] / (a1 * a1));
+}
+
 /// The reflected wave's summary keys: `A1_over_Ainc` ... `A5_over_Ainc`, `Asub_over_Ainc`,
 /// `A2_over_A1`, `beta_star`, the incident burst's own `incident_A*_over_Ainc` (when its
 /// bands are given) and, for a two-tone burst, `Af2_over_Ainc`, `Asum_over_Ainc`,

@@ -73,18 +73,7 @@ pub struct Identifiability {
     pub verdicts: Vec<Verdict>,
 }
 
-/// Two-sided 97.5% Student t quantile for `dof` degrees of freedom (Cornish-Fisher
-/// expansion, < 1% error for dof >= 3).
-pub fn t975(dof: usize) -> f64 {
-    let z: f64 = 1.959964;
-    if dof == 0 {
-        return f64::INFINITY;
-    }
-    let n = dof as f64;
-    z + (z.powi(3) + z) / (4.0 * n)
-        + (5.0 * z.powi(5) + 16.0 * z.powi(3) + 3.0 * z) / (96.0 * n * n)
-        + (3.0 * z.powi(7) + 19.0 * z.powi(5) + 17.0 * z.powi(3) - 15.0 * z) / (384.0 * n.powi(3))
-}
+pub use crate::numeric::t975;
 
 /// The whole analysis at the estimate.
 pub fn analyse(

@@ -20,6 +20,7 @@
 //!
 //! Numbers are written so that they parse back to the same `f64`.
 
+pub mod analyze;
 #[cfg(feature = "identify")]
 pub mod identify;
 pub mod labels;

@@ -9,8 +9,8 @@
 
 pub mod pictures;
 
-use crate::analysis::methods::{method_bands, Quantity, Records, Signal};
-use crate::analysis::{AnalysisMethod, Summary};
+use crate::analysis::methods::{gated_bands, Quantity, Signal};
+use crate::analysis::{set_record_harmonics, AnalysisMethod, Summary};
 use crate::error::{Error, Result};
 use crate::excitation::Scaled;
 use crate::law::point::SharedLaw;
@@ -247,42 +247,28 @@ impl Solid2dScenario {
             f2: None,
             plateau: self.gate.map_or((0.0, duration), |g| (g.start, g.end)),
         };
-        let gated = |x: &[f64]| {
-            let mut x = x.to_vec();
-            if let Some(g) = &self.gate {
-                g.apply(&mut x, sig.t0, dt);
-            }
-            x
-        };
         for spec in &self.receivers {
-            let trace = |o: &Solid2dOutput| {
+            let trace = |o: &'_ Solid2dOutput| -> Vec<f64> {
                 if spec.stress {
-                    gated(o.stress_trace(spec.index, spec.component))
+                    o.stress_trace(spec.index, spec.component).to_vec()
                 } else {
-                    gated(o.trace(spec.index, spec.component))
+                    o.trace(spec.index, spec.component).to_vec()
                 }
             };
             let response = trace(&output);
             let other = twin.as_ref().map(trace);
-            let records = Records {
-                response: &response,
-                inverse: other
-                    .as_deref()
-                    .filter(|_| method == AnalysisMethod::PulseInversion),
-                linear: other
-                    .as_deref()
-                    .filter(|_| method == AnalysisMethod::LinearReference),
-            };
-            let h = method_bands(method, &records, &sig)
-                .unwrap_or_default()
-                .harmonic;
-            for (n, a) in h.iter().enumerate().skip(1) {
-                s.set(&format!("{}_A{n}", spec.name), *a);
-            }
-            let a1 = h[1];
-            s.set(&format!("{}_A2_over_A1", spec.name), h[2] / a1);
-            s.set(&format!("{}_A3_over_A1", spec.name), h[3] / a1);
-            s.set(&format!("{}_beta", spec.name), h[2] / (a1 * a1));
+            let pick = |m: AnalysisMethod| other.as_deref().filter(|_| method == m);
+            let h = gated_bands(
+                method,
+                self.gate.as_ref(),
+                &sig,
+                &response,
+                pick(AnalysisMethod::PulseInversion),
+                pick(AnalysisMethod::LinearReference),
+            )
+            .unwrap_or_default()
+            .harmonic;
+            set_record_harmonics(&mut s, &format!("{}_", spec.name), &h);
         }
         let names = |stress: bool| {
             self.receivers

@@ -1,0 +1,531 @@
+//! The analysis of measured records (model.md section 16.2): the simulator's own
+//! [`gated_bands`] on each record, the fundamental given or detected, each harmonic's
+//! floor, and over a series of drive amplitudes the least-squares fit of A2 against A1^2.
+//!
+//! Per record, in order:
+//! 1. the baseline (the record's mean, a DC offset) is removed, unless
+//!    [`Settings::keep_dc`];
+//! 2. the gate weights the record (and its opposite-polarity twin and linear reference);
+//!    a linear reference is first scaled to the record by least squares over the gate
+//!    (a low-amplitude record of the same echo stands for the linear response);
+//! 3. `A1`...`A5` by the method (band peak, pulse inversion, linear reference, plateau
+//!    fit), the records taken as point samples;
+//! 4. the floor of each harmonic: the larger of the method's leakage (what it gives on
+//!    the record's fundamental alone: the record band-limited to `[f0/2, 3 f0/2)`; none
+//!    for the plateau fit, exact over whole periods) and
+//!    the noise (the band-peak amplitudes of the samples outside the gate, placed in the
+//!    gate: what noise alone gives), with a warning when a harmonic is within a factor 10
+//!    of its floor.
+
+use super::series::{Measured, Series};
+use crate::analysis::methods::{gated_bands, method_floor, Quantity, Signal};
+use crate::analysis::{spectral_peak, with_analyzer, AnalysisMethod, Gate};
+use crate::error::{Error, Result};
+use crate::numeric::t975;
+use realfft::RealFftPlanner;
+
+/// How records are analysed.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Settings {
+    /// Fundamental, Hz (default: detected, the peak of the largest record's spectrum).
+    pub f0: Option<f64>,
+    /// The time gate around the echo of interest (default: the whole record).
+    pub gate: Option<Gate>,
+    /// The analysis method (default `band_peak`).
+    pub method: AnalysisMethod,
+    /// Keep the records' mean (default: removed, a DC offset).
+    pub keep_dc: bool,
+}
+
+/// The analysis of one record.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecordAnalysis {
+    /// Name of the record.
+    pub name: String,
+    /// Drive amplitude, if given.
+    pub amplitude: Option<f64>,
+    /// `A_n`, n = 1..5, in the record's unit (index 0 unused).
+    pub harmonics: [f64; 6],
+    /// The method's leakage floor of `A_n` (index 0 unused).
+    pub leakage: [f64; 6],
+    /// The noise floor of `A_n` (NaN: no samples outside the gate to measure it from).
+    pub noise: [f64; 6],
+    /// Harmonics 2..5 within a factor 10 of their floor (the larger of the two).
+    pub near_floor: Vec<usize>,
+    /// The record's mean that was removed, in its unit (0 with [`Settings::keep_dc`]).
+    pub dc: f64,
+    /// The factor the linear reference was scaled by (linear reference only).
+    pub linear_scale: Option<f64>,
+}
+
+impl RecordAnalysis {
+    /// `A2 / A1`.
+    pub fn a2_over_a1(&self) -> f64 {
+        self.harmonics[2] / self.harmonics[1]
+    }
+    /// `A3 / A1`.
+    pub fn a3_over_a1(&self) -> f64 {
+        self.harmonics[3] / self.harmonics[1]
+    }
+    /// `beta* = A2 / A1^2` (the inverse of the record's unit).
+    pub fn beta_star(&self) -> f64 {
+        self.harmonics[2] / (self.harmonics[1] * self.harmonics[1])
+    }
+    /// The floor of `A_n`: the larger of leakage and noise (NaN-free where one is known).
+    pub fn floor(&self, n: usize) -> f64 {
+        let (l, z) = (self.leakage[n], self.noise[n]);
+        if z.is_nan() {
+            l
+        } else {
+            l.max(z)
+        }
+    }
+}
+
+/// Least-squares fit `A2 = slope A1^2 + intercept` over a series (the relative
+/// nonlinearity parameter is the slope).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeriesFit {
+    /// Records fitted.
+    pub count: usize,
+    /// Slope, the inverse of the records' unit.
+    pub slope: f64,
+    /// Intercept, the records' unit.
+    pub intercept: f64,
+    /// Coefficient of determination.
+    pub r_squared: f64,
+    /// 95% interval of the slope (Student t, `count - 2` degrees of freedom; NaN for 2
+    /// records).
+    pub slope_interval: (f64, f64),
+    /// 95% interval of the intercept.
+    pub intercept_interval: (f64, f64),
+}
+
+/// The analysis of a series.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Analysis {
+    /// Fundamental, Hz.
+    pub f0: f64,
+    /// Whether `f0` was detected (not given).
+    pub f0_detected: bool,
+    /// Method.
+    pub method: AnalysisMethod,
+    /// Gate.
+    pub gate: Option<Gate>,
+    /// The window of `plateau_fit`, s (whole periods of f0 inside the gate's flat part).
+    pub plateau: (f64, f64),
+    /// Time step, s.
+    pub dt: f64,
+    /// Time of the first sample, s.
+    pub t0: f64,
+    /// Each record's analysis, in the series' order.
+    pub records: Vec<RecordAnalysis>,
+    /// The fit of A2 against A1^2 (two records or more).
+    pub fit: Option<SeriesFit>,
+}
+
+/// Analyse `series` (`file` names it in errors).
+pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analysis> {
+    let dt = series.dt;
+    if !(dt > 0.0) || !dt.is_finite() {
+        return Err(Error::invalid(file, "dt", dt, "must be > 0 s"));
+    }
+    let Some(first) = series.records.first() else {
+        return Err(Error::invalid(
+            file,
+            "records",
+            "none",
+            "at least one record",
+        ));
+    };
+    let n = first.samples.len();
+    let duration = n as f64 * dt;
+    let t0 = series.t0;
+    if n < 16 {
+        return Err(Error::invalid(
+            file,
+            &first.name,
+            format!("{n} samples"),
+            "at least 16 samples",
+        ));
+    }
+    for r in &series.records {
+        let companions = [("inverse", &r.inverse), ("linear", &r.linear)];
+        for (what, c) in companions {
+            if let Some(c) = c {
+                if c.len() != r.samples.len() {
+                    return Err(Error::invalid(
+                        file,
+                        format!("{}.{what}", r.name),
+                        format!("{} samples", c.len()),
+                        format!("as many samples as the record ({})", r.samples.len()),
+                    ));
+                }
+            }
+        }
+        if r.samples.iter().any(|v| !v.is_finite()) {
+            return Err(Error::invalid(
+                file,
+                &r.name,
+                "a non-finite sample",
+                "finite samples",
+            ));
+        }
+    }
+    if let Some(g) = &settings.gate {
+        let end = t0 + (n - 1) as f64 * dt;
+        if !g.is_valid() || g.end <= t0 || g.start >= end {
+            return Err(Error::invalid(
+                file,
+                "gate",
+                format!("{}, {} (taper {})", g.start, g.end, g.taper),
+                format!(
+                    "start < end inside the record ({t0:e} .. {end:e} s), the taper at most half the gate"
+                ),
+            ));
+        }
+    }
+    let method = settings.method;
+    for r in &series.records {
+        let missing = match method {
+            AnalysisMethod::PulseInversion if r.inverse.is_none() => {
+                Some("an opposite-polarity record for each record (--inverse)")
+            }
+            AnalysisMethod::LinearReference if r.linear.is_none() => {
+                Some("a low-amplitude record as the linear reference (--linear)")
+            }
+            AnalysisMethod::PlateauFit if settings.gate.is_none() => {
+                Some("a gate over the echo's flat top (--gate START,END)")
+            }
+            _ => None,
+        };
+        if let Some(m) = missing {
+            return Err(Error::invalid(
+                file,
+                "method",
+                method.name(),
+                format!("{} needs {m}", method.name()),
+            ));
+        }
+    }
+    // the records without their mean
+    let prepared: Vec<Prepared> = series
+        .records
+        .iter()
+        .map(|r| Prepared::of(r, settings, t0, dt))
+        .collect();
+    // the fundamental
+    let (f0, f0_detected) = match settings.f0 {
+        Some(f) => {
+            let nyquist = 0.5 / dt;
+            if !(f > 0.0) || !(f < nyquist) {
+                return Err(Error::invalid(
+                    file,
+                    "f0",
+                    f,
+                    format!("must be > 0 and below the Nyquist frequency {nyquist:e} Hz"),
+                ));
+            }
+            (f, false)
+        }
+        None => (
+            detect_f0(&prepared, settings.gate.as_ref(), t0, dt, file)?,
+            true,
+        ),
+    };
+    let periods = duration * f0;
+    if periods < 3.0 {
+        return Err(Error::invalid(
+            file,
+            "f0",
+            f0,
+            format!("at least 3 periods in the record ({periods:.2} here): a longer record or a higher f0"),
+        ));
+    }
+    if 5.0 * f0 > 0.5 / dt {
+        return Err(Error::invalid(
+            file,
+            "f0",
+            f0,
+            format!("5 f0 below the Nyquist frequency {:e} Hz (the record is sampled too slowly for A5)", 0.5 / dt),
+        ));
+    }
+    let plateau = plateau_window(settings.gate.as_ref(), f0, t0, duration);
+    let sig = Signal {
+        quantity: Quantity::Samples,
+        dt,
+        t0,
+        f0,
+        f2: None,
+        plateau,
+    };
+    let gate = settings.gate.as_ref();
+    let records = series
+        .records
+        .iter()
+        .zip(&prepared)
+        .map(|(r, p)| {
+            let mut linear_scale = None;
+            let linear = p.linear.as_ref().map(|l| {
+                let k = scale_onto(&p.samples, l, gate, t0, dt);
+                linear_scale = Some(k);
+                l.iter().map(|v| k * v).collect::<Vec<f64>>()
+            });
+            let h = gated_bands(
+                method,
+                gate,
+                &sig,
+                &p.samples,
+                p.inverse.as_deref(),
+                linear.as_deref(),
+            )
+            .unwrap_or_default()
+            .harmonic;
+            let mut gated = p.samples.clone();
+            if let Some(g) = gate {
+                g.apply(&mut gated, t0, dt);
+            }
+            // plateau fit over whole periods has no leakage (its floor is the noise's)
+            let leakage = if method == AnalysisMethod::PlateauFit {
+                [0.0; 6]
+            } else {
+                let fundamental = band_limited(&gated, dt, 0.5 * f0, 1.5 * f0);
+                method_floor(method, &fundamental, &sig).harmonic
+            };
+            let noise = noise_floor(&p.samples, gate, &sig);
+            let mut a = RecordAnalysis {
+                name: r.name.clone(),
+                amplitude: r.amplitude,
+                harmonics: h,
+                leakage,
+                noise,
+                near_floor: Vec::new(),
+                dc: p.dc,
+                linear_scale,
+            };
+            a.near_floor = (2..=5)
+                .filter(|&k| {
+                    let f = a.floor(k);
+                    f > 0.0 && a.harmonics[k] < 10.0 * f
+                })
+                .collect();
+            a
+        })
+        .collect::<Vec<_>>();
+    let fit = fit_series(&records);
+    Ok(Analysis {
+        f0,
+        f0_detected,
+        method,
+        gate: settings.gate,
+        plateau,
+        dt,
+        t0,
+        records,
+        fit,
+    })
+}
+
+/// A record and its companions, their means removed.
+struct Prepared {
+    samples: Vec<f64>,
+    inverse: Option<Vec<f64>>,
+    linear: Option<Vec<f64>>,
+    dc: f64,
+}
+
+impl Prepared {
+    fn of(r: &Measured, s: &Settings, _t0: f64, _dt: f64) -> Prepared {
+        let strip = |x: &[f64]| -> (Vec<f64>, f64) {
+            if s.keep_dc {
+                return (x.to_vec(), 0.0);
+            }
+            let m = x.iter().sum::<f64>() / x.len().max(1) as f64;
+            (x.iter().map(|v| v - m).collect(), m)
+        };
+        let (samples, dc) = strip(&r.samples);
+        Prepared {
+            samples,
+            inverse: r.inverse.as_deref().map(|x| strip(x).0),
+            linear: r.linear.as_deref().map(|x| strip(x).0),
+            dc,
+        }
+    }
+}
+
+/// The fundamental of the largest gated record: its spectrum's peak above two bins (Hz).
+fn detect_f0(
+    records: &[Prepared],
+    gate: Option<&Gate>,
+    t0: f64,
+    dt: f64,
+    file: &str,
+) -> Result<f64> {
+    let energy = |x: &[f64]| x.iter().map(|v| v * v).sum::<f64>();
+    let largest = records
+        .iter()
+        .max_by(|a, b| energy(&a.samples).total_cmp(&energy(&b.samples)))
+        .map(|p| p.samples.clone())
+        .unwrap_or_default();
+    let mut x = largest;
+    if let Some(g) = gate {
+        g.apply(&mut x, t0, dt);
+    }
+    let nyquist = 0.5 / dt;
+    let spec = with_analyzer(|a| a.spectrum(&x, dt, nyquist));
+    let df = spec.frequency.get(1).copied().unwrap_or(f64::NAN);
+    let (f, peak) = spectral_peak(&spec.magnitude, df, 2.0 * df, nyquist);
+    if !(f > 0.0) || !(peak > 0.0) {
+        return Err(Error::invalid(
+            file,
+            "f0",
+            "not detected",
+            "a record with a spectral peak (or give the fundamental with --f0 HZ)",
+        ));
+    }
+    Ok(f)
+}
+
+/// Whole periods of `f0` inside the gate's flat part (the whole record without a gate).
+fn plateau_window(gate: Option<&Gate>, f0: f64, t0: f64, duration: f64) -> (f64, f64) {
+    match gate {
+        Some(g) => {
+            let (a, b) = (g.start + g.taper, g.end - g.taper);
+            let periods = ((b - a) * f0).floor().max(1.0);
+            (a, a + periods / f0)
+        }
+        None => (t0, t0 + duration),
+    }
+}
+
+/// The least-squares factor `k` that makes `k l` closest to `x` over the gate.
+fn scale_onto(x: &[f64], l: &[f64], gate: Option<&Gate>, t0: f64, dt: f64) -> f64 {
+    let (mut xl, mut ll) = (0.0, 0.0);
+    for (k, (a, b)) in x.iter().zip(l).enumerate() {
+        let w = gate.map_or(1.0, |g| g.weight(t0 + k as f64 * dt));
+        xl += w * w * a * b;
+        ll += w * w * b * b;
+    }
+    if ll > 0.0 {
+        xl / ll
+    } else {
+        0.0
+    }
+}
+
+/// `x` band-limited to `[f_lo, f_hi)` (Hz): its transform outside the band set to zero
+/// (zero-padded to twice its length, so the band's ringing does not wrap around).
+fn band_limited(x: &[f64], dt: f64, f_lo: f64, f_hi: f64) -> Vec<f64> {
+    let n = x.len();
+    let m = (2 * n).next_power_of_two();
+    let mut planner = RealFftPlanner::<f64>::new();
+    let fwd = planner.plan_fft_forward(m);
+    let inv = planner.plan_fft_inverse(m);
+    let mut input = vec![0.0; m];
+    input[..n].copy_from_slice(x);
+    let mut spec = fwd.make_output_vec();
+    if fwd.process(&mut input, &mut spec).is_err() {
+        return vec![0.0; n];
+    }
+    let df = 1.0 / (m as f64 * dt);
+    for (k, c) in spec.iter_mut().enumerate() {
+        let f = k as f64 * df;
+        if f < f_lo || f >= f_hi {
+            *c = Default::default();
+        }
+    }
+    let mut out = inv.make_output_vec();
+    if inv.process(&mut spec, &mut out).is_err() {
+        return vec![0.0; n];
+    }
+    out.truncate(n);
+    for v in &mut out {
+        *v /= m as f64;
+    }
+    out
+}
+
+/// The band-peak amplitudes of noise alone: the samples outside the gate (the longer
+/// side of it), repeated to fill the gate and placed in it (NaN without a gate, or with
+/// fewer than a quarter of the gate's samples outside it).
+fn noise_floor(x: &[f64], gate: Option<&Gate>, s: &Signal) -> [f64; 6] {
+    let nan = [f64::NAN; 6];
+    let Some(g) = gate else {
+        return nan;
+    };
+    let n = x.len();
+    let idx = |t: f64| (((t - s.t0) / s.dt).round().max(0.0) as usize).min(n);
+    let (a, b) = (idx(g.start), idx(g.end));
+    let before = &x[..a];
+    let after = &x[b.min(n)..];
+    let noise = if before.len() >= after.len() {
+        before
+    } else {
+        after
+    };
+    let len = b.saturating_sub(a);
+    if noise.is_empty() || len == 0 || 4 * noise.len() < len {
+        return nan;
+    }
+    let mut rec = vec![0.0; n];
+    for (k, v) in rec[a..b].iter_mut().enumerate() {
+        *v = noise[k % noise.len()];
+    }
+    g.apply(&mut rec, s.t0, s.dt);
+    with_analyzer(|an| an.point_bands(&rec, s.dt, s.f0, None)).harmonic
+}
+
+/// The fit of A2 against A1^2 over the records (`None` for fewer than two).
+fn fit_series(records: &[RecordAnalysis]) -> Option<SeriesFit> {
+    let pts: Vec<(f64, f64)> = records
+        .iter()
+        .map(|r| (r.harmonics[1] * r.harmonics[1], r.harmonics[2]))
+        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .collect();
+    let m = pts.len();
+    if m < 2 {
+        return None;
+    }
+    let mf = m as f64;
+    let mx = pts.iter().map(|p| p.0).sum::<f64>() / mf;
+    let my = pts.iter().map(|p| p.1).sum::<f64>() / mf;
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let syy: f64 = pts.iter().map(|p| (p.1 - my).powi(2)).sum();
+    if !(sxx > 0.0) {
+        return None;
+    }
+    let slope = sxy / sxx;
+    let intercept = my - slope * mx;
+    let sse: f64 = pts
+        .iter()
+        .map(|p| (p.1 - intercept - slope * p.0).powi(2))
+        .sum();
+    let r_squared = if syy > 0.0 { 1.0 - sse / syy } else { 1.0 };
+    let nan = (f64::NAN, f64::NAN);
+    let (slope_interval, intercept_interval) = if m > 2 {
+        let dof = m - 2;
+        let t = match dof {
+            1 => 12.706205,
+            2 => 4.302653,
+            d => t975(d),
+        };
+        let s2 = sse / dof as f64;
+        let se_slope = (s2 / sxx).sqrt();
+        let se_int = (s2 * (1.0 / mf + mx * mx / sxx)).sqrt();
+        (
+            (slope - t * se_slope, slope + t * se_slope),
+            (intercept - t * se_int, intercept + t * se_int),
+        )
+    } else {
+        (nan, nan)
+    };
+    Some(SeriesFit {
+        count: m,
+        slope,
+        intercept,
+        r_squared,
+        slope_interval,
+        intercept_interval,
+    })
+}

@@ -1,0 +1,273 @@
+//! The files of `contactwave analyze` (docs/scenario.md section 9): `summary.json` (the
+//! fundamental, the method, the gate, each record's harmonics with the simulator's key
+//! names and their floors, the series fit), `records.csv` (one row per record),
+//! `spectrum.csv` (the largest gated record's spectrum) and, with the `plot` feature,
+//! `record.svg` (the record and its gated part), `spectrum.svg` (with the harmonics
+//! marked) and `fit.svg` (A2 against A1^2 with the fit, for a series).
+
+use crate::error::Result;
+use crate::measured::{Analysis, Series};
+use crate::render::{csv_columns, OutputFile};
+use serde_json::{json, Map, Value};
+
+fn num(v: f64) -> Value {
+    if v.is_finite() {
+        json!(v)
+    } else {
+        Value::Null
+    }
+}
+
+/// The keys of one record in `summary.json` (and the columns of `records.csv`): `A1` ...
+/// `A5`, `A2_over_A1`, `A3_over_A1`, `beta_star`, `A2_floor` ... `A5_floor`,
+/// `A2_noise_floor` ..., `A2_leakage_floor` ..., `harmonic_floor_warning`, `dc_offset`.
+pub const RECORD_KEYS: [&str; 22] = [
+    "amplitude",
+    "A1",
+    "A2",
+    "A3",
+    "A4",
+    "A5",
+    "A2_over_A1",
+    "A3_over_A1",
+    "beta_star",
+    "A2_floor",
+    "A3_floor",
+    "A4_floor",
+    "A5_floor",
+    "A2_noise_floor",
+    "A3_noise_floor",
+    "A4_noise_floor",
+    "A5_noise_floor",
+    "A2_leakage_floor",
+    "A3_leakage_floor",
+    "A4_leakage_floor",
+    "A5_leakage_floor",
+    "harmonic_floor_warning",
+];
+
+fn record_values(r: &crate::measured::RecordAnalysis) -> Vec<f64> {
+    let mut v = vec![r.amplitude.unwrap_or(f64::NAN)];
+    v.extend_from_slice(&r.harmonics[1..6]);
+    v.extend([r.a2_over_a1(), r.a3_over_a1(), r.beta_star()]);
+    v.extend((2..=5).map(|n| r.floor(n)));
+    v.extend_from_slice(&r.noise[2..6]);
+    v.extend_from_slice(&r.leakage[2..6]);
+    v.push(if r.near_floor.is_empty() { 0.0 } else { 1.0 });
+    v
+}
+
+/// One line per record with a harmonic near its floor.
+pub fn warnings(a: &Analysis) -> Vec<String> {
+    a.records
+        .iter()
+        .filter(|r| !r.near_floor.is_empty())
+        .map(|r| {
+            let h: Vec<String> = r.near_floor.iter().map(|n| format!("A{n}")).collect();
+            format!(
+                "{}: {} within a factor 10 of the analysis floor (noise or the method's leakage): read them as upper bounds",
+                r.name,
+                h.join(", ")
+            )
+        })
+        .collect()
+}
+
+/// `summary.json` of an analysis; `inputs` are the files read (shown as given).
+pub fn summary(a: &Analysis, inputs: &[String]) -> Value {
+    let records: Vec<Value> = a
+        .records
+        .iter()
+        .map(|r| {
+            let mut m = Map::new();
+            m.insert("name".into(), json!(r.name));
+            for (k, v) in RECORD_KEYS.iter().zip(record_values(r)) {
+                m.insert((*k).into(), num(v));
+            }
+            m.insert("dc_offset".into(), num(r.dc));
+            if let Some(k) = r.linear_scale {
+                m.insert("linear_reference_scale".into(), num(k));
+            }
+            Value::Object(m)
+        })
+        .collect();
+    let fit = a.fit.map(|f| {
+        json!({
+            "model": "A2 = slope * A1^2 + intercept",
+            "count": f.count,
+            "slope": num(f.slope),
+            "slope_low": num(f.slope_interval.0),
+            "slope_high": num(f.slope_interval.1),
+            "intercept": num(f.intercept),
+            "intercept_low": num(f.intercept_interval.0),
+            "intercept_high": num(f.intercept_interval.1),
+            "r_squared": num(f.r_squared),
+            "interval": "95%, Student t with count - 2 degrees of freedom",
+        })
+    });
+    json!({
+        "command": "analyze",
+        "inputs": inputs,
+        "f0": num(a.f0),
+        "f0_detected": a.f0_detected,
+        "method": a.method.name(),
+        "analysis_method": a.method.code(),
+        "gate": a.gate.map(|g| json!({"start": num(g.start), "end": num(g.end), "taper": num(g.taper)})),
+        "plateau": [num(a.plateau.0), num(a.plateau.1)],
+        "dt": num(a.dt),
+        "t0": num(a.t0),
+        "records": records,
+        "fit": fit,
+        "warnings": warnings(a),
+    })
+}
+
+/// Index of the record with the largest A1 (the one the pictures show).
+fn largest(a: &Analysis) -> usize {
+    a.records
+        .iter()
+        .enumerate()
+        .max_by(|x, y| x.1.harmonics[1].total_cmp(&y.1.harmonics[1]))
+        .map_or(0, |(i, _)| i)
+}
+
+/// The largest record gated (its mean removed as the analysis did): (t, raw, gated).
+fn gated_record(a: &Analysis, series: &Series) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let i = largest(a);
+    let dc = a.records.get(i).map_or(0.0, |r| r.dc);
+    let raw: Vec<f64> = series
+        .records
+        .get(i)
+        .map(|r| r.samples.iter().map(|v| v - dc).collect())
+        .unwrap_or_default();
+    let t: Vec<f64> = (0..raw.len()).map(|k| a.t0 + k as f64 * a.dt).collect();
+    let mut gated = raw.clone();
+    if let Some(g) = &a.gate {
+        g.apply(&mut gated, a.t0, a.dt);
+    }
+    (t, raw, gated)
+}
+
+/// The files of an analysis (nothing written here).
+pub fn files(a: &Analysis, series: &Series, inputs: &[String]) -> Result<Vec<OutputFile>> {
+    let mut out = Vec::new();
+    let text = serde_json::to_string_pretty(&summary(a, inputs)).unwrap_or_default() + "\n";
+    out.push(OutputFile::new("summary.json", text));
+    // records.csv: name, then the keys
+    let mut csv = String::from("name,");
+    csv.push_str(&RECORD_KEYS.join(","));
+    csv.push('\n');
+    let mut buf = zmij::Buffer::new();
+    for r in &a.records {
+        csv.push_str(&csv_cell(&r.name));
+        for v in record_values(r) {
+            csv.push(',');
+            csv.push_str(buf.format(v));
+        }
+        csv.push('\n');
+    }
+    out.push(OutputFile::new("records.csv", csv));
+    let (_, _, gated) = gated_record(a, series);
+    let spec = crate::analysis::with_analyzer(|an| an.spectrum(&gated, a.dt, 6.0 * a.f0));
+    out.push(OutputFile::new(
+        "spectrum.csv",
+        csv_columns("frequency,magnitude", &[&spec.frequency, &spec.magnitude]),
+    ));
+    #[cfg(feature = "plot")]
+    out.extend(plots(a, series, &spec)?);
+    Ok(out)
+}
+
+fn csv_cell(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+#[cfg(feature = "plot")]
+fn plots(
+    a: &Analysis,
+    series: &Series,
+    spec: &crate::analysis::Spectrum,
+) -> Result<Vec<OutputFile>> {
+    use crate::render::svg::{figure, Panel, Series as Curve};
+    let mut out = Vec::new();
+    let (t, raw, gated) = gated_record(a, series);
+    let name = a.records.get(largest(a)).map_or("", |r| r.name.as_str());
+    let us: Vec<f64> = t.iter().map(|v| v * 1e6).collect();
+    let mut markers = Vec::new();
+    if let Some(g) = &a.gate {
+        markers = vec![g.start * 1e6, g.end * 1e6];
+    }
+    out.push(OutputFile::new(
+        "record.svg",
+        figure(
+            "record.svg",
+            900,
+            &[Panel {
+                title: format!("record {name}: as read (mean removed) and gated"),
+                xlabel: "t (µs)".into(),
+                ylabel: "record (its unit)".into(),
+                series: vec![
+                    Curve::new("record", &us, &raw).colored((170, 170, 170)),
+                    Curve::new("gated", &us, &gated),
+                ],
+                markers,
+            }],
+        )?,
+    ));
+    let peak = spec.magnitude.iter().fold(0.0f64, |m, &v| m.max(v));
+    let mhz: Vec<f64> = spec.frequency.iter().map(|f| f * 1e-6).collect();
+    let db: Vec<f64> = spec
+        .magnitude
+        .iter()
+        .map(|m| 20.0 * (m / peak).max(1e-12).log10())
+        .collect();
+    out.push(OutputFile::new(
+        "spectrum.svg",
+        figure(
+            "spectrum.svg",
+            900,
+            &[Panel {
+                title: format!(
+                    "spectrum of the gated record {name} (f0 = {:.4} MHz{}; markers at n f0)",
+                    a.f0 * 1e-6,
+                    if a.f0_detected { ", detected" } else { "" }
+                ),
+                xlabel: "f (MHz)".into(),
+                ylabel: "magnitude (dB re peak)".into(),
+                series: vec![Curve::new("gated record", &mhz, &db)],
+                markers: (1..=5).map(|n| n as f64 * a.f0 * 1e-6).collect(),
+            }],
+        )?,
+    ));
+    if let Some(f) = a.fit {
+        let x: Vec<f64> = a.records.iter().map(|r| r.harmonics[1].powi(2)).collect();
+        let y: Vec<f64> = a.records.iter().map(|r| r.harmonics[2]).collect();
+        let xmax = x.iter().fold(0.0f64, |m, &v| m.max(v));
+        let line_x = [0.0, xmax];
+        let line_y = [f.intercept, f.intercept + f.slope * xmax];
+        let mut pts = Curve::new("measured A2", &x, &y);
+        pts.points.sort_by(|p, q| p.0.total_cmp(&q.0));
+        out.push(OutputFile::new(
+            "fit.svg",
+            figure(
+                "fit.svg",
+                900,
+                &[Panel {
+                    title: format!(
+                        "A2 against A1^2: slope {:.4e} (95% {:.3e} .. {:.3e}), R^2 = {:.4}",
+                        f.slope, f.slope_interval.0, f.slope_interval.1, f.r_squared
+                    ),
+                    xlabel: "A1^2 (unit^2)".into(),
+                    ylabel: "A2 (unit)".into(),
+                    series: vec![pts, Curve::new("least-squares fit", &line_x, &line_y)],
+                    markers: Vec::new(),
+                }],
+            )?,
+        ));
+    }
+    Ok(out)
+}
