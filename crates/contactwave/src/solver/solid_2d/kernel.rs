@@ -220,10 +220,19 @@ impl Stiffness {
         let nex = self.dims.0;
         let (d, w) = (&r.d, &r.w);
         let mut ex0 = 0;
+        // the element block's scratch, once per row (no clearing per block: the lanes past
+        // the row's end keep the last block's finite values, computed and never scattered)
+        let mut ux = [[[0.0f64; LANES]; M]; M];
+        let mut uz = [[[0.0f64; LANES]; M]; M];
+        let mut fxx = [[[0.0f64; LANES]; M]; M];
+        let mut fxz = [[[0.0f64; LANES]; M]; M];
+        let mut fzx = [[[0.0f64; LANES]; M]; M];
+        let mut fzz = [[[0.0f64; LANES]; M]; M];
+        let mut gx = [[[0.0f64; LANES]; M]; M];
+        let mut gz = [[[0.0f64; LANES]; M]; M];
         while ex0 < nex {
             let nl = LANES.min(nex - ex0);
             let e0 = ez * nex + ex0;
-            let (mut ux, mut uz) = ([[[0.0f64; LANES]; M]; M], [[[0.0f64; LANES]; M]; M]);
             let (mut sx, mut sz, mut l2m, mut lam, mut mu, mut hx2, mut hz2) = (
                 [1.0; LANES],
                 [1.0; LANES],
@@ -254,12 +263,6 @@ impl Stiffness {
             // the x-flux `(hz/2) w_a w_b sigma_ix` and the z-flux `(hx/2) w_a w_b sigma_iz`
             // of each component i at each quadrature point (dA sx = (hx hz / 4) w_a w_b
             // (2 / hx), and alike along z)
-            let (mut fxx, mut fxz, mut fzx, mut fzz) = (
-                [[[0.0f64; LANES]; M]; M],
-                [[[0.0f64; LANES]; M]; M],
-                [[[0.0f64; LANES]; M]; M],
-                [[[0.0f64; LANES]; M]; M],
-            );
             for b in 0..M {
                 for a in 0..M {
                     let (mut dux_dx, mut duz_dx, mut dux_dz, mut duz_dz) =
@@ -288,16 +291,18 @@ impl Stiffness {
                     }
                 }
             }
-            let (mut gx, mut gz) = ([[[0.0f64; LANES]; M]; M], [[[0.0f64; LANES]; M]; M]);
             for b in 0..M {
                 for a in 0..M {
+                    let (mut sx, mut sz) = ([0.0f64; LANES], [0.0f64; LANES]);
                     for k in 0..M {
                         let (dka, dkb) = (d[k][a], d[k][b]);
                         for l in 0..LANES {
-                            gx[b][a][l] += dka * fxx[b][k][l] + dkb * fxz[k][a][l];
-                            gz[b][a][l] += dka * fzx[b][k][l] + dkb * fzz[k][a][l];
+                            sx[l] += dka * fxx[b][k][l] + dkb * fxz[k][a][l];
+                            sz[l] += dka * fzx[b][k][l] + dkb * fzz[k][a][l];
                         }
                     }
+                    gx[b][a] = sx;
+                    gz[b][a] = sz;
                 }
             }
             // scatter element by element, left to right (the order of every run)
@@ -327,10 +332,14 @@ impl Stiffness {
         let nex = self.dims.0;
         let (d, w) = (&r.d, &r.w);
         let mut ex0 = 0;
+        // the block's scratch, once per row (as in [`Stiffness::row_psv`])
+        let mut uy = [[[0.0f64; LANES]; M]; M];
+        let mut fx = [[[0.0f64; LANES]; M]; M];
+        let mut fz = [[[0.0f64; LANES]; M]; M];
+        let mut g = [[[0.0f64; LANES]; M]; M];
         while ex0 < nex {
             let nl = LANES.min(nex - ex0);
             let e0 = ez * nex + ex0;
-            let mut uy = [[[0.0f64; LANES]; M]; M];
             let (mut cx, mut cz) = ([0.0; LANES], [0.0; LANES]);
             for l in 0..nl {
                 let el = &self.elements[e0 + l];
@@ -344,7 +353,6 @@ impl Stiffness {
                     }
                 }
             }
-            let (mut fx, mut fz) = ([[[0.0f64; LANES]; M]; M], [[[0.0f64; LANES]; M]; M]);
             for b in 0..M {
                 for a in 0..M {
                     let (mut dx, mut dz) = ([0.0; LANES], [0.0; LANES]);
@@ -362,15 +370,16 @@ impl Stiffness {
                     }
                 }
             }
-            let mut g = [[[0.0f64; LANES]; M]; M];
             for b in 0..M {
                 for a in 0..M {
+                    let mut sum = [0.0f64; LANES];
                     for k in 0..M {
                         let (dka, dkb) = (d[k][a], d[k][b]);
                         for l in 0..LANES {
-                            g[b][a][l] += dka * fx[b][k][l] + dkb * fz[k][a][l];
+                            sum[l] += dka * fx[b][k][l] + dkb * fz[k][a][l];
                         }
                     }
+                    g[b][a] = sum;
                 }
             }
             for l in 0..nl {
