@@ -9,6 +9,7 @@ use super::{CrackRecord, Energy2d, Load, Plan, Solid2dOutput, CHUNK};
 use crate::error::{Error, Result};
 use crate::law::{NormalPart, TangentialPart};
 use crate::solver::stepping::{self, Recorder, Schedule, Scheme};
+use multiversion::multiversion;
 use rayon::prelude::*;
 
 /// Steps between two interruption checks and progress reports of a 2D run (a step of a
@@ -113,7 +114,8 @@ impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
         let p = &mut *self.plan;
         let (c, dt) = (p.components, p.dt);
         let (u, v, f) = (&mut self.u, &mut self.v, &mut self.f);
-        p.stiffness.apply(u, f);
+        // (`f` is zero here: cleared by the last step's node-wise update, or new)
+        p.stiffness.accumulate(u, f);
         for l in &p.loads {
             f[l.index] += p.load_value(l, t);
         }
@@ -124,22 +126,17 @@ impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
         p.band
             .forces(&p.stiffness.weights, &p.stiffness.derivative, v, f);
         // the predicted velocities and displacements of the new level, without the
-        // cracks' tractions (node-wise: parallel and deterministic)
+        // cracks' tractions (node-wise: parallel and deterministic); the forces are
+        // cleared as they are read (the next step's kernel accumulates into them)
         u.par_chunks_mut(CHUNK * c)
             .zip(v.par_chunks_mut(CHUNK * c))
-            .zip(f.par_chunks(CHUNK * c))
+            .zip(f.par_chunks_mut(CHUNK * c))
             .zip(p.inv_mass.par_chunks(CHUNK))
             .for_each(|(((u, v), f), im)| {
-                for (((un, vn), fnode), im) in u
-                    .chunks_exact_mut(c)
-                    .zip(v.chunks_exact_mut(c))
-                    .zip(f.chunks_exact(c))
-                    .zip(im)
-                {
-                    for ((ui, vi), fi) in un.iter_mut().zip(vn.iter_mut()).zip(fnode) {
-                        *vi += dt * im * fi;
-                        *ui += dt * *vi;
-                    }
+                if c == 2 {
+                    advance::<2>(u, v, f, im, dt);
+                } else {
+                    advance::<1>(u, v, f, im, dt);
                 }
             });
         // the absorbing layers: their nodes' split velocities, the flux into them, and
@@ -175,6 +172,25 @@ impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
     }
 
     fn advance(&mut self) {}
+}
+
+/// The node-wise update of one chunk of `C` components per node: `v += dt f / m`,
+/// `u += dt v`, then `f = 0`. Compiled for AVX-512 and AVX2 where the CPU has them (the
+/// same operations: the same bits).
+#[multiversion(targets("x86_64+avx512f+avx2+avx", "x86_64+avx2+avx"))]
+fn advance<const C: usize>(u: &mut [f64], v: &mut [f64], f: &mut [f64], im: &[f64], dt: f64) {
+    for (((un, vn), fnode), im) in u
+        .chunks_exact_mut(C)
+        .zip(v.chunks_exact_mut(C))
+        .zip(f.chunks_exact_mut(C))
+        .zip(im)
+    {
+        for k in 0..C {
+            vn[k] += dt * im * fnode[k];
+            un[k] += dt * vn[k];
+            fnode[k] = 0.0;
+        }
+    }
 }
 
 /// What a 2D run keeps: the receivers' velocities at every half level and the cracks'
