@@ -457,3 +457,59 @@ fn unreadable_variants_are_one_line_errors() {
         .to_string();
     assert!(e.contains(".npz") && e.contains(".mat"), "{e}");
 }
+
+/// A record made by contactwave itself: the 2D run's receiver trace, written to
+/// receivers.csv and read back as a measured record, gives the run's own summary values
+/// (the same analysis, the same function).
+#[test]
+fn a_contactwave_record_gives_the_simulators_own_summary() {
+    use contactwave::model::{self, RunControl};
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/solid_2d/sh_friction.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let t = model::from_toml_str(&text, &path.display().to_string()).unwrap();
+    let d = t.param("model.duration").unwrap();
+    let m = t.build(&[(&d, 6e-6)]).unwrap();
+    let out = m.run(&RunControl::default()).unwrap();
+    let files = out.files().unwrap();
+    let csv = files.iter().find(|f| f.name == "receivers.csv").unwrap();
+    let dir = std::env::temp_dir().join(format!("cw_measured_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("receivers.csv");
+    std::fs::write(&file, &csv.contents).unwrap();
+    let layout = Layout {
+        records: vec!["bottom_vy".into(), "top_vy".into()],
+        ..Layout::default()
+    };
+    let r = read_records(&file, &layout).unwrap();
+    let series = Series {
+        dt: r.dt,
+        t0: r.t0,
+        records: r
+            .traces
+            .iter()
+            .map(|t| Measured::new(t.name.clone(), t.samples.clone()))
+            .collect(),
+    };
+    let s = Settings {
+        f0: Some(2e6),
+        keep_dc: true,
+        ..Settings::default()
+    };
+    let a = analyze(&series, &s, "receivers.csv").unwrap();
+    let summary = out.summary();
+    for (rec, name) in a.records.iter().zip(["bottom", "top"]) {
+        for (key, v) in [
+            ("A1", rec.harmonics[1]),
+            ("A2", rec.harmonics[2]),
+            ("A2_over_A1", rec.a2_over_a1()),
+            ("A3_over_A1", rec.a3_over_a1()),
+            ("beta_star", rec.beta_star()),
+        ] {
+            let want = summary.get(&format!("{name}_{key}")).unwrap();
+            eprintln!("{name}_{key}: simulator {want:e}, analyze {v:e}");
+            assert!((v / want - 1.0).abs() < 1e-9, "{name}_{key}: {v} vs {want}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
