@@ -7,12 +7,14 @@
 //! - [`length`]: A2/A1 and beta* of the wave reflected at normal incidence against the
 //!   crack length, Signorini and RCCM, beside the exact 1D solver;
 //! - [`load_ratio`]: A2/A_inc against the load ratio xi for finite Signorini cracks beside
-//!   the 1D curve (the thesis' optimum xi_opt = 0.35).
+//!   the 1D curve (the thesis' optimum xi_opt = 0.35);
+//! - [`delamination`]: an A0 Lamb wave on a closed delamination against its length.
 //!
 //! Each study runs at two resolutions: the default (12 elements per P wavelength, order 4,
 //! analysed up to 3 f0) and `--quick` (8 elements per wavelength, 2 f0, fewer points), the
 //! one CI runs. Every figure's comparison lines give its run count and wall time.
 
+mod delamination;
 mod length;
 mod load_ratio;
 
@@ -262,6 +264,7 @@ pub(crate) fn run(ctx: &Ctx, res: Resolution) -> Result<ChapterResult> {
     let mut findings: Vec<Finding> = Vec::new();
     length::run(ctx, res, &mut figures, &mut findings)?;
     load_ratio::run(ctx, res, &mut figures, &mut findings)?;
+    delamination::run(ctx, res, &mut figures, &mut findings)?;
     Ok(ChapterResult {
         chapter: Chapter::FiniteCrack,
         title: "Beyond the thesis: finite cracks in 2D".into(),
