@@ -1,4 +1,4 @@
-"""`contactwave reproduce all` renders in a real browser.
+"""`contactwave reproduce all --quick` renders in a real browser.
 
 Opens the generated `report.html` in headless Chromium (Debian's `chromium` package,
 driven by Playwright through `executable_path`; no browser download) and checks that:
@@ -59,7 +59,7 @@ def test_report_renders_in_chromium(cli, tmp_path):
         _require_or_skip("playwright not installed (pip install playwright)")
 
     out = tmp_path / "reproduce"
-    run_cli(cli, "reproduce", "all", "--out", out)
+    run_cli(cli, "reproduce", "all", "--quick", "--out", out)
     report = out / "report.html"
     assert report.is_file()
     svgs = sorted((out / "figures").glob("*.svg"))

@@ -19,6 +19,7 @@
 mod chapter3;
 mod chapter4;
 mod chapter5;
+mod finite_crack;
 mod oblique;
 mod report;
 mod shear;
@@ -87,23 +88,33 @@ pub enum Chapter {
     /// Beyond the thesis: shear waves at frictional and full RCCM interfaces (aluminium,
     /// 1 MHz, exact coupled solver, closed forms of the clipping problem).
     Shear,
+    /// Beyond the thesis: finite cracks in 2D (spectral elements), against the plane
+    /// interface of the exact 1D solver.
+    FiniteCrack,
 }
 
 impl Chapter {
     /// All chapters, in order.
-    pub const ALL: [Chapter; 4] = [Chapter::Three, Chapter::Four, Chapter::Five, Chapter::Shear];
+    pub const ALL: [Chapter; 5] = [
+        Chapter::Three,
+        Chapter::Four,
+        Chapter::Five,
+        Chapter::Shear,
+        Chapter::FiniteCrack,
+    ];
 
-    /// `chapter3`, `chapter4`, `chapter5`, `shear`.
+    /// `chapter3`, `chapter4`, `chapter5`, `shear`, `finite_crack`.
     pub fn name(self) -> &'static str {
         match self {
             Chapter::Three => "chapter3",
             Chapter::Four => "chapter4",
             Chapter::Five => "chapter5",
             Chapter::Shear => "shear",
+            Chapter::FiniteCrack => "finite_crack",
         }
     }
 
-    /// Parse `chapter3` | `chapter4` | `chapter5` | `shear` | `all`.
+    /// Parse `chapter3` | `chapter4` | `chapter5` | `shear` | `finite_crack` | `all`.
     pub fn parse_list(s: &str) -> Result<Vec<Chapter>> {
         match s {
             "all" => Ok(Chapter::ALL.to_vec()),
@@ -111,11 +122,12 @@ impl Chapter {
             "chapter4" => Ok(vec![Chapter::Four]),
             "chapter5" => Ok(vec![Chapter::Five]),
             "shear" => Ok(vec![Chapter::Shear]),
+            "finite_crack" => Ok(vec![Chapter::FiniteCrack]),
             other => Err(Error::invalid(
                 "<command line>",
                 "chapter",
                 other,
-                "chapter3, chapter4, chapter5, shear or all",
+                "chapter3, chapter4, chapter5, shear, finite_crack or all",
             )),
         }
     }
@@ -340,8 +352,15 @@ pub struct ChapterResult {
 /// Progress callback: `(study, done, total)`.
 pub type Progress<'a> = &'a (dyn Fn(&str, usize, usize) + Sync);
 
-/// Run one chapter's studies.
+/// Run one chapter's studies at the default resolution.
 pub fn run_chapter(chapter: Chapter, progress: Progress) -> Result<ChapterResult> {
+    run_chapter_at(chapter, false, progress)
+}
+
+/// Run one chapter's studies; `quick`: the coarser resolution and fewer points of the
+/// chapters that have one (`finite_crack`: `contactwave reproduce --quick`, the one CI
+/// runs); the other chapters run alike either way.
+pub fn run_chapter_at(chapter: Chapter, quick: bool, progress: Progress) -> Result<ChapterResult> {
     let t0 = std::time::Instant::now();
     let ctx = Ctx {
         progress,
@@ -352,6 +371,7 @@ pub fn run_chapter(chapter: Chapter, progress: Progress) -> Result<ChapterResult
         Chapter::Four => chapter4::run(&ctx)?,
         Chapter::Five => chapter5::run(&ctx)?,
         Chapter::Shear => shear::run(&ctx)?,
+        Chapter::FiniteCrack => finite_crack::run(&ctx, finite_crack::Resolution { quick })?,
     };
     r.seconds = t0.elapsed().as_secs_f64();
     r.runs = ctx.runs.load(Ordering::SeqCst);

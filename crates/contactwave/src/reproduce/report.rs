@@ -100,6 +100,18 @@ fn headlines(chapter: Chapter) -> &'static [(&'static str, &'static str, &'stati
                 "closed form 0.4613",
             ),
         ],
+        Chapter::FiniteCrack => &[
+            (
+                "finite_crack_length_within_5pct_signorini",
+                "Signorini crack length (wavelengths) from which 2D is within 5 % of 1D",
+                "plane interface",
+            ),
+            (
+                "finite_crack_length_within_5pct_rccm",
+                "RCCM crack length (wavelengths) from which 2D is within 5 % of 1D",
+                "plane interface",
+            ),
+        ],
     }
 }
 
