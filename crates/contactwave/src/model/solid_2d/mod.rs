@@ -133,6 +133,19 @@ impl Fields for CrackSpec {
                 }
                 Some(Slot::OptF64(&mut self.length))
             }
+            // the crack's end (a given length becomes the end it implies)
+            ["end", c @ ("x" | "z")] => {
+                if let (None, Some(l)) = (self.end, self.length.take()) {
+                    let [x, z] = self.start;
+                    self.end = Some(if self.vertical {
+                        [x, z + l]
+                    } else {
+                        [x + l, z]
+                    });
+                }
+                let e = self.end.as_mut()?;
+                Some(Slot::F64(&mut e[usize::from(*c == "z")]))
+            }
             ["start", "x"] => Some(Slot::F64(&mut self.start[0])),
             ["start", "z"] => Some(Slot::F64(&mut self.start[1])),
             ["compression", rest @ ..] => self.compression.slot(rest),
@@ -373,11 +386,29 @@ impl Model for Solid2dScenario {
     }
 
     fn summary(&self) -> Result<Summary> {
+        // the summary needs no pictures: a sweep point or a forward run takes no snapshots
+        if self.snapshots.is_some() {
+            let mut bare = self.clone();
+            bare.snapshots = None;
+            return Ok(bare.simulate(&RunControl::default())?.summary);
+        }
         Ok(self.simulate(&RunControl::default())?.summary)
     }
 
     fn run(&self, control: &RunControl) -> Result<Box<dyn Outcome>> {
         Ok(Box::new(self.simulate(control)?))
+    }
+
+    /// The solver's estimate ([`Solid2d::memory_estimate`]), twice for a method with a
+    /// second run (both plans and outputs are alive at the end); the summary takes no
+    /// snapshots.
+    fn memory_estimate(&self) -> Result<Option<f64>> {
+        let e = self.problem.memory_estimate(&self.file)?;
+        let runs = match self.spec.analysis.method {
+            AnalysisMethod::PulseInversion | AnalysisMethod::LinearReference => 2.0,
+            AnalysisMethod::BandPeak | AnalysisMethod::PlateauFit => 1.0,
+        };
+        Ok(Some(runs * e.total()))
     }
 
     fn as_any(&self) -> &dyn Any {
