@@ -9,7 +9,7 @@ import contactwave as cw
 from conftest import run_cli
 from test_sweep import assert_bits_equal, cli_table
 
-SWEEP = "examples/solid_2d/crack_length_sweep_quick.toml"
+SWEEP = "examples/sweeps/crack_length_quick.toml"
 BASE = "examples/solid_2d/plate_crack_quick.toml"
 
 
