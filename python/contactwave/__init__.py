@@ -676,7 +676,7 @@ def memory_estimate(
 
 
 def _check_worker_memory(
-    client: Any, memory: np.ndarray, points: np.ndarray, parameters: List[str], chunk_size: int
+    client: Any, memory: np.ndarray, points: np.ndarray, parameters: List[str]
 ) -> None:
     """Refuse a sweep a Dask worker could not hold: a task runs its points one after the
     other, so it needs the largest estimate of its chunk, and a worker runs as many tasks
@@ -815,7 +815,7 @@ def sweep(
             raise ValueError(f"chunk_size: {chunk_size}: must be >= 1")
         points, sweep_hash, memory = _core.sweep_plan(base_json, base_path, ax)
         if _is_dask_client(executor):
-            _check_worker_memory(executor, memory, points, parameters, int(chunk_size))
+            _check_worker_memory(executor, memory, points, parameters)
         parts = _run_on_executor(
             executor, base_json, base_path, parameters, points, int(chunk_size), progress
         )

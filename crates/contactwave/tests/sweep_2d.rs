@@ -66,6 +66,13 @@ fn the_2d_model_estimates_its_memory_before_it_runs() {
     let fine = t.build(&[(&h, 0.39e-3)]).unwrap();
     let fine = fine.memory_estimate().unwrap().unwrap();
     assert!(fine > 2.5 * base && fine < 6.0 * base, "{base} -> {fine}");
+    // a mesh beyond any machine is refused when the model is built, before anything is
+    // allocated, naming the key
+    let e = t.build(&[(&h, 1e-7)]).unwrap_err().to_string();
+    assert!(
+        e.contains("field `model.element_size`") && e.contains("needs about"),
+        "{e}"
+    );
     // a second run (linear_reference) doubles it
     let mut table = t.table().clone();
     table.insert(
