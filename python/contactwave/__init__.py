@@ -706,12 +706,35 @@ def _check_worker_memory(
             )
 
 
+def _worker_budget() -> None:
+    """On a Dask worker, the memory budget of the runs (``CONTACTWAVE_MEMORY_BUDGET``,
+    unless set already) becomes each thread's share of the worker's ``memory_limit``, so
+    that every point checks its estimate against what its worker can give before it
+    starts (a refused point fails with the message, the others go on)."""
+    if "CONTACTWAVE_MEMORY_BUDGET" in os.environ:
+        return
+    try:
+        from distributed import get_worker
+
+        worker = get_worker()
+    except (ImportError, ValueError):
+        return
+    # (distributed >= 2022.4 keeps it in the worker's memory manager)
+    limit = getattr(getattr(worker, "memory_manager", None), "memory_limit", None)
+    limit = limit or getattr(worker, "memory_limit", None)
+    state = getattr(worker, "state", None)
+    threads = getattr(state, "nthreads", None) or getattr(worker, "nthreads", None) or 1
+    if limit:
+        os.environ["CONTACTWAVE_MEMORY_BUDGET"] = str(int(limit // max(int(threads), 1)))
+
+
 def _run_chunk(
     base_json: str, base_path: str, parameters: List[str], points: np.ndarray
 ) -> Tuple[List[str], np.ndarray, List[Tuple[int, str]]]:
     """One distributed task: run the sweep points ``points`` (rows of axis values)."""
     from contactwave import _core as core
 
+    _worker_budget()
     return core.run_points(base_json, base_path, parameters, points)
 
 

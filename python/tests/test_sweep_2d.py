@@ -68,3 +68,27 @@ def test_a_sweep_beyond_a_workers_memory_is_refused_before_submitting(root):
     msg = str(e.value)
     assert "sweep point 1" in msg and "model.element_size = 2.5e-05" in msg
     assert "2 task(s) at once" in msg and "memory_limit of 1000 MB" in msg
+
+
+def test_a_task_checks_its_share_of_the_workers_memory_before_it_starts(root):
+    """A task sent without the client's check (any executor) still refuses a point whose
+    estimate exceeds its share of the worker's memory_limit, before building it: the point
+    fails with the message, nothing is allocated."""
+    distributed = pytest.importorskip("dask.distributed")
+    base_json, base_path = cw._base(root / BASE)
+    points = np.array([[0.78e-3], [25e-6]])
+    with distributed.LocalCluster(
+        n_workers=1,
+        threads_per_worker=2,
+        processes=True,
+        memory_limit="1GB",
+        dashboard_address=None,
+    ) as cluster, distributed.Client(cluster) as client:
+        keys, values, errors = client.submit(
+            cw._run_chunk, base_json, base_path, ["model.element_size"], points, pure=False
+        ).result()
+    # the coarse point ran, the fine one (about 830 MB, above 1 GB / 2 threads) did not
+    assert [i for i, _ in errors] == [1]
+    msg = errors[0][1]
+    assert "model.element_size" in msg and "memory budget of 500 MB" in msg, msg
+    assert values.shape[0] == 2 and np.isfinite(values[0, keys.index("bottom_A2_over_A1")])

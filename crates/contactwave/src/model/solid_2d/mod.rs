@@ -206,8 +206,28 @@ pub struct Solid2dResult {
 }
 
 impl Solid2dScenario {
-    /// Plan and run, reporting progress.
+    /// Plan and run, reporting progress. The whole run's memory
+    /// ([`Model::memory_estimate`]) is checked against the budget first, naming the key of
+    /// its larger part (`model.element_size` for the mesh, `model.duration` for the
+    /// records).
     pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
+        let e = self.problem.memory_estimate(&self.file)?;
+        let (key, value) = if e.mesh >= e.series {
+            ("model.element_size", self.problem.element_size)
+        } else {
+            ("model.duration", self.problem.duration)
+        };
+        let bytes = self.memory_estimate()?.unwrap_or(0.0);
+        crate::budget::check(
+            &self.file,
+            key,
+            value,
+            bytes,
+            &format!(
+                "a 2D run of about {:.3e} nodes and {:.3e} steps",
+                e.nodes, e.steps
+            ),
+        )?;
         let mut plan = self.problem.plan(&self.file)?;
         plan.add_stress_receivers(&self.stress_points, &self.problem.layers, &self.file)?;
         let nodes = plan.mesh.n_nodes;
