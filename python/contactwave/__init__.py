@@ -54,6 +54,7 @@ __all__ = [
     "Analysis",
     "identify",
     "sweep",
+    "memory_estimate",
     "__version__",
 ]
 
@@ -780,12 +781,81 @@ def _axes(axes: Union[Mapping[str, Any], Sequence[Tuple[str, Any]]]) -> List[Tup
     return out
 
 
+def memory_estimate(
+    base: ScenarioLike, axes: Union[Mapping[str, Any], Sequence[Tuple[str, Any]]]
+) -> np.ndarray:
+    """The memory one run of each sweep point needs, bytes (what :func:`sweep` checks
+    against a Dask worker's memory limit before it submits anything), estimated without
+    running: for ``solid_2d`` scenarios the mesh and its stepping state, the time step the
+    plan will take and the recorded series (twice for a method with a second run, plus the
+    snapshots); NaN for the kinds that give no estimate. ``base`` and ``axes`` as for
+    :func:`sweep`; every point is validated (``ValueError`` naming the field and the point).
+    """
+    base_json, base_path = _base(base)
+    _points, _hash, memory = _core.sweep_plan(base_json, base_path, _axes(axes))
+    return memory
+
+
+def _check_worker_memory(
+    client: Any, memory: np.ndarray, points: np.ndarray, parameters: List[str]
+) -> None:
+    """Refuse a sweep a Dask worker could not hold: a task runs its points one after the
+    other, so it needs the largest estimate of its chunk, and a worker runs as many tasks
+    at once as it has threads. Every worker with a memory limit must give each of its
+    threads that much (the scheduler may send any task to any worker)."""
+    known = np.where(np.isnan(memory), 0.0, memory)
+    if len(known) == 0 or not np.any(known > 0):
+        return
+    i = int(np.argmax(known))
+    need = float(known[i])
+    try:
+        workers = client.scheduler_info().get("workers", {})
+    except Exception:  # noqa: BLE001 - an executor that cannot tell: nothing to check
+        return
+    for address, w in sorted(workers.items()):
+        limit = w.get("memory_limit") or 0
+        threads = max(int(w.get("nthreads") or 1), 1)
+        if limit and need * threads > limit:
+            at = ", ".join(f"{k} = {float(points[i, k_i])!r}" for k_i, k in enumerate(parameters))
+            raise ValueError(
+                f"sweep point {i} ({at}) needs about {need / 1e6:.0f} MB of memory per "
+                f"task, and Dask worker {address} runs {threads} task(s) at once within a "
+                f"memory_limit of {limit / 1e6:.0f} MB ({need * threads / 1e6:.0f} MB needed): "
+                "nothing was submitted; give the workers more memory or fewer threads "
+                "(LocalCluster(memory_limit=..., threads_per_worker=1)), or coarsen the "
+                "scenario (model.element_size, model.duration)"
+            )
+
+
+def _worker_budget() -> None:
+    """On a Dask worker, the memory budget of the runs (``CONTACTWAVE_MEMORY_BUDGET``,
+    unless set already) becomes each thread's share of the worker's ``memory_limit``, so
+    that every point checks its estimate against what its worker can give before it
+    starts (a refused point fails with the message, the others go on)."""
+    if "CONTACTWAVE_MEMORY_BUDGET" in os.environ:
+        return
+    try:
+        from distributed import get_worker
+
+        worker = get_worker()
+    except (ImportError, ValueError):
+        return
+    # (distributed >= 2022.4 keeps it in the worker's memory manager)
+    limit = getattr(getattr(worker, "memory_manager", None), "memory_limit", None)
+    limit = limit or getattr(worker, "memory_limit", None)
+    state = getattr(worker, "state", None)
+    threads = getattr(state, "nthreads", None) or getattr(worker, "nthreads", None) or 1
+    if limit:
+        os.environ["CONTACTWAVE_MEMORY_BUDGET"] = str(int(limit // max(int(threads), 1)))
+
+
 def _run_chunk(
     base_json: str, base_path: str, parameters: List[str], points: np.ndarray
 ) -> Tuple[List[str], np.ndarray, List[Tuple[int, str]]]:
     """One distributed task: run the sweep points ``points`` (rows of axis values)."""
     from contactwave import _core as core
 
+    _worker_budget()
     return core.run_points(base_json, base_path, parameters, points)
 
 
@@ -860,7 +930,10 @@ def sweep(
     ``concurrent.futures.Executor`` or a ``dask.distributed.Client`` (any deployment:
     ``LocalCluster``, ``dask_jobqueue.SLURMCluster``, ...): the points go out as tasks of
     ``chunk_size`` points and come back in grid order. The results are bit-identical to a
-    local run.
+    local run. On a Dask client, the memory each point needs (:func:`memory_estimate`,
+    given by ``solid_2d`` scenarios) is checked against every worker's ``memory_limit``
+    (shared by its threads) before anything is submitted: ``ValueError`` naming the point,
+    its estimate and the worker otherwise.
 
     Returns a pandas DataFrame if pandas is importable (the ``pandas`` extra: ``pip
     install "contactwave[pandas]"``; ``as_frame=False``, or no pandas: a dict of numpy
@@ -884,7 +957,9 @@ def sweep(
     else:
         if int(chunk_size) < 1:
             raise ValueError(f"chunk_size: {chunk_size}: must be >= 1")
-        points, sweep_hash = _core.sweep_plan(base_json, base_path, ax)
+        points, sweep_hash, memory = _core.sweep_plan(base_json, base_path, ax)
+        if _is_dask_client(executor):
+            _check_worker_memory(executor, memory, points, parameters)
         parts = _run_on_executor(
             executor, base_json, base_path, parameters, points, int(chunk_size), progress
         )

@@ -604,9 +604,18 @@ fn outcomes_table(py: Python<'_>, outcomes: Vec<Outcome>) -> PyResult<Table<'_>>
     Ok((keys, arr.into_pyarray(py), errors))
 }
 
+/// What `sweep_plan` returns: the points, the hash, the memory estimates.
+type SweepPlan<'py> = (
+    Bound<'py, numpy::PyArray2<f64>>,
+    String,
+    Bound<'py, numpy::PyArray1<f64>>,
+);
+
 /// Build and validate a sweep (base scenario table as JSON, axes `(key, values)`); returns
-/// `(points[n, n_axes], hash)`. Every point is validated as a scenario (ValueError naming
-/// the field and the point otherwise).
+/// `(points[n, n_axes], hash, memory[n])`: `memory[i]` is the bytes one run of point `i`
+/// needs ([`contactwave::model::Model::memory_estimate`]; NaN where the kind gives no
+/// estimate). Every point is validated as a scenario (ValueError naming the field and the
+/// point otherwise).
 #[pyfunction]
 #[pyo3(signature = (base_json, base_path, axes))]
 fn sweep_plan<'py>(
@@ -614,17 +623,25 @@ fn sweep_plan<'py>(
     base_json: &str,
     base_path: PathBuf,
     axes: Vec<(String, Vec<f64>)>,
-) -> PyResult<(Bound<'py, numpy::PyArray2<f64>>, String)> {
+) -> PyResult<SweepPlan<'py>> {
     let file = base_path.display().to_string();
     let table = table_from_json(base_json, &file).map_err(to_py)?;
-    let sweep = py
-        .detach(move || -> Result<Sweep, Error> {
+    let (sweep, memory) = py
+        .detach(move || -> Result<(Sweep, Vec<f64>), Error> {
             let sweep = Sweep::from_parts(Path::new("<sweep>"), base_path, table, axes)?;
-            sweep.runnable()?;
-            Ok(sweep)
+            let memory = sweep
+                .runnable()?
+                .iter()
+                .map(|m| Ok(m.memory_estimate()?.unwrap_or(f64::NAN)))
+                .collect::<Result<Vec<f64>, Error>>()?;
+            Ok((sweep, memory))
         })
         .map_err(to_py)?;
-    Ok((points_array(py, &sweep)?, sweep.hash))
+    Ok((
+        points_array(py, &sweep)?,
+        sweep.hash,
+        memory.into_pyarray(py),
+    ))
 }
 
 /// Points a local sweep builds and runs at a time: the models and summaries of one chunk

@@ -273,6 +273,13 @@ pub trait Model: Debug + Send + Sync {
         let _ = ws;
         self.summary_for(keys)
     }
+    /// The memory one run of [`Self::summary`] needs at once, bytes, estimated without
+    /// running it (what a caller that sends runs to another machine, a Dask worker, checks
+    /// against that machine's memory first); `None` where the kind gives no estimate (the
+    /// default). Runs are also checked against the local budget ([`crate::budget`]).
+    fn memory_estimate(&self) -> Result<Option<f64>> {
+        Ok(None)
+    }
     /// Values of the scenario that are allowed but almost surely a unit slip (the run goes
     /// on; the CLI prints them on stderr, Python warns). None by default.
     fn warnings(&self) -> Vec<crate::scenario::Warning> {

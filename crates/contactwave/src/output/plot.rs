@@ -239,6 +239,17 @@ pub fn sweep_table(axes: &[(String, bool)], table: &SweepTable) -> Result<String
                 "Energy dissipated by friction",
             ),
         ]
+    } else if table.column("crack_max_gap_0").is_some() {
+        // 2D sweeps: each receiver's second harmonic, the first crack's opening and slip
+        let mut v: Vec<(&str, &str)> = table
+            .header
+            .iter()
+            .filter(|h| h.ends_with("_A2_over_A1"))
+            .map(|h| (h.as_str(), "Second harmonic at a receiver"))
+            .collect();
+        v.push(("crack_max_gap_0", "Largest opening of crack 0"));
+        v.push(("crack_max_slip_0", "Largest slip of crack 0"));
+        v
     } else {
         vec![
             ("first_mode_hz", "First mode"),

@@ -133,6 +133,19 @@ impl Fields for CrackSpec {
                 }
                 Some(Slot::OptF64(&mut self.length))
             }
+            // the crack's end (a given length becomes the end it implies)
+            ["end", c @ ("x" | "z")] => {
+                if let (None, Some(l)) = (self.end, self.length.take()) {
+                    let [x, z] = self.start;
+                    self.end = Some(if self.vertical {
+                        [x, z + l]
+                    } else {
+                        [x + l, z]
+                    });
+                }
+                let e = self.end.as_mut()?;
+                Some(Slot::F64(&mut e[usize::from(*c == "z")]))
+            }
             ["start", "x"] => Some(Slot::F64(&mut self.start[0])),
             ["start", "z"] => Some(Slot::F64(&mut self.start[1])),
             ["compression", rest @ ..] => self.compression.slot(rest),
@@ -193,8 +206,28 @@ pub struct Solid2dResult {
 }
 
 impl Solid2dScenario {
-    /// Plan and run, reporting progress.
+    /// Plan and run, reporting progress. The whole run's memory
+    /// ([`Model::memory_estimate`]) is checked against the budget first, naming the key of
+    /// its larger part (`model.element_size` for the mesh, `model.duration` for the
+    /// records).
     pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
+        let e = self.problem.memory_estimate(&self.file)?;
+        let (key, value) = if e.mesh >= e.series {
+            ("model.element_size", self.problem.element_size)
+        } else {
+            ("model.duration", self.problem.duration)
+        };
+        let bytes = self.memory_estimate()?.unwrap_or(0.0);
+        crate::budget::check(
+            &self.file,
+            key,
+            value,
+            bytes,
+            &format!(
+                "a 2D run of about {:.3e} nodes and {:.3e} steps",
+                e.nodes, e.steps
+            ),
+        )?;
         let mut plan = self.problem.plan(&self.file)?;
         plan.add_stress_receivers(&self.stress_points, &self.problem.layers, &self.file)?;
         let nodes = plan.mesh.n_nodes;
@@ -359,11 +392,29 @@ impl Model for Solid2dScenario {
     }
 
     fn summary(&self) -> Result<Summary> {
+        // the summary needs no pictures: a sweep point or a forward run takes no snapshots
+        if self.snapshots.is_some() {
+            let mut bare = self.clone();
+            bare.snapshots = None;
+            return Ok(bare.simulate(&RunControl::default())?.summary);
+        }
         Ok(self.simulate(&RunControl::default())?.summary)
     }
 
     fn run(&self, control: &RunControl) -> Result<Box<dyn Outcome>> {
         Ok(Box::new(self.simulate(control)?))
+    }
+
+    /// The solver's estimate ([`Solid2d::memory_estimate`]), twice for a method with a
+    /// second run (both plans and outputs are alive at the end); the summary takes no
+    /// snapshots.
+    fn memory_estimate(&self) -> Result<Option<f64>> {
+        let e = self.problem.memory_estimate(&self.file)?;
+        let runs = match self.spec.analysis.method {
+            AnalysisMethod::PulseInversion | AnalysisMethod::LinearReference => 2.0,
+            AnalysisMethod::BandPeak | AnalysisMethod::PlateauFit => 1.0,
+        };
+        Ok(Some(runs * e.total()))
     }
 
     fn as_any(&self) -> &dyn Any {

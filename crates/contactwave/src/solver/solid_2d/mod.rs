@@ -25,6 +25,7 @@
 //! iteration); the crack's update is implicit and does not reduce the step.
 
 pub mod crack;
+mod estimate;
 pub mod kernel;
 pub mod mesh;
 pub mod plane_wave;
@@ -43,6 +44,7 @@ use crate::excitation::Excitation;
 use crate::law::contact::PointState;
 use crate::law::{NormalPart, TangentialPart};
 use crack::CrackNodes;
+pub use estimate::MemoryEstimate;
 use kernel::{max_frequency, ElementData, Stiffness};
 use mesh::{aperture_weight, edge_weight, CrackLine, Mesh};
 pub use plane_wave::Incidence;
@@ -434,6 +436,20 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
     /// rectangle and along x or z, and the mesh against the memory budget. Returns the x
     /// and z lines the element edges must follow.
     pub fn validate(&self, file: &str) -> Result<(Vec<f64>, Vec<f64>)> {
+        let (xs, zs) = self.lines(file)?;
+        let (nodes, bytes) = self.mesh_bytes(xs.len(), zs.len());
+        crate::budget::check(
+            file,
+            "model.element_size",
+            self.element_size,
+            bytes,
+            &format!("a mesh of about {nodes:.3e} nodes"),
+        )?;
+        Ok((xs, zs))
+    }
+
+    /// [`Solid2d::validate`] without the memory check: the lines the element edges follow.
+    fn lines(&self, file: &str) -> Result<(Vec<f64>, Vec<f64>)> {
         let bad = |field: &str, value: String, allowed: &str| {
             Err(Error::invalid(file, field, value, allowed))
         };
@@ -471,7 +487,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         if !(self.duration > 0.0 && self.duration.is_finite()) {
             return bad("model.duration", self.duration.to_string(), "> 0 s, finite");
         }
-        let (lt, lb, ls) = self.pml_thicknesses();
+        let (_, _, ls) = self.pml_thicknesses();
         if [self.top, self.bottom, self.sides].contains(&Side::Absorbing) {
             let l = self.pml.thickness;
             if !(l > 0.0 && l.is_finite()) {
@@ -563,29 +579,6 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 SourceKind::Force { .. } => {}
             }
         }
-        // the mesh's size before it is built: elements along each side (at most one more
-        // per required line), nodes, and what the run holds per node (u, v, f, two masses,
-        // per component) and per element (its map and data)
-        let n = self.order;
-        let count = |len: f64, lines: usize| (len / self.element_size).ceil() + lines as f64 + 1.0;
-        let (ex, ez) = (count(self.width, xs.len()), count(depth, zs.len()));
-        // the absorbing layers' elements (each holds its stresses, forces and damping)
-        let bands = |l: f64| if l > 0.0 { count(l, 0) } else { 0.0 };
-        let (bx, bz) = (2.0 * bands(ls), bands(lt) + bands(lb));
-        let band = (ex + bx) * (ez + bz) - ex * ez;
-        let (ex, ez) = (ex + bx, ez + bz);
-        let nodes = (ex * n as f64 + 1.0) * (ez * n as f64 + 1.0);
-        let comps = if self.wave == WaveType::Sh { 1.0 } else { 2.0 };
-        let bytes = nodes * (3.0 * comps + 2.0) * 8.0
-            + ex * ez * ((n + 1) * (n + 1) * 4 + 32) as f64
-            + band * ((n + 1) * (n + 1) * 14 * 8) as f64;
-        crate::budget::check(
-            file,
-            "model.element_size",
-            self.element_size,
-            bytes,
-            &format!("a mesh of about {nodes:.3e} nodes"),
-        )?;
         Ok((xs, zs))
     }
 

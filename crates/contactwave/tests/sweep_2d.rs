@@ -1,0 +1,84 @@
+//! Sweep keys of 2D cracks (issue 27): a crack's end is a sweep key as well as its length,
+//! whichever of the two the scenario gives, and the 2D model estimates its memory.
+
+use contactwave::model::{self, Model};
+use contactwave::scenario::solid_2d::Solid2dScenario;
+use std::path::Path;
+use std::sync::Arc;
+
+fn quick() -> Arc<dyn model::Template> {
+    model::load(
+        &Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/solid_2d/plate_crack_quick.toml"),
+    )
+    .unwrap()
+}
+
+fn crack_end(m: &Arc<dyn Model>) -> [f64; 2] {
+    let s = m.as_any().downcast_ref::<Solid2dScenario>().unwrap();
+    s.problem.cracks[0].end
+}
+
+#[test]
+fn crack_end_and_length_are_sweep_keys() {
+    let t = quick();
+    // the file gives start [19, 5] mm and end [21, 5] mm
+    let end_x = t.param("crack.0.end.x").unwrap();
+    assert_eq!(
+        crack_end(&t.build(&[(&end_x, 25e-3)]).unwrap()),
+        [25e-3, 5e-3]
+    );
+    let length = t.param("crack.0.length").unwrap();
+    let m = t.build(&[(&length, 6e-3)]).unwrap();
+    assert!((crack_end(&m)[0] - 25e-3).abs() < 1e-15);
+    // a crack given by its length: its end is the one the length implies, then moved
+    let mut table = t.table().clone();
+    let crack = table["crack"].as_array_mut().unwrap()[0]
+        .as_table_mut()
+        .unwrap();
+    crack.remove("end");
+    crack.insert("length".into(), toml::Value::Float(4e-3));
+    let t2 = model::plan(table, Path::new("by_length.toml"));
+    assert_eq!(crack_end(&t2.base().unwrap()), [23e-3, 5e-3]);
+    let end_z = t2.param("crack.0.end.z").unwrap();
+    // a crack must run along x or z: moving a horizontal crack's end down is refused,
+    // naming the key
+    let e = t2.build(&[(&end_z, 6e-3)]).unwrap_err().to_string();
+    assert!(e.contains("crack.0.end"), "{e}");
+    let end_x = t2.param("crack.0.end.x").unwrap();
+    assert_eq!(
+        crack_end(&t2.build(&[(&end_x, 30e-3)]).unwrap()),
+        [30e-3, 5e-3]
+    );
+    // the end outside the plate is refused like any invalid value
+    assert!(t2.build(&[(&end_x, 50e-3)]).is_err());
+}
+
+#[test]
+fn the_2d_model_estimates_its_memory_before_it_runs() {
+    let t = quick();
+    let base = t.base().unwrap().memory_estimate().unwrap().unwrap();
+    // 12 400 nodes and 2 100 steps: a mesh of about 1 MB and its records
+    assert!(base > 0.5e6 && base < 5e6, "{base}");
+    // halving the element size quadruples the nodes (and halves the time step): the
+    // mesh's part grows about fourfold, the records' twofold
+    let h = t.param("model.element_size").unwrap();
+    let fine = t.build(&[(&h, 0.39e-3)]).unwrap();
+    let fine = fine.memory_estimate().unwrap().unwrap();
+    assert!(fine > 2.5 * base && fine < 6.0 * base, "{base} -> {fine}");
+    // a mesh beyond any machine is refused when the model is built, before anything is
+    // allocated, naming the key
+    let e = t.build(&[(&h, 1e-7)]).unwrap_err().to_string();
+    assert!(
+        e.contains("field `model.element_size`") && e.contains("needs about"),
+        "{e}"
+    );
+    // a second run (linear_reference) doubles it
+    let mut table = t.table().clone();
+    table.insert(
+        "analysis".into(),
+        toml::Value::Table(toml::toml! { method = "linear_reference" }),
+    );
+    let twin = model::plan(table, Path::new("twin.toml")).base().unwrap();
+    assert_eq!(twin.memory_estimate().unwrap().unwrap(), 2.0 * base);
+}
