@@ -28,6 +28,9 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
+mod measured;
+use measured::analyze;
+
 create_exception!(
     contactwave,
     SimulationError,
@@ -38,7 +41,7 @@ create_exception!(
 /// How often a waiting sweep checks for Ctrl-C.
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
-fn to_py(e: Error) -> PyErr {
+pub(crate) fn to_py(e: Error) -> PyErr {
     let msg = e.to_string();
     match e {
         Error::Invalid { .. } | Error::Parse { .. } => PyValueError::new_err(msg),
@@ -372,168 +375,6 @@ fn fit_power_law<'py>(
     d.set_item("m", f.m)?;
     d.set_item("r2", f.r2)?;
     Ok(d)
-}
-
-/// `contactwave.analyze`: measured records (arrays, or files named in `options`) through
-/// the simulator's analysis; returns `summary.json` of `contactwave analyze` as text.
-/// `options` (JSON): `dt`, `t0`, `f0`, `gate` ([start, end, taper]), `method`, `keep_dc`,
-/// `amplitudes` (numbers, or the name of an array of the first file), `files`,
-/// `sample_rate`, `time`, `datasets`, `inverse_files`, `linear_file`.
-#[pyfunction]
-fn analyze<'py>(
-    py: Python<'py>,
-    records: Vec<PyReadonlyArray1<'py, f64>>,
-    inverse: Vec<PyReadonlyArray1<'py, f64>>,
-    linear: Vec<PyReadonlyArray1<'py, f64>>,
-    options: &str,
-) -> PyResult<String> {
-    use contactwave::analysis::{AnalysisMethod, Gate};
-    use contactwave::measured::{self, Amplitudes, Layout, Measured, Series, Settings, Sources};
-    let o: serde_json::Value =
-        serde_json::from_str(options).map_err(|e| PyValueError::new_err(e.to_string()))?;
-    let num = |k: &str| o.get(k).and_then(serde_json::Value::as_f64);
-    let strs = |k: &str| -> Vec<String> {
-        o.get(k)
-            .and_then(|v| v.as_array())
-            .map(|a| {
-                a.iter()
-                    .filter_map(|x| x.as_str().map(str::to_string))
-                    .collect()
-            })
-            .unwrap_or_default()
-    };
-    let method_name = o
-        .get("method")
-        .and_then(|v| v.as_str())
-        .unwrap_or("band_peak");
-    let method = AnalysisMethod::from_name(method_name).ok_or_else(|| {
-        PyValueError::new_err(format!(
-            "method = {method_name:?}: one of band_peak, pulse_inversion, linear_reference, plateau_fit"
-        ))
-    })?;
-    let gate = match o.get("gate").and_then(|v| v.as_array()) {
-        Some(g) => {
-            let v: Vec<f64> = g.iter().filter_map(serde_json::Value::as_f64).collect();
-            let gate = match v.as_slice() {
-                [a, b] => Gate {
-                    start: *a,
-                    end: *b,
-                    taper: 0.1 * (b - a),
-                },
-                [a, b, c] => Gate {
-                    start: *a,
-                    end: *b,
-                    taper: *c,
-                },
-                _ => {
-                    return Err(PyValueError::new_err(
-                        "gate: (start, end) or (start, end, taper) in s",
-                    ))
-                }
-            };
-            if !gate.is_valid() {
-                return Err(PyValueError::new_err(
-                    "gate: start < end, taper in [0, (end - start) / 2], s",
-                ));
-            }
-            Some(gate)
-        }
-        None => None,
-    };
-    let amplitudes = match o.get("amplitudes") {
-        Some(serde_json::Value::String(name)) => Some(Amplitudes::Array(name.clone())),
-        Some(serde_json::Value::Array(a)) => Some(Amplitudes::Values(
-            a.iter().map(|x| x.as_f64().unwrap_or(f64::NAN)).collect(),
-        )),
-        _ => None,
-    };
-    let files: Vec<PathBuf> = strs("files").into_iter().map(PathBuf::from).collect();
-    let to_vec =
-        |a: &PyReadonlyArray1<'py, f64>| a.as_array().iter().copied().collect::<Vec<f64>>();
-    let (records, inverse, linear): (Vec<_>, Vec<_>, Vec<_>) = (
-        records.iter().map(to_vec).collect(),
-        inverse.iter().map(to_vec).collect(),
-        linear.iter().map(to_vec).collect(),
-    );
-    let settings = Settings {
-        f0: num("f0"),
-        gate,
-        method,
-        keep_dc: o.get("keep_dc").and_then(|v| v.as_bool()).unwrap_or(false),
-    };
-    let (dt, t0) = (num("dt").unwrap_or(f64::NAN), num("t0").unwrap_or(0.0));
-    let layout = Layout {
-        sample_rate: num("sample_rate"),
-        time: o.get("time").and_then(|v| v.as_str()).map(str::to_string),
-        records: strs("datasets"),
-    };
-    let inverse_files: Vec<PathBuf> = strs("inverse_files")
-        .into_iter()
-        .map(PathBuf::from)
-        .collect();
-    let linear_file = o
-        .get("linear_file")
-        .and_then(|v| v.as_str())
-        .map(PathBuf::from);
-    py.detach(move || {
-        let (series, inputs) = if files.is_empty() {
-            let n = records.len();
-            let mut recs: Vec<Measured> = records
-                .into_iter()
-                .enumerate()
-                .map(|(i, x)| Measured::new(format!("record_{i}"), x))
-                .collect();
-            for (what, list) in [("inverse", &inverse), ("linear", &linear)] {
-                if !list.is_empty() && list.len() != n && !(what == "linear" && list.len() == 1) {
-                    return Err(Error::invalid(
-                        "<arrays>",
-                        what,
-                        format!("{} records", list.len()),
-                        format!("one per record ({n})"),
-                    ));
-                }
-            }
-            for (i, r) in recs.iter_mut().enumerate() {
-                r.inverse = inverse.get(i).cloned();
-                r.linear = linear.get(i).or(linear.first()).cloned();
-            }
-            match &amplitudes {
-                Some(Amplitudes::Values(v)) if v.len() == n => {
-                    for (r, a) in recs.iter_mut().zip(v) {
-                        r.amplitude = Some(*a);
-                    }
-                }
-                Some(_) => {
-                    return Err(Error::invalid(
-                        "<arrays>",
-                        "amplitudes",
-                        "given",
-                        format!("one number per record ({n})"),
-                    ))
-                }
-                None => {}
-            }
-            let series = Series {
-                dt,
-                t0,
-                records: recs,
-            };
-            (series, vec!["<arrays>".to_string()])
-        } else {
-            let sources = Sources {
-                records: files.clone(),
-                layout,
-                inverse: inverse_files,
-                linear: linear_file,
-                amplitudes,
-            };
-            let inputs = files.iter().map(|p| p.display().to_string()).collect();
-            (measured::load(&sources)?, inputs)
-        };
-        let a = measured::analyze(&series, &settings, &inputs[0])?;
-        Ok(contactwave::output::analyze::summary(&a, &inputs).to_string())
-    })
-    .map_err(to_py)
 }
 
 /// The SI value of `value` for the scenario key `key`: a number as it is, a unit string

@@ -86,7 +86,7 @@ pub(crate) fn run(
         .map(|(i, law)| {
             let part = &two_d[i * k..(i + 1) * k];
             let a2a1 = column(part, "reflected_A2_over_A1");
-            let beta = column(part, "reflected_beta");
+            let beta = column(part, "reflected_beta_star");
             let a1 = column(part, "reflected_A1");
             Curves {
                 law: *law,
