@@ -49,14 +49,14 @@ cargo fmt --all -- --check
 step "cargo clippy --all-targets -- -D warnings"
 cargo clippy --all-targets -- -D warnings
 
-# The library without its optional parts (features plot, identify, reproduce): the solvers
-# alone must build, lint clean and pull in neither plotters nor argmin.
+# The library without its optional parts (features plot, identify, reproduce, hdf5): the
+# solvers alone must build, lint clean and pull in neither plotters, argmin nor hdf5-pure.
 step "cargo clippy -p contactwave --no-default-features --all-targets -- -D warnings"
 cargo clippy -p contactwave --no-default-features --all-targets -- -D warnings
 
-step "cargo tree -p contactwave --no-default-features -e normal (no plotters, no argmin)"
-if cargo tree -p contactwave --no-default-features -e normal | grep -E 'plotters|argmin'; then
-    echo "error: contactwave without default features depends on plotters or argmin" >&2
+step "cargo tree -p contactwave --no-default-features -e normal (no plotters, argmin, hdf5-pure)"
+if cargo tree -p contactwave --no-default-features -e normal | grep -E 'plotters|argmin|hdf5'; then
+    echo "error: contactwave without default features depends on plotters, argmin or hdf5-pure" >&2
     exit 1
 fi
 

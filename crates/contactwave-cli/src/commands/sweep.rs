@@ -13,6 +13,7 @@ use super::{
     EXIT_INTERRUPTED, EXIT_OK,
 };
 use contactwave::output;
+use contactwave::output::provenance::{self, process_command_line, Provenance};
 use contactwave::study::{self, Sweep, SweepOptions};
 use contactwave::Error;
 use std::path::PathBuf;
@@ -44,15 +45,22 @@ pub struct Args {
     /// it a sweep with failed points exits 1 after writing every row it could.
     #[arg(long)]
     tolerate_failures: bool,
+    /// Also write DIR/sweep.h5: every column of sweep.csv as a dataset of the group
+    /// /sweep with `units` and `description` attributes, the provenance as attributes of
+    /// the root group (docs/outputs.md).
+    #[arg(long)]
+    hdf5: bool,
 }
 
 /// The files a sweep writes into its folder (those that exist are its manifest).
-const SWEEP_FILES: [&str; 5] = [
+const SWEEP_FILES: [&str; 7] = [
     "sweep.csv",
     "sweep.csv.hash",
     "sweep.csv.shard",
     "sweep.svg",
     "sweep_errors.csv",
+    provenance::SIDECAR,
+    output::hdf5::SWEEP_FILE,
 ];
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
@@ -79,6 +87,9 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             eprintln!("warning: {w}");
         }
     }
+    // the input files hashed as read; the sidecar provenance.json beside sweep.csv
+    // (a plain table for pandas and `merge`) is written once the rows are
+    let prov = Provenance::of_sweep(&sweep, process_command_line())?;
     let cancel = cancel_on_ctrl_c();
     let shard = args.shard.unwrap_or(study::Shard::ALL);
     let total = (0..sweep.points.len())
@@ -98,9 +109,18 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     // the folder's manifest: the sweep's files (which --resume keeps); an earlier
     // command's other files are removed
     let claim = || {
+        if csv.is_file() {
+            output::write_files(out, &[prov.sidecar()])?;
+            if args.hdf5 {
+                let table = study::read_sweep_csv(&csv)?;
+                let h5 = output::hdf5::sweep_file(&table, &prov)?;
+                output::write_binary_files(out, &[h5])?;
+            }
+        }
         let names: Vec<String> = SWEEP_FILES
             .iter()
-            .filter(|n| out.join(n).is_file())
+            // a sweep.h5 of an earlier `--hdf5` run is removed by a run without it
+            .filter(|n| out.join(n).is_file() && (args.hdf5 || **n != output::hdf5::SWEEP_FILE))
             .map(|n| n.to_string())
             .collect();
         claim_out(out, "sweep", &names)
