@@ -83,7 +83,8 @@ cargo test --workspace --release -- --include-ignored
 # ---------------------------------------------------------------------------------------
 PYTHON=${PYTHON:-python3}
 # playwright: drives the system Chromium for the report test (no browser download)
-PY_DEPS=(maturin numpy pandas "dask[distributed]" pytest playwright)
+# xarray, h5py: Result.to_xarray() and the HDF5 result files (python/tests/test_frames.py)
+PY_DEPS=(maturin numpy pandas xarray h5py "dask[distributed]" pytest playwright)
 
 # Headless Chromium for python/tests/test_report_browser.py (report.html renders, no
 # console error, no request leaves the file); Debian's package, installed if missing.

@@ -1,6 +1,7 @@
 //! `contactwave sweep SWEEP --out DIR`: run the points of a parameter sweep on a thread pool
 //! and write DIR/sweep.csv (one row per point, appended as points finish, sorted by point
-//! once finished), its hash file DIR/sweep.csv.hash, DIR/sweep.svg and, if points fail,
+//! once finished), its hash file DIR/sweep.csv.hash, DIR/sweep.svg, the provenance
+//! DIR/provenance.json (docs/outputs.md), with --hdf5 DIR/sweep.h5, and, if points fail,
 //! DIR/sweep_errors.csv (exit code 1 unless --tolerate-failures).
 //!
 //! `--resume` computes only the points missing from an existing sweep.csv, `--shard K/N`

@@ -4,7 +4,7 @@
 //!
 //! Layout (docs/outputs.md):
 //!
-//! - the root group's attributes: the provenance ([`Provenance::attributes`]: strings,
+//! - the root group's attributes: the provenance ([`Provenance::attributes`]: variable-length UTF-8 strings,
 //!   `""` for an unknown value) and `file_format = "contactwave result"`;
 //! - one group per CSV table of the run, named after the file without `.csv`
 //!   (`/timeseries`, `/probe`, `/spectrum`, `/receivers`, `/crack`, `/frf`, ...), holding
@@ -144,8 +144,8 @@ fn dataset_attrs(table: &str, column: &str) -> (AttrValue, AttrValue) {
     }
     let (name, _) = labels::quantity(column);
     (
-        AttrValue::String(units.to_string()),
-        AttrValue::String(format!("{column} ({table}.csv): {name}")),
+        AttrValue::VarLenString(units.to_string()),
+        AttrValue::VarLenString(format!("{column} ({table}.csv): {name}")),
     )
 }
 
@@ -153,10 +153,10 @@ fn root(provenance: &Provenance) -> FileBuilder {
     let mut b = FileBuilder::new();
     b.set_attr(
         "file_format",
-        AttrValue::String("contactwave result".into()),
+        AttrValue::VarLenString("contactwave result".into()),
     );
     for (k, v) in provenance.attributes() {
-        b.set_attr(&k, AttrValue::String(v));
+        b.set_attr(&k, AttrValue::VarLenString(v));
     }
     b
 }
@@ -217,7 +217,7 @@ fn add_summary(b: &mut FileBuilder, text: &str) {
                 }
             }
             serde_json::Value::String(s) if k == "scenario" => {
-                g.set_attr(k, AttrValue::String(s.clone()));
+                g.set_attr(k, AttrValue::VarLenString(s.clone()));
             }
             _ => {}
         }
@@ -260,10 +260,10 @@ pub fn sweep_file(table: &crate::study::SweepTable, provenance: &Provenance) -> 
         g.create_dataset(&dataset_name(name))
             .with_f64_data(&col)
             .with_shape(&[col.len() as u64])
-            .set_attr("units", AttrValue::String(units.into()))
+            .set_attr("units", AttrValue::VarLenString(units.into()))
             .set_attr(
                 "description",
-                AttrValue::String(format!("{name} (sweep.csv): {quantity}")),
+                AttrValue::VarLenString(format!("{name} (sweep.csv): {quantity}")),
             );
     }
     b.add_group(g.finish());
