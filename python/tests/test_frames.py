@@ -104,3 +104,17 @@ def test_sweep_h5_and_the_sidecar_open_from_python(cli, root, tmp_path):
     import json
     p = json.loads((out / "provenance.json").read_text())["provenance"]
     assert p["scenario_sha256"] == _sha256(sweep)
+
+
+def test_bar_stack_to_pandas_and_xarray(root):
+    r = cw.run(root / "examples" / "bar_stack_incident.toml")
+    df = r.to_pandas()
+    n = r.gap.shape[0]
+    assert list(df.columns[:3]) == ["force", "displacement", "acceleration"]
+    assert [f"gap_{i}" for i in range(n)] == [c for c in df.columns if c.startswith("gap_")]
+    assert np.array_equal(df["pressure_0"].to_numpy(), r.pressure[0])
+    assert df.attrs["units"]["pressure_0"] == "Pa" and df.attrs["units"]["t"] == "s"
+    ds = r.to_xarray()
+    assert ds["gap"].dims == ("interface", "time") and ds["gap"].attrs["units"] == "m"
+    assert ds.sizes["interface"] == n and ds["time"].attrs["units"] == "s"
+    assert np.array_equal(ds["stiffness"].to_numpy(), r.stiffness)
