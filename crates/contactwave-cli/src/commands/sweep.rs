@@ -110,12 +110,18 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     // the folder's manifest: the sweep's files (which --resume keeps); an earlier
     // command's other files are removed
     let claim = || {
+        // written also after Ctrl-C (the rows on disk are complete): plain writes, not
+        // output::write_files, which stops at an interruption
         if csv.is_file() {
-            output::write_files(out, &[prov.sidecar()])?;
+            let put = |name: &str, bytes: &[u8]| {
+                let path = out.join(name);
+                std::fs::write(&path, bytes).map_err(|e| Error::io(&path, e))
+            };
+            put(provenance::SIDECAR, prov.sidecar().contents.as_bytes())?;
             if args.hdf5 {
                 let table = study::read_sweep_csv(&csv)?;
                 let h5 = output::hdf5::sweep_file(&table, &prov)?;
-                output::write_binary_files(out, &[h5])?;
+                put(&h5.name, &h5.bytes)?;
             }
         }
         let names: Vec<String> = SWEEP_FILES
