@@ -31,7 +31,7 @@ fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
                 if rel.ends_with(".json") {
                     let text = String::from_utf8(bytes).unwrap();
                     let cut = text.find("\n  \"provenance\": ").unwrap_or(text.len());
-                    bytes = text[..cut].as_bytes().to_vec();
+                    bytes = text.as_bytes()[..cut].to_vec();
                 }
                 out.insert(rel, bytes);
             }
