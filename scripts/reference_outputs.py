@@ -116,6 +116,9 @@ NONDETERMINISTIC_JSON_KEYS = [
     ("identify/*/identification.json", "wall_seconds"),  # wall-clock time of the fit
     ("design/design.json", "wall_seconds"),  # wall-clock time of identify --design
 ]
+# The top-level JSON object dropped from every JSON output before fingerprinting
+# (docs/outputs.md: contactwave version, git commit, input hashes, command line, date)
+PROVENANCE = "provenance"
 # Regex substitutions applied to the text before hashing (HTML) or comparing (stdout):
 # (file glob, regex, replacement). The temporary output folder is replaced by <OUT> in
 # every stdout before these apply.
@@ -332,6 +335,11 @@ def read_json(rel, text):
     for pattern, key in NONDETERMINISTIC_JSON_KEYS:
         if matches(rel, pattern):
             leaves.pop(key, None)
+    # the "provenance" object of every JSON output (summary.json, findings.json,
+    # identification.json, design.json, a sweep's provenance.json): the date and time,
+    # the command line with its temporary folder, the commit and the version vary
+    for key in [k for k in leaves if k == PROVENANCE or k.startswith(PROVENANCE + ".")]:
+        del leaves[key]
     return {"kind": "json", "leaves": leaves}
 
 

@@ -49,8 +49,9 @@ cargo fmt --all -- --check
 step "cargo clippy --all-targets -- -D warnings"
 cargo clippy --all-targets -- -D warnings
 
-# The library without its optional parts (features plot, identify, reproduce): the solvers
-# alone must build, lint clean and pull in neither plotters nor argmin.
+# The library without its optional parts (features plot, identify, reproduce, hdf5): the
+# solvers alone must build, lint clean and pull in neither plotters nor argmin (hdf5-pure,
+# pure Rust, stays: measured records are read from HDF5 and MAT v7.3 files).
 step "cargo clippy -p contactwave --no-default-features --all-targets -- -D warnings"
 cargo clippy -p contactwave --no-default-features --all-targets -- -D warnings
 
@@ -83,7 +84,8 @@ cargo test --workspace --release -- --include-ignored
 # ---------------------------------------------------------------------------------------
 PYTHON=${PYTHON:-python3}
 # playwright: drives the system Chromium for the report test (no browser download)
-PY_DEPS=(maturin numpy pandas "dask[distributed]" pytest playwright)
+# xarray, h5py: Result.to_xarray() and the HDF5 result files (python/tests/test_frames.py)
+PY_DEPS=(maturin numpy pandas xarray h5py "dask[distributed]" pytest playwright)
 
 # Headless Chromium for python/tests/test_report_browser.py (report.html renders, no
 # console error, no request leaves the file); Debian's package, installed if missing.

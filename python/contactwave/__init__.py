@@ -292,6 +292,27 @@ class Result:
             h[f"incident_{k}"] = v
         return h
 
+    def to_pandas(self, table: str = "timeseries") -> Any:
+        """A pandas DataFrame of one table, indexed by its time (s) or frequency (Hz):
+        ``"timeseries"`` (interface histories: ``gap``, ``contact_stress``, ...),
+        ``"probe"`` (the probe's histories, without the ``probe_`` prefix; ``attrs
+        ["probe_x"]``), ``"spectrum"`` (``incident``, ``reflected``) or ``"shear"``.
+        ``attrs["units"]`` maps each column (and the index) to its SI unit. Needs pandas
+        (the ``pandas`` extra), else ``ImportError`` naming it."""
+        from ._frames import half_space_pandas
+
+        return half_space_pandas(self, table)
+
+    def to_xarray(self) -> Any:
+        """An xarray Dataset: the interface histories on coordinate ``time`` (s), the
+        probe's on ``probe_time`` (s), the spectra (``incident_spectrum``,
+        ``reflected_spectrum``, m) on ``frequency`` (Hz); every variable and coordinate
+        has ``attrs["units"]``; the summary's numbers are the Dataset's attributes. Needs
+        xarray (the ``xarray`` extra), else ``ImportError`` naming it."""
+        from ._frames import half_space_xarray
+
+        return half_space_xarray(self)
+
     def __repr__(self) -> str:
         s = self.summary
         if "angle" in s:
@@ -376,6 +397,24 @@ class BarStackResult:
     def __init__(self, raw: Dict[str, Any]) -> None:
         for k in self._KEYS:
             setattr(self, k, raw[k])
+
+    def to_pandas(self) -> Any:
+        """A pandas DataFrame indexed by ``t`` (s): ``force``, ``displacement``,
+        ``acceleration`` and per interface ``gap_i``, ``pressure_i``, ``beta_i``,
+        ``stiffness_i`` (the columns of ``timeseries.csv``); ``attrs["units"]`` gives
+        the units. Needs pandas (the ``pandas`` extra)."""
+        from ._frames import bar_stack_pandas
+
+        return bar_stack_pandas(self)
+
+    def to_xarray(self) -> Any:
+        """An xarray Dataset on coordinates ``time`` (s) and ``interface``: ``force``,
+        ``displacement``, ``acceleration`` (time) and ``gap``, ``pressure``, ``beta``,
+        ``stiffness`` (interface, time), each with ``attrs["units"]``. Needs xarray (the
+        ``xarray`` extra)."""
+        from ._frames import bar_stack_xarray
+
+        return bar_stack_xarray(self)
 
     def __repr__(self) -> str:
         s = self.summary
@@ -462,6 +501,25 @@ class Solid2dResult:
         return self.stresses[
             self.stress_names.index(name), self.stress_components.index(component)
         ]
+
+    def to_pandas(self) -> Any:
+        """A pandas DataFrame indexed by ``t`` (s) with the columns of
+        ``receivers.csv``: ``<name>_v<x|z|y>`` (m/s) and ``<name>_s<xx|zz|xz|yx|yz>``
+        (Pa); ``attrs["units"]`` gives the units. Needs pandas (the ``pandas`` extra)."""
+        from ._frames import solid_2d_pandas
+
+        return solid_2d_pandas(self)
+
+    def to_xarray(self) -> Any:
+        """An xarray Dataset: ``velocity`` (receiver, component, time; m/s), ``stress``
+        (stress_receiver, stress_component, time; Pa), ``snapshot`` (snapshot_time, z,
+        x; m/s) and per crack ``crack<k>_normal_gap`` ... on (``crack<k>_position`` m,
+        ``crack<k>_time`` s); coordinates ``time`` (s), ``x``, ``z`` (m, the snapshot
+        pixel centres), all with ``attrs["units"]``. Needs xarray (the ``xarray``
+        extra)."""
+        from ._frames import solid_2d_xarray
+
+        return solid_2d_xarray(self)
 
     def __repr__(self) -> str:
         s = self.summary

@@ -919,6 +919,7 @@ fn a_reused_output_folder_holds_one_runs_files_only() {
             [
                 ".contactwave-manifest.json",
                 "notes.txt",
+                "provenance.json",
                 "sweep.csv",
                 "sweep.csv.hash",
                 "sweep.csv.shard",

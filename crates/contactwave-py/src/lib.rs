@@ -821,13 +821,34 @@ fn identify(
     design: bool,
 ) -> PyResult<String> {
     use contactwave::inverse::{self, IdentifySpec, Model};
+    use contactwave::output::provenance::Provenance;
     py.detach(move || -> Result<String, Error> {
+        let from_file = text.is_none();
         let spec = match text {
             Some(t) => {
                 let table = table_from_json(&t, &path.display().to_string())?;
                 IdentifySpec::from_table(table, &path)?
             }
             None => IdentifySpec::load(&path)?,
+        };
+        // the files' provenance: a dict has no input file, its base and data are data files
+        let call = if from_file {
+            format!(
+                "python: contactwave.identify({:?})",
+                path.display().to_string()
+            )
+        } else {
+            "python: contactwave.identify(<dict>)".to_string()
+        };
+        let provenance = if from_file {
+            Provenance::of_identification(&path, &spec, call)?
+        } else {
+            let mut p = Provenance::new(call);
+            p.add_data_file(&spec.base)?;
+            if let Some(d) = &spec.data_file {
+                p.add_data_file(d)?;
+            }
+            p
         };
         if let Some(o) = &out {
             if o.exists() && !o.is_dir() {
@@ -861,6 +882,8 @@ fn identify(
             )
         };
         if let Some(o) = &out {
+            let mut files = files;
+            provenance.stamp(&mut files);
             contactwave::output::write_files(o, &files)?;
         }
         Ok(json.to_string())

@@ -74,6 +74,7 @@ fn identify(
     if let Some(out) = out {
         check_out_dir(out)?;
     }
+    let provenance = identification_provenance(path, &spec)?;
     // on a terminal: a spinner with the elapsed time and the current stage, each finished
     // stage printed above it; nothing otherwise
     let spinner = if std::io::stderr().is_terminal() {
@@ -111,10 +112,11 @@ fn identify(
         if let Some(out) = out {
             let json = serde_json::to_string_pretty(&report.to_json())
                 .map_err(|e| Error::io(out, std::io::Error::other(e)))?;
-            let files = [
+            let mut files = [
                 output_file("design.json", json + "\n"),
                 output_file("design.csv", report.to_csv()),
             ];
+            provenance.stamp(&mut files);
             write_out(out, "identify", &files)?;
         }
         return Ok(EXIT_OK);
@@ -122,7 +124,8 @@ fn identify(
     let result = inverse::identify(&spec, &progress);
     spinner.finish_and_clear();
     let result = result?;
-    let files = contactwave::output::identify::identification_files(&result)?;
+    let mut files = contactwave::output::identify::identification_files(&result)?;
+    provenance.stamp(&mut files);
     for line in result.verdict_lines() {
         println!("{line}");
     }
@@ -163,6 +166,16 @@ fn identify(
         }
     }
     Ok(EXIT_OK)
+}
+
+/// The provenance of an identification: the identification file as the input, its base
+/// scenario, the base's waveform files and its data CSV as data files.
+fn identification_provenance(
+    path: &Path,
+    spec: &IdentifySpec,
+) -> contactwave::Result<contactwave::output::provenance::Provenance> {
+    use contactwave::output::provenance::{process_command_line, Provenance};
+    Provenance::of_identification(path, spec, process_command_line())
 }
 
 /// `--synthesize KEY=VALUE ...`: synthetic data of an identification file on stdout.

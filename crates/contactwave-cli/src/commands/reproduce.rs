@@ -6,7 +6,8 @@
 //! and simulation counts and its findings.
 
 use super::{check_out_dir, progress_bar, EXIT_OK};
-use contactwave::reproduce::{run_chapter_at, write_report, Chapter};
+use contactwave::output::provenance::{process_command_line, Provenance};
+use contactwave::reproduce::{run_chapter_at, write_report_with, Chapter};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -62,7 +63,8 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     }
     bar.finish_and_clear();
     let total = t0.elapsed().as_secs_f64();
-    let written = write_report(out, &results, total)?;
+    let provenance = Provenance::new(process_command_line());
+    let written = write_report_with(out, &results, total, Some(&provenance))?;
     let names: Vec<String> = written
         .iter()
         .map(|p| {

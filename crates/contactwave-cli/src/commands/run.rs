@@ -7,6 +7,7 @@
 use super::{check_out_dir, progress_bar, read_table, EXIT_OK, STEPS_TEMPLATE};
 use contactwave::model::{self, RunControl};
 use contactwave::output;
+use contactwave::output::provenance::{process_command_line, Provenance};
 use contactwave::output::recording::{self, Recording, Series};
 use contactwave::solver::bar_stack::StepProgress;
 use std::path::PathBuf;
@@ -35,6 +36,11 @@ pub struct Args {
     /// `--record decimated`).
     #[arg(long, value_name = "SECONDS")]
     record_step: Option<f64>,
+    /// Also write DIR/result.h5: every table of the run (the recorded series, receivers,
+    /// crack fields, spectra) as datasets with `units` and `description` attributes, the
+    /// summary and the provenance as attributes (docs/outputs.md; MATLAB h5read, h5py).
+    #[arg(long)]
+    hdf5: bool,
 }
 
 /// `--record`.
@@ -62,6 +68,8 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         eprintln!("warning: {w}");
     }
     check_out_dir(out)?;
+    // the input files hashed as read (a file edited during the run does not change them)
+    let provenance = Provenance::of_scenario(path, process_command_line())?;
     let t0 = Instant::now();
     // long runs report progress on a terminal
     let bar = progress_bar(STEPS_TEMPLATE, 0);
@@ -76,9 +84,13 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     bar.finish_and_clear();
     let outcome = outcome?;
     let wall = t0.elapsed();
-    let files = recording::files(&*outcome, &recording)?;
+    let mut files = recording::files(&*outcome, &recording)?;
+    provenance.stamp(&mut files);
     // every file is rendered before the first is written: an error writes nothing
-    let binary = outcome.binary_files()?;
+    let mut binary = outcome.binary_files()?;
+    if args.hdf5 {
+        binary.push(output::hdf5::run_file(&files, &provenance)?);
+    }
     output::write_files(out, &files)?;
     output::write_binary_files(out, &binary)?;
     let mut names: Vec<String> = files.iter().map(|f| f.name.clone()).collect();

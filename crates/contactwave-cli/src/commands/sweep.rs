@@ -1,6 +1,7 @@
 //! `contactwave sweep SWEEP --out DIR`: run the points of a parameter sweep on a thread pool
 //! and write DIR/sweep.csv (one row per point, appended as points finish, sorted by point
-//! once finished), its hash file DIR/sweep.csv.hash, DIR/sweep.svg and, if points fail,
+//! once finished), its hash file DIR/sweep.csv.hash, DIR/sweep.svg, the provenance
+//! DIR/provenance.json (docs/outputs.md), with --hdf5 DIR/sweep.h5, and, if points fail,
 //! DIR/sweep_errors.csv (exit code 1 unless --tolerate-failures).
 //!
 //! `--resume` computes only the points missing from an existing sweep.csv, `--shard K/N`
@@ -13,6 +14,7 @@ use super::{
     EXIT_INTERRUPTED, EXIT_OK,
 };
 use contactwave::output;
+use contactwave::output::provenance::{self, process_command_line, Provenance};
 use contactwave::study::{self, Sweep, SweepOptions};
 use contactwave::Error;
 use std::path::PathBuf;
@@ -44,15 +46,22 @@ pub struct Args {
     /// it a sweep with failed points exits 1 after writing every row it could.
     #[arg(long)]
     tolerate_failures: bool,
+    /// Also write DIR/sweep.h5: every column of sweep.csv as a dataset of the group
+    /// /sweep with `units` and `description` attributes, the provenance as attributes of
+    /// the root group (docs/outputs.md).
+    #[arg(long)]
+    hdf5: bool,
 }
 
 /// The files a sweep writes into its folder (those that exist are its manifest).
-const SWEEP_FILES: [&str; 5] = [
+const SWEEP_FILES: [&str; 7] = [
     "sweep.csv",
     "sweep.csv.hash",
     "sweep.csv.shard",
     "sweep.svg",
     "sweep_errors.csv",
+    provenance::SIDECAR,
+    output::hdf5::SWEEP_FILE,
 ];
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
@@ -79,6 +88,9 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             eprintln!("warning: {w}");
         }
     }
+    // the input files hashed as read; the sidecar provenance.json beside sweep.csv
+    // (a plain table for pandas and `merge`) is written once the rows are
+    let prov = Provenance::of_sweep(&sweep, process_command_line())?;
     let cancel = cancel_on_ctrl_c();
     let shard = args.shard.unwrap_or(study::Shard::ALL);
     let total = (0..sweep.points.len())
@@ -98,9 +110,24 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     // the folder's manifest: the sweep's files (which --resume keeps); an earlier
     // command's other files are removed
     let claim = || {
+        // written also after Ctrl-C (the rows on disk are complete): plain writes, not
+        // output::write_files, which stops at an interruption
+        if csv.is_file() {
+            let put = |name: &str, bytes: &[u8]| {
+                let path = out.join(name);
+                std::fs::write(&path, bytes).map_err(|e| Error::io(&path, e))
+            };
+            put(provenance::SIDECAR, prov.sidecar().contents.as_bytes())?;
+            if args.hdf5 {
+                let table = study::read_sweep_csv(&csv)?;
+                let h5 = output::hdf5::sweep_file(&table, &prov)?;
+                put(&h5.name, &h5.bytes)?;
+            }
+        }
         let names: Vec<String> = SWEEP_FILES
             .iter()
-            .filter(|n| out.join(n).is_file())
+            // a sweep.h5 of an earlier `--hdf5` run is removed by a run without it
+            .filter(|n| out.join(n).is_file() && (args.hdf5 || **n != output::hdf5::SWEEP_FILE))
             .map(|n| n.to_string())
             .collect();
         claim_out(out, "sweep", &names)

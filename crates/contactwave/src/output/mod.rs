@@ -21,12 +21,15 @@
 //! Numbers are written so that they parse back to the same `f64`.
 
 pub mod analyze;
+#[cfg(feature = "hdf5")]
+pub mod hdf5;
 #[cfg(feature = "identify")]
 pub mod identify;
 pub mod labels;
 pub mod manifest;
 #[cfg(feature = "plot")]
 pub mod plot;
+pub mod provenance;
 pub mod recording;
 
 use crate::error::{Error, Result};

@@ -24,7 +24,7 @@ mod oblique;
 mod report;
 mod shear;
 
-pub use report::{findings_json, report_html, write_report, THESIS_CITATION};
+pub use report::{findings_json, report_html, write_report, write_report_with, THESIS_CITATION};
 
 use crate::analysis::Summary;
 use crate::error::{Error, Result};

@@ -324,6 +324,17 @@ pub fn write_report(
     chapters: &[ChapterResult],
     total_seconds: f64,
 ) -> Result<Vec<PathBuf>> {
+    write_report_with(dir, chapters, total_seconds, None)
+}
+
+/// [`write_report`] with `findings.json` carrying the `"provenance"` object of
+/// `provenance` ([`crate::output::provenance`]) when given.
+pub fn write_report_with(
+    dir: &Path,
+    chapters: &[ChapterResult],
+    total_seconds: f64,
+    provenance: Option<&crate::output::provenance::Provenance>,
+) -> Result<Vec<PathBuf>> {
     let mut svgs = Vec::with_capacity(chapters.len());
     let mut fig_files = Vec::new();
     for c in chapters {
@@ -352,7 +363,10 @@ pub fn write_report(
             },
             OutputFile {
                 name: "findings.json".into(),
-                contents: findings_json(chapters),
+                contents: match provenance {
+                    Some(p) => p.stamp_json(&findings_json(chapters)),
+                    None => findings_json(chapters),
+                },
             },
         ],
     )?);
