@@ -5,6 +5,7 @@ use super::{check_out_dir, write_out, EXIT_OK};
 use contactwave::analysis::{AnalysisMethod, Gate};
 use contactwave::measured::{self, Amplitudes, Layout, Settings, Sources};
 use contactwave::output::analyze as files;
+use contactwave::output::provenance::{process_command_line, Provenance};
 use contactwave::Error;
 use std::path::PathBuf;
 
@@ -153,7 +154,13 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         .collect();
     inputs.extend(args.inverse.iter().map(|p| p.display().to_string()));
     inputs.extend(args.linear.iter().map(|p| p.display().to_string()));
-    let out_files = files::files(&analysis, &series, &inputs)?;
+    let mut out_files = files::files(&analysis, &series, &inputs)?;
+    // provenance: every record file read, hashed
+    let mut provenance = Provenance::new(process_command_line());
+    for p in args.records.iter().chain(&args.inverse).chain(&args.linear) {
+        provenance.add_data_file(p)?;
+    }
+    provenance.stamp(&mut out_files);
     check_out_dir(&args.out)?;
     write_out(&args.out, "analyze", &out_files)?;
     println!(
