@@ -48,28 +48,11 @@ pub fn analyze<'py>(
     let gate = match o.get("gate").and_then(|v| v.as_array()) {
         Some(g) => {
             let v: Vec<f64> = g.iter().filter_map(serde_json::Value::as_f64).collect();
-            let gate = match v.as_slice() {
-                [a, b] => Gate {
-                    start: *a,
-                    end: *b,
-                    taper: 0.1 * (b - a),
-                },
-                [a, b, c] => Gate {
-                    start: *a,
-                    end: *b,
-                    taper: *c,
-                },
-                _ => {
-                    return Err(PyValueError::new_err(
-                        "gate: (start, end) or (start, end, taper) in s",
-                    ))
-                }
-            };
-            if !gate.is_valid() {
-                return Err(PyValueError::new_err(
-                    "gate: start < end, taper in [0, (end - start) / 2], s",
-                ));
-            }
+            let gate = Gate::from_values(&v).ok_or_else(|| {
+                PyValueError::new_err(
+                    "gate: (start, end) or (start, end, taper) in s, start < end, taper in [0, (end - start) / 2]",
+                )
+            })?;
             Some(gate)
         }
         None => None,

@@ -81,24 +81,7 @@ fn parse_gate(text: &str) -> contactwave::Result<Gate> {
         .map(|s| s.trim().parse::<f64>())
         .collect::<Result<_, _>>()
         .map_err(|_| bad())?;
-    let g = match v.as_slice() {
-        [a, b] => Gate {
-            start: *a,
-            end: *b,
-            taper: 0.1 * (b - a),
-        },
-        [a, b, c] => Gate {
-            start: *a,
-            end: *b,
-            taper: *c,
-        },
-        _ => return Err(bad()),
-    };
-    if g.is_valid() {
-        Ok(g)
-    } else {
-        Err(bad())
-    }
+    Gate::from_values(&v).ok_or_else(bad)
 }
 
 fn parse_amplitudes(text: &str) -> Amplitudes {

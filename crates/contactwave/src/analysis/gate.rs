@@ -43,6 +43,21 @@ impl Gate {
         }
     }
 
+    /// The gate of `[start, end]` (taper a tenth of the gate) or `[start, end, taper]`,
+    /// s, when it is valid ([`Gate::is_valid`]); `None` otherwise.
+    pub fn from_values(v: &[f64]) -> Option<Gate> {
+        let g = match *v {
+            [start, end] => Gate {
+                start,
+                end,
+                taper: 0.1 * (end - start),
+            },
+            [start, end, taper] => Gate { start, end, taper },
+            _ => return None,
+        };
+        g.is_valid().then_some(g)
+    }
+
     /// Whether the gate is a non-empty finite interval with a taper in `[0, (end -
     /// start) / 2]`.
     pub fn is_valid(&self) -> bool {

@@ -212,7 +212,7 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
     let prepared: Vec<Prepared> = series
         .records
         .iter()
-        .map(|r| Prepared::of(r, settings, t0, dt))
+        .map(|r| Prepared::of(r, settings))
         .collect();
     // the fundamental
     let (f0, f0_detected) = match settings.f0 {
@@ -335,7 +335,7 @@ struct Prepared {
 }
 
 impl Prepared {
-    fn of(r: &Measured, s: &Settings, _t0: f64, _dt: f64) -> Prepared {
+    fn of(r: &Measured, s: &Settings) -> Prepared {
         let strip = |x: &[f64]| -> (Vec<f64>, f64) {
             if s.keep_dc {
                 return (x.to_vec(), 0.0);
