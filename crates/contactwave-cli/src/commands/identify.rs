@@ -32,7 +32,9 @@ pub struct Args {
     #[arg(long)]
     design: bool,
     /// Print synthetic data instead (CSV on stdout): the file's data rows simulated
-    /// with KEY=VALUE for the unknowns (repeat the option), times 1 + noise * N(0, 1).
+    /// with KEY=VALUE for the unknowns (repeat the option), times 1 + noise * N(0, 1);
+    /// with [records], the raw records (t, record_1, ...) through the file's transducer
+    /// plus white noise of noise times each record's peak.
     #[arg(long, value_name = "KEY=VALUE")]
     synthesize: Vec<String>,
     /// Relative noise of --synthesize.
@@ -185,7 +187,8 @@ fn synthesize_data(
     noise: f64,
     seed: u64,
 ) -> contactwave::Result<u8> {
-    let spec = IdentifySpec::load(path)?;
+    // with [records] the record files are what is made: they need not exist yet
+    let spec = IdentifySpec::load_unmeasured(path)?;
     let truth = pairs
         .iter()
         .map(|p| {
@@ -208,12 +211,17 @@ fn synthesize_data(
                 })
         })
         .collect::<contactwave::Result<Vec<_>>>()?;
-    let data = synthesize(&spec, &truth, noise, seed)?;
     let comment = format!(
         "synthetic data: contactwave identify {} --synthesize {} --noise {noise} --seed {seed}",
         path.display(),
         pairs.join(" --synthesize ")
     );
+    if spec.records.is_some() {
+        let text = inverse::synthesize_records(&spec, &truth, noise, seed, &comment)?;
+        print!("{text}");
+        return Ok(EXIT_OK);
+    }
+    let data = synthesize(&spec, &truth, noise, seed)?;
     print!("{}", data.measured.to_csv(&comment));
     Ok(EXIT_OK)
 }

@@ -88,17 +88,13 @@ pub fn identify(spec: &IdentifySpec, progress: &(dyn Fn(&str) + Sync)) -> Result
     })
 }
 
-/// Synthetic data: the spec's rows simulated with the parameters at `truth` (key, value;
-/// keys not given stay at their starting values), each observed value multiplied by
-/// `1 + noise g` with `g` standard normal (seeded), uncertainties reset to
-/// `fit.relative_noise |y| + fit.absolute_noise`. Returns the spec with these data.
-pub fn synthesize(
+/// The parameter values of a synthesis: `truth` (key, value) where given, the starting
+/// values elsewhere; checks the keys and the noise level.
+pub(super) fn truth_values(
     spec: &IdentifySpec,
     truth: &[(String, f64)],
     noise: f64,
-    seed: u64,
-) -> Result<IdentifySpec> {
-    use rand::{Rng, SeedableRng};
+) -> Result<Vec<f64>> {
     let file = spec.file.display().to_string();
     for (k, _) in truth {
         if !spec.parameters.iter().any(|p| &p.key == k) {
@@ -113,7 +109,7 @@ pub fn synthesize(
     if !(noise >= 0.0 && noise.is_finite()) {
         return Err(Error::invalid(&file, "noise", noise, "finite, >= 0"));
     }
-    let values: Vec<f64> = spec
+    Ok(spec
         .parameters
         .iter()
         .map(|p| {
@@ -122,7 +118,21 @@ pub fn synthesize(
                 .find(|(k, _)| k == &p.key)
                 .map_or(p.initial, |t| t.1)
         })
-        .collect();
+        .collect())
+}
+
+/// Synthetic data: the spec's rows simulated with the parameters at `truth` (key, value;
+/// keys not given stay at their starting values), each observed value multiplied by
+/// `1 + noise g` with `g` standard normal (seeded), uncertainties reset to
+/// `fit.relative_noise |y| + fit.absolute_noise`. Returns the spec with these data.
+pub fn synthesize(
+    spec: &IdentifySpec,
+    truth: &[(String, f64)],
+    noise: f64,
+    seed: u64,
+) -> Result<IdentifySpec> {
+    use rand::{Rng, SeedableRng};
+    let values = truth_values(spec, truth, noise)?;
     let model = Model::new(spec);
     let z: Vec<f64> = spec
         .parameters
@@ -147,4 +157,108 @@ pub fn synthesize(
         }
     }
     Ok(out)
+}
+
+/// Synthetic raw records of a spec with `[records]` (`identify --synthesize`): each row's
+/// forward signal (`records.waveform`) at the parameter values `truth` (key, value;
+/// keys not given stay at their starting values), through the spec's transducer, plus
+/// white Gaussian noise of standard deviation `noise` times the record's largest
+/// magnitude (seeded). Returns the CSV text: `t` (s), then `record_1`, ... (the signal's
+/// unit), `#` comment lines first.
+pub fn synthesize_records(
+    spec: &IdentifySpec,
+    truth: &[(String, f64)],
+    noise: f64,
+    seed: u64,
+    comment: &str,
+) -> Result<String> {
+    use rand::{Rng, SeedableRng};
+    let file = spec.file.display().to_string();
+    let Some(rec) = &spec.records else {
+        return Err(Error::invalid(
+            &file,
+            "records",
+            "missing",
+            "a [records] table",
+        ));
+    };
+    if !matches!(
+        rec.settings.method,
+        crate::analysis::AnalysisMethod::BandPeak | crate::analysis::AnalysisMethod::PlateauFit
+    ) {
+        return Err(Error::invalid(
+            &file,
+            "records.method",
+            rec.settings.method.name(),
+            "band_peak or plateau_fit to synthesise records (one record per row; the \
+             twins of pulse inversion and linear reference are not written)",
+        ));
+    }
+    let values = truth_values(spec, truth, noise)?;
+    let model = Model::new(spec);
+    let z: Vec<f64> = spec
+        .parameters
+        .iter()
+        .zip(&values)
+        .map(|(p, &v)| p.to_scaled(v))
+        .collect();
+    let values = model.values(&z);
+    let mut ws = crate::model::Workspace::new();
+    let mut columns: Vec<Vec<f64>> = Vec::new();
+    let mut time: Option<(f64, f64, usize)> = None;
+    for i in 0..spec.measured.len() {
+        let m = model.scenario(i, &values)?;
+        let (w, _) = rec.forward_waveforms(&*m, &mut ws)?;
+        match time {
+            None => time = Some((w.t0, w.dt, w.samples.len())),
+            Some((t0, dt, n)) => {
+                if (w.t0 - t0).abs() > 1e-6 * dt
+                    || (w.dt - dt).abs() > 1e-9 * dt
+                    || w.samples.len() != n
+                {
+                    return Err(Error::invalid(
+                        &file,
+                        format!("row {}", i + 1),
+                        format!("t0 {}, dt {}, {} samples", w.t0, w.dt, w.samples.len()),
+                        format!(
+                            "the first row's time base (t0 {t0}, dt {dt}, {n} samples): the \
+                             condition must not change the run's duration or step"
+                        ),
+                    ));
+                }
+            }
+        }
+        columns.push(w.samples);
+    }
+    let (t0, dt, n) = time.unwrap_or((0.0, 1.0, 0));
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let mut gauss = || {
+        // Box-Muller
+        let u1: f64 = rng.random_range(f64::MIN_POSITIVE..1.0);
+        let u2: f64 = rng.random_range(0.0..1.0);
+        (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()
+    };
+    for c in &mut columns {
+        let peak = c.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        for v in c.iter_mut() {
+            *v += noise * peak * gauss();
+        }
+    }
+    let mut s = String::new();
+    for line in comment.lines() {
+        s.push_str(&format!("# {line}\n"));
+    }
+    s.push('t');
+    for i in 0..columns.len() {
+        s.push_str(&format!(",record_{}", i + 1));
+    }
+    s.push('\n');
+    for k in 0..n {
+        s.push_str(&format!("{:e}", t0 + k as f64 * dt));
+        for c in &columns {
+            s.push_str(&format!(",{:e}", c[k]));
+        }
+        s.push('\n');
+    }
+    Ok(s)
 }

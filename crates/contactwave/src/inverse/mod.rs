@@ -5,7 +5,9 @@
 //!
 //! ```toml
 //! base = "base.toml"          # base scenario, relative to this file
-//! data = "measured.csv"       # measured curve(s), relative to this file
+//! data = "measured.csv"       # measured curve(s), relative to this file; or instead
+//!                             #   [records]: raw waveforms reduced like the forward
+//!                             #   signals (the `records` module, docs/identify.md section 8)
 //! observed = ["A2_over_A1"]   # optional: the summary columns fitted (default: all in the CSV)
 //!
 //! [set]                       # optional fixed overrides of the base scenario
@@ -72,15 +74,17 @@ pub mod estimate;
 pub mod identifiability;
 mod model;
 mod parse;
+pub mod records;
 mod result;
 mod sensitivity;
 mod spec;
 
 pub use design::{design, DesignCandidate, DesignReport};
-pub use driver::{identify, synthesize};
+pub use driver::{identify, synthesize, synthesize_records};
 pub use estimate::{estimate, Estimate};
 pub use identifiability::{Identifiability, Verdict};
 pub use model::Model;
 pub use parse::get_dotted;
+pub use records::RecordsSpec;
 pub use result::Identification;
 pub use spec::{DesignSpec, FitOptions, IdentifySpec, Measured, Observed, Parameter, Scale};

@@ -171,7 +171,10 @@ impl<'a> Model<'a> {
             .iter()
             .map(|o| o.key.as_str())
             .collect();
-        let summary = self.workspaces.with(|ws| s.summary_for_in(&keys, ws));
+        let summary = self.workspaces.with(|ws| match &self.spec.records {
+            Some(r) => r.forward(&*s, ws),
+            None => s.summary_for_in(&keys, ws),
+        });
         if let Err(e @ Error::Numerical { .. }) = &summary {
             self.record_failure(i, e);
         }

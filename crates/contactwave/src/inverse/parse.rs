@@ -53,6 +53,15 @@ impl IdentifySpec {
         IdentifySpec::from_table(table, path)
     }
 
+    /// [`Self::load`] without reading the files of `[records]` (their rows are the listed
+    /// condition values, the observed values placeholders): what `identify --synthesize`
+    /// needs to make those files. Other files load as in [`Self::load`].
+    pub fn load_unmeasured(path: &Path) -> Result<IdentifySpec> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let table = parse_toml(&text, &path.display().to_string())?;
+        IdentifySpec::from_table_with(table, path, false)
+    }
+
     /// Build from a parsed identification table that came from `path` (relative paths
     /// resolve against its folder). `data` may be a file name or an inline table of
     /// equally long arrays (column name -> values). The format is described in the
@@ -105,6 +114,15 @@ impl IdentifySpec {
     /// std::fs::remove_dir_all(&dir).unwrap();
     /// ```
     pub fn from_table(table: toml::Table, path: &Path) -> Result<IdentifySpec> {
+        IdentifySpec::from_table_with(table, path, true)
+    }
+
+    /// [`Self::from_table`], reading the `[records]` files when `read_records`.
+    fn from_table_with(
+        table: toml::Table,
+        path: &Path,
+        read_records: bool,
+    ) -> Result<IdentifySpec> {
         let file = path.display().to_string();
         let f: IdentifyFile = deserialize_format(&table, &file, allowed)?;
         let dir = path.parent().unwrap_or(Path::new("."));
@@ -122,7 +140,52 @@ impl IdentifySpec {
         model::plan_valid(base_table.clone(), &base)?;
 
         let fit = f.fit.check(&file)?;
-        let (measured, data_file) = parse_data(&f.data, f.observed.as_deref(), dir, &file, &fit)?;
+        let (measured, data_file, records) = match (&f.data, f.records) {
+            (Some(data), None) => {
+                let (m, d) = parse_data(data, f.observed.as_deref(), dir, &file, &fit)?;
+                (m, d, None)
+            }
+            (None, Some(r)) => {
+                let mut r = r.check(&file, dir)?;
+                let rows = if read_records {
+                    let noise = (fit.relative_noise, fit.absolute_noise);
+                    r.measure(f.observed.as_deref(), &file, noise)?
+                } else {
+                    r.unmeasured(f.observed.as_deref(), &file)?
+                };
+                let m = Measured {
+                    conditions: vec![r.condition.clone()],
+                    rows: rows.rows,
+                    observed: rows
+                        .observed
+                        .into_iter()
+                        .map(|(key, values, sigma)| Observed { key, values, sigma })
+                        .collect(),
+                };
+                // the forward runs are reduced by the records' analysis: the scenario's own
+                // (and its second run) is not needed
+                if model::kind_of(&base_table).name() != "bar_stack" {
+                    set_dotted(
+                        &mut base_table,
+                        "analysis.method",
+                        toml::Value::String("band_peak".into()),
+                    )?;
+                }
+                (m, None, Some(r))
+            }
+            (data, _) => {
+                return Err(Error::invalid(
+                    &file,
+                    if data.is_some() { "records" } else { "data" },
+                    if data.is_some() {
+                        "given with data"
+                    } else {
+                        "missing"
+                    },
+                    "either data (a reduced curve) or [records] (raw waveforms), not both",
+                ))
+            }
+        };
         let parameters = parse_parameters(f.parameter, &file, &base_table)?;
         let design = f.design.map(|d| d.check(&file)).transpose()?;
 
@@ -161,6 +224,7 @@ impl IdentifySpec {
             parameters,
             fit,
             design,
+            records,
         };
         // every row must build a valid scenario at the starting values, and every
         // parameter key must be a key of the scenario
@@ -197,8 +261,11 @@ impl IdentifySpec {
         for i in 0..spec.measured.len() {
             model.scenario(i, &model.values(&z0))?;
         }
-        // every observed column must be a key of this scenario's summary (one forward run)
-        if let Ok(summary) = model.scenario(0, &model.values(&z0))?.summary() {
+        // every observed column must be a key of this scenario's summary (one forward run;
+        // with records, the forward signal must exist and reduce)
+        if spec.records.is_some() {
+            model.run_with(0, &model.values(&z0), &[])?;
+        } else if let Ok(summary) = model.scenario(0, &model.values(&z0))?.summary() {
             for o in &spec.measured.observed {
                 if summary.get(&o.key).is_none() {
                     return Err(Error::invalid(
@@ -224,7 +291,8 @@ impl IdentifySpec {
 #[serde(deny_unknown_fields)]
 struct IdentifyFile {
     base: String,
-    data: toml::Value,
+    data: Option<toml::Value>,
+    records: Option<super::records::RecordsFile>,
     observed: Option<Vec<String>>,
     set: Option<toml::Table>,
     parameter: Vec<ParameterFile>,
@@ -285,7 +353,11 @@ fn allowed(key: &str, problem: FieldProblem) -> String {
     let unknown = problem == FieldProblem::Unknown;
     let missing = problem == FieldProblem::Missing;
     match key {
-        "" => "an identification file has base, data, observed, set, parameter, fit, design",
+        "" => {
+            "an identification file has base, data or records, observed, set, parameter, \
+             fit, design"
+        }
+        "records" => super::records::ALLOWED,
         "parameter" if unknown => "a [[parameter]] has key, bounds, scale, initial, also",
         "fit" if unknown => {
             "[fit] has relative_noise, absolute_noise, particles, iterations, \

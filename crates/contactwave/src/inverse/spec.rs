@@ -165,6 +165,9 @@ pub struct IdentifySpec {
     pub fit: FitOptions,
     /// Experiment design candidates.
     pub design: Option<DesignSpec>,
+    /// Raw records as the data (`[records]`): the observed values are their analysis, and
+    /// each forward run's signal is reduced alike ([`super::records`]).
+    pub records: Option<super::records::RecordsSpec>,
 }
 
 impl Measured {

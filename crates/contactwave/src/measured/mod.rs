@@ -27,8 +27,10 @@ pub mod analyze;
 pub mod arrays;
 mod load;
 mod series;
+mod transducer;
 
 pub use analyze::{analyze, Analysis, RecordAnalysis, SeriesFit, Settings};
 pub use arrays::{read_arrays, Format, NamedArray};
 pub use load::{load, Amplitudes, Sources};
 pub use series::{read_records, Layout, Measured, Records, Series, Trace};
+pub use transducer::BandPass;

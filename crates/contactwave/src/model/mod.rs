@@ -65,7 +65,7 @@ pub use param::{toml_number, wants_integer, Param, ParamTable};
 pub use record::{Record, Value};
 pub use template::{FromSpec, SpecTemplate};
 
-use crate::analysis::Summary;
+use crate::analysis::{AnalysisMethod, Summary};
 use crate::error::Result;
 use crate::render::{OutputFile, Rows};
 use crate::scenario::read_table;
@@ -74,6 +74,18 @@ use std::any::Any;
 use std::fmt::Debug;
 use std::path::Path;
 use std::sync::Arc;
+
+/// A sampled signal of a run ([`Outcome::waveform`]): `samples[k]` at `t0 + k dt`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Waveform {
+    /// Time of the first sample, s (the run's own time origin).
+    pub t0: f64,
+    /// Sampling step, s.
+    pub dt: f64,
+    /// The samples, in the signal's unit (m/s for velocities, Pa for stresses, m for
+    /// displacements).
+    pub samples: Vec<f64>,
+}
 
 /// What a run may report while it goes (more to come: cancellation).
 #[derive(Debug, Clone, Default)]
@@ -313,6 +325,16 @@ pub trait Model: Debug + Send + Sync {
     /// assert!((a2 - s.get("incident_A2_over_Ainc").unwrap()).abs() < 1e-6);
     /// ```
     fn run(&self, control: &RunControl) -> Result<Box<dyn Outcome>>;
+    /// The second model a leakage-free analysis `method` needs (model.md section 6.1): the
+    /// drive negated for `pulse_inversion`, the interfaces linearised at their static state
+    /// for `linear_reference`; `None` for the other methods and for kinds without one (the
+    /// default). The twin's own analysis is `band_peak` (it makes no twin of its own). An
+    /// identification from raw records runs it to reduce the forward signal exactly as the
+    /// measured one ([`crate::measured::analyze`]).
+    fn twin(&self, method: AnalysisMethod) -> Result<Option<Arc<dyn Model>>> {
+        let _ = method;
+        Ok(None)
+    }
     /// [`Self::run`] on the caller's workspace (the default ignores it).
     fn run_in(&self, control: &RunControl, ws: &mut Workspace) -> Result<Box<dyn Outcome>> {
         let _ = ws;
@@ -407,6 +429,18 @@ pub trait Outcome: Debug + Send + Sync {
     /// assert!((most / -0.3e6 - 1.0).abs() < 0.01);
     /// ```
     fn record(&self) -> Record;
+    /// The run's signal `name`, uniformly sampled: a column of its probe or receiver file
+    /// (half-space `probe.csv`: `reflected_velocity`, `incident_velocity`,
+    /// `reflected_stress`, ...; 2D `receivers.csv`: `<receiver>_v<c>`, `<receiver>_s<cc>`);
+    /// `None` if the run has no signal of that name (the default: none).
+    fn waveform(&self, name: &str) -> Option<Waveform> {
+        let _ = name;
+        None
+    }
+    /// The names [`Self::waveform`] answers (for error messages); none by default.
+    fn waveform_names(&self) -> Vec<String> {
+        Vec::new()
+    }
     /// The lines a person reads after the run (`contactwave run` prints them): the
     /// quantities that matter for this kind, one per line, label padded to 23 columns.
     fn report(&self) -> Vec<String>;

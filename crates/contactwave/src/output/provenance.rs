@@ -14,7 +14,7 @@
 //! | `git_dirty` | `true` when tracked files differed from that commit at build time, `false` when not, `null` when unknown |
 //! | `input` | the input file of the command (scenario, sweep or identification file), `null` without one (`reproduce`, a scenario given as a dict) |
 //! | `scenario_sha256` | SHA-256 (hex) of the bytes of that file, `null` without one |
-//! | `data_files` | `[{"path", "sha256"}]`: every other file the command read: a sweep's or identification's base scenario, waveform CSV files (the `path` keys of a scenario: `incident.path`, `source.path`, ...), an identification's data CSV |
+//! | `data_files` | `[{"path", "sha256"}]`: every other file the command read: a sweep's or identification's base scenario, waveform CSV files (the `path` keys of a scenario: `incident.path`, `source.path`, ...), an identification's data CSV or its `[records]` files |
 //! | `command_line` | the command line (the CLI's arguments, shell-quoted where needed), or what a library caller gives (e.g. `python: contactwave.identify(...)`) |
 //! | `created` | UTC date and time the output was made, ISO 8601 / RFC 3339 (`2026-11-25T22:41:38Z`) |
 //!
@@ -214,6 +214,13 @@ impl Provenance {
         p.add_scenario_files(&spec.base_table, folder(&spec.base))?;
         if let Some(d) = &spec.data_file {
             p.add_data_file(d)?;
+        }
+        for f in spec
+            .records
+            .iter()
+            .flat_map(crate::inverse::records::record_files)
+        {
+            p.add_data_file(&f)?;
         }
         Ok(p)
     }

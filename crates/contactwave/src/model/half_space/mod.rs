@@ -16,8 +16,8 @@ pub use simulate::{
 
 use super::record::summary_record;
 use super::template::{FromSpec, SpecTemplate};
-use super::{Kind, Model, Outcome, Record, RunControl, Template, Value, Workspace};
-use crate::analysis::{BandAmplitudes, Summary};
+use super::{Kind, Model, Outcome, Record, RunControl, Template, Value, Waveform, Workspace};
+use crate::analysis::{AnalysisMethod, BandAmplitudes, Summary};
 use crate::error::Result;
 use crate::render::OutputFile;
 use crate::scenario::spec::ScenarioSpec;
@@ -104,6 +104,28 @@ impl Model for Scenario {
 
     fn run(&self, control: &RunControl) -> Result<Box<dyn Outcome>> {
         self.run_in(control, &mut Workspace::new())
+    }
+
+    fn twin(&self, method: AnalysisMethod) -> Result<Option<Arc<dyn Model>>> {
+        let twin = match method {
+            AnalysisMethod::PulseInversion => Some(methods::inverted(self)),
+            AnalysisMethod::LinearReference => {
+                Some(methods::linearised(self).ok_or_else(|| {
+                    crate::error::Error::invalid(
+                        &self.file,
+                        "analysis.method",
+                        "linear_reference",
+                        "needs a compression stiffness K(p0) > 0 at the static pressure (a \
+                     power law at p0 = 0 has none); use pulse_inversion",
+                    )
+                })?)
+            }
+            AnalysisMethod::BandPeak | AnalysisMethod::PlateauFit => None,
+        };
+        Ok(twin.map(|mut s| {
+            s.spec.analysis.method = AnalysisMethod::BandPeak;
+            Arc::new(s) as Arc<dyn Model>
+        }))
     }
 
     fn run_in(&self, _control: &RunControl, ws: &mut Workspace) -> Result<Box<dyn Outcome>> {
@@ -234,6 +256,31 @@ impl Outcome for RunResult {
             }
             None => r,
         }
+    }
+
+    fn waveform(&self, name: &str) -> Option<Waveform> {
+        let p = &self.probe;
+        let samples = match name {
+            "incident_stress" => &p.incident_stress,
+            "reflected_stress" => &p.reflected_stress,
+            "incident_velocity" => &p.incident_velocity,
+            "reflected_velocity" => &p.reflected_velocity,
+            "displacement" => &p.displacement,
+            _ => return None,
+        };
+        Some(Waveform {
+            t0: p.t.first().copied().unwrap_or(0.0),
+            dt: self.interface.dt,
+            samples: samples.clone(),
+        })
+    }
+
+    fn waveform_names(&self) -> Vec<String> {
+        files::PROBE_HEADER
+            .split(',')
+            .skip(1)
+            .map(String::from)
+            .collect()
     }
 
     fn report(&self) -> Vec<String> {

@@ -17,7 +17,9 @@ use crate::law::point::SharedLaw;
 use crate::model::half_space::methods::{linearised_law, linearised_tangential};
 use crate::model::record::summary_record;
 use crate::model::template::{FromSpec, SpecTemplate};
-use crate::model::{Fields, Kind, Model, Outcome, Record, RunControl, Slot, Template, Value};
+use crate::model::{
+    Fields, Kind, Model, Outcome, Record, RunControl, Slot, Template, Value, Waveform,
+};
 use crate::render::{csv_columns, summary_json, time_series, OutputFile, Rows};
 use crate::scenario::solid_2d::{
     component_names, CrackSpec, LayerSpec, ModelSpec, ReceiverSpec, Solid2dScenario, Solid2dSpec,
@@ -405,6 +407,19 @@ impl Model for Solid2dScenario {
         Ok(Box::new(self.simulate(control)?))
     }
 
+    fn twin(&self, method: AnalysisMethod) -> Result<Option<Arc<dyn Model>>> {
+        let problem = match method {
+            AnalysisMethod::PulseInversion => self.inverted(),
+            AnalysisMethod::LinearReference => self.linearised()?,
+            AnalysisMethod::BandPeak | AnalysisMethod::PlateauFit => return Ok(None),
+        };
+        let mut twin = self.clone();
+        twin.problem = problem;
+        twin.spec.analysis.method = AnalysisMethod::BandPeak;
+        twin.snapshots = None;
+        Ok(Some(Arc::new(twin)))
+    }
+
     /// The solver's estimate ([`Solid2d::memory_estimate`]), twice for a method with a
     /// second run (both plans and outputs are alive at the end); the summary takes no
     /// snapshots.
@@ -596,6 +611,44 @@ impl Outcome for Solid2dResult {
                 Value::Text(snap.map(|s| s.field.clone()).unwrap_or_default()),
             )
             .with("summary", Value::Map(summary_record(None, &self.summary)))
+    }
+
+    fn waveform(&self, name: &str) -> Option<Waveform> {
+        let o = &self.output;
+        let find = |names: &[String], comps: &[&str], tag: &str| {
+            names.iter().enumerate().find_map(|(r, n)| {
+                comps
+                    .iter()
+                    .position(|c| name == format!("{n}_{tag}{c}"))
+                    .map(|c| (r, c))
+            })
+        };
+        let samples = if let Some((r, c)) = find(&self.receivers, &self.component_names, "v") {
+            o.trace(r, c)
+        } else {
+            let (r, c) = find(&self.stress_receivers, &self.stress_component_names, "s")?;
+            o.stress_trace(r, c)
+        };
+        Some(Waveform {
+            t0: o.time.first().copied().unwrap_or(0.0),
+            dt: o.dt,
+            samples: samples.to_vec(),
+        })
+    }
+
+    fn waveform_names(&self) -> Vec<String> {
+        let mut names = Vec::new();
+        for n in &self.receivers {
+            names.extend(self.component_names.iter().map(|c| format!("{n}_v{c}")));
+        }
+        for n in &self.stress_receivers {
+            names.extend(
+                self.stress_component_names
+                    .iter()
+                    .map(|c| format!("{n}_s{c}")),
+            );
+        }
+        names
     }
 
     fn report(&self) -> Vec<String> {
