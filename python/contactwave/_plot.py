@@ -46,6 +46,15 @@ def label(key: str) -> str:
     return f"{name} ({unit})" if unit else name
 
 
+def _tag(keys: Sequence[str], values: Sequence[float]) -> str:
+    """``static pressure p0 = 1e+05 Pa, ...``: the values of further conditions or axes."""
+    parts = []
+    for k, v in zip(keys, values):
+        name, unit = _core.quantity(k)
+        parts.append(f"{name} = {v:.4g} {unit}".rstrip())
+    return ", ".join(parts)
+
+
 def _harmonic_markers(ax: Any, f0: float) -> None:
     """Dotted vertical lines at n f0 (n = 1 ... HARMONICS), each labelled ``n f0`` at the
     top of the panel; their ``gid`` is ``harmonic_n``."""
@@ -321,17 +330,21 @@ def identification(res: Any, observed: Optional[str], ax: Any) -> Any:
     for g, idx in groups.items():
         idx = np.asarray(idx)
         order = idx[np.argsort(x[idx], kind="stable")]
-        tag = ", ".join(f"{c} = {v:.4g}" for c, v in zip(rest, g))
+        tag = _tag(rest, g)
         bars = ax.errorbar(x[order], table[key][order], yerr=table[f"sigma_{key}"][order],
                            fmt="o", markersize=4, capsize=2,
                            label="measured" + (f" ({tag})" if tag else ""))
         color = bars[0].get_color()
         ax.plot(x[order], table[f"fitted_{key}"][order], "-", color=color,
                 label="fitted" + (f" ({tag})" if tag else ""))
-    est = ", ".join(f"{k} = {v:.4g}" for k, v in res.get("estimates", {}).items())
+    # the estimates, one line each: `traction stiffness C_N = 1.991e+13 Pa/m`
+    est = []
+    for k, v in res.get("estimates", {}).items():
+        name, unit = _core.quantity(k)
+        est.append(f"{name} = {v:.4g} {unit}".rstrip() if v is not None else f"{name}: none")
     ax.set_xlabel(label(x_key))
     ax.set_ylabel(label(key))
-    ax.set_title(est, fontsize=9)
+    ax.set_title("\n".join(est), fontsize=9)
     ax.legend(fontsize=8)
     return ax
 
@@ -379,7 +392,7 @@ def sweep(table: Any, y: str, x: Optional[str], ax: Any, axes: Optional[Sequence
     for g, idx in groups.items():
         ii = np.asarray(idx)
         ii = ii[np.argsort(xv[ii], kind="stable")]
-        tag = ", ".join(f"{c} = {v:.4g}" for c, v in zip(rest, g))
+        tag = _tag(rest, g)
         ax.plot(xv[ii], yv[ii], "o-", markersize=3, linewidth=1.0, label=tag or y)
     ax.set_xlabel(label(x))
     ax.set_ylabel(label(y))

@@ -98,6 +98,27 @@ def test_solid_2d_receivers_and_their_spectrum():
         r.plot(receivers="nobody")
 
 
+def test_bar_stack_frf_and_waves(root):
+    r = cw.run(root / "examples" / "tribobrake.toml")
+    ax = r.plot("frf")
+    line = lines(ax)["receptance"]
+    assert np.array_equal(line.get_xdata(), r.frf["frequency"])
+    assert np.array_equal(line.get_ydata(), np.abs(r.frf["receptance"]), equal_nan=True)
+    (mode,) = markers(ax, "first_mode")
+    assert mode.get_xdata()[0] == r.summary["first_mode_hz"]
+    assert ax.get_xscale() == "log" and ax.get_ylabel() == "receptance |H(f)| (m/N)"
+    ax = r.plot("gap")
+    assert np.array_equal(lines(ax)["interface 1"].get_ydata(), r.gap[1])
+    ax = r.plot("signals")
+    assert np.array_equal(lines(ax)["force"].get_ydata(), r.force)
+    w = cw.run(root / "examples" / "bar_stack_incident.toml")
+    ax = w.plot()
+    assert np.array_equal(lines(ax)["reflected"].get_ydata(), w.waves["reflected"])
+    assert np.array_equal(lines(ax)["reflected"].get_xdata(), w.t)
+    with pytest.raises(ValueError, match="no FRF"):
+        w.plot("frf")
+
+
 F0, DT, N = 2e6, 1e-8, 4096
 
 
@@ -171,7 +192,7 @@ def test_sweep_plot_draws_the_column_against_the_axis():
     got = lines(ax)
     assert len(got) == 2  # one curve per static pressure
     for p0 in (0.1e6, 0.2e6):
-        (line,) = [ln for k, ln in got.items() if k.endswith(f"{p0:.4g}")]
+        (line,) = [ln for k, ln in got.items() if k == f"static pressure p0 = {p0:.4g} Pa"]
         rows = df[df["interface.static_pressure"] == p0].sort_values("incident.xi")
         assert np.array_equal(line.get_xdata(), rows["incident.xi"].to_numpy())
         assert np.array_equal(line.get_ydata(), rows["A2_over_A1"].to_numpy())
