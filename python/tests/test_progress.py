@@ -66,3 +66,16 @@ def test_progress_true_without_tqdm_names_the_extra(monkeypatch):
     monkeypatch.setitem(sys.modules, "tqdm", None)
     with pytest.raises(ImportError, match=r"contactwave\[progress\]"):
         cw.sweep(CHEAP, {"incident.xi": [0.1]}, progress=True)
+
+
+def test_the_bar_counts_the_points_of_a_dask_sweep(bars):
+    distributed = pytest.importorskip("dask.distributed")
+    xi = np.linspace(0.05, 1.2, 25)
+    with distributed.LocalCluster(
+        n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        d = cw.sweep(CHEAP, {"incident.xi": xi}, executor=client, chunk_size=10,
+                     progress=True, as_frame=False)
+    assert len(d["point"]) == 25
+    (bar,) = bars
+    assert bar.total == 25 and bar.n == 25 and bar.updates == [10, 10, 5]
