@@ -147,7 +147,7 @@ step "python -m pytest python/tests"
 "$VPY" -m pytest -p no:cacheprovider -q python/tests
 
 # examples/notebooks/*.ipynb executed with nbclient in a kernel of .venv's Python (any
-# failing cell fails; the notebooks are stored without outputs; about a minute)
+# failing cell fails; the notebooks are stored without outputs; about 10 s)
 step "notebooks (scripts/run_notebooks.py)"
 "$VPY" scripts/run_notebooks.py
 
