@@ -283,3 +283,25 @@ def test_a_missing_matplotlib_is_an_import_error_naming_the_extra(monkeypatch):
     monkeypatch.setitem(sys.modules, "matplotlib.pyplot", None)
     with pytest.raises(ImportError, match=r"contactwave\[plot\]"):
         r.plot()
+
+
+def test_the_analysis_picture_is_the_cli_spectrum(cli, root, tmp_path):
+    # one analysis, one spectrum: Analysis.frequency/magnitude are spectrum.csv of
+    # `contactwave analyze` on the same file
+    import csv
+    import warnings
+
+    from conftest import run_cli
+
+    path = root / "crates" / "contactwave" / "tests" / "data" / "measured" / "records.csv"
+    run_cli(cli, "analyze", path, "--f0", "2e6", "--gate", "1e-6,9e-6", "--out", tmp_path / "a")
+    with open(tmp_path / "a" / "spectrum.csv") as f:
+        rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
+    spec = np.array([[float(v) for v in r] for r in rows[1:]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", cw.HarmonicFloorWarning)
+        a = cw.analyze(path, f0=2e6, gate=(1e-6, 9e-6))
+    assert rows[0] == ["frequency", "magnitude"]
+    np.testing.assert_allclose(a.frequency, spec[:, 0], rtol=1e-15)
+    np.testing.assert_allclose(a.magnitude, spec[:, 1], rtol=1e-15)
+    assert len(a.t) == len(a.raw) == len(a.gated) > 0
