@@ -80,12 +80,16 @@ cargo test --workspace --release -- --include-ignored
 # (python/tests: API against the CLI's files, Dask LocalCluster, shards and merge, and
 # report.html of `contactwave reproduce all` in headless Chromium: screenshot of the first
 # screen kept at target/report-screenshot.png; test_plots_browser.py: a run's spectrum, a
-# 22-curve sweep, frf.svg and shear_loop.svg as PNG under target/screenshots/).
+# 22-curve sweep, frf.svg and shear_loop.svg as PNG under target/screenshots/), then the
+# notebooks of examples/notebooks/ (scripts/run_notebooks.py).
 # ---------------------------------------------------------------------------------------
 PYTHON=${PYTHON:-python3}
 # playwright: drives the system Chromium for the report test (no browser download)
 # xarray, h5py: Result.to_xarray() and the HDF5 result files (python/tests/test_frames.py)
-PY_DEPS=(maturin numpy pandas xarray h5py "dask[distributed]" pytest playwright)
+# matplotlib, tqdm: the .plot() helpers and sweep progress bars (test_plot.py,
+# test_progress.py); nbclient, nbformat, ipykernel: the notebooks (scripts/run_notebooks.py)
+PY_DEPS=(maturin numpy pandas xarray h5py "dask[distributed]" pytest playwright
+    matplotlib tqdm nbclient nbformat ipykernel)
 
 # Headless Chromium for python/tests/test_report_browser.py (report.html renders, no
 # console error, no request leaves the file); Debian's package, installed if missing.
@@ -141,5 +145,10 @@ rm -f python/contactwave/_core*.so  # a stale `maturin develop` build would shad
 
 step "python -m pytest python/tests"
 "$VPY" -m pytest -p no:cacheprovider -q python/tests
+
+# examples/notebooks/*.ipynb executed with nbclient in a kernel of .venv's Python (any
+# failing cell fails; the notebooks are stored without outputs; about 10 s)
+step "notebooks (scripts/run_notebooks.py)"
+"$VPY" scripts/run_notebooks.py
 
 step "all tests passed"

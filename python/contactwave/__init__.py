@@ -53,7 +53,9 @@ __all__ = [
     "analyze",
     "Analysis",
     "identify",
+    "Identification",
     "sweep",
+    "plot_sweep",
     "memory_estimate",
     "__version__",
 ]
@@ -313,6 +315,16 @@ class Result:
 
         return half_space_xarray(self)
 
+    def plot(self, kind: str = "signals", ax: Any = None) -> Any:
+        """One matplotlib panel into ``ax`` (a new figure when ``None``); returns the
+        Axes (needs the ``plot`` extra). ``kind``: ``"signals"`` (incident, reflected and
+        transmitted stress at the interface against ``t``), ``"probe"`` (the probe's
+        incident and reflected velocities), ``"gap"``, ``"spectrum"`` (``spectrum()``'s
+        incident and reflected spectra, log scale, dotted markers at n f0)."""
+        from ._plot import half_space
+
+        return half_space(self, kind, ax)
+
     def __repr__(self) -> str:
         s = self.summary
         if "angle" in s:
@@ -416,6 +428,15 @@ class BarStackResult:
 
         return bar_stack_xarray(self)
 
+    def plot(self, kind: str = "signals", ax: Any = None) -> Any:
+        """One matplotlib panel into ``ax`` (a new figure when ``None``); returns the
+        Axes (needs the ``plot`` extra). ``kind``: ``"signals"`` (the force at node 0, or
+        the waves of an incident-wave run), ``"gap"`` (each interface's gap), ``"frf"``
+        (the receptance's magnitude, log-log, the first mode dotted)."""
+        from ._plot import bar_stack
+
+        return bar_stack(self, kind, ax)
+
     def __repr__(self) -> str:
         s = self.summary
         main = (
@@ -466,7 +487,8 @@ class Solid2dResult:
     snapshot_z: np.ndarray
     snapshot_field: str
 
-    def __init__(self, raw: Dict[str, Any]) -> None:
+    def __init__(self, raw: Dict[str, Any], scenario: Optional[Scenario] = None) -> None:
+        self.scenario = scenario
         self.t = raw["t"]
         self.receiver_names = list(raw["receiver_names"])
         self.components = list(raw["components"])
@@ -521,6 +543,18 @@ class Solid2dResult:
 
         return solid_2d_xarray(self)
 
+    def plot(
+        self, kind: str = "receivers", ax: Any = None, receivers: Any = None, component: Any = None
+    ) -> Any:
+        """One matplotlib panel into ``ax`` (a new figure when ``None``); returns the
+        Axes (needs the ``plot`` extra). ``kind``: ``"receivers"`` (the velocities against
+        ``t``) or ``"spectrum"`` (each record's spectrum as ``cw.analyze`` gives it, log
+        scale, dotted markers at n f0); ``receivers`` (a name or names) and ``component``
+        (``"x"``, ``"z"``, ``"y"`` or a list) choose the records (default all)."""
+        from ._plot import solid_2d
+
+        return solid_2d(self, kind, ax, receivers, component)
+
     def __repr__(self) -> str:
         s = self.summary
         return (
@@ -535,7 +569,7 @@ class Solid2dResult:
 _RESULTS = {
     "half_space": lambda raw, s: Result(raw, s),
     "bar_stack": lambda raw, s: BarStackResult(raw),
-    "solid_2d": lambda raw, s: Solid2dResult(raw),
+    "solid_2d": lambda raw, s: Solid2dResult(raw, s),
 }
 
 
@@ -639,52 +673,7 @@ def fit_power_law(pressure: Any, stiffness: Any) -> Dict[str, float]:
 from .measured import Analysis, analyze  # noqa: E402  (needs HarmonicFloorWarning above)
 
 
-def identify(
-    spec: Union[str, "os.PathLike[str]", Mapping[str, Any]],
-    out: Optional[Union[str, "os.PathLike[str]"]] = None,
-    design: bool = False,
-    file: str = "<dict>",
-    *,
-    tolerate_failures: bool = False,
-) -> Dict[str, Any]:
-    """Identify interface parameters from a measured curve (``contactwave identify``; see
-    docs/identify.md).
-
-    ``spec`` is the path of an identification file (TOML) or a dict with its keys
-    (``base``, ``data``: a CSV path or a dict of equally long columns, ``observed``,
-    ``set``, ``parameter``: a list of dicts with ``key``, ``bounds``, ``scale``, ...,
-    ``fit``, ``design``); a dict's relative paths resolve against the folder of ``file``
-    (``<dict>``: the working directory). Returns the ``identification.json`` object:
-    ``estimates`` (key -> value, SI), ``intervals`` (key -> [low, high], ``None`` bounds
-    for a non-identifiable parameter), ``verdicts``, ``residual_norm``, ``forward_runs``,
-    ``wall_seconds``, ``jacobian_svd``, ... With ``design=True``, the ranking of the
-    ``[design]`` candidates (``design.json``) instead. With ``out``, the output files are
-    written into that folder. The GIL is released while it runs. Raises ``ValueError``
-    naming the file, field, value and allowed range for invalid input.
-
-    Forward runs that fail (numerically, or with a non-finite observed value) get a
-    prohibitive cost and the fit goes on; the result then carries
-    ``failed_forward_runs`` and ``first_failure``, and, unless ``tolerate_failures``,
-    :class:`SimulationError` is raised (after the files are written), as the CLI exits 1
-    without ``--tolerate-failures``.
-    """
-    out_path = None if out is None else os.fspath(out)
-    if isinstance(spec, Mapping):
-        text = json.dumps(_plain(spec, "", file))
-        res = _core.identify(text, file, out_path, design)
-    else:
-        res = _core.identify(None, os.fspath(spec), out_path, design)
-    result = json.loads(res)
-    failed = result.get("failed_forward_runs", 0) if isinstance(result, dict) else 0
-    if failed:
-        msg = (
-            f"{failed} of {result.get('forward_runs')} forward runs failed (the fit gave "
-            f"them a prohibitive cost); first: {result.get('first_failure')}"
-        )
-        if not tolerate_failures:
-            raise SimulationError(msg + " (tolerate_failures=True to accept)")
-        warnings.warn(msg, RuntimeWarning, stacklevel=2)
-    return result
+from .identification import Identification, identify  # noqa: E402
 
 
 # ---------------------------------------------------------------------------------------
@@ -851,7 +840,7 @@ def sweep(
     threads: Optional[int] = None,
     chunk_size: int = DEFAULT_CHUNK_SIZE,
     as_frame: Optional[bool] = None,
-    progress: Optional[Callable[[int, int], Any]] = None,
+    progress: Union[None, bool, Callable[[int, int], Any]] = None,
 ) -> Any:
     """Run a parameter sweep: the grid of ``axes`` over the ``base`` scenario.
 
@@ -868,7 +857,10 @@ def sweep(
     released; Ctrl-C stops the sweep (``KeyboardInterrupt``); ``progress(done, total)``,
     if given, is called on the calling thread as points finish (at most every 50 ms, and
     with ``(total, total)`` exactly once at the end; an exception in it stops the sweep
-    like Ctrl-C); with an executor it is called as the chunks come back, in grid order. Otherwise a
+    like Ctrl-C); with an executor it is called as the chunks come back, in grid order.
+    ``progress=True`` draws a tqdm bar of the points (the ``progress`` extra; a widget in a
+    notebook with ipywidgets), ``None`` (the default) does so only in a Jupyter notebook
+    with tqdm installed, ``False`` never. ``executor``: otherwise a
     ``concurrent.futures.Executor`` or a ``dask.distributed.Client`` (any deployment:
     ``LocalCluster``, ``dask_jobqueue.SLURMCluster``, ...): the points go out as tasks of
     ``chunk_size`` points and come back in grid order. The results are bit-identical to a
@@ -887,11 +879,15 @@ def sweep(
     the axes). Locally the points run 4096 at a time: memory is the result table plus
     one chunk, whatever the number of points. ``attrs["hash"]`` is the sweep's
     hash, the one ``contactwave sweep`` writes to ``sweep.csv.hash`` for the same base
-    scenario and axis values.
+    scenario and axis values; ``attrs["axes"]`` lists the axes (the keys of ``axes``).
     """
     base_json, base_path = _base(base)
     ax = _axes(axes)
     parameters = [k for k, _ in ax]
+    if progress is None or isinstance(progress, bool):
+        from ._progress import sweep_bar
+
+        progress = sweep_bar(progress)
     if executor is None:
         points, sweep_hash, (keys, values, errors) = _core.sweep_local(
             base_json, base_path, ax, threads, progress
@@ -945,6 +941,7 @@ def sweep(
             df = pd.DataFrame(columns)
             df.attrs["errors"] = errs
             df.attrs["hash"] = sweep_hash
+            df.attrs["axes"] = parameters
             return df
     return columns
 
@@ -967,3 +964,21 @@ def _join(
             values[row0 : row0 + v.shape[0], idx] = v
         errors.extend((row0 + int(i), m) for i, m in e)
     return keys, values, errors
+
+
+def plot_sweep(
+    table: Any,
+    y: str,
+    x: Optional[str] = None,
+    ax: Any = None,
+    *,
+    axes: Optional[Sequence[str]] = None,
+) -> Any:
+    """Plot a summary column ``y`` of a :func:`sweep` table (its DataFrame or dict of
+    arrays) against the swept column ``x`` (default: the first axis), one curve per
+    value of the other axes (known from the DataFrame's ``attrs["axes"]``, or ``axes``),
+    into ``ax`` (a new figure when ``None``); labels with names and SI units. Returns the
+    matplotlib Axes; needs the ``plot`` extra."""
+    from ._plot import sweep as draw
+
+    return draw(table, y, x, ax, axes)

@@ -19,9 +19,14 @@ class Analysis:
     ``A2_over_A1``, ``A3_over_A1``, ``beta_star``, ``A2_floor`` ... ``A5_floor``,
     ``harmonic_floor_warning``), ``fit`` (the fit of A2 against A1^2 over a series, or
     ``None``), and numpy arrays ``A`` (records x 5: A1..A5), ``beta_star``,
-    ``A2_over_A1``."""
+    ``A2_over_A1``.
 
-    def __init__(self, summary: Mapping[str, Any]) -> None:
+    The record the CLI's pictures show (the largest A1, index ``record``): ``t`` (s), ``raw``
+    (as read, its mean removed), ``gated`` (through the gate), and the gated record's
+    spectrum ``frequency`` (Hz, up to 6 f0) and ``magnitude`` (``|X(f)| dt``: the record's
+    unit times s), the columns of ``spectrum.csv``; :meth:`plot` draws them."""
+
+    def __init__(self, summary: Mapping[str, Any], picture: Optional[Sequence[Any]] = None) -> None:
         self.summary: Dict[str, Any] = dict(summary)
         self.f0: float = summary["f0"]
         self.f0_detected: bool = summary["f0_detected"]
@@ -36,6 +41,28 @@ class Analysis:
         self.A2_over_A1: np.ndarray = col("A2_over_A1")
         self.beta_star: np.ndarray = col("beta_star")
         self.warnings: List[str] = list(summary.get("warnings", []))
+        empty = np.zeros(0)
+        record, t, raw, gated, frequency, magnitude = (
+            picture if picture is not None else (0, empty, empty, empty, empty, empty)
+        )
+        self.record: int = int(record)
+        self.t: np.ndarray = t
+        self.raw: np.ndarray = raw
+        self.gated: np.ndarray = gated
+        self.frequency: np.ndarray = frequency
+        self.magnitude: np.ndarray = magnitude
+
+    def plot(self, kind: str = "spectrum", ax: Any = None) -> Any:
+        """One matplotlib panel (needs the ``plot`` extra), drawn into ``ax`` (a new
+        figure when ``None``); returns the Axes. ``kind``: ``"record"`` (the record ``t``,
+        ``raw`` and ``gated``, s; the gate's edges dashed), ``"spectrum"`` (``frequency``,
+        ``magnitude`` on a log scale, dotted markers at n f0), ``"harmonics"`` (A1...A5 of
+        the record against n, with its floors ``A<n>_floor``, ``A<n>_noise_floor``,
+        ``A<n>_leakage_floor``), ``"fit"`` (A2 against A1^2 over the series, with the fitted
+        line; needs a series)."""
+        from ._plot import analysis
+
+        return analysis(self, kind, ax)
 
     def to_pandas(self) -> Any:
         """The records as a pandas DataFrame (one row per record; needs pandas)."""
@@ -117,15 +144,15 @@ def analyze(
             opts["inverse_files"] = [os.fspath(p) for p in (inverse if isinstance(inverse, (list, tuple)) else [inverse])]
         if linear is not None:
             opts["linear_file"] = os.fspath(linear)
-        text = _core.analyze([], [], [], json.dumps(opts))
+        out = _core.analyze([], [], [], json.dumps(opts))
     else:
         if dt is None:
             if sample_rate is None:
                 raise ValueError("analyze: arrays need dt (s) or sample_rate (Hz)")
             dt = 1.0 / float(sample_rate)
         opts["dt"] = float(dt)
-        text = _core.analyze(arrays(records), arrays(inverse), arrays(linear), json.dumps(opts))
-    result = Analysis(json.loads(text))
+        out = _core.analyze(arrays(records), arrays(inverse), arrays(linear), json.dumps(opts))
+    result = Analysis(json.loads(out[0]), out[1:])
     for w in result.warnings:
         from . import HarmonicFloorWarning
 

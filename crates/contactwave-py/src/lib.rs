@@ -377,6 +377,14 @@ fn fit_power_law<'py>(
     Ok(d)
 }
 
+/// `(name, SI unit)` of a dotted scenario key or a summary key, as the CLI's plots label
+/// their axes (`interface.static_pressure` -> `("static pressure p0", "Pa")`; `""` when
+/// dimensionless or unknown): the labels of the Python `.plot()` helpers.
+#[pyfunction]
+fn quantity(key: &str) -> (String, &'static str) {
+    contactwave::output::labels::quantity(key)
+}
+
 /// The SI value of `value` for the scenario key `key`: a number as it is, a unit string
 /// (`"1 MHz"`) converted; an unknown or mismatched unit is a `ValueError` naming the key.
 #[pyfunction]
@@ -799,6 +807,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(law_curve, m)?)?;
     m.add_function(wrap_pyfunction!(fit_power_law, m)?)?;
     m.add_function(wrap_pyfunction!(si_value, m)?)?;
+    m.add_function(wrap_pyfunction!(quantity, m)?)?;
     m.add_function(wrap_pyfunction!(identify, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_plan, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_local, m)?)?;
@@ -809,8 +818,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// Inverse identification (`contactwave identify`): `text` is the identification table as
 /// JSON (a dict's `json.dumps`; `None`: read the TOML file at `path`); `path` names it and
 /// its folder resolves `base` and `data`. Returns the `identification.json` object as JSON
-/// text (with `design = True`: the design ranking, `design.json`). With `out`, the output
-/// files are written there. The computation runs without the GIL.
+/// text (with `design = True`: the design ranking, `design.json`) and the text of
+/// `fit.csv` (empty for a design). With `out`, the output files are written there. The computation runs without the GIL.
 #[pyfunction]
 #[pyo3(signature = (text, path, out = None, design = false))]
 fn identify(
@@ -819,10 +828,10 @@ fn identify(
     path: PathBuf,
     out: Option<PathBuf>,
     design: bool,
-) -> PyResult<String> {
+) -> PyResult<(String, String)> {
     use contactwave::inverse::{self, IdentifySpec, Model};
     use contactwave::output::provenance::Provenance;
-    py.detach(move || -> Result<String, Error> {
+    py.detach(move || -> Result<(String, String), Error> {
         let from_file = text.is_none();
         let spec = match text {
             Some(t) => {
@@ -881,12 +890,18 @@ fn identify(
                 contactwave::output::identify::identification_files(&r)?,
             )
         };
+        // fit.csv (measured and fitted values per row) for `Identification.plot()`
+        let fit_csv = files
+            .iter()
+            .find(|f| f.name == "fit.csv")
+            .map(|f| f.contents.clone())
+            .unwrap_or_default();
         if let Some(o) = &out {
             let mut files = files;
             provenance.stamp(&mut files);
             contactwave::output::write_files(o, &files)?;
         }
-        Ok(json.to_string())
+        Ok((json.to_string(), fit_csv))
     })
     .map_err(to_py)
 }

@@ -3,13 +3,15 @@
 
 use super::to_py;
 use contactwave::Error;
-use numpy::PyReadonlyArray1;
+use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use std::path::PathBuf;
 
 /// `contactwave.analyze`: measured records (arrays, or files named in `options`) through
-/// the simulator's analysis; returns `summary.json` of `contactwave analyze` as text.
+/// the simulator's analysis; returns `summary.json` of `contactwave analyze` as text and
+/// the picture of the largest record (`output::analyze::Picture`): `(summary, record index,
+/// t (s), record (mean removed), gated record, frequency (Hz), magnitude)`.
 /// `options` (JSON): `dt`, `t0`, `f0`, `gate` ([start, end, taper]), `method`, `keep_dc`,
 /// `amplitudes` (numbers, or the name of an array of the first file), `files`,
 /// `sample_rate`, `time`, `datasets`, `inverse_files`, `linear_file`.
@@ -20,7 +22,7 @@ pub fn analyze<'py>(
     inverse: Vec<PyReadonlyArray1<'py, f64>>,
     linear: Vec<PyReadonlyArray1<'py, f64>>,
     options: &str,
-) -> PyResult<String> {
+) -> PyResult<Analyzed<'py>> {
     use contactwave::analysis::{AnalysisMethod, Gate};
     use contactwave::measured::{self, Amplitudes, Layout, Measured, Series, Settings, Sources};
     let o: serde_json::Value =
@@ -148,7 +150,33 @@ pub fn analyze<'py>(
             (measured::load(&sources)?, inputs)
         };
         let a = measured::analyze(&series, &settings, &inputs[0])?;
-        Ok(contactwave::output::analyze::summary(&a, &inputs).to_string())
+        let picture = contactwave::output::analyze::picture(&a, &series);
+        Ok((
+            contactwave::output::analyze::summary(&a, &inputs).to_string(),
+            picture,
+        ))
     })
     .map_err(to_py)
+    .map(|(summary, p)| {
+        (
+            summary,
+            p.record,
+            p.t.into_pyarray(py),
+            p.raw.into_pyarray(py),
+            p.gated.into_pyarray(py),
+            p.frequency.into_pyarray(py),
+            p.magnitude.into_pyarray(py),
+        )
+    })
 }
+
+/// What `analyze` returns to Python (see there).
+type Analyzed<'py> = (
+    String,
+    usize,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+);

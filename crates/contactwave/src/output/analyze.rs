@@ -148,6 +148,39 @@ fn gated_record(a: &Analysis, series: &Series) -> (Vec<f64>, Vec<f64>, Vec<f64>)
     (t, raw, gated)
 }
 
+/// What the pictures of an analysis show (`record.svg`, `spectrum.svg`, `spectrum.csv`;
+/// the Python `Analysis.plot()`): the record with the largest A1, its time base, the
+/// record as read with its mean removed, the same gated, and the gated record's spectrum.
+#[derive(Debug, Clone)]
+pub struct Picture {
+    /// Index of the record shown (the largest A1).
+    pub record: usize,
+    /// Sample times, s.
+    pub t: Vec<f64>,
+    /// The record as read, its mean (the analysis' DC offset) removed; the record's unit.
+    pub raw: Vec<f64>,
+    /// The same through the gate (equal to `raw` without a gate).
+    pub gated: Vec<f64>,
+    /// Frequencies of the spectrum, Hz, up to 6 f0.
+    pub frequency: Vec<f64>,
+    /// `|X(f)| dt` of the gated record: the record's unit times s.
+    pub magnitude: Vec<f64>,
+}
+
+/// The [`Picture`] of an analysis (the series it analysed).
+pub fn picture(a: &Analysis, series: &Series) -> Picture {
+    let (t, raw, gated) = gated_record(a, series);
+    let spec = crate::analysis::with_analyzer(|an| an.spectrum(&gated, a.dt, 6.0 * a.f0));
+    Picture {
+        record: largest(a),
+        t,
+        raw,
+        gated,
+        frequency: spec.frequency,
+        magnitude: spec.magnitude,
+    }
+}
+
 /// The files of an analysis (nothing written here).
 pub fn files(a: &Analysis, series: &Series, inputs: &[String]) -> Result<Vec<OutputFile>> {
     let mut out = Vec::new();
@@ -167,14 +200,13 @@ pub fn files(a: &Analysis, series: &Series, inputs: &[String]) -> Result<Vec<Out
         csv.push('\n');
     }
     out.push(OutputFile::new("records.csv", csv));
-    let (_, _, gated) = gated_record(a, series);
-    let spec = crate::analysis::with_analyzer(|an| an.spectrum(&gated, a.dt, 6.0 * a.f0));
+    let pic = picture(a, series);
     out.push(OutputFile::new(
         "spectrum.csv",
-        csv_columns("frequency,magnitude", &[&spec.frequency, &spec.magnitude]),
+        csv_columns("frequency,magnitude", &[&pic.frequency, &pic.magnitude]),
     ));
     #[cfg(feature = "plot")]
-    out.extend(plots(a, series, &spec)?);
+    out.extend(plots(a, &pic)?);
     Ok(out)
 }
 
@@ -187,15 +219,11 @@ fn csv_cell(s: &str) -> String {
 }
 
 #[cfg(feature = "plot")]
-fn plots(
-    a: &Analysis,
-    series: &Series,
-    spec: &crate::analysis::Spectrum,
-) -> Result<Vec<OutputFile>> {
+fn plots(a: &Analysis, pic: &Picture) -> Result<Vec<OutputFile>> {
     use crate::render::svg::{figure, Panel, Series as Curve};
     let mut out = Vec::new();
-    let (t, raw, gated) = gated_record(a, series);
-    let name = a.records.get(largest(a)).map_or("", |r| r.name.as_str());
+    let (t, raw, gated) = (&pic.t, &pic.raw, &pic.gated);
+    let name = a.records.get(pic.record).map_or("", |r| r.name.as_str());
     let us: Vec<f64> = t.iter().map(|v| v * 1e6).collect();
     let mut markers = Vec::new();
     if let Some(g) = &a.gate {
@@ -211,16 +239,16 @@ fn plots(
                 xlabel: "t (µs)".into(),
                 ylabel: "record (its unit)".into(),
                 series: vec![
-                    Curve::new("record", &us, &raw).colored((170, 170, 170)),
-                    Curve::new("gated", &us, &gated),
+                    Curve::new("record", &us, raw).colored((170, 170, 170)),
+                    Curve::new("gated", &us, gated),
                 ],
                 markers,
             }],
         )?,
     ));
-    let peak = spec.magnitude.iter().fold(0.0f64, |m, &v| m.max(v));
-    let mhz: Vec<f64> = spec.frequency.iter().map(|f| f * 1e-6).collect();
-    let db: Vec<f64> = spec
+    let peak = pic.magnitude.iter().fold(0.0f64, |m, &v| m.max(v));
+    let mhz: Vec<f64> = pic.frequency.iter().map(|f| f * 1e-6).collect();
+    let db: Vec<f64> = pic
         .magnitude
         .iter()
         .map(|m| 20.0 * (m / peak).max(1e-12).log10())
