@@ -149,6 +149,20 @@ pub struct Figure {
     pub panels: Vec<Panel>,
     /// "thesis: ... / here: ..." lines.
     pub comparisons: Vec<String>,
+    /// Raster pictures shown after the plot (wavefield snapshots, their GIF, a crack's
+    /// state map): written as `figures/<name>` and embedded in the page.
+    pub pictures: Vec<Picture>,
+}
+
+/// A raster picture of a figure (PNG or GIF).
+#[derive(Debug, Clone)]
+pub struct Picture {
+    /// File name under `figures/` (`<figure id>_<what>.png`).
+    pub name: String,
+    /// The encoded image.
+    pub bytes: Vec<u8>,
+    /// What it shows (the page's `alt` text and the picture's caption).
+    pub caption: String,
 }
 
 impl Figure {
@@ -160,6 +174,7 @@ impl Figure {
             caption,
             panels,
             comparisons: Vec::new(),
+            pictures: Vec::new(),
         }
     }
 

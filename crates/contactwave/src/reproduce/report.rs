@@ -197,6 +197,9 @@ pub fn report_html(chapters: &[ChapterResult], svgs: &[Vec<String>], total_secon
          #summary h2{margin-top:.6em}\n\
          figure{margin:1.5em 0;padding:.5em;border:1px solid #ddd;border-radius:4px}\n\
          figure svg{width:100%;height:auto;display:block}\n\
+         .pictures{display:flex;flex-wrap:wrap;gap:.6em;margin-top:.5em}\n\
+         .picture{flex:1 1 45%;min-width:280px}.picture img{width:100%;height:auto;display:block}\n\
+         .picture .small{font-size:.85em;color:#333}\n\
          figcaption{font-size:.92em;color:#333}\n\
          .cmp{font-family:monospace;font-size:.88em;background:#f4f6f8;padding:.3em .5em;margin:.3em 0}\n\
          .differs{background:#fff3e0}.informational{color:#555}\n\
@@ -265,7 +268,15 @@ pub fn report_html(chapters: &[ChapterResult], svgs: &[Vec<String>], total_secon
             for line in &fig.comparisons {
                 h.push_str(&format!("<div class=\"cmp\">{}</div>", esc(line)));
             }
-            h.push_str("</figcaption>\n</figure>\n");
+            h.push_str("</figcaption>\n");
+            if !fig.pictures.is_empty() {
+                h.push_str("<div class=\"pictures\">\n");
+                for p in &fig.pictures {
+                    h.push_str(&picture_html(p));
+                }
+                h.push_str("</div>\n");
+            }
+            h.push_str("</figure>\n");
         }
     }
     h.push_str(&findings_table(chapters));
@@ -307,6 +318,25 @@ fn findings_table(chapters: &[ChapterResult]) -> String {
     }
     h.push_str("</table>\n");
     h
+}
+
+/// A picture as an inline image (a data URI: the page stays self-contained) with its
+/// caption and file name.
+fn picture_html(p: &super::Picture) -> String {
+    use base64::Engine;
+    let mime = if p.name.ends_with(".gif") {
+        "image/gif"
+    } else {
+        "image/png"
+    };
+    format!(
+        "<div class=\"picture\"><img alt=\"{}\" src=\"data:{mime};base64,{}\">\
+         <div class=\"small\">{} <small>(<code>figures/{}</code>)</small></div></div>\n",
+        esc(&p.caption),
+        base64::engine::general_purpose::STANDARD.encode(&p.bytes),
+        esc(&p.caption),
+        esc(&p.name)
+    )
 }
 
 fn strip_xml_declaration(svg: &str) -> &str {
@@ -354,6 +384,19 @@ pub fn write_report_with(
         svgs.push(v);
     }
     let mut written = write_files(&dir.join("figures"), &fig_files)?;
+    let pictures: Vec<crate::render::BinaryFile> = chapters
+        .iter()
+        .flat_map(|c| &c.figures)
+        .flat_map(|f| &f.pictures)
+        .map(|p| crate::render::BinaryFile {
+            name: p.name.clone(),
+            bytes: p.bytes.clone(),
+        })
+        .collect();
+    written.extend(crate::output::write_binary_files(
+        &dir.join("figures"),
+        &pictures,
+    )?);
     written.extend(write_files(
         dir,
         &[

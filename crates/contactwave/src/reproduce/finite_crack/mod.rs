@@ -8,7 +8,9 @@
 //!   crack length, Signorini and RCCM, beside the exact 1D solver;
 //! - [`load_ratio`]: A2/A_inc against the load ratio xi for finite Signorini cracks beside
 //!   the 1D curve (the thesis' optimum xi_opt = 0.35);
-//! - [`delamination`]: an A0 Lamb wave on a closed delamination against its length.
+//! - [`delamination`]: an A0 Lamb wave on a closed delamination against its length;
+//! - [`wavefield`]: snapshots, their GIF and the crack's state map of the length study's
+//!   three-wavelength crack, embedded in the report.
 //!
 //! Each study runs at two resolutions: the default (12 elements per P wavelength, order 4,
 //! analysed up to 3 f0) and `--quick` (8 elements per wavelength, 2 f0, fewer points), the
@@ -17,6 +19,7 @@
 mod delamination;
 mod length;
 mod load_ratio;
+mod wavefield;
 
 use super::{fmt_value, Chapter, ChapterResult, Ctx, Figure, Finding};
 use crate::analysis::Summary;
@@ -263,6 +266,7 @@ pub(crate) fn run(ctx: &Ctx, res: Resolution) -> Result<ChapterResult> {
     let mut figures: Vec<Figure> = Vec::new();
     let mut findings: Vec<Finding> = Vec::new();
     length::run(ctx, res, &mut figures, &mut findings)?;
+    wavefield::run(ctx, res, &mut figures)?;
     load_ratio::run(ctx, res, &mut figures, &mut findings)?;
     delamination::run(ctx, res, &mut figures, &mut findings)?;
     Ok(ChapterResult {
