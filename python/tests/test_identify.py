@@ -58,3 +58,30 @@ def test_identify_rejects_negative_amplitudes():
     data = {"incident.xi": [0.1, 0.2], "A2_over_A1": [0.5, -1.0]}
     with pytest.raises(ValueError, match="A2_over_A1"):
         cw.identify(_spec(data))
+
+
+def test_identify_from_raw_records_in_a_dict():
+    # issue 28 item 2: the records of examples/identify/raw_records.toml (eight echoes
+    # behind a 2 MHz transducer, 0.1% noise, C_N = 2e13 Pa/m) given as [records] in a
+    # dict; the forward echoes are reduced by the same analysis through the same
+    # transducer
+    ex = ROOT / "examples" / "identify"
+    spec = _spec(None)
+    del spec["data"]
+    spec["records"] = {
+        "files": [str(ex / "raw_records.csv")],
+        "condition": "incident.xi",
+        "values": [0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0, 1.3],
+        "waveform": "reflected_velocity",
+        "gate": [1.2e-5, 3.2e-5, 2e-6],
+        "band_pass": {"centre": 2e6, "q": 1.0},
+    }
+    res = cw.identify(spec)
+    cn = res["estimates"]["interface.traction.stiffness"]
+    assert abs(cn / 2e13 - 1) < 0.05, cn
+    lo, hi = res["intervals"]["interface.traction.stiffness"]
+    assert lo < 2e13 * 1.05 and hi > 2e13 * 0.95
+    # a waveform the forward run does not have is a ValueError naming the field
+    spec["records"]["waveform"] = "echo"
+    with pytest.raises(ValueError, match="records.waveform"):
+        cw.identify(spec)
