@@ -10,12 +10,15 @@
 //!   the 1D curve (the thesis' optimum xi_opt = 0.35);
 //! - [`delamination`]: an A0 Lamb wave on a closed delamination against its length;
 //! - [`wavefield`]: snapshots, their GIF and the crack's state map of the length study's
-//!   three-wavelength crack, embedded in the report.
+//!   three-wavelength crack, embedded in the report;
+//! - [`angle`]: the second and third harmonics of the reflected P and converted SV waves of
+//!   a frictional crack against the incidence angle, at three closures.
 //!
 //! Each study runs at two resolutions: the default (12 elements per P wavelength, order 4,
 //! analysed up to 3 f0) and `--quick` (8 elements per wavelength, 2 f0, fewer points), the
 //! one CI runs. Every figure's comparison lines give its run count and wall time.
 
+mod angle;
 mod delamination;
 mod length;
 mod load_ratio;
@@ -269,6 +272,7 @@ pub(crate) fn run(ctx: &Ctx, res: Resolution) -> Result<ChapterResult> {
     wavefield::run(ctx, res, &mut figures)?;
     load_ratio::run(ctx, res, &mut figures, &mut findings)?;
     delamination::run(ctx, res, &mut figures, &mut findings)?;
+    angle::run(ctx, res, &mut figures, &mut findings)?;
     Ok(ChapterResult {
         chapter: Chapter::FiniteCrack,
         title: "Beyond the thesis: finite cracks in 2D".into(),
@@ -277,12 +281,10 @@ pub(crate) fn run(ctx: &Ctx, res: Resolution) -> Result<ChapterResult> {
              The same laws on a crack of finite length in an aluminium solid (rho = 2710 \
              kg/m^3, c_P = {} m/s), 2D spectral elements with split-node contact (model.md \
              section 15), 1 MHz 5-cycle Hann bursts; resolution: {} ({} elements of order 4 \
-             per P wavelength, time step for {} f0). Not yet computed: the second harmonic \
-             against the incidence angle at a frictional crack (Blanloeuil, Meziane and \
-             Bacon, Wave Motion 51, 2014) and a Rayleigh wave at a surface-breaking closed \
-             crack against its depth (Yuan et al., Wave Motion 2015): the solver's cracks \
-             are horizontal or vertical with welded tips and none may reach a free surface \
-             (model.md 15.6), and the oblique study is not yet written.",
+             per P wavelength, time step for {} f0). Not yet computed: a Rayleigh wave at a \
+             surface-breaking closed crack against its depth (Yuan et al., Wave Motion \
+             2015): the solver's cracks are horizontal or vertical with welded tips and none \
+             may reach a free surface (model.md 15.6).",
             fmt_value(c_p()),
             res.name(),
             res.per_wavelength(),
