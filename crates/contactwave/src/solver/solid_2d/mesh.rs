@@ -274,9 +274,11 @@ pub(super) fn edge_weight(edges: &[f64], w: &[f64], n: usize, k: usize, wrap: bo
     s
 }
 
-/// The boundary weight of surface node column `ix` restricted to the aperture `[x0, x1]`
-/// (m; both on element edges): the GLL weights of the element edges inside it.
-pub(super) fn aperture_weight(mesh: &Mesh, ix: usize, x0: f64, x1: f64) -> f64 {
+/// The boundary weights of surface node column `ix` restricted to the aperture `[x0, x1]`
+/// (m; both on element edges): the GLL weights of the element edges inside it, from the
+/// element on its left and from the one on its right (an element corner) or both from its
+/// own element (inside one).
+fn aperture_parts(mesh: &Mesh, ix: usize, x0: f64, x1: f64) -> (f64, f64) {
     let n = mesh.gll.order;
     let w = &mesh.gll.weights;
     let ne = mesh.x_edges.len() - 1;
@@ -287,16 +289,38 @@ pub(super) fn aperture_weight(mesh: &Mesh, ix: usize, x0: f64, x1: f64) -> f64 {
     };
     let h = |e: usize| 0.5 * (mesh.x_edges[e + 1] - mesh.x_edges[e]);
     if a != 0 {
-        return if inside(e) { w[a] * h(e) } else { 0.0 };
+        return (if inside(e) { w[a] * h(e) } else { 0.0 }, 0.0);
     }
-    let mut s = 0.0;
-    if e < ne && inside(e) {
-        s += w[0] * h(e);
+    let left = if e > 0 && inside(e - 1) {
+        w[n] * h(e - 1)
+    } else {
+        0.0
+    };
+    let right = if e < ne && inside(e) {
+        w[0] * h(e)
+    } else {
+        0.0
+    };
+    (left, right)
+}
+
+/// The nodes and boundary weights of surface node `(ix, iz)` under the aperture `[x0, x1]`
+/// (m): the grid node with the whole weight, or, at the mouth of a vertical crack (a split
+/// surface node), face 1 (left) with the left element's share and face 2 its twin with the
+/// right one's.
+pub(super) fn aperture_faces(
+    mesh: &Mesh,
+    ix: usize,
+    iz: usize,
+    x0: f64,
+    x1: f64,
+) -> Vec<(usize, f64)> {
+    let g = mesh.grid_node(ix, iz);
+    let (left, right) = aperture_parts(mesh, ix, x0, x1);
+    match mesh.splits.iter().flatten().find(|p| p.0 == g) {
+        Some(&(_, twin)) => vec![(g, left), (twin, right)],
+        None => vec![(g, left + right)],
     }
-    if e > 0 && inside(e - 1) {
-        s += w[n] * h(e - 1);
-    }
-    s
 }
 
 impl<L> super::Solid2d<L> {

@@ -48,7 +48,7 @@ use crate::law::{NormalPart, TangentialPart};
 use crack::CrackNodes;
 pub use estimate::MemoryEstimate;
 use kernel::{max_frequency, ElementData, Stiffness};
-use mesh::{aperture_weight, edge_weight, CrackLine, Mesh};
+use mesh::{aperture_faces, edge_weight, CrackLine, Mesh};
 pub use plane_wave::Incidence;
 pub use pml::Pml;
 use probe::StressProbe;
@@ -915,20 +915,21 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                         if x < x0.min(x1) - 1e-12 || x > x0.max(x1) + 1e-12 {
                             continue;
                         }
-                        let bw = aperture_weight(&mesh, ix, x0.min(x1), x0.max(x1));
-                        let g = mesh.grid_node(ix, iz);
                         let delay = delay_per_m * (x - x0);
-                        let index = match (components, normal) {
-                            (1, _) => g,
-                            (_, true) => 2 * g + 1,
-                            (_, false) => 2 * g,
-                        };
-                        loads.push(Load {
-                            index,
-                            weight: sign * bw,
-                            source: si,
-                            delay,
-                        });
+                        // (a crack's mouth: each face takes its own element's share)
+                        for (g, bw) in aperture_faces(&mesh, ix, iz, x0.min(x1), x0.max(x1)) {
+                            let index = match (components, normal) {
+                                (1, _) => g,
+                                (_, true) => 2 * g + 1,
+                                (_, false) => 2 * g,
+                            };
+                            loads.push(Load {
+                                index,
+                                weight: sign * bw,
+                                source: si,
+                                delay,
+                            });
+                        }
                     }
                 }
             }

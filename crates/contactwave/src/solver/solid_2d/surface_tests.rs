@@ -237,3 +237,33 @@ fn a_rayleigh_wave_passes_a_bonded_surface_crack_and_is_reflected_by_an_open_one
     assert!(tr(&open) < 0.3, "{}", tr(&open));
     assert!(rf(&open) > 0.2, "{}", rf(&open));
 }
+
+/// A transducer centred on the mouth of an open (traction-free) crack loads each face with
+/// its own element's share of the aperture: the motion is mirror-symmetric about the crack
+/// (the vertical velocities at two surface points mirrored across it agree to round-off,
+/// the horizontal ones are opposite).
+#[test]
+fn a_transducer_over_the_mouth_loads_both_faces_symmetrically() {
+    let mut problem = breaking_plate(Side::Rigid);
+    problem.cracks[0].profile = Some(Arc::new(Gap(frictional(0.0, 0.0), 1e-6)));
+    problem.sources[0].kind = SourceKind::Traction {
+        top: true,
+        x0: 3e-3,
+        x1: 5e-3,
+        normal: true,
+        delay_per_m: 0.0,
+    };
+    problem.receivers = vec![[2.5e-3, 0.0], [5.5e-3, 0.0]];
+    problem.duration = 2e-6;
+    let out = problem.plan("<test>").unwrap().run().unwrap();
+    assert!(out.energy.closure_error() < 1e-9, "{:?}", out.energy);
+    let peak = out.trace(0, 1).iter().fold(0.0f64, |a, &v| a.max(v.abs()));
+    assert!(peak > 0.0);
+    let mut worst = 0.0f64;
+    for k in 0..out.time.len() {
+        worst = worst.max((out.trace(0, 1)[k] - out.trace(1, 1)[k]).abs());
+        worst = worst.max((out.trace(0, 0)[k] + out.trace(1, 0)[k]).abs());
+    }
+    eprintln!("mirror asymmetry {:e} of the peak", worst / peak);
+    assert!(worst < 1e-9 * peak, "{:e} of {peak:e}", worst);
+}
