@@ -74,8 +74,9 @@ pub(super) fn depths(res: Resolution) -> Vec<f64> {
     (1..=n).map(|k| k as f64 / n as f64).collect()
 }
 
-/// The scenario: a crack `depth` Rayleigh wavelengths deep (`None`: no crack; `bonded`:
-/// a closure of 1 GPa, the welded limit) with closure `p0` (Pa) and `friction`.
+/// The scenario: a crack `depth` Rayleigh wavelengths deep (`None`: no crack), rounded to
+/// the depth step, with closure `p0` (Pa) and Coulomb `friction` (1 GPa with friction 1
+/// keeps it bonded: the welded limit).
 pub(super) fn text(res: Resolution, depth: Option<f64>, p0: f64, friction: f64) -> String {
     let lr = lambda_r();
     let n = steps(res);
