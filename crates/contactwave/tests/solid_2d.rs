@@ -419,3 +419,27 @@ count = 3
         assert!(outcome.summary().get(key).is_some_and(|a| a > 0.0), "{key}");
     }
 }
+
+/// A vertical crack from the free top surface (surface-breaking, model.md 15.2) runs and
+/// closes its energy; the same crack under an absorbing top is refused naming its start.
+#[test]
+fn a_surface_breaking_crack_runs_and_is_refused_under_an_absorbing_top() {
+    let crack = "start = [0.7e-3, 0.5e-3]\nend = [1.3e-3, 0.5e-3]";
+    assert!(SMALL.contains(crack));
+    let text = SMALL.replace(crack, "start = [1.5e-3, 0.0]\nend = [1.5e-3, 0.5e-3]");
+    let t = model::from_toml_str(&text, "mouth.toml").unwrap();
+    let outcome = t.base().unwrap().run(&RunControl::default()).unwrap();
+    let s = outcome.summary();
+    assert!(s.get("energy_closure_error").unwrap() < 1e-9, "{s:?}");
+    assert!(s.get("crack_max_gap_0").unwrap() > 0.0, "{s:?}");
+    let absorbing = text.replace(
+        "duration = 0.6e-6",
+        "duration = 0.6e-6\ntop = \"absorbing\"\npml_thickness = 0.3e-3",
+    );
+    let err = model::from_toml_str(&absorbing, "bad.toml")
+        .and_then(|t| t.base().map(|_| ()))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("crack.0.start"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+}

@@ -12,7 +12,8 @@
 //! - [`wavefield`]: snapshots, their GIF and the crack's state map of the length study's
 //!   three-wavelength crack, embedded in the report;
 //! - [`angle`]: the second and third harmonics of the reflected P and converted SV waves of
-//!   a frictional crack against the incidence angle, at three closures.
+//!   a frictional crack against the incidence angle, at three closures;
+//! - [`rayleigh`]: a Rayleigh wave at a closed surface-breaking crack against its depth.
 //!
 //! Each study runs at two resolutions: the default (12 elements per P wavelength, order 4,
 //! analysed up to 3 f0) and `--quick` (8 elements per wavelength, 2 f0, fewer points), the
@@ -22,6 +23,7 @@ mod angle;
 mod delamination;
 mod length;
 mod load_ratio;
+mod rayleigh;
 mod wavefield;
 
 use super::{fmt_value, Chapter, ChapterResult, Ctx, Figure, Finding};
@@ -273,6 +275,7 @@ pub(crate) fn run(ctx: &Ctx, res: Resolution) -> Result<ChapterResult> {
     load_ratio::run(ctx, res, &mut figures, &mut findings)?;
     delamination::run(ctx, res, &mut figures, &mut findings)?;
     angle::run(ctx, res, &mut figures, &mut findings)?;
+    rayleigh::run(ctx, res, &mut figures, &mut findings)?;
     Ok(ChapterResult {
         chapter: Chapter::FiniteCrack,
         title: "Beyond the thesis: finite cracks in 2D".into(),
@@ -281,10 +284,7 @@ pub(crate) fn run(ctx: &Ctx, res: Resolution) -> Result<ChapterResult> {
              The same laws on a crack of finite length in an aluminium solid (rho = 2710 \
              kg/m^3, c_P = {} m/s), 2D spectral elements with split-node contact (model.md \
              section 15), 1 MHz 5-cycle Hann bursts; resolution: {} ({} elements of order 4 \
-             per P wavelength, time step for {} f0). Not yet computed: a Rayleigh wave at a \
-             surface-breaking closed crack against its depth (Yuan et al., Wave Motion \
-             2015): the solver's cracks are horizontal or vertical with welded tips and none \
-             may reach a free surface (model.md 15.6).",
+             per P wavelength, time step for {} f0).",
             fmt_value(c_p()),
             res.name(),
             res.per_wavelength(),

@@ -651,14 +651,20 @@ impl Solid2dScenario {
                     ))
                 }
             };
+            // a vertical crack may end on a free top or bottom side (surface-breaking)
+            let vertical = !c.full_width && end[0] == c.start[0] && end[1] != c.start[1];
+            let mouth = |z: f64, side: &str| vertical && (z == 0.0 || z == depth) && side == "free";
             for (p, what) in [(c.start, "start"), (end, "end")] {
-                if !(p[0] >= 0.0 && p[0] <= m.width && p[1] > 0.0 && p[1] < depth) {
+                let z_ok = p[1] > 0.0 && p[1] < depth
+                    || mouth(p[1], if p[1] == 0.0 { &m.top } else { &m.bottom });
+                if !(p[0] >= 0.0 && p[0] <= m.width && z_ok) {
                     return Err(inv(
                         file,
                         format!("{key}.{what}"),
                         format!("[{}, {}]", p[0], p[1]),
                         &format!(
-                            "inside the rectangle: 0 <= x <= {} m, 0 < z < {depth} m",
+                            "inside the rectangle: 0 <= x <= {} m, 0 < z < {depth} m \
+                             (z = 0 or {depth} m: a vertical crack open to a free side)",
                             m.width
                         ),
                     ));

@@ -16,9 +16,12 @@ pub struct CrackLine {
     pub horizontal: bool,
     /// Node-grid index of the line (iz of a horizontal crack, ix of a vertical one).
     pub line: usize,
-    /// First and last node-grid indices along the line of the crack's tips (welded, not
-    /// split); the split nodes are strictly between them.
+    /// First and last node-grid indices along the line of the crack's ends; a welded tip
+    /// is not split, the split nodes are between the tips.
     pub tips: (usize, usize),
+    /// Whether each end (`tips.0`, `tips.1`) is open: a mouth on a free side of the
+    /// rectangle, split too (each face a free-surface corner node); `false`: a welded tip.
+    pub open: (bool, bool),
     /// A horizontal crack across the whole width of a periodic mesh: no tips, every node
     /// of the line split (an interface).
     pub full_width: bool,
@@ -27,7 +30,18 @@ pub struct CrackLine {
 impl CrackLine {
     /// Whether node-grid position `k` along the line is split.
     fn splits(&self, k: usize) -> bool {
-        self.full_width || (k > self.tips.0.min(self.tips.1) && k < self.tips.0.max(self.tips.1))
+        self.full_width || self.range().contains(&k)
+    }
+
+    /// The node-grid positions along the line that are split (not a full-width line):
+    /// strictly between the welded tips, an open end included.
+    fn range(&self) -> std::ops::Range<usize> {
+        let (lo, hi, open_lo, open_hi) = if self.tips.0 <= self.tips.1 {
+            (self.tips.0, self.tips.1, self.open.0, self.open.1)
+        } else {
+            (self.tips.1, self.tips.0, self.open.1, self.open.0)
+        };
+        (if open_lo { lo } else { lo + 1 })..(if open_hi { hi + 1 } else { hi })
     }
 }
 
@@ -116,8 +130,8 @@ impl Mesh {
     }
 
     /// Build the mesh of GLL order `order` on the given edges, with the cracks' split
-    /// nodes. Refuses crossing or touching cracks (a node split twice) and a crack whose
-    /// tips leave no node to split.
+    /// nodes (an open end, a mouth on a free side, is split too). Refuses crossing or
+    /// touching cracks (a node split twice) and a crack whose tips leave no node to split.
     pub fn new(
         order: usize,
         x_edges: Vec<f64>,
@@ -159,7 +173,7 @@ impl Mesh {
         let mut next = nxn * nzn;
         for c in cracks {
             let mut pairs = Vec::new();
-            let (a, b) = if c.full_width {
+            let range = if c.full_width {
                 if !(periodic && c.horizontal) {
                     return Err(Error::invalid(
                         "",
@@ -169,17 +183,16 @@ impl Mesh {
                     ));
                 }
                 // every distinct column: 0 to nxn - 2 (column nxn - 1 is column 0)
-                (usize::MAX, nxn - 1)
+                0..nxn - 1
             } else {
-                (c.tips.0.min(c.tips.1), c.tips.0.max(c.tips.1))
+                c.range()
             };
-            let range = if c.full_width { 0..b } else { a + 1..b };
-            if !c.full_width && b < a + 2 {
+            if range.is_empty() {
                 return Err(Error::invalid(
                     "",
                     "crack.length",
                     "shorter than one node spacing",
-                    "a crack spans at least two node spacings (its tips are welded)",
+                    "a crack leaves at least one node to split (two node spacings between welded tips)",
                 ));
             }
             for k in range {
@@ -261,9 +274,11 @@ pub(super) fn edge_weight(edges: &[f64], w: &[f64], n: usize, k: usize, wrap: bo
     s
 }
 
-/// The boundary weight of surface node column `ix` restricted to the aperture `[x0, x1]`
-/// (m; both on element edges): the GLL weights of the element edges inside it.
-pub(super) fn aperture_weight(mesh: &Mesh, ix: usize, x0: f64, x1: f64) -> f64 {
+/// The boundary weights of surface node column `ix` restricted to the aperture `[x0, x1]`
+/// (m; both on element edges): the GLL weights of the element edges inside it, from the
+/// element on its left and from the one on its right (an element corner) or both from its
+/// own element (inside one).
+fn aperture_parts(mesh: &Mesh, ix: usize, x0: f64, x1: f64) -> (f64, f64) {
     let n = mesh.gll.order;
     let w = &mesh.gll.weights;
     let ne = mesh.x_edges.len() - 1;
@@ -274,14 +289,52 @@ pub(super) fn aperture_weight(mesh: &Mesh, ix: usize, x0: f64, x1: f64) -> f64 {
     };
     let h = |e: usize| 0.5 * (mesh.x_edges[e + 1] - mesh.x_edges[e]);
     if a != 0 {
-        return if inside(e) { w[a] * h(e) } else { 0.0 };
+        return (if inside(e) { w[a] * h(e) } else { 0.0 }, 0.0);
     }
-    let mut s = 0.0;
-    if e < ne && inside(e) {
-        s += w[0] * h(e);
+    let left = if e > 0 && inside(e - 1) {
+        w[n] * h(e - 1)
+    } else {
+        0.0
+    };
+    let right = if e < ne && inside(e) {
+        w[0] * h(e)
+    } else {
+        0.0
+    };
+    (left, right)
+}
+
+/// The nodes and boundary weights of surface node `(ix, iz)` under the aperture `[x0, x1]`
+/// (m): the grid node with the whole weight, or, at the mouth of a vertical crack (a split
+/// surface node), face 1 (left) with the left element's share and face 2 its twin with the
+/// right one's.
+pub(super) fn aperture_faces(
+    mesh: &Mesh,
+    ix: usize,
+    iz: usize,
+    x0: f64,
+    x1: f64,
+) -> Vec<(usize, f64)> {
+    let g = mesh.grid_node(ix, iz);
+    let (left, right) = aperture_parts(mesh, ix, x0, x1);
+    match mesh.splits.iter().flatten().find(|p| p.0 == g) {
+        Some(&(_, twin)) => vec![(g, left), (twin, right)],
+        None => vec![(g, left + right)],
     }
-    if e > 0 && inside(e - 1) {
-        s += w[n] * h(e - 1);
+}
+
+impl<L> super::Solid2d<L> {
+    /// Whether the end `p = [x, z]` (m) of a crack (`horizontal` or vertical) is open: a
+    /// mouth on a free side of the rectangle (a vertical crack's end on the top or bottom
+    /// side, a horizontal one's on an x side), split like the crack's inner nodes; else a
+    /// welded tip (docs/model.md 15.2).
+    pub(super) fn mouth(&self, p: [f64; 2], horizontal: bool) -> bool {
+        use super::Side::Free;
+        let depth = self.layers.last().map_or(0.0, |l| l.bottom);
+        if horizontal {
+            (p[0] == 0.0 || p[0] == self.width) && self.sides == Free
+        } else {
+            (p[1] == 0.0 && self.top == Free) || (p[1] == depth && self.bottom == Free)
+        }
     }
-    s
 }

@@ -37,6 +37,8 @@ mod stepping;
 #[cfg(test)]
 mod reduction_tests;
 #[cfg(test)]
+mod surface_tests;
+#[cfg(test)]
 mod tests;
 
 use crate::error::{Error, Result};
@@ -46,7 +48,7 @@ use crate::law::{NormalPart, TangentialPart};
 use crack::CrackNodes;
 pub use estimate::MemoryEstimate;
 use kernel::{max_frequency, ElementData, Stiffness};
-use mesh::{aperture_weight, edge_weight, CrackLine, Mesh};
+use mesh::{aperture_faces, edge_weight, CrackLine, Mesh};
 pub use plane_wave::Incidence;
 pub use pml::Pml;
 use probe::StressProbe;
@@ -547,11 +549,13 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 );
             }
             for p in [c.start, c.end] {
-                if !(p[0] >= 0.0 && p[0] <= self.width && p[1] > 0.0 && p[1] < depth) {
+                let z_ok = p[1] > 0.0 && p[1] < depth || !horizontal && self.mouth(p, false);
+                if !(p[0] >= 0.0 && p[0] <= self.width && z_ok) {
                     return bad(
                         &format!("crack.{i}.start"),
                         format!("{p:?}"),
-                        "inside the rectangle (a crack may not lie on its top or bottom side)",
+                        "inside the rectangle (only a vertical crack may end on its top or \
+                         bottom side, where that side is free)",
                     );
                 }
             }
@@ -612,6 +616,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                     horizontal: true,
                     line: iz,
                     tips: (0, 0),
+                    open: (false, false),
                     full_width: true,
                 }
             } else if c.start[1] == c.end[1] {
@@ -622,6 +627,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                     horizontal: true,
                     line: iz,
                     tips: (a, b),
+                    open: (self.mouth(c.start, true), self.mouth(c.end, true)),
                     full_width: false,
                 }
             } else {
@@ -632,6 +638,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                     horizontal: false,
                     line: ix,
                     tips: (a, b),
+                    open: (self.mouth(c.start, false), self.mouth(c.end, false)),
                     full_width: false,
                 }
             };
@@ -908,20 +915,21 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                         if x < x0.min(x1) - 1e-12 || x > x0.max(x1) + 1e-12 {
                             continue;
                         }
-                        let bw = aperture_weight(&mesh, ix, x0.min(x1), x0.max(x1));
-                        let g = mesh.grid_node(ix, iz);
                         let delay = delay_per_m * (x - x0);
-                        let index = match (components, normal) {
-                            (1, _) => g,
-                            (_, true) => 2 * g + 1,
-                            (_, false) => 2 * g,
-                        };
-                        loads.push(Load {
-                            index,
-                            weight: sign * bw,
-                            source: si,
-                            delay,
-                        });
+                        // (a crack's mouth: each face takes its own element's share)
+                        for (g, bw) in aperture_faces(&mesh, ix, iz, x0.min(x1), x0.max(x1)) {
+                            let index = match (components, normal) {
+                                (1, _) => g,
+                                (_, true) => 2 * g + 1,
+                                (_, false) => 2 * g,
+                            };
+                            loads.push(Load {
+                                index,
+                                weight: sign * bw,
+                                source: si,
+                                delay,
+                            });
+                        }
                     }
                 }
             }

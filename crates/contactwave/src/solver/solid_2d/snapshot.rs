@@ -212,6 +212,7 @@ mod tests {
                 mesh::edge_index(&x_edges, 0.015).unwrap() * order,
                 mesh::edge_index(&x_edges, 0.025).unwrap() * order,
             ),
+            open: (false, false),
             full_width: false,
         }];
         let mesh = Mesh::new(order, x_edges, z_edges, false, &cracks).unwrap();
