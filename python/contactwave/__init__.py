@@ -758,12 +758,18 @@ def _check_worker_memory(
             )
 
 
+# set beside CONTACTWAVE_MEMORY_BUDGET when a Dask worker set it (not the user)
+_BUDGET_MARK = "CONTACTWAVE_MEMORY_BUDGET_FROM_WORKER"
+
+
 def _worker_budget() -> None:
     """On a Dask worker, the memory budget of the runs (``CONTACTWAVE_MEMORY_BUDGET``,
     unless set already) becomes each thread's share of the worker's ``memory_limit``, so
     that every point checks its estimate against what its worker can give before it
     starts (a refused point fails with the message, the others go on)."""
-    if "CONTACTWAVE_MEMORY_BUDGET" in os.environ:
+    # a budget the user set stands; one a worker set (an in-process worker shares the
+    # client's environment, and processes spawned from it inherit it) is recomputed
+    if "CONTACTWAVE_MEMORY_BUDGET" in os.environ and _BUDGET_MARK not in os.environ:
         return
     try:
         from distributed import get_worker
@@ -778,6 +784,7 @@ def _worker_budget() -> None:
     threads = getattr(state, "nthreads", None) or getattr(worker, "nthreads", None) or 1
     if limit:
         os.environ["CONTACTWAVE_MEMORY_BUDGET"] = str(int(limit // max(int(threads), 1)))
+        os.environ[_BUDGET_MARK] = "1"
 
 
 def _run_chunk(

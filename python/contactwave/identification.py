@@ -72,7 +72,9 @@ def identify(
     docs/identify.md).
 
     ``spec`` is the path of an identification file (TOML) or a dict with its keys
-    (``base``, ``data``: a CSV path or a dict of equally long columns, ``observed``,
+    (``base``, ``data``: a CSV path or a dict of equally long columns, or instead
+    ``records``: raw waveforms reduced like the forward signals, docs/identify.md section 8,
+    ``observed``,
     ``set``, ``parameter``: a list of dicts with ``key``, ``bounds``, ``scale``, ...,
     ``fit``, ``design``); a dict's relative paths resolve against the folder of ``file``
     (``<dict>``: the working directory). Returns the ``identification.json`` object:
