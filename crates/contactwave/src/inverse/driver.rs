@@ -88,6 +88,18 @@ pub fn identify(spec: &IdentifySpec, progress: &(dyn Fn(&str) + Sync)) -> Result
     })
 }
 
+/// Standard normal deviates (Box-Muller) from a generator seeded with `seed`: the noise of
+/// [`synthesize`] and [`synthesize_records`].
+fn gaussian(seed: u64) -> impl FnMut() -> f64 {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    move || {
+        let u1: f64 = rng.random_range(f64::MIN_POSITIVE..1.0);
+        let u2: f64 = rng.random_range(0.0..1.0);
+        (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()
+    }
+}
+
 /// The parameter values of a synthesis: `truth` (key, value) where given, the starting
 /// values elsewhere; checks the keys and the noise level.
 pub(super) fn truth_values(
@@ -131,7 +143,6 @@ pub fn synthesize(
     noise: f64,
     seed: u64,
 ) -> Result<IdentifySpec> {
-    use rand::{Rng, SeedableRng};
     let values = truth_values(spec, truth, noise)?;
     let model = Model::new(spec);
     let z: Vec<f64> = spec
@@ -141,13 +152,7 @@ pub fn synthesize(
         .map(|(p, &v)| p.to_scaled(v))
         .collect();
     let curves = model.curves(&z)?;
-    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
-    let mut gauss = || {
-        // Box-Muller
-        let u1: f64 = rng.random_range(f64::MIN_POSITIVE..1.0);
-        let u2: f64 = rng.random_range(0.0..1.0);
-        (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()
-    };
+    let mut gauss = gaussian(seed);
     let mut out = spec.clone();
     for (k, o) in out.measured.observed.iter_mut().enumerate() {
         for (i, c) in curves.iter().enumerate() {
@@ -172,7 +177,6 @@ pub fn synthesize_records(
     seed: u64,
     comment: &str,
 ) -> Result<String> {
-    use rand::{Rng, SeedableRng};
     let file = spec.file.display().to_string();
     let Some(rec) = &spec.records else {
         return Err(Error::invalid(
@@ -231,13 +235,7 @@ pub fn synthesize_records(
         columns.push(w.samples);
     }
     let (t0, dt, n) = time.unwrap_or((0.0, 1.0, 0));
-    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
-    let mut gauss = || {
-        // Box-Muller
-        let u1: f64 = rng.random_range(f64::MIN_POSITIVE..1.0);
-        let u2: f64 = rng.random_range(0.0..1.0);
-        (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()
-    };
+    let mut gauss = gaussian(seed);
     for c in &mut columns {
         let peak = c.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         for v in c.iter_mut() {
