@@ -100,9 +100,9 @@ fn gaussian(seed: u64) -> impl FnMut() -> f64 {
     }
 }
 
-/// The parameter values of a synthesis: `truth` (key, value) where given, the starting
-/// values elsewhere; checks the keys and the noise level.
-pub(super) fn truth_values(
+/// The scaled coordinates of a synthesis' parameter values: `truth` (key, value) where
+/// given, the starting values elsewhere; checks the keys and the noise level.
+pub(super) fn truth_coordinates(
     spec: &IdentifySpec,
     truth: &[(String, f64)],
     noise: f64,
@@ -125,10 +125,11 @@ pub(super) fn truth_values(
         .parameters
         .iter()
         .map(|p| {
-            truth
+            let v = truth
                 .iter()
                 .find(|(k, _)| k == &p.key)
-                .map_or(p.initial, |t| t.1)
+                .map_or(p.initial, |t| t.1);
+            p.to_scaled(v)
         })
         .collect())
 }
@@ -143,14 +144,8 @@ pub fn synthesize(
     noise: f64,
     seed: u64,
 ) -> Result<IdentifySpec> {
-    let values = truth_values(spec, truth, noise)?;
+    let z = truth_coordinates(spec, truth, noise)?;
     let model = Model::new(spec);
-    let z: Vec<f64> = spec
-        .parameters
-        .iter()
-        .zip(&values)
-        .map(|(p, &v)| p.to_scaled(v))
-        .collect();
     let curves = model.curves(&z)?;
     let mut gauss = gaussian(seed);
     let mut out = spec.clone();
@@ -198,14 +193,8 @@ pub fn synthesize_records(
              twins of pulse inversion and linear reference are not written)",
         ));
     }
-    let values = truth_values(spec, truth, noise)?;
+    let z = truth_coordinates(spec, truth, noise)?;
     let model = Model::new(spec);
-    let z: Vec<f64> = spec
-        .parameters
-        .iter()
-        .zip(&values)
-        .map(|(p, &v)| p.to_scaled(v))
-        .collect();
     let values = model.values(&z);
     let mut ws = crate::model::Workspace::new();
     let mut columns: Vec<Vec<f64>> = Vec::new();
