@@ -75,7 +75,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         sweep.points.len() as u64,
     );
     let checked = |d: usize, _total: usize| {
-        if d % 1024 == 0 || d == sweep.points.len() {
+        if d.is_multiple_of(1024) || d == sweep.points.len() {
             setup.set_position(d as u64);
         }
     };

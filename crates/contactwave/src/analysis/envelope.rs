@@ -40,7 +40,7 @@ impl std::fmt::Debug for EnvelopePeak {
 impl EnvelopePeak {
     /// A plan for `m` samples (`None` unless `m` is a multiple of 16).
     pub fn plan(planner: &mut FftPlanner<f64>, m: usize) -> Option<EnvelopePeak> {
-        if m == 0 || m % ROWS != 0 {
+        if m == 0 || !m.is_multiple_of(ROWS) {
             return None;
         }
         let q = m / ROWS;

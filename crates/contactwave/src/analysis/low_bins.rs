@@ -56,7 +56,7 @@ impl LowBins {
             return None;
         }
         // the whole transform: realfft's odd lengths are complex FFTs of the full length
-        let full = if n % 2 == 0 {
+        let full = if n.is_multiple_of(2) {
             fft_cost(n / 2) + 2.0 * n as f64
         } else {
             fft_cost(n)
@@ -64,12 +64,12 @@ impl LowBins {
         let mut best: Option<(f64, usize)> = None;
         let divisors = (1..)
             .take_while(|d| d * d <= n)
-            .filter(|d| n % d == 0)
+            .filter(|d| n.is_multiple_of(*d))
             .flat_map(|d| [d, n / d]);
         for n2 in divisors.filter(|&d| d >= k && d <= n / 2) {
             let n1 = n / n2;
             let cost = n1.div_ceil(2) as f64 * fft_cost(n2) + 16.0 * (n1 * k) as f64;
-            if best.map_or(true, |(c, _)| cost < c) {
+            if best.is_none_or(|(c, _)| cost < c) {
                 best = Some((cost, n2));
             }
         }

@@ -52,7 +52,7 @@ impl ClippedShear {
     /// Fourier sine coefficient `b_n` of the transmitted dynamic shear stress, Pa (zero for
     /// even n): `(4/pi) int_0^{pi/2} s(theta) sin(n theta) dtheta`.
     pub fn transmitted_harmonic(&self, n: usize) -> f64 {
-        if n % 2 == 0 {
+        if n.is_multiple_of(2) {
             return 0.0;
         }
         let a = self.stick_factor() * self.amplitude;

@@ -169,7 +169,7 @@ impl Geometry {
                         medium: k,
                         wave: w,
                     };
-                    if worst.map_or(true, |x| c.angle_deg < x.angle_deg) {
+                    if worst.is_none_or(|x| c.angle_deg < x.angle_deg) {
                         worst = Some(c);
                     }
                 }

@@ -278,7 +278,7 @@ pub fn estimate(model: &Model, progress: &(dyn Fn(&str) + Sync)) -> Result<Estim
         let (z2, c2, i2) =
             refine_aligned(model, rows.clone(), &z1, fit.local_iterations / 2, 1e-6)?;
         iters += i1 + i2;
-        if best.as_ref().map_or(true, |b| c2 < b.1) {
+        if best.as_ref().is_none_or(|b| c2 < b.1) {
             best = Some((z2, c2, i1 + i2));
         }
     }

@@ -738,7 +738,7 @@ fn parse_data(
                      first_mode_hz (observed), sigma_<observed> (uncertainties)",
                 ));
             }
-            if observed_filter.as_ref().map_or(true, |f| f.contains(h)) {
+            if observed_filter.as_ref().is_none_or(|f| f.contains(h)) {
                 obs_cols.push(c);
             }
         }

@@ -145,7 +145,7 @@ pub(crate) fn run<S: GridSolver>(grid: &Grid, solver: &mut S, y: &mut S::State) 
             solver.advance(t, tb, y)?;
         }
         k += 1;
-        if k % INTERRUPT_STEPS == 0 {
+        if k.is_multiple_of(INTERRUPT_STEPS) {
             crate::interrupt::check()?;
         }
         solver.record(tb, y);

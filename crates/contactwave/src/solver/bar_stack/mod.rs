@@ -577,7 +577,7 @@ impl Scheme for StackScheme<'_> {
     }
 
     fn check_finite(&self, t1: f64) -> Result<()> {
-        if self.normal.finite() && self.shear.as_ref().map_or(true, |f| f.finite()) {
+        if self.normal.finite() && self.shear.as_ref().is_none_or(|f| f.finite()) {
             return Ok(());
         }
         let gaps: Vec<f64> = self.contacts.state.iter().map(|s| s.gap).collect();

@@ -616,7 +616,7 @@ impl<'a> CoupledRun<'a> {
                     Ok(Some(found)) => found,
                     _ => (h, None),
                 };
-                if best.as_ref().map_or(true, |(r, _, _)| root < *r) {
+                if best.as_ref().is_none_or(|(r, _, _)| root < *r) {
                     best = Some((root, k, s_root));
                 }
             }

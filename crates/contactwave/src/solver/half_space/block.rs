@@ -129,7 +129,7 @@ impl GapRun<'_> {
             y[0] = stages[2];
             self.ode.remember(tb, g[2]);
             k += 1;
-            if k % 4096 == 0 {
+            if k.is_multiple_of(4096) {
                 if let Err(e) = crate::interrupt::check() {
                     break Err(e);
                 }

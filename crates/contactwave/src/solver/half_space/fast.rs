@@ -115,7 +115,7 @@ impl GapRun<'_> {
                 None => break,
             }
             k += 1;
-            if k % 4096 == 0 {
+            if k.is_multiple_of(4096) {
                 crate::interrupt::check()?;
             }
             self.record(out, acc, tb, y);

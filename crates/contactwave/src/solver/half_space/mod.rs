@@ -711,7 +711,7 @@ impl<'a> GapRun<'a> {
                 let thr = if which == 1 { EVENT_HYSTERESIS } else { 0.0 };
                 let e_end = ev_end[which];
                 if e_end > thr {
-                    if first.map_or(true, |(_, th, _)| h < th) {
+                    if first.is_none_or(|(_, th, _)| h < th) {
                         first = Some((which, h, st));
                     }
                     continue;
@@ -724,7 +724,7 @@ impl<'a> GapRun<'a> {
                         let hj = radau::C[j] * h;
                         let sj = self.event_step(t, y0, hj)?.0;
                         if self.ode_events(phase, tj, sj.end())[which] > thr
-                            && first.map_or(true, |(_, th, _)| hj < th)
+                            && first.is_none_or(|(_, th, _)| hj < th)
                         {
                             first = Some((which, hj, sj));
                         }

@@ -135,6 +135,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             weights: gll.weights.clone(),
             derivative: gll.derivative.clone(),
             antiplane: self.wave == WaveType::Sh,
+            regular: Vec::new(),
         };
         let omega_max = max_frequency(&one, &densities);
         let dt = (self.courant * 2.0 / omega_max).min(self.max_time_step);

@@ -10,6 +10,9 @@
 //! one parity run in parallel and each node sums its contributions in the same order
 //! (even rows, then odd rows; along a row, left to right) for any thread count.
 
+use super::lines::{Params, Rule};
+use super::simd;
+use multiversion::multiversion;
 use rayon::prelude::*;
 
 /// What the kernel needs of one element: its size and its Lame constants.
@@ -42,6 +45,93 @@ pub struct Stiffness {
     pub derivative: Vec<f64>,
     /// Antiplane (one component) or plane strain (two, interleaved `[x, z]` per node).
     pub antiplane: bool,
+    /// Whether each block of eight elements along a row (row by row, the last partial
+    /// block included) is regular (see [`super::simd`]): filled by
+    /// [`Stiffness::with_blocks`]; empty, or of another length, means none is.
+    pub regular: Vec<bool>,
+}
+
+/// The grid node rows of the operator's elements, advanced by [`Stiffness::step`] as soon
+/// as their forces are complete: node row `r` (`0..rows`, from the top of the operator's
+/// first element row) holds the nodes `(row0 + r) stride + col0 .. + len`. The other
+/// nodes (split twins, absorbing layers) are the caller's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NodeRows {
+    /// Nodes per grid row of the mesh.
+    pub stride: usize,
+    /// Grid row of the first node row.
+    pub row0: usize,
+    /// Grid column of the first node of each row.
+    pub col0: usize,
+    /// Nodes per row.
+    pub len: usize,
+}
+
+impl NodeRows {
+    /// The nodes `0..n_nodes` outside the `n_rows` node rows, increasing: those
+    /// [`Stiffness::step`] leaves to its caller.
+    pub fn outside(&self, n_rows: usize, n_nodes: usize) -> Vec<u32> {
+        let inside = |g: usize| {
+            let (iz, ix) = (g / self.stride, g % self.stride);
+            iz >= self.row0
+                && iz < self.row0 + n_rows
+                && ix >= self.col0
+                && ix < self.col0 + self.len
+        };
+        (0..n_nodes)
+            .filter(|&g| !inside(g))
+            .map(|g| g as u32)
+            .collect()
+    }
+}
+
+/// The node-wise update of one node `i` of `C` components: `v += dt f / m`, `u += dt v`,
+/// then `f = 0` (velocities at half levels, eq. 15.2).
+#[inline(always)]
+pub(super) fn advance_node<const C: usize>(
+    u: &mut [f64],
+    v: &mut [f64],
+    f: &mut [f64],
+    inv_mass: f64,
+    dt: f64,
+) {
+    for k in 0..C {
+        v[k] += dt * inv_mass * f[k];
+        u[k] += dt * v[k];
+        f[k] = 0.0;
+    }
+}
+
+/// [`advance_node`] over consecutive nodes (`inv_mass` one per node), compiled for
+/// AVX-512 and AVX2 where the CPU has them (the same operations: the same bits).
+#[multiversion(targets("x86_64+avx512f+avx2+avx", "x86_64+avx2+avx"))]
+pub(super) fn advance<const C: usize>(
+    u: &mut [f64],
+    v: &mut [f64],
+    f: &mut [f64],
+    inv_mass: &[f64],
+    dt: f64,
+) {
+    for (((un, vn), fnode), &im) in u
+        .chunks_exact_mut(C)
+        .zip(v.chunks_exact_mut(C))
+        .zip(f.chunks_exact_mut(C))
+        .zip(inv_mass)
+    {
+        advance_node::<C>(un, vn, fnode, im, dt);
+    }
+}
+
+/// What [`Stiffness::step`] advances besides the forces: velocities, inverse masses, the
+/// time step and the node rows.
+#[derive(Clone, Copy)]
+struct Advance<'a> {
+    u: Shared,
+    v: Shared,
+    len: usize,
+    inv_mass: &'a [f64],
+    dt: f64,
+    rows: NodeRows,
 }
 
 /// A pointer that may be shared by the threads of one parity (see the module comment).
@@ -65,14 +155,103 @@ const LANES: usize = 4;
 #[cfg(target_arch = "x86_64")]
 const LANES_512: usize = 8;
 
-/// The derivative matrix and the weights of order `M - 1` as fixed-size arrays.
-struct Rule<const M: usize> {
-    /// `d[i][j] = l_j'(x_i)`.
-    d: [[f64; M]; M],
-    w: [f64; M],
+/// The forces `g = integral sigma : grad phi` of a block of `L` plane-strain elements from
+/// their displacements (`[b][a][lane]`): the gradients along x-lines and z-lines (even-odd
+/// derivative), Hooke's law and the quadrature weights at each point, the divergence by
+/// the transposed derivative along x-lines plus along z-lines. [`simd::psv_block`] does
+/// the same operations in the same order on AVX-512 registers (the same bits).
+#[inline(always)]
+fn psv_block<const M: usize, const L: usize>(
+    r: &Rule<M>,
+    ux: &[[[f64; L]; M]; M],
+    uz: &[[[f64; L]; M]; M],
+    p: &Params<L>,
+    gx: &mut [[[f64; L]; M]; M],
+    gz: &mut [[[f64; L]; M]; M],
+) {
+    let w = &r.w;
+    let (mut dxx, mut dxz) = ([[[0.0f64; L]; M]; M], [[[0.0f64; L]; M]; M]);
+    let (mut dzx, mut dzz) = ([[[0.0f64; L]; M]; M], [[[0.0f64; L]; M]; M]);
+    for b in 0..M {
+        r.grad.apply(&ux[b], &mut dxx[b]);
+        r.grad.apply(&uz[b], &mut dxz[b]);
+    }
+    r.grad.apply_rows::<L, false>(ux, &mut dzx);
+    r.grad.apply_rows::<L, false>(uz, &mut dzz);
+    // the x-flux `(hz/2) w_a w_b sigma_ix` and the z-flux `(hx/2) w_a w_b sigma_iz` of
+    // each component i at each quadrature point (dA sx = (hx hz / 4) w_a w_b (2 / hx),
+    // and alike along z); the fluxes overwrite the gradients
+    for b in 0..M {
+        for a in 0..M {
+            let wab = w[a] * w[b];
+            for l in 0..L {
+                let (exx, ezz) = (dxx[b][a][l] * p.sx[l], dzz[b][a][l] * p.sz[l]);
+                let exz = dzx[b][a][l] * p.sz[l] + dxz[b][a][l] * p.sx[l];
+                let sxx = p.l2m[l] * exx + p.lam[l] * ezz;
+                let szz = p.lam[l] * exx + p.l2m[l] * ezz;
+                let sxz = p.mu[l] * exz;
+                let (wx, wz) = (p.hz2[l] * wab, p.hx2[l] * wab);
+                dxx[b][a][l] = wx * sxx;
+                dxz[b][a][l] = wx * sxz;
+                dzx[b][a][l] = wz * sxz;
+                dzz[b][a][l] = wz * szz;
+            }
+        }
+    }
+    // the divergence: the transposed derivative along x-lines, then along z-lines
+    for b in 0..M {
+        r.div.apply(&dxx[b], &mut gx[b]);
+        r.div.apply(&dxz[b], &mut gz[b]);
+    }
+    r.div.apply_rows::<L, true>(&dzx, gx);
+    r.div.apply_rows::<L, true>(&dzz, gz);
+}
+
+/// The vector extensions of the CPU the kernel runs on.
+#[derive(Clone, Copy)]
+struct Cpu {
+    avx512: bool,
+    avx2: bool,
+}
+
+impl Cpu {
+    fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        return Cpu {
+            avx512: std::is_x86_feature_detected!("avx512f"),
+            avx2: std::is_x86_feature_detected!("avx2"),
+        };
+        #[cfg(not(target_arch = "x86_64"))]
+        Cpu {
+            avx512: false,
+            avx2: false,
+        }
+    }
 }
 
 impl Stiffness {
+    /// The operator with its regular blocks marked (plane strain of order 4: the blocks
+    /// whose gather and scatter the AVX-512 kernel does by rows).
+    pub fn with_blocks(mut self) -> Self {
+        let (nex, nez) = self.dims;
+        let (m, w) = (self.order + 1, simd::W);
+        let per_row = nex.div_ceil(w);
+        self.regular = vec![false; per_row * nez];
+        if self.antiplane || m != simd::P || nex < w {
+            return self;
+        }
+        for ez in 0..nez {
+            let c = &self.conn[ez * nex * m * m..];
+            let offsets = simd::block_offsets(c[m].wrapping_sub(c[0]));
+            for blk in 0..nex / w {
+                let e0 = ez * nex + blk * w;
+                self.regular[ez * per_row + blk] =
+                    simd::is_regular(&self.conn[e0 * m * m..(e0 + w) * m * m], &offsets);
+            }
+        }
+        self
+    }
+
     /// `force = -K u` (plus nothing: `force` is overwritten). `u` and `force` hold one
     /// value per node (antiplane) or two interleaved (plane strain), m and N/m.
     pub fn apply(&self, u: &[f64], force: &mut [f64]) {
@@ -84,81 +263,193 @@ impl Stiffness {
         self.dispatch(u, force, false);
     }
 
-    /// `force -= K u`: [`Stiffness::apply`] without clearing `force` first (the time loop
-    /// clears it as it reads it, saving a pass over memory). The same bits as `apply`
-    /// when `force` is zero.
-    pub fn accumulate(&self, u: &[f64], force: &mut [f64]) {
-        self.kernel(u, force, true);
+    /// One leapfrog step of the node rows `rows` (eq. 15.2): `force -= K u` and, each node
+    /// row as soon as its forces are complete (its element rows done), `v += dt force / m`,
+    /// `u += dt v`, `force = 0`, while the row is still in the cache. `force` holds the
+    /// other forces of level n on entry (sources, absorbing layers); the nodes outside
+    /// `rows` keep their forces for the caller. The same bits for any thread count: a node
+    /// row is advanced once, after both element rows around it, by the row of odd parity
+    /// (or the only one), and no row reads another's node rows.
+    pub fn step(
+        &self,
+        u: &mut [f64],
+        v: &mut [f64],
+        force: &mut [f64],
+        inv_mass: &[f64],
+        dt: f64,
+        rows: NodeRows,
+    ) {
+        let comps = if self.antiplane { 1 } else { 2 };
+        let n = self.order;
+        let (nex, nez) = self.dims;
+        // (the rows must lie inside the arrays: checked here once, not per row)
+        let last = (rows.row0 + nez * n) * rows.stride + rows.col0 + rows.len;
+        assert!(
+            rows.len <= nex * n + 1
+                && last <= inv_mass.len()
+                && comps * inv_mass.len() == u.len()
+                && u.len() == v.len()
+                && v.len() == force.len(),
+            "node rows outside the arrays"
+        );
+        let adv = Advance {
+            u: Shared(u.as_mut_ptr()),
+            v: Shared(v.as_mut_ptr()),
+            len: u.len(),
+            inv_mass,
+            dt,
+            rows,
+        };
+        self.kernel(u, force, true, Some(adv), Cpu::detect());
     }
 
     fn dispatch(&self, u: &[f64], force: &mut [f64], parallel: bool) {
         force.fill(0.0);
-        self.kernel(u, force, parallel);
+        self.kernel(u, force, parallel, None, Cpu::detect());
     }
 
-    fn kernel(&self, u: &[f64], force: &mut [f64], parallel: bool) {
+    /// [`Stiffness::apply`] by the portable kernel (no AVX2, no AVX-512): the same bits
+    /// (the test `every_cpu_path_gives_the_same_bits`).
+    #[cfg(test)]
+    pub(super) fn apply_portable(&self, u: &[f64], force: &mut [f64]) {
+        force.fill(0.0);
+        let cpu = Cpu {
+            avx512: false,
+            avx2: false,
+        };
+        self.kernel(u, force, true, None, cpu);
+    }
+
+    fn kernel(
+        &self,
+        u: &[f64],
+        force: &mut [f64],
+        parallel: bool,
+        adv: Option<Advance<'_>>,
+        cpu: Cpu,
+    ) {
         match self.order {
-            2 => self.apply_m::<3>(u, force, parallel),
-            3 => self.apply_m::<4>(u, force, parallel),
-            4 => self.apply_m::<5>(u, force, parallel),
-            5 => self.apply_m::<6>(u, force, parallel),
-            6 => self.apply_m::<7>(u, force, parallel),
-            7 => self.apply_m::<8>(u, force, parallel),
-            8 => self.apply_m::<9>(u, force, parallel),
+            2 => self.apply_m::<3>(u, force, parallel, adv, cpu),
+            3 => self.apply_m::<4>(u, force, parallel, adv, cpu),
+            4 => self.apply_m::<5>(u, force, parallel, adv, cpu),
+            5 => self.apply_m::<6>(u, force, parallel, adv, cpu),
+            6 => self.apply_m::<7>(u, force, parallel, adv, cpu),
+            7 => self.apply_m::<8>(u, force, parallel, adv, cpu),
+            8 => self.apply_m::<9>(u, force, parallel, adv, cpu),
             _ => unreachable!("orders 2 to 8 are checked when the problem is built"),
         }
     }
 
-    fn rule<const M: usize>(&self) -> Rule<M> {
-        let mut r = Rule {
-            d: [[0.0; M]; M],
-            w: [0.0; M],
+    /// Advance the node rows of element row `ez` whose forces are complete after it, in
+    /// pass `parity` (see [`Stiffness::step`]).
+    fn advance_rows(&self, ez: usize, parity: usize, out: &mut [f64], a: &Advance<'_>) {
+        let n = self.order;
+        let nez = self.dims.1;
+        let top = if parity == 1 || ez == 0 { 0 } else { 1 };
+        let bottom = if parity == 1 || ez + 1 == nez {
+            n
+        } else {
+            n - 1
         };
-        for i in 0..M {
-            r.w[i] = self.weights[i];
-            for j in 0..M {
-                r.d[i][j] = self.derivative[i * M + j];
+        let r = a.rows;
+        for b in top..=bottom {
+            let first = (r.row0 + ez * n + b) * r.stride + r.col0;
+            let im = &a.inv_mass[first..first + r.len];
+            // SAFETY: the node rows advanced here are read and written by this element row
+            // alone in this pass (`step`), and lie inside the arrays (asserted in `step`)
+            let (u, v) = unsafe {
+                (
+                    std::slice::from_raw_parts_mut(a.u.get(), a.len),
+                    std::slice::from_raw_parts_mut(a.v.get(), a.len),
+                )
+            };
+            if self.antiplane {
+                let span = first..first + r.len;
+                advance::<1>(
+                    &mut u[span.clone()],
+                    &mut v[span.clone()],
+                    &mut out[span],
+                    im,
+                    a.dt,
+                );
+            } else {
+                let span = 2 * first..2 * (first + r.len);
+                advance::<2>(
+                    &mut u[span.clone()],
+                    &mut v[span.clone()],
+                    &mut out[span],
+                    im,
+                    a.dt,
+                );
             }
         }
-        r
     }
 
-    fn apply_m<const M: usize>(&self, u: &[f64], force: &mut [f64], parallel: bool) {
+    fn rule<const M: usize>(&self) -> Rule<M> {
+        Rule::new(&self.weights, &self.derivative)
+    }
+
+    fn apply_m<const M: usize>(
+        &self,
+        u: &[f64],
+        force: &mut [f64],
+        parallel: bool,
+        adv: Option<Advance<'_>>,
+        cpu: Cpu,
+    ) {
         let nez = self.dims.1;
         let rule = self.rule::<M>();
         let out = Shared(force.as_mut_ptr());
         let len = force.len();
-        #[cfg(target_arch = "x86_64")]
-        let avx512 = std::is_x86_feature_detected!("avx512f");
-        #[cfg(target_arch = "x86_64")]
-        let avx2 = std::is_x86_feature_detected!("avx2");
-        let row = |ez: usize| {
+        let u_ptr = Shared(u.as_ptr() as *mut f64);
+        let row = |ez: usize, parity: usize| {
             // SAFETY: rows of one parity write disjoint nodes (module comment), and the
             // rows of a parity finish before the other parity starts; every index is
-            // below `len` (the map is built over the nodes).
+            // below `len` (the map is built over the nodes). The displacements a row reads
+            // are advanced only by that row, after it (`step`).
             let out = unsafe { std::slice::from_raw_parts_mut(out.get(), len) };
-            #[cfg(target_arch = "x86_64")]
-            if avx512 {
-                // SAFETY: the CPU has AVX-512F (checked at run time above)
-                unsafe { self.row_avx512::<M>(&rule, ez, u, out) };
-                return;
+            let u = unsafe { std::slice::from_raw_parts(u_ptr.get() as *const f64, len) };
+            self.row_any::<M>(&rule, ez, u, out, cpu);
+            if let Some(a) = &adv {
+                self.advance_rows(ez, parity, out, a);
             }
-            #[cfg(target_arch = "x86_64")]
-            if avx2 {
-                // SAFETY: the CPU has AVX2 (checked at run time above)
-                unsafe { self.row_avx2::<M>(&rule, ez, u, out) };
-                return;
-            }
-            self.row::<M, LANES>(&rule, ez, u, out);
         };
         for parity in 0..2 {
             let n = (nez + 1 - parity) / 2;
             if parallel {
-                (0..n).into_par_iter().for_each(|i| row(parity + 2 * i));
+                (0..n)
+                    .into_par_iter()
+                    .for_each(|i| row(parity + 2 * i, parity));
             } else {
-                (0..n).for_each(|i| row(parity + 2 * i));
+                (0..n).for_each(|i| row(parity + 2 * i, parity));
             }
         }
+    }
+
+    /// The forces of element row `ez` by the widest kernel the CPU runs.
+    #[inline(always)]
+    fn row_any<const M: usize>(
+        &self,
+        rule: &Rule<M>,
+        ez: usize,
+        u: &[f64],
+        out: &mut [f64],
+        cpu: Cpu,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if cpu.avx512 {
+            // SAFETY: the CPU has AVX-512F (`Cpu::detect`)
+            unsafe { self.row_avx512::<M>(rule, ez, u, out) };
+            return;
+        }
+        #[cfg(target_arch = "x86_64")]
+        if cpu.avx2 {
+            // SAFETY: the CPU has AVX2 (`Cpu::detect`)
+            unsafe { self.row_avx2::<M>(rule, ez, u, out) };
+            return;
+        }
+        let _ = cpu;
+        self.row::<M, LANES>(rule, ez, u, out, false);
     }
 
     /// The forces of element row `ez`.
@@ -169,11 +460,12 @@ impl Stiffness {
         ez: usize,
         u: &[f64],
         out: &mut [f64],
+        avx512: bool,
     ) {
         if self.antiplane {
             self.row_sh::<M, L>(r, ez, u, out);
         } else {
-            self.row_psv::<M, L>(r, ez, u, out);
+            self.row_psv::<M, L>(r, ez, u, out, avx512);
         }
     }
 
@@ -186,7 +478,7 @@ impl Stiffness {
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     unsafe fn row_avx2<const M: usize>(&self, r: &Rule<M>, ez: usize, u: &[f64], out: &mut [f64]) {
-        self.row::<M, LANES>(r, ez, u, out);
+        self.row::<M, LANES>(r, ez, u, out, false);
     }
 
     /// [`Stiffness::row`] compiled for AVX-512, eight elements at a time: the same
@@ -205,10 +497,12 @@ impl Stiffness {
         u: &[f64],
         out: &mut [f64],
     ) {
-        self.row::<M, LANES_512>(r, ez, u, out);
+        self.row::<M, LANES_512>(r, ez, u, out, true);
     }
 
-    /// The forces of element row `ez`, `LANES` elements at a time.
+    /// The forces of element row `ez`, `LANES` elements at a time; `avx512`: the caller is
+    /// compiled for AVX-512F, whose gather and scatter ([`super::simd`]) take the regular
+    /// blocks of order-4 elements.
     #[inline(always)]
     fn row_psv<const M: usize, const LANES: usize>(
         &self,
@@ -216,23 +510,30 @@ impl Stiffness {
         ez: usize,
         u: &[f64],
         out: &mut [f64],
+        avx512: bool,
     ) {
         let nex = self.dims.0;
-        let (d, w) = (&r.d, &r.w);
         let mut ex0 = 0;
+        // the regular blocks of this row (marked by `with_blocks`)
+        let per_row = nex.div_ceil(simd::W);
+        #[cfg(target_arch = "x86_64")]
+        let wide = avx512 && M == simd::P && LANES == simd::W;
+        #[cfg(not(target_arch = "x86_64"))]
+        let wide = false && avx512;
+        let marks = match self.regular.get(ez * per_row..(ez + 1) * per_row) {
+            Some(m) if wide && self.regular.len() == per_row * self.dims.1 => m,
+            _ => &[],
+        };
         // the element block's scratch, once per row (no clearing per block: the lanes past
         // the row's end keep the last block's finite values, computed and never scattered)
         let mut ux = [[[0.0f64; LANES]; M]; M];
         let mut uz = [[[0.0f64; LANES]; M]; M];
-        let mut fxx = [[[0.0f64; LANES]; M]; M];
-        let mut fxz = [[[0.0f64; LANES]; M]; M];
-        let mut fzx = [[[0.0f64; LANES]; M]; M];
-        let mut fzz = [[[0.0f64; LANES]; M]; M];
         let mut gx = [[[0.0f64; LANES]; M]; M];
         let mut gz = [[[0.0f64; LANES]; M]; M];
         while ex0 < nex {
             let nl = LANES.min(nex - ex0);
             let e0 = ez * nex + ex0;
+            let regular = marks.get(ex0 / LANES).copied().unwrap_or(false);
             let (mut sx, mut sz, mut l2m, mut lam, mut mu, mut hx2, mut hz2) = (
                 [1.0; LANES],
                 [1.0; LANES],
@@ -251,6 +552,9 @@ impl Stiffness {
                 mu[l] = el.mu;
                 hx2[l] = 0.5 * el.hx;
                 hz2[l] = 0.5 * el.hz;
+                if regular {
+                    continue;
+                }
                 let conn = &self.conn[(e0 + l) * M * M..(e0 + l + 1) * M * M];
                 for b in 0..M {
                     for a in 0..M {
@@ -260,52 +564,42 @@ impl Stiffness {
                     }
                 }
             }
-            // the x-flux `(hz/2) w_a w_b sigma_ix` and the z-flux `(hx/2) w_a w_b sigma_iz`
-            // of each component i at each quadrature point (dA sx = (hx hz / 4) w_a w_b
-            // (2 / hx), and alike along z)
-            for b in 0..M {
-                for a in 0..M {
-                    let (mut dux_dx, mut duz_dx, mut dux_dz, mut duz_dz) =
-                        ([0.0; LANES], [0.0; LANES], [0.0; LANES], [0.0; LANES]);
-                    for k in 0..M {
-                        let (da, db) = (d[a][k], d[b][k]);
-                        for l in 0..LANES {
-                            dux_dx[l] += da * ux[b][k][l];
-                            duz_dx[l] += da * uz[b][k][l];
-                            dux_dz[l] += db * ux[k][a][l];
-                            duz_dz[l] += db * uz[k][a][l];
-                        }
-                    }
-                    let wab = w[a] * w[b];
-                    for l in 0..LANES {
-                        let (exx, ezz) = (dux_dx[l] * sx[l], duz_dz[l] * sz[l]);
-                        let exz = dux_dz[l] * sz[l] + duz_dx[l] * sx[l];
-                        let sxx = l2m[l] * exx + lam[l] * ezz;
-                        let szz = lam[l] * exx + l2m[l] * ezz;
-                        let sxz = mu[l] * exz;
-                        let (wx, wz) = (hz2[l] * wab, hx2[l] * wab);
-                        fxx[b][a][l] = wx * sxx;
-                        fzx[b][a][l] = wx * sxz;
-                        fxz[b][a][l] = wz * sxz;
-                        fzz[b][a][l] = wz * szz;
-                    }
+            if regular {
+                self.gather_regular::<M, LANES>(e0, u, &mut ux, &mut uz);
+            }
+            let par = Params {
+                sx,
+                sz,
+                l2m,
+                lam,
+                mu,
+                hx2,
+                hz2,
+            };
+            #[cfg(target_arch = "x86_64")]
+            if wide {
+                // SAFETY: the caller runs on AVX-512F; M = 5 and LANES = 8 (`wide`), so
+                // the lane arrays are [[[f64; 8]; 5]; 5]
+                unsafe {
+                    simd::psv_block(
+                        &*(r as *const Rule<M> as *const Rule<5>),
+                        &*(&ux as *const _ as *const simd::Block),
+                        &*(&uz as *const _ as *const simd::Block),
+                        &*(&par as *const Params<LANES> as *const Params<8>),
+                        &mut *(&mut gx as *mut _ as *mut simd::Block),
+                        &mut *(&mut gz as *mut _ as *mut simd::Block),
+                    );
                 }
             }
-            for b in 0..M {
-                for a in 0..M {
-                    let (mut sx, mut sz) = ([0.0f64; LANES], [0.0f64; LANES]);
-                    for k in 0..M {
-                        let (dka, dkb) = (d[k][a], d[k][b]);
-                        for l in 0..LANES {
-                            sx[l] += dka * fxx[b][k][l] + dkb * fxz[k][a][l];
-                            sz[l] += dka * fzx[b][k][l] + dkb * fzz[k][a][l];
-                        }
-                    }
-                    gx[b][a] = sx;
-                    gz[b][a] = sz;
-                }
+            if !wide {
+                psv_block::<M, LANES>(r, &ux, &uz, &par, &mut gx, &mut gz);
             }
             // scatter element by element, left to right (the order of every run)
+            if regular {
+                self.scatter_regular::<M, LANES>(e0, out, &gx, &gz);
+                ex0 += LANES;
+                continue;
+            }
             for l in 0..nl {
                 let conn = &self.conn[(e0 + l) * M * M..(e0 + l + 1) * M * M];
                 for b in 0..M {
@@ -320,6 +614,66 @@ impl Stiffness {
         }
     }
 
+    /// The first node of node row `b` of the regular block starting at element `e0`: its
+    /// first node plus `b` node rows (the stride of the map's regular pattern).
+    #[inline(always)]
+    fn block_row(&self, e0: usize, b: usize) -> usize {
+        let m = self.order + 1;
+        let (first, second) = (self.conn[e0 * m * m], self.conn[e0 * m * m + m]);
+        first as usize + b * (second - first) as usize
+    }
+
+    /// The gather of a regular block starting at element `e0` (`M` = 5, `LANES` = 8, the
+    /// caller compiled for AVX-512F: see `wide` in [`Stiffness::row_psv`]).
+    #[inline(always)]
+    fn gather_regular<const M: usize, const LANES: usize>(
+        &self,
+        e0: usize,
+        u: &[f64],
+        ux: &mut [[[f64; LANES]; M]; M],
+        uz: &mut [[[f64; LANES]; M]; M],
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        for b in 0..M {
+            let node = self.block_row(e0, b);
+            assert!(2 * node + 66 <= u.len() && M == simd::P && LANES == simd::W);
+            // SAFETY: the caller runs on AVX-512F; the block's 33 nodes of row b are
+            // consecutive nodes of the map (regular), so the 66 reads are inside `u`; the
+            // lane arrays are [[f64; 8]; 5] (M = 5, LANES = 8, asserted)
+            unsafe {
+                let x = &mut *(ux[b].as_mut_ptr() as *mut [[f64; simd::W]; simd::P]);
+                let z = &mut *(uz[b].as_mut_ptr() as *mut [[f64; simd::W]; simd::P]);
+                simd::gather_row(u.as_ptr().add(2 * node), x, z);
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = (e0, u, ux, uz);
+    }
+
+    /// The scatter of a regular block (see [`Stiffness::gather_regular`]).
+    #[inline(always)]
+    fn scatter_regular<const M: usize, const LANES: usize>(
+        &self,
+        e0: usize,
+        out: &mut [f64],
+        gx: &[[[f64; LANES]; M]; M],
+        gz: &[[[f64; LANES]; M]; M],
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        for b in 0..M {
+            let node = self.block_row(e0, b);
+            assert!(2 * node + 66 <= out.len() && M == simd::P && LANES == simd::W);
+            // SAFETY: as in the gather
+            unsafe {
+                let x = &*(gx[b].as_ptr() as *const [[f64; simd::W]; simd::P]);
+                let z = &*(gz[b].as_ptr() as *const [[f64; simd::W]; simd::P]);
+                simd::scatter_row(out.as_mut_ptr().add(2 * node), x, z);
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = (e0, out, gx, gz);
+    }
+
     /// The antiplane forces of element row `ez`, `LANES` elements at a time.
     #[inline(always)]
     fn row_sh<const M: usize, const LANES: usize>(
@@ -330,10 +684,11 @@ impl Stiffness {
         out: &mut [f64],
     ) {
         let nex = self.dims.0;
-        let (d, w) = (&r.d, &r.w);
+        let w = &r.w;
         let mut ex0 = 0;
         // the block's scratch, once per row (as in [`Stiffness::row_psv`])
         let mut uy = [[[0.0f64; LANES]; M]; M];
+        let (mut dx, mut dz) = ([[[0.0f64; LANES]; M]; M], [[[0.0f64; LANES]; M]; M]);
         let mut fx = [[[0.0f64; LANES]; M]; M];
         let mut fz = [[[0.0f64; LANES]; M]; M];
         let mut g = [[[0.0f64; LANES]; M]; M];
@@ -354,34 +709,22 @@ impl Stiffness {
                 }
             }
             for b in 0..M {
+                r.grad.apply(&uy[b], &mut dx[b]);
+            }
+            r.grad.apply_rows::<LANES, false>(&uy, &mut dz);
+            for b in 0..M {
                 for a in 0..M {
-                    let (mut dx, mut dz) = ([0.0; LANES], [0.0; LANES]);
-                    for k in 0..M {
-                        let (da, db) = (d[a][k], d[b][k]);
-                        for l in 0..LANES {
-                            dx[l] += da * uy[b][k][l];
-                            dz[l] += db * uy[k][a][l];
-                        }
-                    }
                     let wab = w[a] * w[b];
                     for l in 0..LANES {
-                        fx[b][a][l] = wab * cx[l] * dx[l];
-                        fz[b][a][l] = wab * cz[l] * dz[l];
+                        fx[b][a][l] = wab * cx[l] * dx[b][a][l];
+                        fz[b][a][l] = wab * cz[l] * dz[b][a][l];
                     }
                 }
             }
             for b in 0..M {
-                for a in 0..M {
-                    let mut sum = [0.0f64; LANES];
-                    for k in 0..M {
-                        let (dka, dkb) = (d[k][a], d[k][b]);
-                        for l in 0..LANES {
-                            sum[l] += dka * fx[b][k][l] + dkb * fz[k][a][l];
-                        }
-                    }
-                    g[b][a] = sum;
-                }
+                r.div.apply(&fx[b], &mut g[b]);
             }
+            r.div.apply_rows::<LANES, true>(&fz, &mut g);
             for l in 0..nl {
                 let conn = &self.conn[(e0 + l) * M * M..(e0 + l + 1) * M * M];
                 for b in 0..M {
@@ -421,6 +764,7 @@ pub(super) fn max_frequency(k: &Stiffness, densities: &[f64]) -> f64 {
             weights: k.weights.clone(),
             derivative: k.derivative.clone(),
             antiplane: k.antiplane,
+            regular: Vec::new(),
         };
         let w = &k.weights;
         let mass: Vec<f64> = (0..m * m)

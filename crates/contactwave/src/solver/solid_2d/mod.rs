@@ -27,10 +27,12 @@
 pub mod crack;
 mod estimate;
 pub mod kernel;
+mod lines;
 pub mod mesh;
 pub mod plane_wave;
 pub mod pml;
 pub mod probe;
+mod simd;
 pub mod snapshot;
 mod stepping;
 
@@ -47,15 +49,12 @@ use crate::law::contact::PointState;
 use crate::law::{NormalPart, TangentialPart};
 use crack::CrackNodes;
 pub use estimate::MemoryEstimate;
-use kernel::{max_frequency, ElementData, Stiffness};
+use kernel::{max_frequency, ElementData, NodeRows, Stiffness};
 use mesh::{aperture_faces, edge_weight, CrackLine, Mesh};
 pub use plane_wave::Incidence;
 pub use pml::Pml;
 use probe::StressProbe;
 use std::sync::Arc;
-
-/// Nodes per parallel task of the node-wise updates.
-const CHUNK: usize = 4096;
 
 /// An isotropic elastic solid.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -244,6 +243,9 @@ pub struct Plan<L> {
     /// The mesh.
     pub mesh: Mesh,
     stiffness: Stiffness,
+    /// The grid node rows the kernel advances, and the nodes outside them (split twins,
+    /// absorbing layers) that the step advances after it.
+    rows: (NodeRows, Vec<u32>),
     /// Inverse lumped mass per node, 1/(kg/m) (0 on rigid sides).
     inv_mass: Vec<f64>,
     /// Lumped mass per node, kg/m.
@@ -725,13 +727,14 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             weights: mesh.gll.weights.clone(),
             derivative: mesh.gll.derivative.clone(),
             antiplane: components == 1,
+            regular: Vec::new(),
         };
         let densities: Vec<f64> = (0..nez)
             .flat_map(|ez| {
                 let rho = self.layers[layer_of(0.5 * (mesh.z_edges[ez] + mesh.z_edges[ez + 1]))]
                     .material
                     .density;
-                std::iter::repeat(rho).take(nex)
+                std::iter::repeat_n(rho, nex)
             })
             .collect();
         let omega_max = max_frequency(&stiffness, &densities);
@@ -761,6 +764,13 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             &profile(0.0, depth, lt, lb),
             &mut mass,
         );
+        let rows = NodeRows {
+            stride: nxn,
+            row0: bz * n,
+            col0: bx * n,
+            len: nx_in * n + 1,
+        };
+        let rows = (rows, rows.outside(nz_in * n + 1, mesh.n_nodes));
         let steps = (self.duration / dt).ceil();
         // the recorded series: receivers and the cracks' fields
         let crack_points: usize = mesh.splits.iter().map(Vec::len).sum();
@@ -942,6 +952,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         Ok(Plan {
             mesh,
             stiffness,
+            rows,
             inv_mass,
             mass,
             dt,

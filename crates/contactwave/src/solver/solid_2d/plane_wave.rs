@@ -214,6 +214,7 @@ impl Injection {
                 weights: stiffness.weights.clone(),
                 derivative: stiffness.derivative.clone(),
                 antiplane: stiffness.antiplane,
+                regular: Vec::new(),
             };
             let conn = &mesh.conn[e * m * m..(e + 1) * m * m];
             let (x0, z0) = (mesh.x_edges[ex], mesh.z_edges[ez]);

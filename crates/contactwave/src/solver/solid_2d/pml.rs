@@ -541,7 +541,9 @@ pub(super) fn split(
         dims: (nx, nz),
         elements,
         conn,
+        regular: Vec::new(),
         ..all
-    };
+    }
+    .with_blocks();
     (interior, band)
 }

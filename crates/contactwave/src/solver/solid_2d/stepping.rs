@@ -4,13 +4,12 @@
 //! split-node update and the energy audit; a recorder keeps the receivers' velocities and
 //! the cracks' fields.
 
+use super::kernel::advance_node;
 use super::snapshot::Capture;
-use super::{CrackRecord, Energy2d, Load, Plan, Solid2dOutput, CHUNK};
+use super::{CrackRecord, Energy2d, Load, Plan, Solid2dOutput};
 use crate::error::{Error, Result};
 use crate::law::{NormalPart, TangentialPart};
 use crate::solver::stepping::{self, Recorder, Schedule, Scheme};
-use multiversion::multiversion;
-use rayon::prelude::*;
 
 /// Steps between two interruption checks and progress reports of a 2D run (a step of a
 /// large mesh takes milliseconds: Ctrl-C is answered within a fraction of a second).
@@ -114,31 +113,44 @@ impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
         let p = &mut *self.plan;
         let (c, dt) = (p.components, p.dt);
         let (u, v, f) = (&mut self.u, &mut self.v, &mut self.f);
-        // (`f` is zero here: cleared by the last step's node-wise update, or new)
-        p.stiffness.accumulate(u, f);
+        // the forces of level n other than the elements' (`f` is zero here: cleared by
+        // the last step's node-wise update, or new): sources, plane waves, the absorbing
+        // layers' forces on their inner nodes
         for l in &p.loads {
             f[l.index] += p.load_value(l, t);
         }
         for pw in &mut p.plane_waves {
             pw.add_forces(t, f);
         }
-        // the absorbing layers' forces of level n on their nodes
         p.band
             .forces(&p.stiffness.weights, &p.stiffness.derivative, v, f);
-        // the predicted velocities and displacements of the new level, without the
-        // cracks' tractions (node-wise: parallel and deterministic); the forces are
-        // cleared as they are read (the next step's kernel accumulates into them)
-        u.par_chunks_mut(CHUNK * c)
-            .zip(v.par_chunks_mut(CHUNK * c))
-            .zip(f.par_chunks_mut(CHUNK * c))
-            .zip(p.inv_mass.par_chunks(CHUNK))
-            .for_each(|(((u, v), f), im)| {
-                if c == 2 {
-                    advance::<2>(u, v, f, im, dt);
-                } else {
-                    advance::<1>(u, v, f, im, dt);
-                }
-            });
+        // the elements' forces, and the predicted velocities and displacements of the new
+        // level without the cracks' tractions: the kernel's node rows as it completes them
+        // (parallel and deterministic), then the nodes outside them; the forces are cleared
+        // as they are read (the next step accumulates into them)
+        let (rows, outside) = &p.rows;
+        p.stiffness.step(u, v, f, &p.inv_mass, dt, *rows);
+        for &g in outside {
+            let (g, im) = (g as usize, p.inv_mass[g as usize]);
+            let span = c * g..c * (g + 1);
+            if c == 2 {
+                advance_node::<2>(
+                    &mut u[span.clone()],
+                    &mut v[span.clone()],
+                    &mut f[span],
+                    im,
+                    dt,
+                );
+            } else {
+                advance_node::<1>(
+                    &mut u[span.clone()],
+                    &mut v[span.clone()],
+                    &mut f[span],
+                    im,
+                    dt,
+                );
+            }
+        }
         // the absorbing layers: their nodes' split velocities, the flux into them, and
         // their stresses of level n + 1
         self.absorbed += p.band.nodes(u, v, &p.inv_mass, dt);
@@ -172,25 +184,6 @@ impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
     }
 
     fn advance(&mut self) {}
-}
-
-/// The node-wise update of one chunk of `C` components per node: `v += dt f / m`,
-/// `u += dt v`, then `f = 0`. Compiled for AVX-512 and AVX2 where the CPU has them (the
-/// same operations: the same bits).
-#[multiversion(targets("x86_64+avx512f+avx2+avx", "x86_64+avx2+avx"))]
-fn advance<const C: usize>(u: &mut [f64], v: &mut [f64], f: &mut [f64], im: &[f64], dt: f64) {
-    for (((un, vn), fnode), im) in u
-        .chunks_exact_mut(C)
-        .zip(v.chunks_exact_mut(C))
-        .zip(f.chunks_exact_mut(C))
-        .zip(im)
-    {
-        for k in 0..C {
-            vn[k] += dt * im * fnode[k];
-            un[k] += dt * vn[k];
-            fnode[k] = 0.0;
-        }
-    }
 }
 
 /// What a 2D run keeps: the receivers' velocities at every half level and the cracks'
@@ -288,7 +281,7 @@ impl<L: NormalPart + TangentialPart> Recorder<Run2d<'_, L>> for Records {
             }
         }
         self.snapshots.take(n, n as f64 * p.dt + 0.5 * p.dt, &s.v);
-        if n % self.crack_every == 0 || n + 1 == self.n_t {
+        if n.is_multiple_of(self.crack_every) || n + 1 == self.n_t {
             for (cr, out) in p.cracks.iter().zip(&mut self.cracks) {
                 out.time.push(t);
                 for (st, law) in cr.state.iter().zip(&cr.law) {
