@@ -207,6 +207,24 @@ fn psv_block<const M: usize, const L: usize>(
     r.div.apply_rows::<L, true>(&dzz, gz);
 }
 
+/// A block's lane arrays as [`simd::Block`] (`M` = 5 and `L` = 8, checked).
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+#[inline(always)]
+fn block<const M: usize, const L: usize>(x: &[[[f64; L]; M]; M]) -> &simd::Block {
+    assert!(M == simd::P && L == simd::W);
+    // SAFETY: the same type (asserted sizes)
+    unsafe { &*(x as *const [[[f64; L]; M]; M] as *const simd::Block) }
+}
+
+/// [`block`], mutable.
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+#[inline(always)]
+fn block_mut<const M: usize, const L: usize>(x: &mut [[[f64; L]; M]; M]) -> &mut simd::Block {
+    assert!(M == simd::P && L == simd::W);
+    // SAFETY: the same type (asserted sizes)
+    unsafe { &mut *(x as *mut [[[f64; L]; M]; M] as *mut simd::Block) }
+}
+
 /// The vector extensions of the CPU the kernel runs on.
 #[derive(Clone, Copy)]
 struct Cpu {
@@ -564,8 +582,11 @@ impl Stiffness {
                     }
                 }
             }
+            #[cfg(target_arch = "x86_64")]
             if regular {
-                self.gather_regular::<M, LANES>(e0, u, &mut ux, &mut uz);
+                let rows = self.block_rows(e0);
+                // SAFETY: the caller runs on AVX-512F (`wide`); the block is regular
+                unsafe { simd::gather_block(u, rows, block_mut(&mut ux), block_mut(&mut uz)) };
             }
             let par = Params {
                 sx,
@@ -578,25 +599,25 @@ impl Stiffness {
             };
             #[cfg(target_arch = "x86_64")]
             if wide {
-                // SAFETY: the caller runs on AVX-512F; M = 5 and LANES = 8 (`wide`), so
-                // the lane arrays are [[[f64; 8]; 5]; 5]
+                assert!(M == simd::P && LANES == simd::W);
+                // SAFETY: the caller runs on AVX-512F (`wide`); M = 5 and LANES = 8
+                // (asserted), so the rule and the constants are those of `simd`
                 unsafe {
-                    simd::psv_block(
-                        &*(r as *const Rule<M> as *const Rule<5>),
-                        &*(&ux as *const _ as *const simd::Block),
-                        &*(&uz as *const _ as *const simd::Block),
-                        &*(&par as *const Params<LANES> as *const Params<8>),
-                        &mut *(&mut gx as *mut _ as *mut simd::Block),
-                        &mut *(&mut gz as *mut _ as *mut simd::Block),
-                    );
+                    let r = &*(r as *const Rule<M> as *const Rule<{ simd::P }>);
+                    let par = &*(&par as *const Params<LANES> as *const Params<{ simd::W }>);
+                    let (gx, gz) = (block_mut(&mut gx), block_mut(&mut gz));
+                    simd::psv_block(r, block(&ux), block(&uz), par, gx, gz);
                 }
             }
             if !wide {
                 psv_block::<M, LANES>(r, &ux, &uz, &par, &mut gx, &mut gz);
             }
             // scatter element by element, left to right (the order of every run)
+            #[cfg(target_arch = "x86_64")]
             if regular {
-                self.scatter_regular::<M, LANES>(e0, out, &gx, &gz);
+                let rows = self.block_rows(e0);
+                // SAFETY: as for the gather
+                unsafe { simd::scatter_block(out, rows, block(&gx), block(&gz)) };
                 ex0 += LANES;
                 continue;
             }
@@ -614,64 +635,13 @@ impl Stiffness {
         }
     }
 
-    /// The first node of node row `b` of the regular block starting at element `e0`: its
-    /// first node plus `b` node rows (the stride of the map's regular pattern).
+    /// The first node of the regular block starting at element `e0` and the node stride
+    /// between its node rows (the map's regular pattern).
     #[inline(always)]
-    fn block_row(&self, e0: usize, b: usize) -> usize {
+    fn block_rows(&self, e0: usize) -> (usize, usize) {
         let m = self.order + 1;
         let (first, second) = (self.conn[e0 * m * m], self.conn[e0 * m * m + m]);
-        first as usize + b * (second - first) as usize
-    }
-
-    /// The gather of a regular block starting at element `e0` (`M` = 5, `LANES` = 8, the
-    /// caller compiled for AVX-512F: see `wide` in [`Stiffness::row_psv`]).
-    #[inline(always)]
-    fn gather_regular<const M: usize, const LANES: usize>(
-        &self,
-        e0: usize,
-        u: &[f64],
-        ux: &mut [[[f64; LANES]; M]; M],
-        uz: &mut [[[f64; LANES]; M]; M],
-    ) {
-        #[cfg(target_arch = "x86_64")]
-        for b in 0..M {
-            let node = self.block_row(e0, b);
-            assert!(2 * node + 66 <= u.len() && M == simd::P && LANES == simd::W);
-            // SAFETY: the caller runs on AVX-512F; the block's 33 nodes of row b are
-            // consecutive nodes of the map (regular), so the 66 reads are inside `u`; the
-            // lane arrays are [[f64; 8]; 5] (M = 5, LANES = 8, asserted)
-            unsafe {
-                let x = &mut *(ux[b].as_mut_ptr() as *mut [[f64; simd::W]; simd::P]);
-                let z = &mut *(uz[b].as_mut_ptr() as *mut [[f64; simd::W]; simd::P]);
-                simd::gather_row(u.as_ptr().add(2 * node), x, z);
-            }
-        }
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = (e0, u, ux, uz);
-    }
-
-    /// The scatter of a regular block (see [`Stiffness::gather_regular`]).
-    #[inline(always)]
-    fn scatter_regular<const M: usize, const LANES: usize>(
-        &self,
-        e0: usize,
-        out: &mut [f64],
-        gx: &[[[f64; LANES]; M]; M],
-        gz: &[[[f64; LANES]; M]; M],
-    ) {
-        #[cfg(target_arch = "x86_64")]
-        for b in 0..M {
-            let node = self.block_row(e0, b);
-            assert!(2 * node + 66 <= out.len() && M == simd::P && LANES == simd::W);
-            // SAFETY: as in the gather
-            unsafe {
-                let x = &*(gx[b].as_ptr() as *const [[f64; simd::W]; simd::P]);
-                let z = &*(gz[b].as_ptr() as *const [[f64; simd::W]; simd::P]);
-                simd::scatter_row(out.as_mut_ptr().add(2 * node), x, z);
-            }
-        }
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = (e0, out, gx, gz);
+        (first as usize, (second - first) as usize)
     }
 
     /// The antiplane forces of element row `ez`, `LANES` elements at a time.

@@ -147,6 +147,37 @@ pub(super) unsafe fn scatter_row(dst: *mut f64, x: &[[f64; W]; P], z: &[[f64; W]
     _mm512_mask_storeu_pd(p, 0b11, o);
 }
 
+/// The gather of a regular block whose first node and node-row stride are `rows`: its
+/// lane arrays `ux`, `uz` from `u` (`[x, z]` per node), row by row ([`gather_row`]).
+///
+/// # Safety
+/// The CPU must have AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+pub(super) unsafe fn gather_block(u: &[f64], rows: (usize, usize), ux: &mut Block, uz: &mut Block) {
+    for b in 0..P {
+        let node = rows.0 + b * rows.1;
+        assert!(2 * node + 66 <= u.len());
+        // SAFETY: 66 values from node (asserted)
+        unsafe { gather_row(u.as_ptr().add(2 * node), &mut ux[b], &mut uz[b]) };
+    }
+}
+
+/// The scatter of a regular block ([`gather_block`], [`scatter_row`]).
+///
+/// # Safety
+/// The CPU must have AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+pub(super) unsafe fn scatter_block(out: &mut [f64], rows: (usize, usize), gx: &Block, gz: &Block) {
+    for b in 0..P {
+        let node = rows.0 + b * rows.1;
+        assert!(2 * node + 66 <= out.len());
+        // SAFETY: 66 values from node (asserted)
+        unsafe { scatter_row(out.as_mut_ptr().add(2 * node), &gx[b], &gz[b]) };
+    }
+}
+
 /// An element block's lane arrays: `[b][a][lane]`.
 pub(super) type Block = [[[f64; W]; P]; P];
 
