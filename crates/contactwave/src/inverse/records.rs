@@ -27,18 +27,6 @@ use crate::measured::{self, Amplitudes, BandPass, Layout, RecordAnalysis, Series
 use crate::model::{Model, RunControl, Waveform, Workspace};
 use std::path::{Path, PathBuf};
 
-/// Observed keys a records identification may fit (the analysis' per-record values).
-pub const RECORD_KEYS: &[&str] = &[
-    "A1",
-    "A2",
-    "A3",
-    "A4",
-    "A5",
-    "A2_over_A1",
-    "A3_over_A1",
-    "beta_star",
-];
-
 /// `[records]` as written.
 #[derive(Debug, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -224,20 +212,6 @@ impl RecordsFile {
     }
 }
 
-/// The value of observed `key` in a record's analysis.
-pub fn record_value(r: &RecordAnalysis, key: &str) -> f64 {
-    match key {
-        "A2_over_A1" => r.a2_over_a1(),
-        "A3_over_A1" => r.a3_over_a1(),
-        "beta_star" => r.beta_star(),
-        k => k
-            .strip_prefix('A')
-            .and_then(|n| n.parse::<usize>().ok())
-            .filter(|n| (1..=5).contains(n))
-            .map_or(f64::NAN, |n| r.harmonics[n]),
-    }
-}
-
 /// The analysis floor of observed `key` (the harmonic's floor, over A1 or A1^2 for ratios).
 fn record_floor(r: &RecordAnalysis, key: &str) -> f64 {
     let a1 = r.harmonics[1];
@@ -267,14 +241,17 @@ fn observed_keys(observed: Option<&[String]>, file: &str) -> Result<Vec<String>>
         }
         Some(k) => k.to_vec(),
     };
-    if let Some(k) = keys.iter().find(|k| !RECORD_KEYS.contains(&k.as_str())) {
+    if let Some(k) = keys
+        .iter()
+        .find(|k| !measured::HARMONIC_KEYS.contains(&k.as_str()))
+    {
         return Err(Error::invalid(
             file,
             "observed",
             k,
             format!(
                 "with [records], keys of the records' analysis: {}",
-                RECORD_KEYS.join(", ")
+                measured::HARMONIC_KEYS.join(", ")
             ),
         ));
     }
@@ -326,11 +303,7 @@ impl RecordsSpec {
         let observed = keys
             .iter()
             .map(|key| {
-                let values: Vec<f64> = analysis
-                    .records
-                    .iter()
-                    .map(|r| record_value(r, key))
-                    .collect();
+                let values: Vec<f64> = analysis.records.iter().map(|r| r.value(key)).collect();
                 let sigma: Vec<f64> = analysis
                     .records
                     .iter()
@@ -436,8 +409,8 @@ impl RecordsSpec {
         };
         let a = measured::analyze(&series, &settings, model.file())?;
         let mut s = Summary::new();
-        for key in RECORD_KEYS {
-            s.set(key, record_value(&a.records[0], key));
+        for key in measured::HARMONIC_KEYS {
+            s.set(key, a.records[0].value(key));
         }
         Ok(s)
     }

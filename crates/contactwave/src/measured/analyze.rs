@@ -37,6 +37,19 @@ pub struct Settings {
     pub keep_dc: bool,
 }
 
+/// The per-record values of an analysis by name ([`RecordAnalysis::value`]): the
+/// harmonics' amplitudes, the ratios and beta*.
+pub const HARMONIC_KEYS: [&str; 8] = [
+    "A1",
+    "A2",
+    "A3",
+    "A4",
+    "A5",
+    "A2_over_A1",
+    "A3_over_A1",
+    "beta_star",
+];
+
 /// The analysis of one record.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RecordAnalysis {
@@ -59,6 +72,21 @@ pub struct RecordAnalysis {
 }
 
 impl RecordAnalysis {
+    /// The value of one of [`HARMONIC_KEYS`] (m/s or the signal's unit; ratios
+    /// dimensionless, beta* in 1/(signal unit)); NaN for another key.
+    pub fn value(&self, key: &str) -> f64 {
+        match key {
+            "A2_over_A1" => self.a2_over_a1(),
+            "A3_over_A1" => self.a3_over_a1(),
+            "beta_star" => self.beta_star(),
+            k => k
+                .strip_prefix('A')
+                .and_then(|n| n.parse::<usize>().ok())
+                .filter(|n| (1..=5).contains(n))
+                .map_or(f64::NAN, |n| self.harmonics[n]),
+        }
+    }
+
     /// `A2 / A1`.
     pub fn a2_over_a1(&self) -> f64 {
         self.harmonics[2] / self.harmonics[1]

@@ -6,7 +6,7 @@
 //! marked) and `fit.svg` (A2 against A1^2 with the fit, for a series).
 
 use crate::error::Result;
-use crate::measured::{Analysis, Series};
+use crate::measured::{Analysis, Series, HARMONIC_KEYS};
 use crate::render::{csv_columns, OutputFile};
 use serde_json::{json, Map, Value};
 
@@ -21,16 +21,14 @@ fn num(v: f64) -> Value {
 /// The keys of one record in `summary.json` (and the columns of `records.csv`): `A1` ...
 /// `A5`, `A2_over_A1`, `A3_over_A1`, `beta_star`, `A2_floor` ... `A5_floor`,
 /// `A2_noise_floor` ..., `A2_leakage_floor` ..., `harmonic_floor_warning`, `dc_offset`.
-pub const RECORD_KEYS: [&str; 22] = [
-    "amplitude",
-    "A1",
-    "A2",
-    "A3",
-    "A4",
-    "A5",
-    "A2_over_A1",
-    "A3_over_A1",
-    "beta_star",
+pub fn record_keys() -> impl Iterator<Item = &'static str> {
+    std::iter::once("amplitude")
+        .chain(HARMONIC_KEYS)
+        .chain(FLOOR_KEYS)
+}
+
+/// The floors' keys of [`record_keys`] (and the warning flag).
+const FLOOR_KEYS: [&str; 13] = [
     "A2_floor",
     "A3_floor",
     "A4_floor",
@@ -48,8 +46,7 @@ pub const RECORD_KEYS: [&str; 22] = [
 
 fn record_values(r: &crate::measured::RecordAnalysis) -> Vec<f64> {
     let mut v = vec![r.amplitude.unwrap_or(f64::NAN)];
-    v.extend_from_slice(&r.harmonics[1..6]);
-    v.extend([r.a2_over_a1(), r.a3_over_a1(), r.beta_star()]);
+    v.extend(HARMONIC_KEYS.map(|k| r.value(k)));
     v.extend((2..=5).map(|n| r.floor(n)));
     v.extend_from_slice(&r.noise[2..6]);
     v.extend_from_slice(&r.leakage[2..6]);
@@ -81,8 +78,8 @@ pub fn summary(a: &Analysis, inputs: &[String]) -> Value {
         .map(|r| {
             let mut m = Map::new();
             m.insert("name".into(), json!(r.name));
-            for (k, v) in RECORD_KEYS.iter().zip(record_values(r)) {
-                m.insert((*k).into(), num(v));
+            for (k, v) in record_keys().zip(record_values(r)) {
+                m.insert(k.into(), num(v));
             }
             m.insert("dc_offset".into(), num(r.dc));
             if let Some(k) = r.linear_scale {
@@ -188,7 +185,7 @@ pub fn files(a: &Analysis, series: &Series, inputs: &[String]) -> Result<Vec<Out
     out.push(OutputFile::new("summary.json", text));
     // records.csv: name, then the keys
     let mut csv = String::from("name,");
-    csv.push_str(&RECORD_KEYS.join(","));
+    csv.push_str(&record_keys().collect::<Vec<_>>().join(","));
     csv.push('\n');
     let mut buf = zmij::Buffer::new();
     for r in &a.records {
