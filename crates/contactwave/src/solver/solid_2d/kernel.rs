@@ -88,7 +88,7 @@ impl NodeRows {
 /// The node-wise update of one node `i` of `C` components: `v += dt f / m`, `u += dt v`,
 /// then `f = 0` (velocities at half levels, eq. 15.2).
 #[inline(always)]
-pub(super) fn advance_node<const C: usize>(
+fn advance_node<const C: usize>(
     u: &mut [f64],
     v: &mut [f64],
     f: &mut [f64],
@@ -105,13 +105,7 @@ pub(super) fn advance_node<const C: usize>(
 /// [`advance_node`] over consecutive nodes (`inv_mass` one per node), compiled for
 /// AVX-512 and AVX2 where the CPU has them (the same operations: the same bits).
 #[multiversion(targets("x86_64+avx512f+avx2+avx", "x86_64+avx2+avx"))]
-pub(super) fn advance<const C: usize>(
-    u: &mut [f64],
-    v: &mut [f64],
-    f: &mut [f64],
-    inv_mass: &[f64],
-    dt: f64,
-) {
+fn advance<const C: usize>(u: &mut [f64], v: &mut [f64], f: &mut [f64], inv_mass: &[f64], dt: f64) {
     for (((un, vn), fnode), &im) in u
         .chunks_exact_mut(C)
         .zip(v.chunks_exact_mut(C))
@@ -119,6 +113,25 @@ pub(super) fn advance<const C: usize>(
         .zip(inv_mass)
     {
         advance_node::<C>(un, vn, fnode, im, dt);
+    }
+}
+
+/// [`advance`] over the nodes `nodes` of arrays of `comps` components per node (1 or 2).
+pub(super) fn advance_nodes(
+    comps: usize,
+    u: &mut [f64],
+    v: &mut [f64],
+    f: &mut [f64],
+    inv_mass: &[f64],
+    nodes: std::ops::Range<usize>,
+    dt: f64,
+) {
+    let span = comps * nodes.start..comps * nodes.end;
+    let (u, v, f) = (&mut u[span.clone()], &mut v[span.clone()], &mut f[span]);
+    if comps == 2 {
+        advance::<2>(u, v, f, &inv_mass[nodes], dt);
+    } else {
+        advance::<1>(u, v, f, &inv_mass[nodes], dt);
     }
 }
 
@@ -370,9 +383,9 @@ impl Stiffness {
             n - 1
         };
         let r = a.rows;
+        let comps = if self.antiplane { 1 } else { 2 };
         for b in top..=bottom {
             let first = (r.row0 + ez * n + b) * r.stride + r.col0;
-            let im = &a.inv_mass[first..first + r.len];
             // SAFETY: the node rows advanced here are read and written by this element row
             // alone in this pass (`step`), and lie inside the arrays (asserted in `step`)
             let (u, v) = unsafe {
@@ -381,25 +394,7 @@ impl Stiffness {
                     std::slice::from_raw_parts_mut(a.v.get(), a.len),
                 )
             };
-            if self.antiplane {
-                let span = first..first + r.len;
-                advance::<1>(
-                    &mut u[span.clone()],
-                    &mut v[span.clone()],
-                    &mut out[span],
-                    im,
-                    a.dt,
-                );
-            } else {
-                let span = 2 * first..2 * (first + r.len);
-                advance::<2>(
-                    &mut u[span.clone()],
-                    &mut v[span.clone()],
-                    &mut out[span],
-                    im,
-                    a.dt,
-                );
-            }
+            advance_nodes(comps, u, v, out, a.inv_mass, first..first + r.len, a.dt);
         }
     }
 

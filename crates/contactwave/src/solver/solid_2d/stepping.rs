@@ -4,7 +4,7 @@
 //! split-node update and the energy audit; a recorder keeps the receivers' velocities and
 //! the cracks' fields.
 
-use super::kernel::advance_node;
+use super::kernel::advance_nodes;
 use super::snapshot::Capture;
 use super::{CrackRecord, Energy2d, Load, Plan, Solid2dOutput};
 use crate::error::{Error, Result};
@@ -131,25 +131,8 @@ impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
         let (rows, outside) = &p.rows;
         p.stiffness.step(u, v, f, &p.inv_mass, dt, *rows);
         for &g in outside {
-            let (g, im) = (g as usize, p.inv_mass[g as usize]);
-            let span = c * g..c * (g + 1);
-            if c == 2 {
-                advance_node::<2>(
-                    &mut u[span.clone()],
-                    &mut v[span.clone()],
-                    &mut f[span],
-                    im,
-                    dt,
-                );
-            } else {
-                advance_node::<1>(
-                    &mut u[span.clone()],
-                    &mut v[span.clone()],
-                    &mut f[span],
-                    im,
-                    dt,
-                );
-            }
+            let g = g as usize;
+            advance_nodes(c, u, v, f, &p.inv_mass, g..g + 1, dt);
         }
         // the absorbing layers: their nodes' split velocities, the flux into them, and
         // their stresses of level n + 1
