@@ -6,6 +6,7 @@
 pub mod oblique;
 pub mod shear;
 pub mod solid_2d;
+pub mod solid_2d_dispersion;
 pub mod solid_2d_plane;
 pub mod solid_2d_pml;
 
@@ -463,6 +464,7 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
     v.extend(shear::run_all()?);
     v.extend(oblique::run_all()?);
     v.extend(solid_2d::run_all()?);
+    v.extend(solid_2d_dispersion::run_all()?);
     v.extend(solid_2d_plane::run_all()?);
     v.extend(solid_2d_pml::run_all()?);
     Ok(v)

@@ -14,6 +14,7 @@ use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 use crate::material::Material;
 use crate::scenario::spec::IncidentSpec;
 use crate::scenario::BuildCache;
+use crate::solver::solid_2d::dispersion::element_size_for;
 use crate::solver::solid_2d::{
     pml, Crack, CrackProfile, Elastic, Incidence, Layer, Pml, Side, Solid2d, Source, SourceKind,
     WaveType,
@@ -26,10 +27,12 @@ use std::sync::Arc;
 
 /// Default GLL order of the elements.
 pub const DEFAULT_ORDER: usize = 4;
-/// Default elements per S wavelength at the highest analysed harmonic (`model.harmonic`
-/// times the first source's frequency): with order 4 and the default time step, P, SV and
-/// SH waves there are within 1e-3 of their phase velocity (measured: docs/model.md).
-pub const ELEMENTS_PER_WAVELENGTH: f64 = 2.0;
+/// The phase velocity error the default element size allows at the highest analysed
+/// harmonic (`model.harmonic` times the first source's frequency), for every wave of every
+/// layer in every direction, with the time step bound and any smaller step: the largest
+/// elements within it by the Bloch analysis of the scheme (model.md eq. 15.6a; order 4 in
+/// aluminium: 1.625 elements per S wavelength).
+pub const DISPERSION_BUDGET: f64 = 9e-4;
 /// Default bound of `omega dt` at the highest analysed harmonic: the central differences'
 /// phase error `(omega dt)^2 / 24` stays below 6e-4.
 pub const PHASE_STEP: f64 = 0.12;
@@ -94,8 +97,8 @@ pub struct ModelSpec {
     pub duration: f64,
     /// GLL order of the elements, 2 to 8 (default 4).
     pub order: Option<usize>,
-    /// Largest element size, m (default: the S wavelength at the highest analysed
-    /// harmonic over [`ELEMENTS_PER_WAVELENGTH`]).
+    /// Largest element size, m (default: the largest that keeps the phase velocity
+    /// error at the highest analysed harmonic within [`DISPERSION_BUDGET`]).
     pub element_size: Option<f64>,
     /// Highest analysed harmonic of the first source's frequency (default 3): sets the
     /// default element size and time step.
@@ -603,13 +606,24 @@ impl Solid2dScenario {
             .map(|l| l.material.s_speed)
             .fold(f64::INFINITY, f64::min);
         let f_max = harmonic * f0;
-        let element_size = match m.element_size {
-            Some(h) => positive(file, "model.element_size", h)?,
-            None => cs_min / f_max / ELEMENTS_PER_WAVELENGTH,
-        };
         let max_time_step = match m.time_step {
             Some(dt) => positive(file, "model.time_step", dt)?,
             None => PHASE_STEP / (2.0 * std::f64::consts::PI * f_max),
+        };
+        let element_size = match m.element_size {
+            Some(h) => positive(file, "model.element_size", h)?,
+            None => {
+                let materials: Vec<Elastic> = layers.iter().map(|l| l.material).collect();
+                let order = m.order.unwrap_or(DEFAULT_ORDER);
+                let size = |dt: f64| {
+                    element_size_for(order, dt, &materials, wave, f_max, DISPERSION_BUDGET)
+                };
+                // a step too long for the budget: the elements' share alone; then 16
+                // points per S wavelength
+                size(max_time_step)
+                    .or_else(|| size(0.0))
+                    .unwrap_or(cs_min / f_max * order as f64 / 16.0)
+            }
         };
         let depth = bottom;
         let mut cracks = Vec::new();

@@ -25,6 +25,7 @@
 //! iteration); the crack's update is implicit and does not reduce the step.
 
 pub mod crack;
+pub mod dispersion;
 mod estimate;
 pub mod kernel;
 mod lines;

@@ -25,9 +25,10 @@ const ALUMINIUM: Elastic = Elastic {
     s_speed: 3130.0,
 };
 
-/// The default element size at `f0` (two elements per S wavelength at 3 f0), m.
+/// The scenarios' default element size for a burst of `f0` (resolved for 3 f0), m.
 fn default_h(f0: f64) -> f64 {
-    ALUMINIUM.s_speed / (3.0 * f0) / 2.0
+    super::solid_2d_dispersion::default_element_size_at(&ALUMINIUM, 3.0 * f0)
+        .unwrap_or(ALUMINIUM.s_speed / (3.0 * f0) / 2.0)
 }
 
 /// A rectangle `width` x `depth` of aluminium, every side absorbing (default layers), a
