@@ -94,6 +94,24 @@ fn a_scenario_runs_closes_its_energy_and_writes_its_files() {
 
 /// With absorbing sides and bottom (perfectly matched layers outside the plate) the run
 /// closes its audit at round-off, the flux into the layers counted.
+/// The summary states the run's dispersion at its highest analysed harmonic (model.md
+/// section 15.4): within the budget at the default element size, and the larger error of
+/// a coarser mesh (`SMALL`'s 0.1 mm elements are one per S wavelength at 30 MHz).
+#[test]
+fn the_summary_states_the_phase_error_of_the_mesh() {
+    let short = SMALL.replace("duration = 0.6e-6", "duration = 0.02e-6");
+    let error = |text: &str| {
+        let t = model::from_toml_str(text, "small.toml").unwrap();
+        let outcome = t.base().unwrap().run(&RunControl::default()).unwrap();
+        outcome.summary().get("phase_error_max").unwrap()
+    };
+    let default = error(&short.replace("element_size = 0.1e-3\n", ""));
+    let coarse = error(&short);
+    eprintln!("largest phase error: default {default:e}, 0.1 mm elements {coarse:e}");
+    assert!(default.abs() <= 9e-4 && default != 0.0, "{default:e}");
+    assert!(coarse.is_nan() || coarse.abs() > 1e-3, "{coarse:e}");
+}
+
 #[test]
 fn absorbing_sides_close_the_energy_with_the_flux_into_the_layers() {
     let text = SMALL.replace(

@@ -27,6 +27,8 @@ use std::sync::Arc;
 
 /// Default GLL order of the elements.
 pub const DEFAULT_ORDER: usize = 4;
+/// Default highest analysed harmonic (`model.harmonic`) of the first source's frequency.
+pub const DEFAULT_HARMONIC: f64 = 3.0;
 /// The phase velocity error the default element size allows at the highest analysed
 /// harmonic (`model.harmonic` times the first source's frequency), for every wave of every
 /// layer in every direction, with the time step bound and any smaller step: the largest
@@ -599,7 +601,7 @@ impl Solid2dScenario {
             };
             sources.push(Source { kind, signal });
         }
-        let harmonic = m.harmonic.unwrap_or(3.0);
+        let harmonic = m.harmonic.unwrap_or(DEFAULT_HARMONIC);
         positive(file, "model.harmonic", harmonic)?;
         let cs_min = layers
             .iter()
