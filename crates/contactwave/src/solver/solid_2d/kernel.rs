@@ -220,22 +220,22 @@ fn psv_block<const M: usize, const L: usize>(
     r.div.apply_rows::<L, true>(&dzz, gz);
 }
 
-/// A block's lane arrays as [`simd::Block`] (`M` = 5 and `L` = 8, checked).
+/// A block's lane arrays as [`simd::Block`] (`L` = 8, checked).
 #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
 #[inline(always)]
-fn block<const M: usize, const L: usize>(x: &[[[f64; L]; M]; M]) -> &simd::Block {
-    assert!(M == simd::P && L == simd::W);
+fn block<const M: usize, const L: usize>(x: &[[[f64; L]; M]; M]) -> &simd::Block<M> {
+    assert!(L == simd::W);
     // SAFETY: the same type (asserted sizes)
-    unsafe { &*(x as *const [[[f64; L]; M]; M] as *const simd::Block) }
+    unsafe { &*(x as *const [[[f64; L]; M]; M] as *const simd::Block<M>) }
 }
 
 /// [`block`], mutable.
 #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
 #[inline(always)]
-fn block_mut<const M: usize, const L: usize>(x: &mut [[[f64; L]; M]; M]) -> &mut simd::Block {
-    assert!(M == simd::P && L == simd::W);
+fn block_mut<const M: usize, const L: usize>(x: &mut [[[f64; L]; M]; M]) -> &mut simd::Block<M> {
+    assert!(L == simd::W);
     // SAFETY: the same type (asserted sizes)
-    unsafe { &mut *(x as *mut [[[f64; L]; M]; M] as *mut simd::Block) }
+    unsafe { &mut *(x as *mut [[[f64; L]; M]; M] as *mut simd::Block<M>) }
 }
 
 /// The vector extensions of the CPU the kernel runs on.
@@ -261,19 +261,19 @@ impl Cpu {
 }
 
 impl Stiffness {
-    /// The operator with its regular blocks marked (plane strain of order 4: the blocks
-    /// whose gather and scatter the AVX-512 kernel does by rows).
+    /// The operator with its regular blocks marked (plane strain: the blocks whose gather
+    /// and scatter the AVX-512 kernel does by rows).
     pub fn with_blocks(mut self) -> Self {
         let (nex, nez) = self.dims;
         let (m, w) = (self.order + 1, simd::W);
         let per_row = nex.div_ceil(w);
         self.regular = vec![false; per_row * nez];
-        if self.antiplane || m != simd::P || nex < w {
+        if self.antiplane || m > simd::MAX_POINTS || nex < w {
             return self;
         }
         for ez in 0..nez {
             let c = &self.conn[ez * nex * m * m..];
-            let offsets = simd::block_offsets(c[m].wrapping_sub(c[0]));
+            let offsets = simd::block_offsets(m, c[m].wrapping_sub(c[0]));
             for blk in 0..nex / w {
                 let e0 = ez * nex + blk * w;
                 self.regular[ez * per_row + blk] =
@@ -514,8 +514,8 @@ impl Stiffness {
     }
 
     /// The forces of element row `ez`, `LANES` elements at a time; `avx512`: the caller is
-    /// compiled for AVX-512F, whose gather and scatter ([`super::simd`]) take the regular
-    /// blocks of order-4 elements.
+    /// compiled for AVX-512F, whose element forces ([`super::simd`]) take every block and
+    /// whose gather and scatter take the regular ones.
     #[inline(always)]
     fn row_psv<const M: usize, const LANES: usize>(
         &self,
@@ -530,7 +530,7 @@ impl Stiffness {
         // the regular blocks of this row (marked by `with_blocks`)
         let per_row = nex.div_ceil(simd::W);
         #[cfg(target_arch = "x86_64")]
-        let wide = avx512 && M == simd::P && LANES == simd::W;
+        let wide = avx512 && M <= simd::MAX_POINTS && LANES == simd::W;
         #[cfg(not(target_arch = "x86_64"))]
         let wide = false && avx512;
         let marks = match self.regular.get(ez * per_row..(ez + 1) * per_row) {
@@ -581,7 +581,7 @@ impl Stiffness {
             if regular {
                 let rows = self.block_rows(e0);
                 // SAFETY: the caller runs on AVX-512F (`wide`); the block is regular
-                unsafe { simd::gather_block(u, rows, block_mut(&mut ux), block_mut(&mut uz)) };
+                unsafe { simd::gather_block::<M>(u, rows, block_mut(&mut ux), block_mut(&mut uz)) };
             }
             let par = Params {
                 sx,
@@ -594,14 +594,13 @@ impl Stiffness {
             };
             #[cfg(target_arch = "x86_64")]
             if wide {
-                assert!(M == simd::P && LANES == simd::W);
-                // SAFETY: the caller runs on AVX-512F (`wide`); M = 5 and LANES = 8
-                // (asserted), so the rule and the constants are those of `simd`
+                assert!(LANES == simd::W);
+                // SAFETY: the caller runs on AVX-512F (`wide`); LANES = 8 (asserted), so
+                // the constants are those of `simd`
                 unsafe {
-                    let r = &*(r as *const Rule<M> as *const Rule<{ simd::P }>);
                     let par = &*(&par as *const Params<LANES> as *const Params<{ simd::W }>);
                     let (gx, gz) = (block_mut(&mut gx), block_mut(&mut gz));
-                    simd::psv_block(r, block(&ux), block(&uz), par, gx, gz);
+                    simd::psv_block::<M>(r, block(&ux), block(&uz), par, gx, gz);
                 }
             }
             if !wide {
@@ -612,7 +611,7 @@ impl Stiffness {
             if regular {
                 let rows = self.block_rows(e0);
                 // SAFETY: as for the gather
-                unsafe { simd::scatter_block(out, rows, block(&gx), block(&gz)) };
+                unsafe { simd::scatter_block::<M>(out, rows, block(&gx), block(&gz)) };
                 ex0 += LANES;
                 continue;
             }

@@ -1,13 +1,15 @@
-//! The AVX-512 gather and scatter of the bulk kernel ([`super::kernel`]) for plane-strain
-//! elements of order 4 (five GLL points a side), eight elements at a time (one per lane),
-//! where the eight elements of a row block sit on the node grid without split nodes or a
-//! periodic wrap ("regular"): each node row of the block is then 33 consecutive nodes
-//! (66 doubles, `[x, z]` interleaved), so that eight 8-double loads and an 8 x 8 transpose
-//! give the lane vectors `u_x(a)`, `u_z(a)` of local columns `a = 0..3`, and one more
-//! masked load and a lane shift give column 4 (the next element's column 0). The scatter
-//! is the same backwards, subtracting in the order of the element-by-element scatter
-//! (left to right: a node shared by two elements of the row gets the left one's
-//! contribution first), so the bits are those of the scalar gather and scatter.
+//! The AVX-512 gather, scatter and element forces of the bulk kernel ([`super::kernel`])
+//! for plane-strain elements of any order (`M` GLL points a side), eight elements at a
+//! time (one per lane), where the eight elements of a row block sit on the node grid
+//! without split nodes or a periodic wrap ("regular"): each node row of the block is then
+//! `8 (M - 1) + 1` consecutive nodes (`[x, z]` interleaved), lane `l` starting at node
+//! `(M - 1) l`. Its first `M - 1` nodes (`2 (M - 1)` doubles) come in chunks of eight
+//! doubles, one (masked) load per lane and an 8 x 8 transpose per chunk giving the lane
+//! vectors `u_x(a)`, `u_z(a)` of local columns `a = 0..M-2`; a lane shift and one more
+//! masked load give column `M - 1` (the next element's column 0). The scatter is the same
+//! backwards, subtracting in the order of the element-by-element scatter (left to right:
+//! a node shared by two elements of the row gets the left one's contribution first), so
+//! the bits are those of the scalar gather and scatter.
 
 use super::lines::{EvenOdd, Params, Rule};
 #[cfg(target_arch = "x86_64")]
@@ -17,29 +19,27 @@ use std::mem::MaybeUninit;
 
 /// Elements per block (AVX-512 lanes).
 pub(super) const W: usize = 8;
-/// GLL points per element side (order 4).
-pub(super) const P: usize = 5;
 
-/// The offsets `b R + 4 l + a` of the nodes of a regular block from its first node, in
-/// the order of the element-to-node map (element `l`, row `b`, column `a`), for a node
-/// row stride `r`.
-pub(super) fn block_offsets(r: u32) -> [u32; W * P * P] {
-    let mut o = [0u32; W * P * P];
+/// The offsets `b R + (M - 1) l + a` of the nodes of a regular block from its first node,
+/// in the order of the element-to-node map (element `l`, row `b`, column `a`), for a node
+/// row stride `r` and `m` GLL points a side.
+pub(super) fn block_offsets(m: usize, r: u32) -> Vec<u32> {
+    let mut o = Vec::with_capacity(W * m * m);
     for l in 0..W {
-        for b in 0..P {
-            for a in 0..P {
-                o[(l * P + b) * P + a] = (b as u32).wrapping_mul(r) + (4 * l + a) as u32;
+        for b in 0..m {
+            for a in 0..m {
+                o.push((b as u32).wrapping_mul(r) + ((m - 1) * l + a) as u32);
             }
         }
     }
     o
 }
 
-/// Whether the block's map `conn` (eight elements' `25` nodes) is `first + offsets`:
+/// Whether the block's map `conn` (eight elements' `m^2` nodes) is `first + offsets`:
 /// regular (no early exit, so that it vectorises).
-pub(super) fn is_regular(conn: &[u32], offsets: &[u32; W * P * P]) -> bool {
+pub(super) fn is_regular(conn: &[u32], offsets: &[u32]) -> bool {
     let first = conn[0];
-    conn.len() == W * P * P
+    conn.len() == offsets.len()
         && conn
             .iter()
             .zip(offsets)
@@ -48,8 +48,9 @@ pub(super) fn is_regular(conn: &[u32], offsets: &[u32; W * P * P]) -> bool {
 
 /// `columns[k][l] = rows[l][k]`.
 #[cfg(target_arch = "x86_64")]
+#[inline]
 #[target_feature(enable = "avx512f")]
-unsafe fn transpose(r: [__m512d; 8]) -> [__m512d; 8] {
+fn transpose(r: [__m512d; 8]) -> [__m512d; 8] {
     // pairs of rows: even and odd columns
     let t0 = _mm512_unpacklo_pd(r[0], r[1]);
     let t1 = _mm512_unpackhi_pd(r[0], r[1]);
@@ -83,103 +84,186 @@ unsafe fn transpose(r: [__m512d; 8]) -> [__m512d; 8] {
     ]
 }
 
-/// One node row of a regular block: the lane vectors `x[a]`, `z[a]` (`a = 0..4`) of the
-/// 33 nodes starting at double `src` (`[x, z]` interleaved).
-///
-/// # Safety
-/// The CPU must have AVX-512F; `src` must be valid for 66 reads.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-pub(super) unsafe fn gather_row(src: *const f64, x: &mut [[f64; W]; P], z: &mut [[f64; W]; P]) {
-    let rows = [0, 1, 2, 3, 4, 5, 6, 7].map(|l| _mm512_loadu_pd(src.add(8 * l)));
-    let c = transpose(rows);
-    for a in 0..4 {
-        _mm512_storeu_pd(x[a].as_mut_ptr(), c[2 * a]);
-        _mm512_storeu_pd(z[a].as_mut_ptr(), c[2 * a + 1]);
+/// The mask of the first `n` (at most 8) doubles of a chunk.
+#[inline(always)]
+const fn chunk_mask(n: usize) -> u8 {
+    if n >= 8 {
+        0xFF
+    } else {
+        ((1u16 << n) - 1) as u8
     }
-    // column 4: the next element's column 0, the last lane's from node 32
-    let last = _mm512_maskz_loadu_pd(0b11, src.add(64));
-    let shift_x = _mm512_set_epi64(8, 7, 6, 5, 4, 3, 2, 1);
-    let shift_z = _mm512_set_epi64(9, 7, 6, 5, 4, 3, 2, 1);
-    _mm512_storeu_pd(
-        x[4].as_mut_ptr(),
-        _mm512_permutex2var_pd(c[0], shift_x, last),
-    );
-    _mm512_storeu_pd(
-        z[4].as_mut_ptr(),
-        _mm512_permutex2var_pd(c[1], shift_z, last),
-    );
 }
 
-/// One node row of a regular block: subtract the lane vectors `x[a]`, `z[a]` from the 33
-/// nodes starting at double `dst`, a node shared by lanes `l - 1` (its column 4) and `l`
-/// (its column 0) taking lane `l - 1`'s first.
+/// One node row of a regular block: the lane vectors `x[a]`, `z[a]` (`a = 0..M`) of the
+/// `8 (M - 1) + 1` nodes starting at double `src` (`[x, z]` interleaved).
 ///
 /// # Safety
-/// The CPU must have AVX-512F; `dst` must be valid for 66 reads and writes.
+/// The CPU must have AVX-512F; `src` must be valid for `2 (8 (M - 1) + 1)` reads.
 #[cfg(target_arch = "x86_64")]
+#[inline]
 #[target_feature(enable = "avx512f")]
-pub(super) unsafe fn scatter_row(dst: *mut f64, x: &[[f64; W]; P], z: &[[f64; W]; P]) {
-    let rows = [0, 1, 2, 3, 4, 5, 6, 7].map(|k| {
-        let g = if k % 2 == 0 { &x[k / 2] } else { &z[k / 2] };
-        _mm512_loadu_pd(g.as_ptr())
-    });
-    let c = transpose(rows);
-    let (x4, z4) = (
-        _mm512_loadu_pd(x[4].as_ptr()),
-        _mm512_loadu_pd(z[4].as_ptr()),
-    );
-    for (l, cl) in c.iter().enumerate() {
-        let p = dst.add(8 * l);
-        let mut o = _mm512_loadu_pd(p);
-        if l > 0 {
-            // lane l - 1's column 4 into this chunk's first node, zeros elsewhere
-            let i = (l - 1) as i64;
-            let idx = _mm512_set_epi64(0, 0, 0, 0, 0, 0, 8 + i, i);
-            o = _mm512_sub_pd(o, _mm512_maskz_permutex2var_pd(0b11, x4, idx, z4));
+pub(super) unsafe fn gather_row<const M: usize>(
+    src: *const f64,
+    x: &mut [[f64; W]; M],
+    z: &mut [[f64; W]; M],
+) {
+    let d = 2 * (M - 1);
+    for c in 0..d.div_ceil(8) {
+        let mask = chunk_mask(d - 8 * c);
+        // SAFETY: lane l's chunk lies inside its 2 (M - 1) doubles (masked)
+        let rows = [0, 1, 2, 3, 4, 5, 6, 7]
+            .map(|l| unsafe { _mm512_maskz_loadu_pd(mask, src.add(d * l + 8 * c)) });
+        let t = transpose(rows);
+        for (j, tj) in t.iter().enumerate().take((d - 8 * c).min(8)) {
+            let k = 8 * c + j;
+            let dst = if k % 2 == 0 {
+                &mut x[k / 2]
+            } else {
+                &mut z[k / 2]
+            };
+            // SAFETY: eight doubles
+            unsafe { _mm512_storeu_pd(dst.as_mut_ptr(), *tj) };
         }
-        _mm512_storeu_pd(p, _mm512_sub_pd(o, *cl));
     }
-    let p = dst.add(64);
+    // column M - 1: the next element's column 0, the last lane's from node 8 (M - 1)
+    // SAFETY: the row's last node
+    let last = unsafe { _mm512_maskz_loadu_pd(0b11, src.add(8 * d)) };
+    let shift_x = _mm512_set_epi64(8, 7, 6, 5, 4, 3, 2, 1);
+    let shift_z = _mm512_set_epi64(9, 7, 6, 5, 4, 3, 2, 1);
+    // SAFETY: eight doubles each
+    unsafe {
+        let (x0, z0) = (
+            _mm512_loadu_pd(x[0].as_ptr()),
+            _mm512_loadu_pd(z[0].as_ptr()),
+        );
+        _mm512_storeu_pd(
+            x[M - 1].as_mut_ptr(),
+            _mm512_permutex2var_pd(x0, shift_x, last),
+        );
+        _mm512_storeu_pd(
+            z[M - 1].as_mut_ptr(),
+            _mm512_permutex2var_pd(z0, shift_z, last),
+        );
+    }
+}
+
+/// One node row of a regular block: subtract the lane vectors `x[a]`, `z[a]` from the
+/// `8 (M - 1) + 1` nodes starting at double `dst`, a node shared by lanes `l - 1` (its
+/// column `M - 1`) and `l` (its column 0) taking lane `l - 1`'s first.
+///
+/// # Safety
+/// The CPU must have AVX-512F; `dst` must be valid for `2 (8 (M - 1) + 1)` reads and
+/// writes.
+#[cfg(target_arch = "x86_64")]
+#[inline]
+#[target_feature(enable = "avx512f")]
+pub(super) unsafe fn scatter_row<const M: usize>(
+    dst: *mut f64,
+    x: &[[f64; W]; M],
+    z: &[[f64; W]; M],
+) {
+    let d = 2 * (M - 1);
+    let chunks = d.div_ceil(8);
+    // per chunk, per lane: the lane's doubles of the chunk (transposed columns)
+    // (at most two chunks: M <= 9)
+    let mut lanes = [[_mm512_setzero_pd(); 8]; 2];
+    for c in 0..chunks {
+        let cols = [0, 1, 2, 3, 4, 5, 6, 7].map(|j| {
+            let k = 8 * c + j;
+            if k >= d {
+                _mm512_setzero_pd()
+            } else {
+                let g = if k % 2 == 0 { &x[k / 2] } else { &z[k / 2] };
+                // SAFETY: eight doubles
+                unsafe { _mm512_loadu_pd(g.as_ptr()) }
+            }
+        });
+        lanes[c] = transpose(cols);
+    }
+    // SAFETY: eight doubles each
+    let (xl, zl) = unsafe {
+        (
+            _mm512_loadu_pd(x[M - 1].as_ptr()),
+            _mm512_loadu_pd(z[M - 1].as_ptr()),
+        )
+    };
+    for l in 0..W {
+        for c in 0..chunks {
+            let mask = chunk_mask(d - 8 * c);
+            // SAFETY: lane l's chunk lies inside its 2 (M - 1) doubles (masked)
+            let p = unsafe { dst.add(d * l + 8 * c) };
+            let mut o = unsafe { _mm512_maskz_loadu_pd(mask, p) };
+            if c == 0 && l > 0 {
+                // lane l - 1's column M - 1 into this lane's first node, zeros elsewhere
+                let i = (l - 1) as i64;
+                let idx = _mm512_set_epi64(0, 0, 0, 0, 0, 0, 8 + i, i);
+                o = _mm512_sub_pd(o, _mm512_maskz_permutex2var_pd(0b11, xl, idx, zl));
+            }
+            // SAFETY: as the load
+            unsafe { _mm512_mask_storeu_pd(p, mask, _mm512_sub_pd(o, lanes[c][l])) };
+        }
+    }
+    // SAFETY: the row's last node
+    let p = unsafe { dst.add(8 * d) };
     let idx = _mm512_set_epi64(0, 0, 0, 0, 0, 0, 15, 7);
-    let o = _mm512_maskz_loadu_pd(0b11, p);
-    let o = _mm512_sub_pd(o, _mm512_maskz_permutex2var_pd(0b11, x4, idx, z4));
-    _mm512_mask_storeu_pd(p, 0b11, o);
+    let o = unsafe { _mm512_maskz_loadu_pd(0b11, p) };
+    let o = _mm512_sub_pd(o, _mm512_maskz_permutex2var_pd(0b11, xl, idx, zl));
+    unsafe { _mm512_mask_storeu_pd(p, 0b11, o) };
+}
+
+/// The largest number of GLL points a side the row gather and scatter take (two chunks).
+pub(super) const MAX_POINTS: usize = 9;
+
+/// The nodes of one node row of a regular block.
+const fn row_nodes(m: usize) -> usize {
+    W * (m - 1) + 1
 }
 
 /// The gather of a regular block whose first node and node-row stride are `rows`: its
 /// lane arrays `ux`, `uz` from `u` (`[x, z]` per node), row by row ([`gather_row`]).
 ///
 /// # Safety
-/// The CPU must have AVX-512F.
+/// The CPU must have AVX-512F; `M <= MAX_POINTS`.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
-pub(super) unsafe fn gather_block(u: &[f64], rows: (usize, usize), ux: &mut Block, uz: &mut Block) {
-    for b in 0..P {
+pub(super) unsafe fn gather_block<const M: usize>(
+    u: &[f64],
+    rows: (usize, usize),
+    ux: &mut Block<M>,
+    uz: &mut Block<M>,
+) {
+    let n = 2 * row_nodes(M);
+    for b in 0..M {
         let node = rows.0 + b * rows.1;
-        assert!(2 * node + 66 <= u.len());
-        // SAFETY: 66 values from node (asserted)
-        unsafe { gather_row(u.as_ptr().add(2 * node), &mut ux[b], &mut uz[b]) };
+        assert!(2 * node + n <= u.len());
+        // SAFETY: the row's values from node (asserted)
+        unsafe { gather_row::<M>(u.as_ptr().add(2 * node), &mut ux[b], &mut uz[b]) };
     }
 }
 
 /// The scatter of a regular block ([`gather_block`], [`scatter_row`]).
 ///
 /// # Safety
-/// The CPU must have AVX-512F.
+/// The CPU must have AVX-512F; `M <= MAX_POINTS`.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
-pub(super) unsafe fn scatter_block(out: &mut [f64], rows: (usize, usize), gx: &Block, gz: &Block) {
-    for b in 0..P {
+pub(super) unsafe fn scatter_block<const M: usize>(
+    out: &mut [f64],
+    rows: (usize, usize),
+    gx: &Block<M>,
+    gz: &Block<M>,
+) {
+    let n = 2 * row_nodes(M);
+    for b in 0..M {
         let node = rows.0 + b * rows.1;
-        assert!(2 * node + 66 <= out.len());
-        // SAFETY: 66 values from node (asserted)
-        unsafe { scatter_row(out.as_mut_ptr().add(2 * node), &gx[b], &gz[b]) };
+        assert!(2 * node + n <= out.len());
+        // SAFETY: the row's values from node (asserted)
+        unsafe { scatter_row::<M>(out.as_mut_ptr().add(2 * node), &gx[b], &gz[b]) };
     }
 }
 
 /// An element block's lane arrays: `[b][a][lane]`.
-pub(super) type Block = [[[f64; W]; P]; P];
+pub(super) type Block<const M: usize> = [[[f64; W]; M]; M];
 
 /// `x (op) y` on eight lanes.
 #[cfg(target_arch = "x86_64")]
@@ -207,60 +291,75 @@ fn splat(x: f64) -> __m512d {
     _mm512_set1_pd(x)
 }
 
-/// [`EvenOdd::apply`] of order 4 on registers: the same operations in the same order.
+/// [`EvenOdd::apply`] on registers: the same operations in the same order.
 #[cfg(target_arch = "x86_64")]
 #[inline]
 #[target_feature(enable = "avx512f")]
-fn even_odd(c: &EvenOdd<P>, x: [__m512d; P]) -> [__m512d; P] {
-    let (s0, o0) = (add(x[0], x[4]), sub(x[0], x[4]));
-    let (s1, o1) = (add(x[1], x[3]), sub(x[1], x[3]));
-    let mut y = [x[2]; P];
-    for a in 0..2 {
-        let mut e = mul(splat(c.p[a][0]), s0);
-        let mut od = mul(splat(c.q[a][0]), o0);
-        e = add(e, mul(splat(c.p[a][1]), s1));
-        od = add(od, mul(splat(c.q[a][1]), o1));
-        e = add(e, mul(splat(c.mid[a]), x[2]));
-        y[a] = add(e, od);
-        y[4 - a] = sub(od, e);
+fn even_odd<const M: usize>(c: &EvenOdd<M>, x: [__m512d; M]) -> [__m512d; M] {
+    let h = M / 2;
+    let mut s = [splat(0.0); M];
+    let mut o = [splat(0.0); M];
+    for k in 0..h {
+        s[k] = add(x[k], x[M - 1 - k]);
+        o[k] = sub(x[k], x[M - 1 - k]);
     }
-    let m = mul(splat(c.q[2][0]), o0);
-    y[2] = add(m, mul(splat(c.q[2][1]), o1));
+    let mut y = [splat(0.0); M];
+    for a in 0..h {
+        let mut e = mul(splat(c.p[a][0]), s[0]);
+        let mut od = mul(splat(c.q[a][0]), o[0]);
+        for k in 1..h {
+            e = add(e, mul(splat(c.p[a][k]), s[k]));
+            od = add(od, mul(splat(c.q[a][k]), o[k]));
+        }
+        if M % 2 == 1 {
+            e = add(e, mul(splat(c.mid[a]), x[h]));
+        }
+        y[a] = add(e, od);
+        y[M - 1 - a] = sub(od, e);
+    }
+    if M % 2 == 1 {
+        let mut m = mul(splat(c.q[h][0]), o[0]);
+        for k in 1..h {
+            m = add(m, mul(splat(c.q[h][k]), o[k]));
+        }
+        y[h] = m;
+    }
     y
 }
 
-/// [`super::kernel`]'s `psv_block` for order 4 on eight lanes, in AVX-512 registers: the
-/// same operations in the same order (the same bits; the test below compares them).
+/// [`super::kernel`]'s `psv_block` on eight lanes, in AVX-512 registers: the same
+/// operations in the same order (the same bits; the test `every_cpu_path_gives_the_same_bits`
+/// compares them).
 ///
 /// # Safety
 /// The CPU must have AVX-512F.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
-pub(super) unsafe fn psv_block(
-    r: &Rule<P>,
-    ux: &Block,
-    uz: &Block,
+pub(super) unsafe fn psv_block<const M: usize>(
+    r: &Rule<M>,
+    ux: &Block<M>,
+    uz: &Block<M>,
     p: &Params<W>,
-    gx: &mut Block,
-    gz: &mut Block,
+    gx: &mut Block<M>,
+    gz: &mut Block<M>,
 ) {
     // the x-gradients along the rows
-    let dxx = [0, 1, 2, 3, 4].map(|b| even_odd(&r.grad, row(&ux[b])));
-    let dxz = [0, 1, 2, 3, 4].map(|b| even_odd(&r.grad, row(&uz[b])));
+    let dxx: [[__m512d; M]; M] = std::array::from_fn(|b| even_odd(&r.grad, row(&ux[b])));
+    let dxz: [[__m512d; M]; M] = std::array::from_fn(|b| even_odd(&r.grad, row(&uz[b])));
     let (sx, sz) = (load(&p.sx), load(&p.sz));
     let (l2m, lam, mu) = (load(&p.l2m), load(&p.lam), load(&p.mu));
     let (hx2, hz2) = (load(&p.hx2), load(&p.hz2));
     let w = &r.w;
     // the x-fluxes of each row, filled column by column
-    let mut fxx = [[MaybeUninit::<__m512d>::uninit(); P]; P];
-    let mut fzx = [[MaybeUninit::<__m512d>::uninit(); P]; P];
-    for a in 0..P {
+    let mut fxx = [[MaybeUninit::<__m512d>::uninit(); M]; M];
+    let mut fzx = [[MaybeUninit::<__m512d>::uninit(); M]; M];
+    for a in 0..M {
         // the z-gradients of column a, Hooke's law at its points, and the z-divergence
         // of its z-fluxes (kept in g until the x-divergence is added)
         let dzx = even_odd(&r.grad, column(ux, a));
         let dzz = even_odd(&r.grad, column(uz, a));
-        let (mut fxz, mut fzz) = ([splat(0.0); P], [splat(0.0); P]);
-        for b in 0..P {
+        let (mut fxz, mut fzz) = ([splat(0.0); M], [splat(0.0); M]);
+        for b in 0..M {
             let wab = splat(w[a] * w[b]);
             let (exx, ezz) = (mul(dxx[b][a], sx), mul(dzz[b], sz));
             let exz = add(mul(dzx[b], sz), mul(dxz[b][a], sx));
@@ -275,20 +374,26 @@ pub(super) unsafe fn psv_block(
         }
         let tx = even_odd(&r.div, fxz);
         let tz = even_odd(&r.div, fzz);
-        for b in 0..P {
-            _mm512_storeu_pd(gx[b][a].as_mut_ptr(), tx[b]);
-            _mm512_storeu_pd(gz[b][a].as_mut_ptr(), tz[b]);
+        for b in 0..M {
+            // SAFETY: eight doubles each
+            unsafe {
+                _mm512_storeu_pd(gx[b][a].as_mut_ptr(), tx[b]);
+                _mm512_storeu_pd(gz[b][a].as_mut_ptr(), tz[b]);
+            }
         }
     }
     // the x-divergence of each row, added to the z-divergence (x + z = z + x exactly)
-    for b in 0..P {
+    for b in 0..M {
         // SAFETY: every (b, a) was written in the column loop
-        let ox = even_odd(&r.div, fxx[b].map(|v| v.assume_init()));
-        let oz = even_odd(&r.div, fzx[b].map(|v| v.assume_init()));
-        for a in 0..P {
+        let ox = even_odd(&r.div, fxx[b].map(|v| unsafe { v.assume_init() }));
+        let oz = even_odd(&r.div, fzx[b].map(|v| unsafe { v.assume_init() }));
+        for a in 0..M {
             let (px, pz) = (gx[b][a].as_mut_ptr(), gz[b][a].as_mut_ptr());
-            _mm512_storeu_pd(px, add(ox[a], _mm512_loadu_pd(px)));
-            _mm512_storeu_pd(pz, add(oz[a], _mm512_loadu_pd(pz)));
+            // SAFETY: eight doubles each
+            unsafe {
+                _mm512_storeu_pd(px, add(ox[a], _mm512_loadu_pd(px)));
+                _mm512_storeu_pd(pz, add(oz[a], _mm512_loadu_pd(pz)));
+            }
         }
     }
 }
@@ -306,28 +411,16 @@ fn load(x: &[f64; W]) -> __m512d {
 #[cfg(target_arch = "x86_64")]
 #[inline]
 #[target_feature(enable = "avx512f")]
-fn row(x: &[[f64; W]; P]) -> [__m512d; P] {
-    [
-        load(&x[0]),
-        load(&x[1]),
-        load(&x[2]),
-        load(&x[3]),
-        load(&x[4]),
-    ]
+fn row<const M: usize>(x: &[[f64; W]; M]) -> [__m512d; M] {
+    std::array::from_fn(|a| load(&x[a]))
 }
 
 /// Column `[k]` of a block at `a`.
 #[cfg(target_arch = "x86_64")]
 #[inline]
 #[target_feature(enable = "avx512f")]
-fn column(x: &Block, a: usize) -> [__m512d; P] {
-    [
-        load(&x[0][a]),
-        load(&x[1][a]),
-        load(&x[2][a]),
-        load(&x[3][a]),
-        load(&x[4][a]),
-    ]
+fn column<const M: usize>(x: &Block<M>, a: usize) -> [__m512d; M] {
+    std::array::from_fn(|b| load(&x[b][a]))
 }
 
 #[cfg(all(test, target_arch = "x86_64"))]
@@ -335,45 +428,58 @@ mod tests {
     use super::*;
 
     /// The gather reads what the scalar map reads, and the scatter subtracts in the
-    /// scalar order, bit for bit.
+    /// scalar order, bit for bit, for every order the solver takes.
     #[test]
     fn gather_and_scatter_match_the_scalar_map() {
         if !std::is_x86_feature_detected!("avx512f") {
             return;
         }
-        let u: Vec<f64> = (0..80).map(|i| (i as f64 * 0.37).sin() * 1e-3).collect();
-        let (mut x, mut z) = ([[0.0; W]; P], [[0.0; W]; P]);
-        // SAFETY: AVX-512F checked; 66 values from 4
-        unsafe { gather_row(u.as_ptr().add(4), &mut x, &mut z) };
-        for l in 0..W {
-            for a in 0..P {
-                let node = 2 + 4 * l + a;
-                assert_eq!(x[a][l], u[2 * node]);
-                assert_eq!(z[a][l], u[2 * node + 1]);
-            }
-        }
-        let g = |a: usize, l: usize, c: usize| ((a * 31 + l * 7 + c) as f64 * 0.91).cos();
-        let (mut gx, mut gz) = ([[0.0; W]; P], [[0.0; W]; P]);
-        for a in 0..P {
+        fn check<const M: usize>() {
+            let s = M - 1;
+            let u: Vec<f64> = (0..2 * (row_nodes(M) + 4))
+                .map(|i| (i as f64 * 0.37).sin() * 1e-3)
+                .collect();
+            let (mut x, mut z) = ([[0.0; W]; M], [[0.0; W]; M]);
+            // SAFETY: AVX-512F checked; the row's values from node 2
+            unsafe { gather_row::<M>(u.as_ptr().add(4), &mut x, &mut z) };
             for l in 0..W {
-                gx[a][l] = g(a, l, 0);
-                gz[a][l] = g(a, l, 1);
+                for a in 0..M {
+                    let node = 2 + s * l + a;
+                    assert_eq!(x[a][l], u[2 * node], "{M}");
+                    assert_eq!(z[a][l], u[2 * node + 1], "{M}");
+                }
             }
-        }
-        let mut scalar = u.clone();
-        for l in 0..W {
-            for a in 0..P {
-                let node = 2 + 4 * l + a;
-                scalar[2 * node] -= gx[a][l];
-                scalar[2 * node + 1] -= gz[a][l];
+            let g = |a: usize, l: usize, c: usize| ((a * 31 + l * 7 + c) as f64 * 0.91).cos();
+            let (mut gx, mut gz) = ([[0.0; W]; M], [[0.0; W]; M]);
+            for a in 0..M {
+                for l in 0..W {
+                    gx[a][l] = g(a, l, 0);
+                    gz[a][l] = g(a, l, 1);
+                }
             }
+            let mut scalar = u.clone();
+            for l in 0..W {
+                for a in 0..M {
+                    let node = 2 + s * l + a;
+                    scalar[2 * node] -= gx[a][l];
+                    scalar[2 * node + 1] -= gz[a][l];
+                }
+            }
+            let mut fast = u.clone();
+            // SAFETY: AVX-512F checked; the row's values from node 2
+            unsafe { scatter_row::<M>(fast.as_mut_ptr().add(4), &gx, &gz) };
+            assert_eq!(
+                fast.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                scalar.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                "{M}"
+            );
         }
-        let mut fast = u.clone();
-        // SAFETY: AVX-512F checked; 66 values from 4
-        unsafe { scatter_row(fast.as_mut_ptr().add(4), &gx, &gz) };
-        assert_eq!(
-            fast.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
-            scalar.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
-        );
+        check::<3>();
+        check::<4>();
+        check::<5>();
+        check::<6>();
+        check::<7>();
+        check::<8>();
+        check::<9>();
     }
 }
