@@ -47,9 +47,9 @@ def test_dask_crack_length_sweep_gives_the_cli_rows(cli, root, tmp_path):
 
 def test_a_sweep_beyond_a_workers_memory_is_refused_before_submitting(root):
     distributed = pytest.importorskip("dask.distributed")
-    # the quick case on a mesh of 25 um elements: about 1e7 nodes, estimated without
-    # building them
-    axes = {"model.element_size": [0.1e-3, 25e-6]}
+    # the quick case on a mesh of 37.5 um elements (order 6): about 1e7 nodes, estimated
+    # without building them
+    axes = {"model.element_size": [0.1e-3, 37.5e-6]}
     memory = cw.memory_estimate(root / BASE, axes)
     assert 0.5e9 < memory[1] < 1e9 and memory[0] < memory[1] / 10
     with distributed.LocalCluster(
@@ -66,7 +66,7 @@ def test_a_sweep_beyond_a_workers_memory_is_refused_before_submitting(root):
             a: 0 for a in client.scheduler_info()["workers"]
         }
     msg = str(e.value)
-    assert "sweep point 1" in msg and "model.element_size = 2.5e-05" in msg
+    assert "sweep point 1" in msg and "model.element_size = 3.75e-05" in msg
     assert "2 task(s) at once" in msg and "memory_limit of 1000 MB" in msg
 
 
@@ -87,7 +87,7 @@ def test_a_task_checks_its_share_of_the_workers_memory_before_it_starts(root):
         keys, values, errors = client.submit(
             cw._run_chunk, base_json, base_path, ["model.element_size"], points, pure=False
         ).result()
-    # the coarse point ran, the fine one (about 830 MB, above 1 GB / 2 threads) did not
+    # the coarse point ran, the fine one (about 1.6 GB, above 1 GB / 2 threads) did not
     assert [i for i, _ in errors] == [1]
     msg = errors[0][1]
     assert "model.element_size" in msg and "memory budget of 500 MB" in msg, msg

@@ -215,13 +215,15 @@ impl Solid2dScenario {
     /// records).
     pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
         let e = self.problem.memory_estimate(&self.file)?;
-        let (key, value) = if e.mesh >= e.series {
-            ("model.element_size", self.problem.element_size)
+        let (key, value, change) = if e.mesh >= e.series {
+            let h = self.problem.element_size;
+            ("model.element_size", h, "raise `model.element_size`")
         } else {
-            ("model.duration", self.problem.duration)
+            let t = self.problem.duration;
+            ("model.duration", t, "lower `model.duration`")
         };
         let bytes = self.memory_estimate()?.unwrap_or(0.0);
-        crate::budget::check(
+        crate::budget::check_or(
             &self.file,
             key,
             value,
@@ -230,6 +232,7 @@ impl Solid2dScenario {
                 "a 2D run of about {:.3e} nodes and {:.3e} steps",
                 e.nodes, e.steps
             ),
+            change,
         )?;
         let mut plan = self.problem.plan(&self.file)?;
         plan.add_stress_receivers(&self.stress_points, &self.problem.layers, &self.file)?;

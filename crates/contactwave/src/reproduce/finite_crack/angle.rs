@@ -152,7 +152,7 @@ fn text(lay: &Layout, res: Resolution, job: &Job, speeds: (f64, f64), duration: 
     let (p, s) = (lay.on_ray(tp), lay.on_ray(ts));
     format!(
         "[model]\nkind = \"solid_2d\"\nwave = \"p_sv\"\nwidth = {:e}\nduration = {duration:e}\n\
-         element_size = {e:e}\nharmonic = {}\ntop = \"absorbing\"\nbottom = \"absorbing\"\n\
+         element_size = {e:e}\norder = 4\nharmonic = {}\ntop = \"absorbing\"\nbottom = \"absorbing\"\n\
          sides = \"absorbing\"\ncrack_every = 5\n\
          [[layer]]\nthickness = {:e}\nmaterial = \"aluminium\"\n\
          [[crack]]\nstart = [{:e}, {cz:e}]\nlength = {:e}\nstatic_pressure = {:e}\n\

@@ -67,7 +67,7 @@ fn text(res: Resolution, length: f64) -> String {
     let duration = 60e-6;
     format!(
         "[model]\nkind = \"solid_2d\"\nwave = \"p_sv\"\nwidth = {width:e}\nduration = {duration:e}\n\
-         element_size = {:e}\nharmonic = {}\ntop = \"free\"\nbottom = \"free\"\nsides = \"absorbing\"\n\
+         element_size = {:e}\norder = 4\nharmonic = {}\ntop = \"free\"\nbottom = \"free\"\nsides = \"absorbing\"\n\
          crack_every = 100\n\
          [[layer]]\nthickness = {THICKNESS:e}\nmaterial = \"aluminium\"\n\
          [[crack]]\nstart = [{X_START:e}, {DEPTH:e}]\nlength = {length:e}\nstatic_pressure = {P0:e}\n\

@@ -213,7 +213,7 @@ impl Plane {
         };
         format!(
             "[model]\nkind = \"solid_2d\"\nwave = \"p_sv\"\nwidth = {w:e}\nduration = {duration:e}\n\
-             element_size = {e:e}\nharmonic = {}\ntop = \"absorbing\"\nbottom = \"absorbing\"\n\
+             element_size = {e:e}\norder = 4\nharmonic = {}\ntop = \"absorbing\"\nbottom = \"absorbing\"\n\
              sides = \"periodic\"\ncrack_every = 100\n\
              [[layer]]\nthickness = {depth:e}\nmaterial = \"aluminium\"\n\
              [[crack]]\n{crack}\nstatic_pressure = {p0:e}\n{}\n\

@@ -109,7 +109,7 @@ pub(super) fn text(res: Resolution, depth: Option<f64>, p0: f64, friction: f64) 
     let gate = (arrival - 0.5 * period, arrival + (CYCLES + 1.0) * period);
     format!(
         "[model]\nkind = \"solid_2d\"\nwave = \"p_sv\"\nwidth = {WIDTH:e}\nduration = {:e}\n\
-         element_size = {:e}\nharmonic = {}\ntop = \"free\"\nbottom = \"absorbing\"\n\
+         element_size = {:e}\norder = 4\nharmonic = {}\ntop = \"free\"\nbottom = \"absorbing\"\n\
          sides = \"absorbing\"\ncrack_every = 100\n{layers}{crack}\
          [[source]]\nkind = \"transducer\"\nx0 = {:e}\nx1 = {:e}\ncomponent = \"normal\"\n\
          signal = {{ frequency = {F0:e}, cycles = {CYCLES}, amplitude = {AMPLITUDE:e}, window = \"hann\" }}\n\

@@ -87,8 +87,9 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
     /// let s = m.as_any().downcast_ref::<Solid2dScenario>().unwrap();
     /// let e = s.problem.memory_estimate("small.toml").unwrap();
     /// let plan = s.problem.plan("small.toml").unwrap();
-    /// // the estimate's nodes and steps are the plan's (the node count is a bound)
-    /// assert!(e.nodes >= plan.mesh.n_nodes as f64 && e.nodes < 1.5 * plan.mesh.n_nodes as f64);
+    /// // the estimate's nodes and steps are the plan's (the node count is a bound: one
+    /// // element more for every mesh line, a large share with few large elements)
+    /// assert!(e.nodes >= plan.mesh.n_nodes as f64 && e.nodes < 2.0 * plan.mesh.n_nodes as f64);
     /// assert!((e.steps - plan.steps as f64).abs() <= 1.0);
     /// assert!(e.total() > 0.0);
     /// ```

@@ -36,6 +36,7 @@ pub mod probe;
 mod simd;
 pub mod snapshot;
 mod stepping;
+mod strip;
 
 #[cfg(test)]
 mod reduction_tests;
@@ -443,12 +444,13 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
     pub fn validate(&self, file: &str) -> Result<(Vec<f64>, Vec<f64>)> {
         let (xs, zs) = self.lines(file)?;
         let (nodes, bytes) = self.mesh_bytes(xs.len(), zs.len());
-        crate::budget::check(
+        crate::budget::check_or(
             file,
             "model.element_size",
             self.element_size,
             bytes,
             &format!("a mesh of about {nodes:.3e} nodes"),
+            "raise `model.element_size` (larger elements: fewer nodes)",
         )?;
         Ok((xs, zs))
     }

@@ -94,6 +94,46 @@ const fn chunk_mask(n: usize) -> u8 {
     }
 }
 
+/// The first `n` doubles of a chunk at `p` (the rest zero): a plain load of 8, 4 or 2
+/// doubles where `n` is one of them (masked loads and stores are slower on some CPUs), a
+/// masked one otherwise.
+///
+/// # Safety
+/// The CPU must have AVX-512F; `p` must be valid for `min(n, 8)` reads.
+#[cfg(target_arch = "x86_64")]
+#[inline]
+#[target_feature(enable = "avx512f")]
+unsafe fn load_chunk(p: *const f64, n: usize) -> __m512d {
+    // SAFETY: `min(n, 8)` doubles from p (the caller's contract)
+    unsafe {
+        match n {
+            8.. => _mm512_loadu_pd(p),
+            4 => _mm512_zextpd256_pd512(_mm256_loadu_pd(p)),
+            2 => _mm512_zextpd128_pd512(_mm_loadu_pd(p)),
+            _ => _mm512_maskz_loadu_pd(chunk_mask(n), p),
+        }
+    }
+}
+
+/// Store the first `n` doubles of `v` at `p` ([`load_chunk`]'s counterpart).
+///
+/// # Safety
+/// The CPU must have AVX-512F; `p` must be valid for `min(n, 8)` writes.
+#[cfg(target_arch = "x86_64")]
+#[inline]
+#[target_feature(enable = "avx512f")]
+unsafe fn store_chunk(p: *mut f64, n: usize, v: __m512d) {
+    // SAFETY: `min(n, 8)` doubles from p (the caller's contract)
+    unsafe {
+        match n {
+            8.. => _mm512_storeu_pd(p, v),
+            4 => _mm256_storeu_pd(p, _mm512_castpd512_pd256(v)),
+            2 => _mm_storeu_pd(p, _mm512_castpd512_pd128(v)),
+            _ => _mm512_mask_storeu_pd(p, chunk_mask(n), v),
+        }
+    }
+}
+
 /// One node row of a regular block: the lane vectors `x[a]`, `z[a]` (`a = 0..M`) of the
 /// `8 (M - 1) + 1` nodes starting at double `src` (`[x, z]` interleaved).
 ///
@@ -109,10 +149,9 @@ pub(super) unsafe fn gather_row<const M: usize>(
 ) {
     let d = 2 * (M - 1);
     for c in 0..d.div_ceil(8) {
-        let mask = chunk_mask(d - 8 * c);
-        // SAFETY: lane l's chunk lies inside its 2 (M - 1) doubles (masked)
+        // SAFETY: lane l's chunk lies inside its 2 (M - 1) doubles
         let rows = [0, 1, 2, 3, 4, 5, 6, 7]
-            .map(|l| unsafe { _mm512_maskz_loadu_pd(mask, src.add(d * l + 8 * c)) });
+            .map(|l| unsafe { load_chunk(src.add(d * l + 8 * c), d - 8 * c) });
         let t = transpose(rows);
         for (j, tj) in t.iter().enumerate().take((d - 8 * c).min(8)) {
             let k = 8 * c + j;
@@ -127,7 +166,7 @@ pub(super) unsafe fn gather_row<const M: usize>(
     }
     // column M - 1: the next element's column 0, the last lane's from node 8 (M - 1)
     // SAFETY: the row's last node
-    let last = unsafe { _mm512_maskz_loadu_pd(0b11, src.add(8 * d)) };
+    let last = unsafe { load_chunk(src.add(8 * d), 2) };
     let shift_x = _mm512_set_epi64(8, 7, 6, 5, 4, 3, 2, 1);
     let shift_z = _mm512_set_epi64(9, 7, 6, 5, 4, 3, 2, 1);
     // SAFETY: eight doubles each
@@ -189,10 +228,9 @@ pub(super) unsafe fn scatter_row<const M: usize>(
     };
     for l in 0..W {
         for c in 0..chunks {
-            let mask = chunk_mask(d - 8 * c);
-            // SAFETY: lane l's chunk lies inside its 2 (M - 1) doubles (masked)
+            // SAFETY: lane l's chunk lies inside its 2 (M - 1) doubles
             let p = unsafe { dst.add(d * l + 8 * c) };
-            let mut o = unsafe { _mm512_maskz_loadu_pd(mask, p) };
+            let mut o = unsafe { load_chunk(p, d - 8 * c) };
             if c == 0 && l > 0 {
                 // lane l - 1's column M - 1 into this lane's first node, zeros elsewhere
                 let i = (l - 1) as i64;
@@ -200,15 +238,15 @@ pub(super) unsafe fn scatter_row<const M: usize>(
                 o = _mm512_sub_pd(o, _mm512_maskz_permutex2var_pd(0b11, xl, idx, zl));
             }
             // SAFETY: as the load
-            unsafe { _mm512_mask_storeu_pd(p, mask, _mm512_sub_pd(o, lanes[c][l])) };
+            unsafe { store_chunk(p, d - 8 * c, _mm512_sub_pd(o, lanes[c][l])) };
         }
     }
     // SAFETY: the row's last node
     let p = unsafe { dst.add(8 * d) };
     let idx = _mm512_set_epi64(0, 0, 0, 0, 0, 0, 15, 7);
-    let o = unsafe { _mm512_maskz_loadu_pd(0b11, p) };
+    let o = unsafe { load_chunk(p, 2) };
     let o = _mm512_sub_pd(o, _mm512_maskz_permutex2var_pd(0b11, xl, idx, zl));
-    unsafe { _mm512_mask_storeu_pd(p, 0b11, o) };
+    unsafe { store_chunk(p, 2, o) };
 }
 
 /// The largest number of GLL points a side the row gather and scatter take (two chunks).

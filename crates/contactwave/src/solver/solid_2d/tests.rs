@@ -206,9 +206,7 @@ fn every_cpu_path_gives_the_same_bits() {
     }
 }
 
-/// A periodic strip `h` wide (one element) and `depth` deep (m; free top and bottom,
-/// order 4, courant 0.5, no cap on the time step), driven by a traction over the whole top
-/// (`normal`, else shear) with `signal` for `duration` s; no crack, no receiver.
+/// A periodic strip of aluminium `h` wide and `depth` deep ([`Solid2d::periodic_strip`]).
 pub(super) fn strip<L>(
     wave: WaveType,
     h: f64,
@@ -217,36 +215,7 @@ pub(super) fn strip<L>(
     signal: Arc<dyn Excitation>,
     duration: f64,
 ) -> Solid2d<L> {
-    Solid2d {
-        width: h,
-        layers: vec![Layer {
-            bottom: depth,
-            material: ALUMINIUM,
-        }],
-        wave,
-        top: Side::Free,
-        bottom: Side::Free,
-        sides: Side::Periodic,
-        element_size: h,
-        order: 4,
-        courant: 0.5,
-        max_time_step: f64::INFINITY,
-        cracks: vec![],
-        sources: vec![Source {
-            kind: SourceKind::Traction {
-                top: true,
-                x0: 0.0,
-                x1: h,
-                normal,
-                delay_per_m: 0.0,
-            },
-            signal,
-        }],
-        receivers: vec![],
-        duration,
-        crack_every: 1,
-        pml: Pml::elements(pml::DEFAULT_ELEMENTS, h),
-    }
+    Solid2d::periodic_strip(ALUMINIUM, wave, h, depth, (normal, signal), duration)
 }
 
 /// The largest gap error (over the max gap) of a full-width interface (periodic sides)
