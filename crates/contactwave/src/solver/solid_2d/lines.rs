@@ -214,6 +214,22 @@ pub(super) struct Params<const L: usize> {
     pub(super) hz2: [f64; L],
 }
 
+/// `check::<M>()` for the GLL points of every order the solver takes (2 to 8).
+#[cfg(test)]
+macro_rules! for_every_order {
+    ($check:ident) => {
+        $check::<3>();
+        $check::<4>();
+        $check::<5>();
+        $check::<6>();
+        $check::<7>();
+        $check::<8>();
+        $check::<9>();
+    };
+}
+#[cfg(test)]
+pub(super) use for_every_order;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -267,12 +283,6 @@ mod tests {
                 }
             }
         }
-        check::<3>();
-        check::<4>();
-        check::<5>();
-        check::<6>();
-        check::<7>();
-        check::<8>();
-        check::<9>();
+        for_every_order!(check);
     }
 }

@@ -41,9 +41,10 @@ fn plane_strip<L>(
 
 /// No crack: below the line the velocity is the incident wave's `-s(t - tau)/(rho c)`,
 /// above it (the scattered region) the field stays below -40 dB of the incident peak and
-/// falls with the resolution; P-SV (P and SV) and SH. Returns, per element size, the
-/// leakage and the total-field error, both over the incident peak.
-fn leakage(wave: WaveType, incidence: Incidence, sizes: &[f64]) -> Vec<(f64, f64)> {
+/// falls with the resolution; P-SV (P and SV) and SH. Returns, per element size (of
+/// `order`, in wavelengths), the leakage and the total-field error, both over the incident
+/// peak.
+fn leakage(wave: WaveType, incidence: Incidence, order: usize, sizes: &[f64]) -> Vec<(f64, f64)> {
     let f0 = 1e6;
     let c = if incidence == Incidence::P {
         ALUMINIUM.p_speed
@@ -66,6 +67,7 @@ fn leakage(wave: WaveType, incidence: Incidence, sizes: &[f64]) -> Vec<(f64, f64
         let (z_s, z_t) = (1.0 * lambda, 4.0 * lambda);
         let problem: Solid2d<Signorini> = Solid2d {
             receivers: vec![[0.0, z_s], [0.0, z_t]],
+            order,
             ..plane_strip(
                 wave,
                 incidence,
@@ -102,12 +104,33 @@ fn plane_wave_injection_leaks_less_than_40_db() {
         (WaveType::PSv, Incidence::Sv),
         (WaveType::Sh, Incidence::Sh),
     ] {
-        let r = leakage(wave, inc, &[0.5, 0.25, 0.125]);
+        let r = leakage(wave, inc, 4, &[0.5, 0.25, 0.125]);
         let db: Vec<f64> = r.iter().map(|x| 20.0 * x.0.log10()).collect();
         eprintln!("{inc:?}: leakage dB {db:.1?}, total-field error / peak {r:?}");
         assert!(db[1] < -40.0, "{inc:?}: {db:?}");
         assert!(db[2] < db[1] - 6.0, "{inc:?}: {db:?}");
         assert!(r[2].1 < 5e-3 && r[2].1 < r[1].1, "{inc:?}: {r:?}");
+    }
+}
+
+/// The same at the default order 6 and its default element size for 3 f0 (1.18 per S
+/// wavelength at 3 f0: 3.5 per S wavelength, 1.8 per P wavelength at f0), and at half
+/// of it: below -40 dB there, and falling.
+#[test]
+fn plane_wave_injection_at_the_default_order() {
+    let s_per_p = ALUMINIUM.s_speed / ALUMINIUM.p_speed;
+    for (wave, inc, scale) in [
+        (WaveType::PSv, Incidence::P, s_per_p),
+        (WaveType::PSv, Incidence::Sv, 1.0),
+        (WaveType::Sh, Incidence::Sh, 1.0),
+    ] {
+        // element sizes in this wave's wavelengths at f0
+        let h = scale / 3.5;
+        let r = leakage(wave, inc, 6, &[h, h / 2.0]);
+        let db: Vec<f64> = r.iter().map(|x| 20.0 * x.0.log10()).collect();
+        eprintln!("order 6, {inc:?}: leakage dB {db:.1?}, total-field error / peak {r:?}");
+        assert!(db[0] < -40.0 && db[1] < db[0], "{inc:?}: {db:?}");
+        assert!(r[1].1 < r[0].1, "{inc:?}: {r:?}");
     }
 }
 

@@ -512,12 +512,6 @@ mod tests {
                 "{M}"
             );
         }
-        check::<3>();
-        check::<4>();
-        check::<5>();
-        check::<6>();
-        check::<7>();
-        check::<8>();
-        check::<9>();
+        super::super::lines::for_every_order!(check);
     }
 }
