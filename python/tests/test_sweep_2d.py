@@ -49,7 +49,7 @@ def test_a_sweep_beyond_a_workers_memory_is_refused_before_submitting(root):
     distributed = pytest.importorskip("dask.distributed")
     # the quick case on a mesh of 37.5 um elements (order 6): about 1e7 nodes, estimated
     # without building them
-    axes = {"model.element_size": [0.1e-3, 37.5e-6]}
+    axes = {"model.element_size": [0.2e-3, 37.5e-6]}
     memory = cw.memory_estimate(root / BASE, axes)
     assert 0.5e9 < memory[1] < 1e9 and memory[0] < memory[1] / 10
     with distributed.LocalCluster(
