@@ -31,33 +31,34 @@ struct Mesh {
   double h, lam, mu, rho;
 };
 
+// P_k(t) for k = n - 1 and n (Legendre's recurrence), n >= 1.
+static void legendre(int n, double t, double& pm1, double& p) {
+  double p0 = 1.0, p1 = t;
+  for (int k = 2; k <= n; k++) { double p2 = ((2 * k - 1) * t * p1 - (k - 1) * p0) / k; p0 = p1; p1 = p2; }
+  pm1 = p0; p = p1;
+}
+
 // GLL points, weights and derivative matrix of order N (Legendre recurrences, Newton).
 static void gll(double* x, double* w, double* d) {
   for (int i = 0; i <= N; i++) x[i] = -cos(M_PI * i / N);
   for (int i = 1; i < N; i++) {
     for (int it = 0; it < 100; it++) {
-      // roots of P_N': Newton on (1 - t^2) P_N'(t) = N (P_{N-1} - t P_N)
-      double t = x[i], p0 = 1.0, p1 = t;
-      for (int k = 2; k <= N; k++) { double p2 = ((2 * k - 1) * t * p1 - (k - 1) * p0) / k; p0 = p1; p1 = p2; }
-      double f = p0 - t * p1;  // P_{N-1} - t P_N
+      // the interior points are the roots of P_{N-1} - t P_N (= (1 - t^2) P_N' / N)
+      double t = x[i], p0, p1, q0, q1;
+      legendre(N, t, p0, p1);        // P_{N-1}, P_N
+      legendre(N - 1, t, q0, q1);    // P_{N-2}, P_{N-1}
+      double f = p0 - t * p1;
       double dpn = N * (t * p1 - p0) / (t * t - 1.0);
-      // d/dt (P_{N-1} - t P_N) = P_{N-1}' - P_N - t P_N' with P_{N-1}' = (N-1)(t P_{N-1} - P_{N-2})/(t^2-1)
-      double q0 = 1.0, q1 = t;
-      for (int k = 2; k <= N - 2; k++) { double q2 = ((2 * k - 1) * t * q1 - (k - 1) * q0) / k; q0 = q1; q1 = q2; }
-      double pnm2 = (N - 2 >= 1) ? q1 : 1.0;
-      double dpnm1 = (N - 1) * (t * p0 - pnm2) / (t * t - 1.0);
-      double g = dpnm1 - p1 - t * dpn;
-      double dt = f / g;
+      double dpnm1 = (N - 1) * (t * p0 - q0) / (t * t - 1.0);
+      double dt = f / (dpnm1 - p1 - t * dpn);
       x[i] = t - dt;
       if (fabs(dt) < 1e-16) break;
     }
   }
   double pn[M];
   for (int i = 0; i <= N; i++) {
-    double t = x[i];
-    double p0 = 1.0, p1 = t;
-    for (int k = 2; k <= N; k++) { double p2 = ((2 * k - 1) * t * p1 - (k - 1) * p0) / k; p0 = p1; p1 = p2; }
-    double p = p1;
+    double pm1, p;
+    legendre(N, x[i], pm1, p);
     pn[i] = p;
     w[i] = 2.0 / (N * (N + 1) * p * p);
   }
