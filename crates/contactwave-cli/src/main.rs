@@ -92,7 +92,9 @@ fn main() -> ExitCode {
         Ok(code) => ExitCode::from(code),
         Err(e) => {
             let code = match e {
-                Error::Numerical { .. } | Error::Internal { .. } => EXIT_FAILED,
+                Error::Numerical { .. } | Error::Internal { .. } | Error::Device { .. } => {
+                    EXIT_FAILED
+                }
                 Error::Interrupted => EXIT_INTERRUPTED,
                 _ => EXIT_INVALID_INPUT,
             };

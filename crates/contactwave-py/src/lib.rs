@@ -51,7 +51,7 @@ pub(crate) fn to_py(e: Error) -> PyErr {
         Error::Io { .. } => PyOSError::new_err(msg),
         Error::Numerical { .. } => SimulationError::new_err(msg),
         Error::Interrupted => PyKeyboardInterrupt::new_err(msg),
-        Error::Internal { .. } => PyRuntimeError::new_err(msg),
+        Error::Internal { .. } | Error::Device { .. } => PyRuntimeError::new_err(msg),
     }
 }
 

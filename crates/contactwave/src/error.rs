@@ -48,6 +48,13 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+    /// The GPU backend (feature `gpu`) could not run: no driver or device, or a CUDA call
+    /// failed.
+    #[error("GPU backend: {message}")]
+    Device {
+        /// What failed, one line.
+        message: String,
+    },
     /// The run was interrupted (Ctrl-C) before it finished.
     #[error("interrupted")]
     Interrupted,

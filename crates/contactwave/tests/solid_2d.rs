@@ -195,6 +195,41 @@ fn bad_input_is_an_error_naming_the_key() {
     }
 }
 
+/// `model.backend`: a name other than `cpu` or `gpu` is refused; `gpu` is refused by a
+/// build without the feature `gpu` when the file is read, and by one with it when the run
+/// starts if the scenario has what the GPU backend lacks (here absorbing sides), in both
+/// cases naming the key, before any GPU is looked for.
+#[test]
+fn the_backend_key_is_checked() {
+    let with =
+        |extra: &str| SMALL.replace("duration = 0.6e-6", &format!("duration = 0.6e-6\n{extra}"));
+    let err = model::from_toml_str(&with("backend = \"tpu\""), "bad.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("model.backend") && err.contains("`cpu` or `gpu`"),
+        "{err}"
+    );
+    let gpu = with("backend = \"gpu\"\nsides = \"absorbing\"");
+    let err = if contactwave::solver::solid_2d::Backend::GPU_BUILT {
+        let m = model::from_toml_str(&gpu, "bad.toml").unwrap();
+        m.base()
+            .unwrap()
+            .run(&RunControl::default())
+            .unwrap_err()
+            .to_string()
+    } else {
+        model::from_toml_str(&gpu, "bad.toml")
+            .unwrap_err()
+            .to_string()
+    };
+    assert!(
+        err.starts_with("bad.toml: field `model.backend` = gpu"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+}
+
 /// The receivers' summary of `SMALL` run for 1.2 us with `[analysis]` `extra` and the
 /// crack's static pressure `p0` (Pa).
 fn methods_summary(p0: f64, extra: &str) -> contactwave::Result<contactwave::analysis::Summary> {

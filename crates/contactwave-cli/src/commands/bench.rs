@@ -10,6 +10,7 @@ use contactwave::inverse::{identify, IdentifySpec};
 use contactwave::model::{self, Workspace};
 use contactwave::run::{Executor, Workspaces};
 use contactwave::scenario::parse_toml;
+use contactwave::solver::solid_2d::Backend;
 use contactwave::study;
 use std::path::Path;
 use std::time::Instant;
@@ -37,6 +38,14 @@ pub struct Args {
     /// its throughput in node-updates per second.
     #[arg(long, default_value_t = 1.0)]
     solid_2d_us: f64,
+    /// Where the 2D case runs: `cpu`, or `gpu` (a build with `--features gpu` and an
+    /// NVIDIA GPU; timed on a second run, after the kernels' compilation).
+    #[arg(long, default_value = "cpu", value_parser = ["cpu", "gpu"])]
+    backend: String,
+    /// Element size of the 2D case, m (default: the scenario's, 0.25 mm at order 6): a
+    /// smaller one gives a larger mesh of the same plate.
+    #[arg(long, value_name = "M")]
+    solid_2d_element_size: Option<f64>,
     /// Also time one identification of this file (e.g.
     /// examples/identify/rccm_damaged.toml: a few seconds), files not written.
     #[arg(long, value_name = "FILE")]
@@ -87,6 +96,8 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         runs,
         tribobrake_runs,
         solid_2d_us,
+        backend,
+        solid_2d_element_size,
         identify: identify_file,
     } = args;
     let file = "<bench: examples/rccm_0.82MPa.toml>";
@@ -163,22 +174,35 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         let file = "<bench: examples/solid_2d/plate_crack.toml>";
         let t = model::plan_valid(parse_toml(PLATE_CRACK, file)?, Path::new(file))?;
         let duration = t.param("model.duration")?;
-        let m = t.build(&[(&duration, solid_2d_us * 1e-6)])?;
+        let size = t.param("model.element_size")?;
+        let mut values = vec![(&duration, solid_2d_us * 1e-6)];
+        if let Some(h) = solid_2d_element_size {
+            values.push((&size, h));
+        }
+        let m = t.build(&values)?;
         let scenario = m
             .as_any()
             .downcast_ref::<contactwave::scenario::solid_2d::Solid2dScenario>()
             .expect("a solid_2d scenario");
         let plan = scenario.problem.plan(file)?;
         let updates = (plan.mesh.n_nodes * plan.steps) as f64;
+        let on = Backend::parse(&backend).unwrap_or_default();
+        if on == Backend::Gpu {
+            // the context and the kernels' compilation, outside the timing
+            plan.clone().run_on(on, file, None)?;
+        }
         let mut run = plan.clone();
         let t0 = Instant::now();
-        std::hint::black_box(run.run()?);
+        std::hint::black_box(run.run_on(on, file, None)?);
         let s = t0.elapsed().as_secs_f64();
+        let threads = match on {
+            Backend::Cpu => format!("{} threads", Executor::new().thread_count()),
+            Backend::Gpu => "GPU".to_string(),
+        };
         println!(
-            "2D solid, plate crack (examples/solid_2d/plate_crack.toml, {} nodes, {} steps, {} threads): {:.3e} node-updates/s",
+            "2D solid, plate crack (examples/solid_2d/plate_crack.toml, {} nodes, {} steps, {threads}): {:.3e} node-updates/s",
             plan.mesh.n_nodes,
             plan.steps,
-            Executor::new().thread_count(),
             updates / s
         );
     }

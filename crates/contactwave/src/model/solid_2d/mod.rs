@@ -238,7 +238,11 @@ impl Solid2dScenario {
         plan.add_stress_receivers(&self.stress_points, &self.problem.layers, &self.file)?;
         let nodes = plan.mesh.n_nodes;
         self.prepare_snapshots(&mut plan)?;
-        let mut output = plan.run_with(control.progress.as_ref().map(|p| &*p.0))?;
+        let mut output = plan.run_on(
+            self.backend,
+            &self.file,
+            control.progress.as_ref().map(|p| &*p.0),
+        )?;
         let snapshots = self.snapshots_of(&plan, &output.snapshots);
         // the nodal fields are on the pixel grid now
         output.snapshots = Default::default();
@@ -363,7 +367,11 @@ impl Solid2dScenario {
         let mut plan = problem.plan(&self.file)?;
         plan.add_stress_receivers(&self.stress_points, &problem.layers, &self.file)?;
         let nodes = plan.mesh.n_nodes;
-        let output = plan.run_with(control.progress.as_ref().map(|p| &*p.0))?;
+        let output = plan.run_on(
+            self.backend,
+            &self.file,
+            control.progress.as_ref().map(|p| &*p.0),
+        )?;
         Ok((output, nodes))
     }
 

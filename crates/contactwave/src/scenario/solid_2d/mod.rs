@@ -15,6 +15,7 @@ use crate::material::Material;
 use crate::scenario::spec::IncidentSpec;
 use crate::scenario::BuildCache;
 use crate::solver::solid_2d::dispersion::element_size_for;
+use crate::solver::solid_2d::Backend;
 use crate::solver::solid_2d::{
     pml, Crack, CrackProfile, Elastic, Incidence, Layer, Pml, Side, Solid2d, Source, SourceKind,
     WaveType,
@@ -98,7 +99,7 @@ pub struct ModelSpec {
     pub width: f64,
     /// Simulated time, s.
     pub duration: f64,
-    /// GLL order of the elements, 2 to 8 (default 4).
+    /// GLL order of the elements, 2 to 8 (default [`DEFAULT_ORDER`]).
     pub order: Option<usize>,
     /// Largest element size, m (default: the largest that keeps the phase velocity
     /// error at the highest analysed harmonic within [`DISPERSION_BUDGET`]).
@@ -129,6 +130,9 @@ pub struct ModelSpec {
     /// Target reflection R0 of the layers' damping profile, in (0, 1) (default
     /// [`pml::DEFAULT_REFLECTION`]).
     pub pml_reflection: Option<f64>,
+    /// Where the time loop runs: `cpu` (default) or `gpu` (a build with the feature `gpu`
+    /// and an NVIDIA GPU; no absorbing sides, plane waves or stress receivers yet).
+    pub backend: Option<String>,
 }
 
 fn p_sv() -> String {
@@ -311,6 +315,8 @@ pub struct Solid2dScenario {
     pub gate: Option<Gate>,
     /// The checked `[snapshots]`, if any.
     pub snapshots: Option<crate::scenario::snapshots::Snapshots>,
+    /// Where the time loop runs (`model.backend`).
+    pub backend: Backend,
 }
 
 fn inv(file: &str, field: impl Into<String>, v: impl std::fmt::Display, allowed: &str) -> Error {
@@ -837,6 +843,21 @@ impl Solid2dScenario {
             },
         };
         problem.validate(file)?;
+        let backend = match m.backend.as_deref() {
+            None => Backend::Cpu,
+            Some(name) => match Backend::parse(name) {
+                Some(Backend::Gpu) if !Backend::GPU_BUILT => {
+                    return Err(inv(
+                        file,
+                        "model.backend",
+                        name,
+                        "`cpu` (this build has no GPU backend: build with `--features gpu`)",
+                    ))
+                }
+                Some(b) => b,
+                None => return Err(inv(file, "model.backend", name, "`cpu` or `gpu`")),
+            },
+        };
         let gate = analysis_gate(&spec.analysis, file, m.duration)?;
         let snapshots = match &spec.snapshots {
             Some(s) => Some(s.check(file, m.duration, wave)?),
@@ -851,6 +872,7 @@ impl Solid2dScenario {
             stress_points,
             gate,
             snapshots,
+            backend,
         })
     }
 }

@@ -24,9 +24,12 @@
 //! Stable for `dt < 2 / omega_max` (the highest eigenfrequency of `M^-1 K`, found by power
 //! iteration); the crack's update is implicit and does not reduce the step.
 
+mod backend;
 pub mod crack;
 pub mod dispersion;
 mod estimate;
+#[cfg(feature = "gpu")]
+mod gpu;
 pub mod kernel;
 mod lines;
 pub mod mesh;
@@ -38,6 +41,8 @@ pub mod snapshot;
 mod stepping;
 mod strip;
 
+#[cfg(all(test, feature = "gpu"))]
+mod gpu_tests;
 #[cfg(test)]
 mod reduction_tests;
 #[cfg(test)]
@@ -49,6 +54,7 @@ use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::law::contact::PointState;
 use crate::law::{NormalPart, TangentialPart};
+pub use backend::Backend;
 use crack::CrackNodes;
 pub use estimate::MemoryEstimate;
 use kernel::{max_frequency, ElementData, NodeRows, Stiffness};

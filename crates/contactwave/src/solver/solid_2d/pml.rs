@@ -206,6 +206,11 @@ impl Band {
         }
     }
 
+    /// Whether there is no absorbing layer (no absorbing side).
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
     /// The band's forces of level n (from its stresses): assembled per band node, added to
     /// `f` at the inner nodes, whose velocities `v` (level n - 1/2) are kept for the flux.
     pub fn forces(&mut self, weights: &[f64], derivative: &[f64], v: &[f64], f: &mut [f64]) {

@@ -37,11 +37,17 @@ impl Capture {
         }
     }
 
+    /// Whether step `n` (0-based) is the next chosen one (what [`Capture::take`] keeps).
+    #[inline]
+    pub fn wants(&self, n: usize) -> bool {
+        self.steps.get(self.next) == Some(&n)
+    }
+
     /// After step `n` (0-based), at half level `t` (s): keep `v` if `n` is a chosen step.
     /// A copy into the reserved room: no allocation.
     #[inline]
     pub fn take(&mut self, n: usize, t: f64, v: &[f64]) {
-        if self.steps.get(self.next) == Some(&n) && v.len() == self.len {
+        if self.wants(n) && v.len() == self.len {
             self.next += 1;
             self.times.push(t);
             self.frames.extend_from_slice(v);

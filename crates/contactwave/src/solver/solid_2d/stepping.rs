@@ -4,6 +4,7 @@
 //! split-node update and the energy audit; a recorder keeps the receivers' velocities and
 //! the cracks' fields.
 
+use super::crack::CrackNodes;
 use super::kernel::advance_nodes;
 use super::snapshot::Capture;
 use super::{CrackRecord, Energy2d, Load, Plan, Solid2dOutput};
@@ -31,7 +32,7 @@ struct Run2d<'p, L> {
 impl<L: NormalPart + TangentialPart> Plan<L> {
     /// The signal of load `l` at time t, N/m.
     #[inline]
-    fn load_value(&self, l: &Load, t: f64) -> f64 {
+    pub(super) fn load_value(&self, l: &Load, t: f64) -> f64 {
         l.weight * self.signals[l.source].stress(t - l.delay)
     }
 
@@ -79,16 +80,32 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
             absorbed,
             ..
         } = run;
-        // E^{N-1/2} = v M v / 2 + u^{N-1} K u^N / 2 with u^{N-1} = u^N - dt v^{N-1/2}
-        plan.stiffness.apply(&u, &mut f);
+        Ok(plan.output(recorder, &u, &v, &mut f, input, absorbed))
+    }
+
+    /// The run's output from its recorder and last level (`u` m, `v` m/s; `f` N/m,
+    /// overwritten): the energy audit with the solid's discrete energy
+    /// `E^{N-1/2} = v M v / 2 + u^{N-1} K u^N / 2`, `u^{N-1} = u^N - dt v^{N-1/2}` (J/m).
+    pub(super) fn output(
+        &self,
+        recorder: Records,
+        u: &[f64],
+        v: &[f64],
+        f: &mut [f64],
+        input: f64,
+        absorbed: f64,
+    ) -> Solid2dOutput {
+        let c = self.components;
+        let dt = self.dt;
+        self.stiffness.apply(u, f);
         let mut solid = 0.0;
-        for i in 0..len {
-            let m = plan.mass[i / c];
+        for i in 0..u.len() {
+            let m = self.mass[i / c];
             solid += 0.5 * m * v[i] * v[i];
             solid += 0.5 * (u[i] - dt * v[i]) * -f[i];
         }
-        let cracks = plan.cracks.iter().map(|c| c.work).sum();
-        Ok(Solid2dOutput {
+        let cracks = self.cracks.iter().map(|c| c.work).sum();
+        Solid2dOutput {
             dt,
             time: recorder.time,
             receivers: recorder.receivers,
@@ -103,7 +120,7 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
                 cracks,
                 absorbed,
             },
-        })
+        }
     }
 }
 
@@ -172,11 +189,11 @@ impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
 /// What a 2D run keeps: the receivers' velocities at every half level and the cracks'
 /// fields every `crack_every` steps (and at the last), room reserved up front (the budget
 /// was checked when the plan was built): recording allocates nothing.
-struct Records {
+pub(super) struct Records {
     /// Times of the receiver samples, s.
     time: Vec<f64>,
     /// `[receiver][component][sample]`, m/s.
-    receivers: Vec<f64>,
+    pub(super) receivers: Vec<f64>,
     /// `[stress receiver][component][sample]`, Pa.
     stresses: Vec<f64>,
     stress_components: usize,
@@ -187,14 +204,14 @@ struct Records {
     steps: usize,
     /// Whether the level at rest has gone by (it is not recorded).
     started: bool,
-    n_t: usize,
+    pub(super) n_t: usize,
     crack_every: usize,
     /// The whole velocity field at the plan's snapshot steps.
-    snapshots: Capture,
+    pub(super) snapshots: Capture,
 }
 
 impl Records {
-    fn new<L>(plan: &Plan<L>) -> Self {
+    pub(super) fn new<L>(plan: &Plan<L>) -> Self {
         let n_t = plan.steps;
         let sc = if plan.components == 1 { 2 } else { 3 };
         let n_records = n_t / plan.crack_every + 2;
@@ -237,16 +254,11 @@ impl<L: NormalPart + TangentialPart> Recorder<Run2d<'_, L>> for Records {
     /// Level `t` (s) after a step: the receivers' velocities of the half level before it
     /// (`t - dt / 2`); the level at rest (`t = 0`) is not recorded.
     fn record(&mut self, t: f64, s: &Run2d<'_, L>) {
-        if !self.started {
-            self.started = true;
+        let Some(n) = self.next_sample(s.plan.dt) else {
             return;
-        }
-        let n = self.steps;
-        self.steps += 1;
+        };
         let p = &*s.plan;
         let c = p.components;
-        // (n dt + dt / 2: the half level's time as the step computed it)
-        self.time.push(n as f64 * p.dt + 0.5 * p.dt);
         for (r, &g) in p.receiver_nodes.iter().enumerate() {
             for cc in 0..c {
                 self.receivers[(r * c + cc) * self.n_t + n] = s.v[c * g + cc];
@@ -264,8 +276,34 @@ impl<L: NormalPart + TangentialPart> Recorder<Run2d<'_, L>> for Records {
             }
         }
         self.snapshots.take(n, n as f64 * p.dt + 0.5 * p.dt, &s.v);
+        self.crack_fields(t, n, &p.cracks);
+    }
+}
+
+impl Records {
+    /// The sample number of the level after a step (its time pushed: the half level
+    /// `n dt + dt / 2`, s, as the step computed it), or `None` for the level at rest.
+    pub(super) fn next_sample(&mut self, dt: f64) -> Option<usize> {
+        if !self.started {
+            self.started = true;
+            return None;
+        }
+        let n = self.steps;
+        self.steps += 1;
+        self.time.push(n as f64 * dt + 0.5 * dt);
+        Some(n)
+    }
+
+    /// The cracks' fields of level `t` (s) after sample `n`, every `crack_every` samples
+    /// and at the last.
+    pub(super) fn crack_fields<L: NormalPart + TangentialPart>(
+        &mut self,
+        t: f64,
+        n: usize,
+        cracks: &[CrackNodes<L>],
+    ) {
         if n.is_multiple_of(self.crack_every) || n + 1 == self.n_t {
-            for (cr, out) in p.cracks.iter().zip(&mut self.cracks) {
+            for (cr, out) in cracks.iter().zip(&mut self.cracks) {
                 out.time.push(t);
                 for (st, law) in cr.state.iter().zip(&cr.law) {
                     out.normal_gap.push(st.gap);

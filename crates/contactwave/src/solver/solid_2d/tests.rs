@@ -30,13 +30,28 @@ pub(super) fn signorini(p0: f64) -> Signorini {
     )
 }
 
+/// Signorini with Coulomb friction `mu` under closure `p0` (Pa), sticking rigidly.
+pub(super) fn coulomb(p0: f64, mu: f64) -> PointLaw<Rigid, Free, Coulomb> {
+    PointLaw::normal(
+        p0,
+        Rigid {
+            static_pressure: p0,
+        },
+        Free,
+        Coulomb {
+            friction: mu,
+            stick_stiffness: f64::INFINITY,
+        },
+    )
+}
+
 pub(super) fn burst(amplitude: f64, f0: f64, cycles: f64) -> Arc<dyn Excitation> {
     Arc::new(ToneBurst::new(amplitude, f0, cycles, Window::Hann))
 }
 
 /// A plate 8 x 4 mm with a 3 mm horizontal crack at 2 mm depth under 1 MPa closure, a
 /// 10 MPa, 2 MHz burst from a 2 mm transducer above it: the crack claps.
-fn clapping_plate(sides: Side) -> Solid2d<Signorini> {
+pub(super) fn clapping_plate(sides: Side) -> Solid2d<Signorini> {
     Solid2d {
         width: 8e-3,
         layers: vec![Layer {
@@ -361,17 +376,7 @@ fn sh_wave_on_a_frictional_interface_slips_within_coulomb() {
     let lambda = ALUMINIUM.s_speed / f0;
     let p0 = 1e6;
     let mu = 0.3;
-    let law = PointLaw::normal(
-        p0,
-        Rigid {
-            static_pressure: p0,
-        },
-        Free,
-        Coulomb {
-            friction: mu,
-            stick_stiffness: f64::INFINITY,
-        },
-    );
+    let law = coulomb(p0, mu);
     let h = lambda / 4.0;
     let problem = Solid2d {
         cracks: vec![Crack {

@@ -1,0 +1,87 @@
+//! Where a 2D plan's time loop runs: the CPU (always) or, in a build with the feature `gpu`
+//! and on a machine with an NVIDIA GPU, the GPU ([`super::gpu`]). Both run the same step
+//! (docs/model.md eq. 15.2) with the same crack update on the host; the GPU's sums run in
+//! another order, so its results agree with the CPU's to round-off, not bit for bit.
+
+use super::{Plan, Solid2dOutput};
+use crate::error::{Error, Result};
+use crate::law::{NormalPart, TangentialPart};
+
+/// The machine of a 2D run's time loop (`[model] backend`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Backend {
+    /// The CPU kernel (parallel over the cores, the same bits for any thread count).
+    #[default]
+    Cpu,
+    /// The GPU kernels (feature `gpu`; CUDA through the driver and NVRTC, loaded at run
+    /// time).
+    Gpu,
+}
+
+impl Backend {
+    /// Whether this build has the GPU backend (the feature `gpu`).
+    pub const GPU_BUILT: bool = cfg!(feature = "gpu");
+
+    /// `cpu` or `gpu`; `None` for anything else.
+    pub fn parse(name: &str) -> Option<Backend> {
+        match name {
+            "cpu" => Some(Backend::Cpu),
+            "gpu" => Some(Backend::Gpu),
+            _ => None,
+        }
+    }
+}
+
+impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
+    /// What of this plan the GPU backend does not run (absorbing layers, plane-wave
+    /// sources and stress receivers stay on the CPU backend for now), as the allowed-range
+    /// text of an error on `model.backend`; `None` when it runs all of it.
+    pub fn gpu_lacks(&self) -> Option<&'static str> {
+        if !self.band.is_empty() {
+            Some("`cpu` with absorbing sides (the GPU backend has no absorbing layers yet)")
+        } else if !self.plane_waves.is_empty() {
+            Some("`cpu` with plane-wave sources (the GPU backend has no injection yet)")
+        } else if !self.stress_probes.is_empty() {
+            Some("`cpu` with stress receivers (the GPU backend records velocities only)")
+        } else {
+            None
+        }
+    }
+
+    /// Run from rest on `backend`, reporting `(steps done, steps)` to `progress` every 64
+    /// steps; `file` names the scenario in errors.
+    pub fn run_on(
+        &mut self,
+        backend: Backend,
+        file: &str,
+        progress: Option<&(dyn Fn(usize, usize) + Send + Sync)>,
+    ) -> Result<Solid2dOutput> {
+        match backend {
+            Backend::Cpu => self.run_with(progress),
+            Backend::Gpu => {
+                if !Backend::GPU_BUILT {
+                    return Err(Error::invalid(
+                        file,
+                        "model.backend",
+                        "gpu",
+                        "`cpu` (this build has no GPU backend: build with `--features gpu`)",
+                    ));
+                }
+                if let Some(allowed) = self.gpu_lacks() {
+                    return Err(Error::invalid(file, "model.backend", "gpu", allowed));
+                }
+                self.run_gpu(progress)
+            }
+        }
+    }
+
+    #[cfg(not(feature = "gpu"))]
+    fn run_gpu(
+        &mut self,
+        _progress: Option<&(dyn Fn(usize, usize) + Send + Sync)>,
+    ) -> Result<Solid2dOutput> {
+        Err(Error::Device {
+            message: "this build has no GPU backend (build with `--features gpu`)".into(),
+        })
+    }
+}
