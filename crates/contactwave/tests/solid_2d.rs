@@ -197,7 +197,7 @@ fn bad_input_is_an_error_naming_the_key() {
 
 /// `model.backend`: a name other than `cpu` or `gpu` is refused; `gpu` is refused by a
 /// build without the feature `gpu` when the file is read, and by one with it when the run
-/// starts if the scenario has what the GPU backend lacks (here absorbing sides), in both
+/// starts if the scenario has what the GPU backend lacks (here a stress receiver), in both
 /// cases naming the key, before any GPU is looked for.
 #[test]
 fn the_backend_key_is_checked() {
@@ -210,7 +210,8 @@ fn the_backend_key_is_checked() {
         err.contains("model.backend") && err.contains("`cpu` or `gpu`"),
         "{err}"
     );
-    let gpu = with("backend = \"gpu\"\nsides = \"absorbing\"");
+    let gpu = with("backend = \"gpu\"")
+        + "[[receiver]]\nname = \"s\"\nat = [0.3e-3, 0.5e-3]\nquantity = \"stress\"\n";
     let err = if contactwave::solver::solid_2d::Backend::GPU_BUILT {
         let m = model::from_toml_str(&gpu, "bad.toml").unwrap();
         m.base()

@@ -131,7 +131,7 @@ pub struct ModelSpec {
     /// [`pml::DEFAULT_REFLECTION`]).
     pub pml_reflection: Option<f64>,
     /// Where the time loop runs: `cpu` (default) or `gpu` (a build with the feature `gpu`
-    /// and an NVIDIA GPU; no absorbing sides, plane waves or stress receivers yet).
+    /// and an NVIDIA GPU; no plane waves or stress receivers yet).
     pub backend: Option<String>,
 }
 

@@ -33,13 +33,11 @@ impl Backend {
 }
 
 impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
-    /// What of this plan the GPU backend does not run (absorbing layers, plane-wave
-    /// sources and stress receivers stay on the CPU backend for now), as the allowed-range
-    /// text of an error on `model.backend`; `None` when it runs all of it.
+    /// What of this plan the GPU backend does not run (plane-wave sources and stress
+    /// receivers stay on the CPU backend for now), as the allowed-range text of an error
+    /// on `model.backend`; `None` when it runs all of it.
     pub fn gpu_lacks(&self) -> Option<&'static str> {
-        if !self.band.is_empty() {
-            Some("`cpu` with absorbing sides (the GPU backend has no absorbing layers yet)")
-        } else if !self.plane_waves.is_empty() {
+        if !self.plane_waves.is_empty() {
             Some("`cpu` with plane-wave sources (the GPU backend has no injection yet)")
         } else if !self.stress_probes.is_empty() {
             Some("`cpu` with stress receivers (the GPU backend records velocities only)")

@@ -199,3 +199,160 @@ extern "C" __global__ void finite(const double* x, int* flag, u64 n) {
   const u64 e = 0x7ff0000000000000ULL;
   if (i < n && (__double_as_longlong(x[i]) & e) == e) flag[0] = 1;
 }
+
+// The absorbing layers (pml.rs, model.md section 15.7), one thread per element point of
+// the band's `n` elements: `par` per element as for psv_forces, `conn` the points' global
+// nodes, `damp` their (d_x, d_z), `stress` their split stresses (P-SV: xx, zz, xz of
+// sigma^x, then of sigma^z; SH: yx, yz), `part` the x and z parts of their forces.
+
+// The parts of the points' forces from the stresses of level n (Band::forces_m).
+extern "C" __global__ void band_parts(const double* __restrict__ stress,
+                                      double* __restrict__ part,
+                                      const double* __restrict__ par,
+                                      const double* __restrict__ d,
+                                      const double* __restrict__ w, int antiplane, int n) {
+  u64 q = (u64)blockIdx.x * blockDim.x + threadIdx.x;
+  if (q >= (u64)n * M * M) return;
+  u64 e = q / (M * M);
+  int a = (int)(q % M), b = (int)((q / M) % M);
+  const double* p = par + 7 * e;
+  double cx = p[3], cz = p[2];
+  const u64 base = e * M * M;
+  if (antiplane) {
+    const double* s = stress + 2 * base;
+    double gx = 0, gz = 0;
+    for (int k = 0; k < M; k++) {
+      gx += w[k] * d[k * M + a] * s[(b * M + k) * 2];
+      gz += w[k] * d[k * M + b] * s[(k * M + a) * 2 + 1];
+    }
+    part[2 * q] = -cx * w[b] * gx;
+    part[2 * q + 1] = -cz * w[a] * gz;
+  } else {
+    const double* s = stress + 6 * base;
+    double xx = 0, xz = 0, zx = 0, zz = 0;
+    for (int k = 0; k < M; k++) {
+      const double* sx = s + (b * M + k) * 6;
+      const double* sz = s + (k * M + a) * 6;
+      double wa = w[k] * d[k * M + a], wb = w[k] * d[k * M + b];
+      xx += wa * (sx[0] + sx[3]);
+      xz += wa * (sx[2] + sx[5]);
+      zx += wb * (sz[2] + sz[5]);
+      zz += wb * (sz[1] + sz[4]);
+    }
+    part[4 * q] = -cx * w[b] * xx;
+    part[4 * q + 1] = -cx * w[b] * xz;
+    part[4 * q + 2] = -cz * w[a] * zx;
+    part[4 * q + 3] = -cz * w[a] * zz;
+  }
+}
+
+// The band nodes' forces, one thread a band node i (`node`: its global node; the first
+// `inner` are on the inner boundary): the parts of its points `point[first[i]..first[i+1]]`
+// (increasing: the CPU's element order) summed into fx, fz; an inner node adds them to f
+// and keeps its velocity of level n - 1/2 in `old`.
+extern "C" __global__ void band_assemble(const double* __restrict__ part,
+                                         const unsigned* __restrict__ first,
+                                         const unsigned* __restrict__ point,
+                                         const unsigned* __restrict__ node, double* fx,
+                                         double* fz, double* f, const double* v, double* old,
+                                         int c, int inner, int n) {
+  int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  for (int k = 0; k < c; k++) {
+    double x = 0, z = 0;
+    for (unsigned r = first[i]; r < first[i + 1]; r++) {
+      const double* pp = part + (u64)point[r] * 2 * c;
+      x += pp[k];
+      z += pp[c + k];
+    }
+    fx[(u64)i * c + k] = x;
+    fz[(u64)i * c + k] = z;
+    if (i < inner) {
+      u64 j = (u64)node[i] * c + k;
+      f[j] += x + z;
+      old[(u64)i * c + k] = v[j];
+    }
+  }
+}
+
+// After the interior's update, one thread a band node: an inner node's flux into the band
+// over the step added to its own sum `work[i]` (`mass`: the band's share of its lumped
+// mass); a pure band node's split velocities of level n + 1/2 (`ndamp`: its (d_x, d_z)),
+// their sum into v and u moved along.
+extern "C" __global__ void band_nodes(double* u, double* v, const double* im,
+                                      const unsigned* __restrict__ node,
+                                      const double* __restrict__ ndamp,
+                                      const double* __restrict__ mass,
+                                      const double* fx, const double* fz, double* vx,
+                                      double* vz, const double* old, double* work, double dt,
+                                      int c, int inner, int n) {
+  int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  u64 g = node[i];
+  if (i < inner) {
+    double mb = mass[i], s = 0;
+    for (int k = 0; k < c; k++) {
+      u64 j = g * c + k, l = (u64)i * c + k;
+      double vn = v[j], vo = old[l], force = fx[l] + fz[l];
+      s -= 0.5 * dt * (vn + vo) * force - 0.5 * mb * (vn * vn - vo * vo);
+    }
+    work[i] += s;
+    return;
+  }
+  double m = im[g];
+  double ax = 0.5 * dt * ndamp[2 * i], az = 0.5 * dt * ndamp[2 * i + 1];
+  for (int k = 0; k < c; k++) {
+    u64 j = g * c + k, l = (u64)i * c + k;
+    double x = ((1.0 - ax) * vx[l] + dt * m * fx[l]) / (1.0 + ax);
+    double z = ((1.0 - az) * vz[l] + dt * m * fz[l]) / (1.0 + az);
+    vx[l] = x;
+    vz[l] = z;
+    double nv = x + z;
+    u[j] += dt * (nv - v[j]);
+    v[j] = nv;
+  }
+}
+
+// The stresses of level n + 1 from the velocities of level n + 1/2 (Band::stresses_m).
+extern "C" __global__ void band_stresses(double* __restrict__ stress, const double* v,
+                                         const unsigned* __restrict__ conn,
+                                         const double* __restrict__ damp,
+                                         const double* __restrict__ par,
+                                         const double* __restrict__ d, double dt,
+                                         int antiplane, int n) {
+  u64 q = (u64)blockIdx.x * blockDim.x + threadIdx.x;
+  if (q >= (u64)n * M * M) return;
+  u64 e = q / (M * M);
+  int a = (int)(q % M), b = (int)((q / M) % M);
+  const double* p = par + 7 * e;
+  const unsigned* cn = conn + e * M * M;
+  double sx = p[0], sz = p[1], l2m = p[4], lam = p[5], mu = p[6];
+  double ax = 0.5 * dt * damp[2 * q], az = 0.5 * dt * damp[2 * q + 1];
+  double px = (1.0 - ax) / (1.0 + ax), pz = dt / (1.0 + ax);
+  double qx = (1.0 - az) / (1.0 + az), qz = dt / (1.0 + az);
+  double xx = 0, xz = 0, zx = 0, zz = 0;
+  int c = antiplane ? 1 : 2;
+  for (int k = 0; k < M; k++) {
+    u64 gr = (u64)cn[b * M + k] * c, gc = (u64)cn[k * M + a] * c;
+    xx += d[a * M + k] * v[gr];
+    zx += d[b * M + k] * v[gc];
+    if (!antiplane) {
+      xz += d[a * M + k] * v[gr + 1];
+      zz += d[b * M + k] * v[gc + 1];
+    }
+  }
+  double vxx = sx * xx, vxz = sz * zx, vzx = sx * xz, vzz = sz * zz;
+  if (antiplane) {
+    double* s = stress + 2 * q;
+    s[0] = px * s[0] + pz * mu * vxx;
+    s[1] = qx * s[1] + qz * mu * vxz;
+  } else {
+    double* s = stress + 6 * q;
+    s[0] = px * s[0] + pz * l2m * vxx;
+    s[1] = px * s[1] + pz * lam * vxx;
+    s[2] = px * s[2] + pz * mu * vzx;
+    s[3] = qx * s[3] + qz * lam * vzz;
+    s[4] = qx * s[4] + qz * l2m * vzz;
+    s[5] = qx * s[5] + qz * mu * vxz;
+  }
+}

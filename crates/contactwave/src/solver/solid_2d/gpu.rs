@@ -100,6 +100,39 @@ struct Kernels {
     gather: CudaFunction,
     scatter: CudaFunction,
     finite: CudaFunction,
+    band_parts: CudaFunction,
+    band_assemble: CudaFunction,
+    band_nodes: CudaFunction,
+    band_stresses: CudaFunction,
+}
+
+/// The absorbing layers on the device ([`super::pml::Band`]'s tables and fields; see its
+/// kernels in `gpu.cu`).
+struct BandGpu {
+    /// Elements and points.
+    elements: i32,
+    points: usize,
+    par: CudaSlice<f64>,
+    conn: CudaSlice<u32>,
+    damp: CudaSlice<f64>,
+    stress: CudaSlice<f64>,
+    part: CudaSlice<f64>,
+    /// Per band node: its points (`point[first[i]..first[i + 1]]`), global node, damping
+    /// and (inner nodes) the band's share of its mass.
+    first: CudaSlice<u32>,
+    point: CudaSlice<u32>,
+    node: CudaSlice<u32>,
+    node_damp: CudaSlice<f64>,
+    mass: CudaSlice<f64>,
+    fx: CudaSlice<f64>,
+    fz: CudaSlice<f64>,
+    vx: CudaSlice<f64>,
+    vz: CudaSlice<f64>,
+    old: CudaSlice<f64>,
+    /// Each inner node's flux into the band so far, J/m.
+    work: CudaSlice<f64>,
+    nodes: i32,
+    inner: i32,
 }
 
 /// A 2D plan running on the GPU: the fields and tables on the device, the cracks (their
@@ -147,6 +180,8 @@ struct GpuRun<'p, L> {
     split_v: Vec<f64>,
     cracks: Vec<CrackNodes<L>>,
     flag: CudaSlice<i32>,
+    /// The absorbing layers, if any.
+    band: Option<BandGpu>,
     /// Steps taken.
     step: usize,
 }
@@ -160,6 +195,24 @@ macro_rules! launch {
         // and order, and every index the kernel reads is inside its arrays (built here)
         unsafe { b.launch($cfg) }.or_device($name)?;
     }};
+}
+
+/// Per element: `2/hx, 2/hz, hx/2, hz/2, lambda + 2 mu, lambda, mu` (the kernels' `par`).
+fn params(elements: &[super::kernel::ElementData]) -> Vec<f64> {
+    elements
+        .iter()
+        .flat_map(|el| {
+            [
+                2.0 / el.hx,
+                2.0 / el.hz,
+                0.5 * el.hx,
+                0.5 * el.hz,
+                el.lambda + 2.0 * el.mu,
+                el.lambda,
+                el.mu,
+            ]
+        })
+        .collect()
 }
 
 fn grid(n: usize) -> LaunchConfig {
@@ -202,6 +255,10 @@ impl<'p, L: NormalPart + TangentialPart + Clone> GpuRun<'p, L> {
             gather: f("gather")?,
             scatter: f("scatter")?,
             finite: f("finite")?,
+            band_parts: f("band_parts")?,
+            band_assemble: f("band_assemble")?,
+            band_nodes: f("band_nodes")?,
+            band_stresses: f("band_stresses")?,
         };
         let c = plan.components;
         let n = plan.mesh.n_nodes;
@@ -217,21 +274,7 @@ impl<'p, L: NormalPart + TangentialPart + Clone> GpuRun<'p, L> {
                 .alloc_zeros::<f64>(len.max(1))
                 .or_device("GPU memory")
         };
-        let par: Vec<f64> = s
-            .elements
-            .iter()
-            .flat_map(|el| {
-                [
-                    2.0 / el.hx,
-                    2.0 / el.hz,
-                    0.5 * el.hx,
-                    0.5 * el.hz,
-                    el.lambda + 2.0 * el.mu,
-                    el.lambda,
-                    el.mu,
-                ]
-            })
-            .collect();
+        let par = params(&s.elements);
         let colours = colours(&s.conn, m * m, n)?
             .into_iter()
             .map(|list| Ok((up32(&list)?, list.len() as i32)))
@@ -276,7 +319,57 @@ impl<'p, L: NormalPart + TangentialPart + Clone> GpuRun<'p, L> {
             }
         }
         let n_split = split_index.len();
+        let b = &plan.band;
+        let band = if b.is_empty() {
+            None
+        } else {
+            // each band node's points, increasing (the CPU's assembly order)
+            let nb = b.nodes.len();
+            let mut first = vec![0u32; nb + 1];
+            for &i in &b.local {
+                first[i as usize + 1] += 1;
+            }
+            for i in 0..nb {
+                first[i + 1] += first[i];
+            }
+            let mut fill = first.clone();
+            let mut point = vec![0u32; b.local.len()];
+            for (p, &i) in b.local.iter().enumerate() {
+                point[fill[i as usize] as usize] = p as u32;
+                fill[i as usize] += 1;
+            }
+            let flat = |x: &[[f64; 2]]| x.iter().flatten().copied().collect::<Vec<f64>>();
+            let per_point = if b.antiplane { 2 } else { 6 };
+            let points = b.conn.len();
+            Some(BandGpu {
+                elements: b.data.len() as i32,
+                points,
+                par: up(&params(&b.data))?,
+                conn: up32(&b.conn)?,
+                damp: up(&flat(&b.damp))?,
+                stress: zeros(points * per_point)?,
+                part: zeros(points * 2 * c)?,
+                first: up32(&first)?,
+                point: up32(&point)?,
+                node: up32(&b.nodes)?,
+                node_damp: up(&flat(&b.node_damp))?,
+                mass: up(if b.band_mass.is_empty() {
+                    &[0.0][..]
+                } else {
+                    &b.band_mass
+                })?,
+                fx: zeros(nb * c)?,
+                fz: zeros(nb * c)?,
+                vx: zeros(nb * c)?,
+                vz: zeros(nb * c)?,
+                old: zeros(b.n_inner * c)?,
+                work: zeros(b.n_inner)?,
+                nodes: nb as i32,
+                inner: b.n_inner as i32,
+            })
+        };
         Ok(GpuRun {
+            band,
             u: zeros(c * n)?,
             v: zeros(c * n)?,
             f: zeros(c * n)?,
@@ -371,6 +464,16 @@ impl<L: NormalPart + TangentialPart + Clone> Scheme for GpuRun<'_, L> {
             launch!(self.stream, self.k.add_loads, grid(nn as usize), "add_loads";
                 &mut self.f, &self.load_nodes, &self.load_first, &self.load_value, &nn);
         }
+        let antiplane = i32::from(c == 1);
+        let ci = c as i32;
+        if let Some(b) = &mut self.band {
+            launch!(self.stream, self.k.band_parts, grid(b.points), "band_parts";
+                &b.stress, &mut b.part, &b.par, &self.derivative, &self.weights, &antiplane,
+                &b.elements);
+            launch!(self.stream, self.k.band_assemble, grid(b.nodes as usize), "band_assemble";
+                &b.part, &b.first, &b.point, &b.node, &mut b.fx, &mut b.fz, &mut self.f,
+                &self.v, &mut b.old, &ci, &b.inner, &b.nodes);
+        }
         let m = (p.stiffness.order + 1) as u32;
         for (list, count) in &self.colours {
             let cfg = LaunchConfig {
@@ -383,9 +486,18 @@ impl<L: NormalPart + TangentialPart + Clone> Scheme for GpuRun<'_, L> {
                 list, count);
         }
         let nodes = p.mesh.n_nodes;
-        let (ci, ni) = (c as i32, nodes as i32);
+        let ni = nodes as i32;
         launch!(self.stream, self.k.advance, grid(nodes), "advance";
             &mut self.u, &mut self.v, &mut self.f, &self.inv_mass, &dt, &ci, &ni);
+        if let Some(b) = &mut self.band {
+            launch!(self.stream, self.k.band_nodes, grid(b.nodes as usize), "band_nodes";
+                &mut self.u, &mut self.v, &self.inv_mass, &b.node, &b.node_damp, &b.mass,
+                &b.fx, &b.fz, &mut b.vx, &mut b.vz, &b.old, &mut b.work, &dt, &ci, &b.inner,
+                &b.nodes);
+            launch!(self.stream, self.k.band_stresses, grid(b.points), "band_stresses";
+                &mut b.stress, &self.v, &b.conn, &b.damp, &b.par, &self.derivative, &dt,
+                &antiplane, &b.elements);
+        }
         self.cracks(dt, t1)?;
         if n_loads > 0 {
             let nl = n_loads as i32;
@@ -497,6 +609,14 @@ impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
         let mut work = vec![0.0; run.input.len()];
         run.download(&run.input, &mut work)?;
         let input: f64 = work.iter().sum();
+        let absorbed = match &run.band {
+            Some(b) => {
+                let mut w = vec![0.0; b.work.len()];
+                run.download(&b.work, &mut w)?;
+                w.iter().sum()
+            }
+            None => 0.0,
+        };
         // the cracks' state back into the plan, on its own node numbers
         let cracks = std::mem::take(&mut run.cracks);
         drop(run);
@@ -504,6 +624,6 @@ impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
             done.faces = std::mem::take(&mut mine.faces);
             *mine = done;
         }
-        Ok(self.output(base, &u, &v, &mut f, input, 0.0))
+        Ok(self.output(base, &u, &v, &mut f, input, absorbed))
     }
 }

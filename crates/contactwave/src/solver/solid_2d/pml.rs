@@ -100,16 +100,16 @@ impl Profile {
 #[derive(Debug, Clone, Default)]
 pub(super) struct Band {
     /// Points per element side (order + 1).
-    m: usize,
-    antiplane: bool,
+    pub(super) m: usize,
+    pub(super) antiplane: bool,
     /// Per element.
-    data: Vec<ElementData>,
+    pub(super) data: Vec<ElementData>,
     /// Per element point: its global node.
-    conn: Vec<u32>,
+    pub(super) conn: Vec<u32>,
     /// Per element point: its band node (index into the per-node arrays).
-    local: Vec<u32>,
+    pub(super) local: Vec<u32>,
     /// Per element point: `(d_x, d_z)`, 1/s.
-    damp: Vec<[f64; 2]>,
+    pub(super) damp: Vec<[f64; 2]>,
     /// Per element point: the split stresses (P-SV: `xx, zz, xz` of `sigma^x`, then of
     /// `sigma^z`; SH: `sigma_yx`, `sigma_yz`), Pa.
     stress: Vec<f64>,
@@ -117,12 +117,12 @@ pub(super) struct Band {
     /// F^z_z`; SH: `F^x, F^z`), N/m.
     part: Vec<f64>,
     /// Per band node: global node; the first `n_inner` are on the inner boundary.
-    nodes: Vec<u32>,
-    n_inner: usize,
+    pub(super) nodes: Vec<u32>,
+    pub(super) n_inner: usize,
     /// Per band node: `(d_x, d_z)`, 1/s.
-    node_damp: Vec<[f64; 2]>,
+    pub(super) node_damp: Vec<[f64; 2]>,
     /// Per inner node: the band elements' share of its lumped mass, kg/m.
-    band_mass: Vec<f64>,
+    pub(super) band_mass: Vec<f64>,
     /// Per band node and component: assembled x and z parts of the force, N/m.
     fx: Vec<f64>,
     fz: Vec<f64>,
@@ -207,6 +207,7 @@ impl Band {
     }
 
     /// Whether there is no absorbing layer (no absorbing side).
+    #[cfg(feature = "gpu")]
     pub fn is_empty(&self) -> bool {
         self.nodes.is_empty()
     }
