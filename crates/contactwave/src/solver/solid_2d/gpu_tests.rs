@@ -3,7 +3,8 @@
 //! into absorbing layers too) to round-off, the audit closed at round-off on the GPU as
 //! well in closed domains, and the same bits on every GPU run.
 
-use super::tests::{clapping_plate, coulomb};
+use super::surface_tests::frictional;
+use super::tests::clapping_plate;
 use super::*;
 
 /// Largest difference between `a` and `b` over the largest magnitude of `b`.
@@ -100,7 +101,7 @@ fn gpu_matches_the_cpu_on_a_clapping_crack() {
 #[test]
 fn gpu_matches_the_cpu_on_a_frictional_sh_crack() {
     let p0 = 1e6;
-    let law = coulomb(p0, 0.3);
+    let law = frictional(p0, 0.3);
     let base = clapping_plate(Side::Periodic);
     let mut sources = base.sources.clone();
     if let SourceKind::Traction { normal, .. } = &mut sources[0].kind {

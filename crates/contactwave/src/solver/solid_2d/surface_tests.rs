@@ -11,9 +11,9 @@ use crate::law::tangential::Coulomb;
 use crate::law::traction::Free;
 
 /// Signorini with Coulomb friction (rigid stick).
-type Frictional = PointLaw<Rigid, Free, Coulomb>;
+pub(super) type Frictional = PointLaw<Rigid, Free, Coulomb>;
 
-fn frictional(p0: f64, friction: f64) -> Frictional {
+pub(super) fn frictional(p0: f64, friction: f64) -> Frictional {
     PointLaw::normal(
         p0,
         Rigid {
