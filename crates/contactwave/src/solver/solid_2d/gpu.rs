@@ -176,8 +176,6 @@ struct GpuRun<'p, L> {
     split_index: CudaSlice<u32>,
     split_buf: CudaSlice<f64>,
     split_host: Vec<f64>,
-    split_u: Vec<f64>,
-    split_v: Vec<f64>,
     cracks: Vec<CrackNodes<L>>,
     flag: CudaSlice<i32>,
     /// The absorbing layers, if any.
@@ -262,8 +260,12 @@ impl<'p, L: NormalPart + TangentialPart + Clone> GpuRun<'p, L> {
         };
         let c = plan.components;
         let n = plan.mesh.n_nodes;
-        let up = |x: &[f64]| stream.clone_htod(x).or_device("copy to the GPU");
         // (an empty table as one unused entry: CUDA allocations are never empty)
+        let up = |x: &[f64]| {
+            stream
+                .clone_htod(if x.is_empty() { &[0.0][..] } else { x })
+                .or_device("copy to the GPU")
+        };
         let up32 = |x: &[u32]| {
             stream
                 .clone_htod(if x.is_empty() { &[0][..] } else { x })
@@ -353,11 +355,7 @@ impl<'p, L: NormalPart + TangentialPart + Clone> GpuRun<'p, L> {
                 point: up32(&point)?,
                 node: up32(&b.nodes)?,
                 node_damp: up(&flat(&b.node_damp))?,
-                mass: up(if b.band_mass.is_empty() {
-                    &[0.0][..]
-                } else {
-                    &b.band_mass
-                })?,
+                mass: up(&b.band_mass)?,
                 fx: zeros(nb * c)?,
                 fz: zeros(nb * c)?,
                 vx: zeros(nb * c)?,
@@ -401,8 +399,6 @@ impl<'p, L: NormalPart + TangentialPart + Clone> GpuRun<'p, L> {
             split_index: up32(&split_index)?,
             split_buf: zeros(2 * n_split)?,
             split_host: vec![0.0; 2 * n_split],
-            split_u: vec![0.0; n_split],
-            split_v: vec![0.0; n_split],
             cracks,
             flag: stream.alloc_zeros::<i32>(1).or_device("GPU memory")?,
             step: 0,
@@ -415,7 +411,7 @@ impl<'p, L: NormalPart + TangentialPart + Clone> GpuRun<'p, L> {
     /// The crack update on the host: the split nodes' predicted motion down, the law,
     /// the kicked motion up.
     fn cracks(&mut self, dt: f64, t1: f64) -> Result<()> {
-        let n = self.split_u.len();
+        let n = self.split_host.len() / 2;
         if n == 0 {
             return Ok(());
         }
@@ -425,14 +421,11 @@ impl<'p, L: NormalPart + TangentialPart + Clone> GpuRun<'p, L> {
         self.stream
             .memcpy_dtoh(&self.split_buf, &mut self.split_host)
             .or_device("copy from the GPU")?;
-        self.split_u.copy_from_slice(&self.split_host[..n]);
-        self.split_v.copy_from_slice(&self.split_host[n..]);
         let antiplane = self.plan.components == 1;
+        let (u, v) = self.split_host.split_at_mut(n);
         for cr in &mut self.cracks {
-            cr.update(&mut self.split_u, &mut self.split_v, dt, t1, antiplane)?;
+            cr.update(u, v, dt, t1, antiplane)?;
         }
-        self.split_host[..n].copy_from_slice(&self.split_u);
-        self.split_host[n..].copy_from_slice(&self.split_v);
         self.stream
             .memcpy_htod(&self.split_host, &mut self.split_buf)
             .or_device("copy to the GPU")?;

@@ -3,8 +3,7 @@
 //! into absorbing layers too) to round-off, the audit closed at round-off on the GPU as
 //! well in closed domains, and the same bits on every GPU run.
 
-use super::surface_tests::frictional;
-use super::tests::clapping_plate;
+use super::tests::{clapping_plate, frictional};
 use super::*;
 
 /// Largest difference between `a` and `b` over the largest magnitude of `b`.

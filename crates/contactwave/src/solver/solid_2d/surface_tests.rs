@@ -3,29 +3,8 @@
 //! the energy at round-off and keeps Signorini at the mouth; a Rayleigh wave is reflected
 //! by a traction-free one and passes a bonded one as if there were no crack.
 
-use super::tests::{burst, ALUMINIUM};
+use super::tests::{burst, frictional, Frictional, ALUMINIUM};
 use super::*;
-use crate::law::compression::Rigid;
-use crate::law::point::PointLaw;
-use crate::law::tangential::Coulomb;
-use crate::law::traction::Free;
-
-/// Signorini with Coulomb friction (rigid stick).
-pub(super) type Frictional = PointLaw<Rigid, Free, Coulomb>;
-
-pub(super) fn frictional(p0: f64, friction: f64) -> Frictional {
-    PointLaw::normal(
-        p0,
-        Rigid {
-            static_pressure: p0,
-        },
-        Free,
-        Coulomb {
-            friction,
-            stick_stiffness: f64::INFINITY,
-        },
-    )
-}
 
 /// The same law at every point with an initial gap (m): traction-free while the faces'
 /// relative motion stays below it.

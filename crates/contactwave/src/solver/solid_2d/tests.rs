@@ -6,7 +6,7 @@ use super::*;
 use crate::excitation::{ToneBurst, Window};
 use crate::law::compression::Rigid;
 use crate::law::point::PointLaw;
-use crate::law::tangential::Free as FreeSliding;
+use crate::law::tangential::{Coulomb, Free as FreeSliding};
 use crate::law::traction::Free;
 use crate::material::Material;
 use crate::solver::half_space::{HalfSpace, HalfSpaceSettings};
@@ -27,6 +27,23 @@ pub(super) fn signorini(p0: f64) -> Signorini {
         },
         Free,
         FreeSliding,
+    )
+}
+
+/// Signorini with Coulomb friction (rigid stick).
+pub(super) type Frictional = PointLaw<Rigid, Free, Coulomb>;
+
+pub(super) fn frictional(p0: f64, friction: f64) -> Frictional {
+    PointLaw::normal(
+        p0,
+        Rigid {
+            static_pressure: p0,
+        },
+        Free,
+        Coulomb {
+            friction,
+            stick_stiffness: f64::INFINITY,
+        },
     )
 }
 
@@ -361,7 +378,7 @@ fn sh_wave_on_a_frictional_interface_slips_within_coulomb() {
     let lambda = ALUMINIUM.s_speed / f0;
     let p0 = 1e6;
     let mu = 0.3;
-    let law = super::surface_tests::frictional(p0, mu);
+    let law = frictional(p0, mu);
     let h = lambda / 4.0;
     let problem = Solid2d {
         cracks: vec![Crack {
