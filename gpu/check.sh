@@ -4,7 +4,7 @@
 # summaries compared), and the bench lines. Needs a `contactwave` binary and the library's
 # test binary built with `--features gpu` (the release build of `cargo test -p contactwave
 # --features gpu --lib --no-run`), in BIN.
-#   gpu/check.sh BIN OUTDIR
+#   gpu/check.sh BIN OUTDIR          (QUICK=1: the tests and the examples, no bench lines)
 set -uo pipefail
 bin="$1"; out="$2"
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -44,6 +44,7 @@ for k, v in sc.items():
         print(f"  {k}: gpu {sg[k]:.6e} cpu {v:.6e}")
 PY
 done
+[ -n "${QUICK:-}" ] && exit 0
 bench() { "$bin/contactwave" bench --runs 1 --points 2 --tribobrake-runs 0 "$@" 2>&1 | grep "2D solid"; }
 for b in gpu cpu; do bench --solid-2d-us 20 --backend $b; done
 # larger meshes of the same plate (element sizes 0.125 and 0.0625 mm: 4 and 16 times the nodes)
