@@ -450,6 +450,16 @@ class BarStackResult:
         )
 
 
+def _position(what: str, name: str, names: Sequence[str]) -> int:
+    """The index of ``name`` in ``names``; a ``ValueError`` naming the valid ones if
+    absent."""
+    try:
+        return list(names).index(name)
+    except ValueError:
+        valid = ", ".join(names) if len(names) else "none in this run"
+        raise ValueError(f"{what} {name!r}: not in this run ({valid})") from None
+
+
 class Solid2dResult:
     """Everything one 2D run produces (``[model] kind = "solid_2d"``, docs/scenario.md
     section 2b; docs/model.md section 15), as float64 numpy arrays.
@@ -465,7 +475,9 @@ class Solid2dResult:
     ``tangential_gap`` (m), ``normal_stress``, ``shear_stress`` (Pa, tension positive,
     ``-p0`` at rest), ``adhesion`` and ``state`` (0 open, 1 stick, 2 slip) of shape
     ``(n_nodes, n_records)``. ``dt`` (s);
-    ``summary``: the keys of ``summary.json``. ``snapshots``: with a ``[snapshots]`` table,
+    ``summary``: the numbers of ``summary.json`` (the CLI's file adds ``scenario`` and
+    ``provenance``; here ``scenario`` is the :class:`Scenario` run, ``None`` for a raw
+    record). ``snapshots``: with a ``[snapshots]`` table,
     the wavefield frames on their pixel grid, shape ``(n_snapshots, n_z, n_x)`` (m/s, the
     top row first; ``(0, 0, 0)`` without), at ``snapshot_times`` (s), pixel centres
     ``snapshot_x``, ``snapshot_z`` (m); ``snapshot_field`` names the value drawn.
@@ -514,14 +526,19 @@ class Solid2dResult:
 
     def velocity(self, name: str, component: str) -> np.ndarray:
         """The velocity (m/s) of receiver ``name`` along ``component`` (``x``, ``z`` or
-        ``y``)."""
-        return self.receivers[self.receiver_names.index(name), self.components.index(component)]
+        ``y``). An unknown name or component is a ``ValueError`` listing the valid ones."""
+        return self.receivers[
+            _position("receiver", name, self.receiver_names),
+            _position("component", component, self.components),
+        ]
 
     def stress(self, name: str, component: str) -> np.ndarray:
         """The stress (Pa) of stress receiver ``name``, component ``component`` (``xx``,
-        ``zz``, ``xz``, ``yx`` or ``yz``)."""
+        ``zz``, ``xz``, ``yx`` or ``yz``). An unknown name or component is a
+        ``ValueError`` listing the valid ones."""
         return self.stresses[
-            self.stress_names.index(name), self.stress_components.index(component)
+            _position("stress receiver", name, self.stress_names),
+            _position("stress component", component, self.stress_components),
         ]
 
     def to_pandas(self) -> Any:
@@ -558,7 +575,8 @@ class Solid2dResult:
     def __repr__(self) -> str:
         s = self.summary
         return (
-            f"Solid2dResult(scenario={s.get('scenario')!r}, receivers={self.receiver_names}, "
+            f"Solid2dResult(scenario={self.scenario.file if self.scenario else None!r}, "
+            f"receivers={self.receiver_names}, "
             f"cracks={len(self.cracks)}, steps={len(self.t)}, "
             f"energy_closure_error={s.get('energy_closure_error'):.3g})"
         )

@@ -180,10 +180,14 @@ def solid_2d_xarray(r: Any) -> Any:
     }
     coords = {
         "time": ("time", r.t, {"units": "s"}),
-        "receiver": ("receiver", list(r.receiver_names)),
-        "component": ("component", list(r.components)),
-        "stress_receiver": ("stress_receiver", list(r.stress_names)),
-        "stress_component": ("stress_component", list(r.stress_components)),
+        # labels: no unit (CF's "1" for a dimensionless quantity would mislead)
+        "receiver": ("receiver", list(r.receiver_names), {"units": "", "long_name": "receiver name"}),
+        "component": ("component", list(r.components),
+                      {"units": "", "long_name": "velocity component (axis)"}),
+        "stress_receiver": ("stress_receiver", list(r.stress_names),
+                            {"units": "", "long_name": "stress receiver name"}),
+        "stress_component": ("stress_component", list(r.stress_components),
+                             {"units": "", "long_name": "stress component (axes)"}),
         "snapshot_time": ("snapshot_time", r.snapshot_times, {"units": "s"}),
         "z": ("z", r.snapshot_z, {"units": "m"}),
         "x": ("x", r.snapshot_x, {"units": "m"}),

@@ -34,6 +34,15 @@ def test_a_clapping_crack_in_2d_gives_numpy_arrays():
     assert r.receivers.shape == (2, 2, n) and r.receivers.dtype == np.float64
     assert r.components == ["x", "z"] and r.receiver_names == ["top", "under"]
     assert np.array_equal(r.velocity("under", "z"), r.receivers[1, 1])
+    # an unknown receiver or component names the valid ones
+    for name, comp, valid in (("nope", "z", "top, under"), ("top", "y", "x, z")):
+        try:
+            r.velocity(name, comp)
+        except ValueError as e:
+            assert valid in str(e), e
+        else:
+            raise AssertionError("no error")
+    assert repr(r).startswith("Solid2dResult(scenario=")
     # no stress receivers in this file: an empty array of the right shape
     assert r.stresses.shape == (0, 3, n) and r.stress_components == ["xx", "zz", "xz"]
     assert r.summary["energy_closure_error"] < 1e-9

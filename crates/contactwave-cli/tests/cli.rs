@@ -517,17 +517,17 @@ fn bad_sweeps_fail_fast_without_output() {
     let cases = [
         (
             "parameter = \"incident.xi\"\nlinspace = [0.1, 1.1]",
-            "axis[0].linspace",
+            "axis.0.linspace",
         ),
         (
             "parameter = \"incident.xi\"\nlogspace = [-1, 0, 0]",
-            "axis[0].logspace",
+            "axis.0.logspace",
         ),
         (
             "parameter = \"incident.xi\"\nvalues = [0.2]\nstep = 1",
-            "axis[0].step",
+            "axis.0.step",
         ),
-        ("parameter = \"incident.xi\"", "axis[0]"),
+        ("parameter = \"incident.xi\"", "axis.0"),
         // a grid point that is not a valid scenario
         (
             "parameter = \"incident.xi\"\nvalues = [0.3, -0.1]",
@@ -535,7 +535,7 @@ fn bad_sweeps_fail_fast_without_output() {
         ),
         (
             "parameter = \"interface.static_pressure\"\nvalues = [1e5, inf]",
-            "axis[0].values",
+            "axis.0.values",
         ),
     ];
     for (k, (axis, field)) in cases.iter().enumerate() {

@@ -102,13 +102,13 @@ fn bad_identification_inputs_fail_with_one_line_and_no_output() {
             "unknown key",
             good_rows.into(),
             CN_PARAM.replace("traction.stiffness", "traction.stifness"),
-            "parameter[0].key",
+            "parameter.0.key",
         ),
         (
             "bounds exclude the base",
             good_rows.into(),
             CN_PARAM.replace("1e17", "1e12").replace("1e12\n", "1e10\n"),
-            "parameter[0].bounds",
+            "parameter.0.bounds",
         ),
     ];
     for (name, data, params, needle) in cases {

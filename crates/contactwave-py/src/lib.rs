@@ -151,7 +151,7 @@ fn json_to_toml(v: &serde_json::Value, key: &str, file: &str) -> Result<toml::Va
         J::Array(a) => toml::Value::Array(
             a.iter()
                 .enumerate()
-                .map(|(i, x)| json_to_toml(x, &format!("{key}[{i}]"), file))
+                .map(|(i, x)| json_to_toml(x, &format!("{key}.{i}"), file))
                 .collect::<Result<_, _>>()?,
         ),
         J::Object(o) => toml::Value::Table(json_object_to_table(o, key, file)?),

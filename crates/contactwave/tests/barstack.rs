@@ -208,14 +208,14 @@ fn bad_bar_stack_input() {
     let cases = [
         (
             tribobrake().replace("length = 0.015", "length = 0.0"),
-            "segment[1].length",
+            "segment.1.length",
         ),
         (
             tribobrake().replace(
                 "between = [\"guide\", \"sample\"]",
                 "between = [\"guide\", \"obstacle\"]",
             ),
-            "interface[0].between",
+            "interface.0.between",
         ),
         (
             tribobrake().replace("area = 1.15e-4", "area = -1.0"),
@@ -223,7 +223,7 @@ fn bad_bar_stack_input() {
         ),
         (
             tribobrake().replace("mass = 1.61", "mass = nan"),
-            "segment[0].mass",
+            "segment.0.mass",
         ),
         (
             tribobrake().replace("last_end = \"obstacle\"", "last_end = \"wall\""),
@@ -309,7 +309,7 @@ fn probes_see_the_travelling_hammer_wave() {
     // a probe outside the stack is an error naming the field
     let bad = tribobrake() + "\n[[probe]]\nname = \"out\"\nx = 1.0\n";
     let e = load(&bad).unwrap_err().to_string();
-    assert!(e.contains("probe[0].x"), "{e}");
+    assert!(e.contains("probe.0.x"), "{e}");
 }
 
 /// Imposed displacement of the first end (thesis eq. 2.39): the guide carries the wave

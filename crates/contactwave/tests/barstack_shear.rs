@@ -324,17 +324,17 @@ fn malformed_transverse_input_names_the_field() {
         "youngs_modulus = 7.1e10\ndensity = 2710.0",
         1,
     );
-    assert_eq!(field(&t), "segment[0].poisson_ratio");
+    assert_eq!(field(&t), "segment.0.poisson_ratio");
     // negative friction
     let t = two_bars(r#"{ law = "coulomb", friction = -0.3 }"#, 5e6);
-    assert_eq!(field(&t), "interface[0].tangential.friction");
+    assert_eq!(field(&t), "interface.0.tangential.friction");
     // Poisson's ratio out of (-1, 0.5)
     let t = two_bars(law, 5e6).replacen(
         "material = \"aluminium\"",
         "material = \"aluminium\"\npoisson_ratio = 0.7",
         1,
     );
-    assert_eq!(field(&t), "segment[0].poisson_ratio");
+    assert_eq!(field(&t), "segment.0.poisson_ratio");
     // a static shear force with nothing to hold it
     let t = two_bars(law, 5e6).replace(
         "static_force = 10e6",

@@ -323,7 +323,7 @@ fn bad_input_is_an_invalid_error() {
     .unwrap_err();
     let (file, field, value) = invalid_field(e);
     assert!(file.ends_with("test_inline.toml"), "{file}");
-    assert_eq!(field, "parameter[0].key");
+    assert_eq!(field, "parameter.0.key");
     assert_eq!(value, "interface.traction.stifness");
     // bounds that exclude the base value (2e13)
     let e = load(
@@ -331,7 +331,7 @@ fn bad_input_is_an_invalid_error() {
     )
     .unwrap_err();
     let (_, field, _) = invalid_field(e);
-    assert_eq!(field, "parameter[0].bounds");
+    assert_eq!(field, "parameter.0.bounds");
 }
 
 /// The derived format and its validation pass (issue 25, item 7): an unknown key, a value of
@@ -350,7 +350,7 @@ fn format_errors_name_file_field_value_and_what_is_allowed() {
     );
     let e = msg(&format!("{head}{GOOD_PARAM}bound = 1\n"));
     assert!(
-        e.contains("field `parameter[0].bound` = 1: unknown key; a [[parameter]] has key, bounds"),
+        e.contains("field `parameter.0.bound` = 1: unknown key; a [[parameter]] has key, bounds"),
         "{e}"
     );
     let e = msg(&format!("{head}{GOOD_PARAM}[fit]\nparticles = \"many\"\n"));
@@ -367,12 +367,12 @@ fn format_errors_name_file_field_value_and_what_is_allowed() {
         "{head}[[parameter]]\nkey = \"interface.traction.stiffness\"\n"
     ));
     assert!(
-        e.contains("field `parameter[0].bounds` = (missing): required: [lower, upper]"),
+        e.contains("field `parameter.0.bounds` = (missing): required: [lower, upper]"),
         "{e}"
     );
     let e = msg(&format!("{head}{GOOD_PARAM}").replace("scale = \"log\"", "scale = \"ln\""));
     assert!(
-        e.contains("field `parameter[0].scale` = \"ln\": \"log\" or \"linear\""),
+        e.contains("field `parameter.0.scale` = \"ln\": \"log\" or \"linear\""),
         "{e}"
     );
     let e = msg(&format!("base = 1\n{GOOD_PARAM}"));

@@ -92,6 +92,35 @@ fn a_scenario_runs_closes_its_energy_and_writes_its_files() {
         .all(|(&g, &s)| g == 0.0 || s.abs() < 1e-3));
 }
 
+/// The crack's extrema in the summary are over every step, not only the recorded ones:
+/// recording the fields every step or once gives the same largest gap and slip.
+#[test]
+fn crack_extrema_do_not_depend_on_the_recording_interval() {
+    let summary = |every: usize| {
+        let text = SMALL.replace(
+            "element_size = 0.1e-3\n",
+            &format!("element_size = 0.1e-3\ncrack_every = {every}\n"),
+        );
+        let t = model::from_toml_str(&text, "small.toml").unwrap();
+        t.base()
+            .unwrap()
+            .run(&RunControl::default())
+            .unwrap()
+            .summary()
+            .clone()
+    };
+    let (each, rare) = (summary(1), summary(1_000_000));
+    for key in [
+        "crack_max_gap_0",
+        "crack_max_slip_0",
+        "crack_min_adhesion_0",
+    ] {
+        assert_eq!(each.get(key), rare.get(key), "{key}");
+    }
+    assert!(rare.get("crack_max_gap_0").unwrap() > 1e-12, "{rare:?}");
+    assert!(rare.get("crack_max_slip_0").unwrap() > 0.0, "{rare:?}");
+}
+
 /// With absorbing sides and bottom (perfectly matched layers outside the plate) the run
 /// closes its audit at round-off, the flux into the layers counted.
 /// The summary states the run's dispersion at its highest analysed harmonic (model.md
@@ -181,6 +210,48 @@ fn bad_input_is_an_error_naming_the_key() {
             "thickness = 1e-3\nmaterial = \"aluminium\"",
             "thickness = 1e-3\nmaterial = \"cheese\"",
             "layer.0.material",
+        ),
+        // moduli without what completes them: the missing key, not a NaN density
+        (
+            "material = \"aluminium\"",
+            "youngs_modulus = 71e9\ndensity = 2700.0",
+            "layer.0.poisson_ratio",
+        ),
+        // a typo in the kind names the kind, not the first table a half-space lacks
+        ("kind = \"solid_2d\"", "kind = \"solid2d\"", "model.kind"),
+        // a key of another source kind would be ignored
+        (
+            "x1 = 1.4e-3",
+            "x1 = 1.4e-3\nat = [1e-3, 0.0]",
+            "source.0.at",
+        ),
+        // a transducer on a rigid surface does no work
+        (
+            "duration = 0.6e-6",
+            "duration = 0.6e-6\ntop = \"rigid\"",
+            "source.0.surface",
+        ),
+        // a vertical crack on a free side is half a crack
+        (
+            "start = [0.7e-3, 0.5e-3]\nend = [1.3e-3, 0.5e-3]",
+            "start = [2e-3, 0.2e-3]\nend = [2e-3, 0.6e-3]",
+            "crack.0.start",
+        ),
+        // a crack of zero length names its index
+        (
+            "end = [1.3e-3, 0.5e-3]",
+            "end = [0.7e-3, 0.5e-3]",
+            "positive length",
+        ),
+        (
+            "end = [1.3e-3, 0.5e-3]",
+            "end = [1.3e-3, 0.5e-3]\nfull_width = true",
+            "crack.0.full_width",
+        ),
+        (
+            "duration = 0.6e-6",
+            "duration = 0.6e-6\ncrack_every = 0",
+            "model.crack_every",
         ),
     ];
     for (from, to, key) in cases {

@@ -52,6 +52,32 @@ fn crack_end_and_length_are_sweep_keys() {
     );
     // the end outside the plate is refused like any invalid value
     assert!(t2.build(&[(&end_x, 50e-3)]).is_err());
+    // a crack written from right to left keeps its place when its length is set: it grows
+    // from its left tip
+    let mut table = t.table().clone();
+    let crack = table["crack"].as_array_mut().unwrap()[0]
+        .as_table_mut()
+        .unwrap();
+    crack.insert(
+        "start".into(),
+        toml::Value::try_from([21e-3, 5e-3]).unwrap(),
+    );
+    crack.insert("end".into(), toml::Value::try_from([19e-3, 5e-3]).unwrap());
+    let t3 = model::plan(table, Path::new("reversed.toml"));
+    let length = t3.param("crack.0.length").unwrap();
+    let s3 = t3.build(&[(&length, 2e-3)]).unwrap();
+    let c = &s3
+        .as_any()
+        .downcast_ref::<Solid2dScenario>()
+        .unwrap()
+        .problem
+        .cracks[0];
+    assert_eq!(c.start, [19e-3, 5e-3]);
+    assert!(
+        (c.end[0] - 21e-3).abs() < 1e-15 && c.end[1] == 5e-3,
+        "{:?}",
+        c.end
+    );
 }
 
 #[test]

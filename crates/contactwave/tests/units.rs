@@ -110,7 +110,7 @@ damping = "0"
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("segment[0].damping") || e.contains("damping"),
+        e.contains("segment.0.damping") || e.contains("damping"),
         "{e}"
     );
     assert!(e.contains("expected a number") && !e.contains("f64"), "{e}");
@@ -141,7 +141,7 @@ fn sweeps_take_unit_strings() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("bad.toml: field `axis[0].values` = \"1 mm\": `mm` is a unit of a length"),
+        e.contains("bad.toml: field `axis.0.values` = \"1 mm\": `mm` is a unit of a length"),
         "{e}"
     );
     std::fs::remove_dir_all(&d).unwrap();
@@ -333,7 +333,7 @@ fn bar_stack_unit_slips_warn() {
     assert_eq!(w.len(), 1, "{w:?}");
     assert!(
         w[0].starts_with(
-            "bars.toml: segment[0].length = 229 m: a bar longer than 10 m; a length in mm?"
+            "bars.toml: segment.0.length = 229 m: a bar longer than 10 m; a length in mm?"
         ),
         "{w:?}"
     );
@@ -345,9 +345,86 @@ fn bar_stack_unit_slips_warn() {
     assert_ne!(light, burst);
     let w = warnings(&light);
     for start in [
-        "bars.toml: segment[0].density = 1.19 kg/m^3: lighter than any solid",
-        "bars.toml: segment[0].shear_modulus = 2 Pa: below 1 MPa",
+        "bars.toml: segment.0.density = 1.19 kg/m^3: lighter than any solid",
+        "bars.toml: segment.0.shear_modulus = 2 Pa: below 1 MPa",
     ] {
         assert!(w.iter().any(|w| w.starts_with(start)), "{start}: {w:?}");
     }
+}
+
+/// A 2D scenario's geometry, speeds and times take unit strings too: the same problem as
+/// with SI numbers.
+#[test]
+fn solid_2d_geometry_takes_unit_strings() {
+    use contactwave::scenario::solid_2d::{Solid2dScenario, Solid2dSpec};
+    use contactwave::scenario::BuildCache;
+    let si = r#"
+[model]
+kind = "solid_2d"
+width = 2e-3
+duration = 0.6e-6
+element_size = 0.1e-3
+pml_thickness = 0.4e-3
+bottom = "absorbing"
+[[layer]]
+thickness = 1e-3
+p_speed = 6300.0
+s_speed = 3100.0
+density = 2700.0
+[[crack]]
+start = [0.7e-3, 0.5e-3]
+end = [1.3e-3, 0.5e-3]
+static_pressure = 0.2e6
+[[source]]
+x0 = 0.6e-3
+x1 = 1.4e-3
+signal = { frequency = 10e6, cycles = 2, amplitude = 10e6 }
+[[receiver]]
+name = "top"
+at = [1e-3, 0.0]
+to = [1.2e-3, 0.0]
+count = 3
+"#;
+    let units = si
+        .replace("width = 2e-3", "width = \"2 mm\"")
+        .replace("element_size = 0.1e-3", "element_size = \"100 um\"")
+        .replace("pml_thickness = 0.4e-3", "pml_thickness = \"0.4 mm\"")
+        .replace("thickness = 1e-3", "thickness = \"1 mm\"")
+        .replace("p_speed = 6300.0", "p_speed = \"6.3 km/s\"")
+        .replace("s_speed = 3100.0", "s_speed = \"3.1 km/s\"")
+        .replace("[0.7e-3, 0.5e-3]", "[\"0.7 mm\", \"0.5 mm\"]")
+        .replace("[1.3e-3, 0.5e-3]", "[\"1.3 mm\", \"0.5 mm\"]")
+        .replace("x0 = 0.6e-3", "x0 = \"0.6 mm\"")
+        .replace("x1 = 1.4e-3", "x1 = \"1.4 mm\"")
+        .replace("[1e-3, 0.0]", "[\"1 mm\", 0.0]")
+        .replace("[1.2e-3, 0.0]", "[\"1.2 mm\", \"0 m\"]");
+    assert!(units.matches(" mm\"").count() == 11, "{units}");
+    let build = |text: &str| {
+        let table: toml::Table = toml::from_str(text).unwrap();
+        let spec = Solid2dSpec::from_table(table, "u.toml").unwrap();
+        Solid2dScenario::from_spec(spec, "u.toml", Path::new("."), &BuildCache::new()).unwrap()
+    };
+    let (a, b) = (build(si), build(&units));
+    let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * y.abs().max(1e-3);
+    let (pa, pb) = (&a.problem, &b.problem);
+    assert!(close(pb.width, pa.width) && close(pb.element_size, pa.element_size));
+    assert!(close(pb.pml.thickness, pa.pml.thickness));
+    assert!(close(pb.depth(), pa.depth()));
+    let (ma, mb) = (pa.layers[0].material, pb.layers[0].material);
+    assert!(close(mb.p_speed, ma.p_speed) && close(mb.s_speed, ma.s_speed));
+    for k in 0..2 {
+        assert!(close(pb.cracks[0].start[k], pa.cracks[0].start[k]));
+        assert!(close(pb.cracks[0].end[k], pa.cracks[0].end[k]));
+    }
+    assert_eq!(pa.receivers.len(), 3);
+    for (ra, rb) in pa.receivers.iter().zip(&pb.receivers) {
+        assert!(close(rb[0], ra[0]) && close(rb[1], ra[1]), "{ra:?} {rb:?}");
+    }
+    // a unit of another dimension is an error naming the field
+    let wrong = units.replace("\"2 mm\"", "\"2 MHz\"");
+    let table: toml::Table = toml::from_str(&wrong).unwrap();
+    let e = Solid2dSpec::from_table(table, "u.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("model.width") && e.contains("a length"), "{e}");
 }

@@ -2,7 +2,8 @@
 //!
 //! A half-space scenario writes summary.json, timeseries.csv, probe.csv, spectrum.csv and
 //! SVG plots into DIR; a bar-stack scenario (thesis chapter 4) writes the files of the
-//! hammer test (FRF and modes) or of its incident wave, with a progress bar on a terminal.
+//! hammer test (FRF and modes) or of its incident wave; a 2D scenario its receivers,
+//! crack fields, plots and snapshots; long runs with a progress bar on a terminal.
 
 use super::{check_out_dir, progress_bar, read_table, EXIT_OK, STEPS_TEMPLATE};
 use contactwave::model::{self, RunControl};
@@ -17,8 +18,10 @@ use std::time::Instant;
 /// Simulate one scenario and write its files into DIR (SI units: s, m, Pa, m/s, Hz): for a
 /// half-space scenario summary.json, timeseries.csv, probe.csv, spectrum.csv and SVG plots;
 /// for a bar stack summary.json, timeseries.csv, then frf.csv and frf.svg (hammer) or
-/// waves.csv (incident wave), and probes.csv with [[probe]] tables (docs/scenario.md
-/// section 4). Ctrl-C stops it (exit 130, nothing written).
+/// waves.csv (incident wave), and probes.csv with [[probe]] tables; for a 2D scenario
+/// summary.json, receivers.csv, crack.csv, receivers.svg, spectra.svg, crack_map.png,
+/// crack_state.png and, with [snapshots], snapshots/frame_NNNN.png, a GIF and VTK files
+/// (docs/scenario.md section 4). Ctrl-C stops it (exit 130, nothing written).
 #[derive(clap::Args)]
 pub struct Args {
     /// Scenario file (TOML; see docs/scenario.md).
@@ -26,7 +29,8 @@ pub struct Args {
     /// Output folder (created if needed; files in it are replaced).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
-    /// Recorded series written (timeseries.csv, probe.csv, probes.csv, waves.csv):
+    /// Recorded series written (timeseries.csv, probe.csv, probes.csv, waves.csv,
+    /// receivers.csv):
     /// `decimated` keeps at most 20000 rows per file (every k-th time sample), `full`
     /// every time sample, `none` no such file. Summaries, spectra and FRFs use the full
     /// series whatever the choice.

@@ -64,7 +64,7 @@ pub fn fit_power_law(pressure: &[f64], stiffness: &[f64]) -> Result<PowerLawFit>
         if !(p > 0.0 && p.is_finite()) {
             return Err(Error::invalid(
                 "<data>",
-                format!("pressure[{i}]"),
+                format!("pressure.{i}"),
                 p,
                 "must be a finite number > 0 (Pa)",
             ));
@@ -72,7 +72,7 @@ pub fn fit_power_law(pressure: &[f64], stiffness: &[f64]) -> Result<PowerLawFit>
         if !(k > 0.0 && k.is_finite()) {
             return Err(Error::invalid(
                 "<data>",
-                format!("stiffness[{i}]"),
+                format!("stiffness.{i}"),
                 k,
                 "must be a finite number > 0 (Pa/m)",
             ));

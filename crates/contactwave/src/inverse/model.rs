@@ -59,6 +59,17 @@ impl<'a> Model<'a> {
         Ok(p)
     }
 
+    /// The base scenario with parameter `p`'s keys (its key and its `also` keys) set to
+    /// its starting value, through the same typed setters as every forward run.
+    pub(super) fn at_start(&self, p: &super::spec::Parameter) -> Result<Arc<dyn ForwardModel>> {
+        let params = std::iter::once(&p.key)
+            .chain(&p.also)
+            .map(|k| self.param(k))
+            .collect::<Result<Vec<_>>>()?;
+        let refs: Vec<(&Param, f64)> = params.iter().map(|q| (q, p.initial)).collect();
+        self.template.build(&refs)
+    }
+
     /// Forward runs so far.
     pub fn forward_runs(&self) -> usize {
         self.runs.load(Ordering::Relaxed)

@@ -4,7 +4,7 @@
 //! table), check them, and check every row against the forward model at the starting
 //! values. The format is described in the `inverse` module doc.
 
-use super::model::{toml_number, Model};
+use super::model::Model;
 use super::spec::{DesignSpec, FitOptions, IdentifySpec, Measured, Observed, Parameter, Scale};
 use crate::error::{Error, Result};
 use crate::model;
@@ -110,7 +110,7 @@ impl IdentifySpec {
     ///     bounds = [1e10, 1e14]
     /// "#, "identify.toml").unwrap();
     /// let err = IdentifySpec::from_table(table, &dir.join("identify.toml")).unwrap_err();
-    /// assert!(err.to_string().contains("parameter[0].key"));
+    /// assert!(err.to_string().contains("parameter.0.key"));
     /// std::fs::remove_dir_all(&dir).unwrap();
     /// ```
     pub fn from_table(table: toml::Table, path: &Path) -> Result<IdentifySpec> {
@@ -235,28 +235,23 @@ impl IdentifySpec {
             .collect();
         let model = Model::new(&spec);
         for (k, p) in spec.parameters.iter().enumerate() {
-            let mut table = spec.base_table.clone();
-            std::iter::once(&p.key)
-                .chain(&p.also)
-                .try_for_each(|key| set_dotted(&mut table, key, toml_number(key, p.initial)))
-                .and_then(|_| model::plan_valid(table, &spec.base))
-                .map_err(|e| {
-                    let why = match e {
-                        Error::Invalid { field, allowed, .. } => format!("{field}: {allowed}"),
-                        Error::Parse { message, .. } => message,
-                        other => other.to_string(),
-                    };
-                    Error::invalid(
-                        &file,
-                        format!("parameter[{k}].key"),
-                        &p.key,
-                        format!(
-                            "a dotted key of a number of the base scenario (setting it to \
+            model.at_start(p).map_err(|e| {
+                let why = match e {
+                    Error::Invalid { field, allowed, .. } => format!("{field}: {allowed}"),
+                    Error::Parse { message, .. } => message,
+                    other => other.to_string(),
+                };
+                Error::invalid(
+                    &file,
+                    format!("parameter.{k}.key"),
+                    &p.key,
+                    format!(
+                        "a dotted key of a number of the base scenario (setting it to \
                              {} fails: {why})",
-                            p.initial
-                        ),
-                    )
-                })?;
+                        p.initial
+                    ),
+                )
+            })?;
         }
         for i in 0..spec.measured.len() {
             model.scenario(i, &model.values(&z0))?;
@@ -475,7 +470,7 @@ fn parse_parameters(
     }
     let mut out: Vec<Parameter> = Vec::new();
     for (k, t) in items.into_iter().enumerate() {
-        let f = |name: &str| format!("parameter[{k}].{name}");
+        let f = |name: &str| format!("parameter.{k}.{name}");
         let key = t.key;
         if !dotted(&key) {
             return Err(Error::invalid(

@@ -127,6 +127,27 @@ pub fn plan(table: toml::Table, path: &Path) -> Arc<dyn Template> {
 /// Plan a template and validate the scenario as given (what loading a scenario to run it
 /// means).
 pub fn plan_valid(table: toml::Table, path: &Path) -> Result<Arc<dyn Template>> {
+    // a `[model] kind` no kind claims (a typo) would read as a half-space scenario and
+    // fail on its first table: name the kind instead
+    if let Some(kind) = table.get("model").and_then(|m| m.get("kind")) {
+        let half_space = half_space::KIND.name();
+        if kind_of(&table).name() == half_space && kind.as_str() != Some(half_space) {
+            let names: Vec<&str> = KINDS
+                .iter()
+                .map(|k| k.name())
+                .filter(|n| *n != half_space)
+                .collect();
+            return Err(crate::error::Error::invalid(
+                path.display().to_string(),
+                "model.kind",
+                kind,
+                format!(
+                    "{} (a half-space scenario has no `[model]` table)",
+                    names.join(" or ")
+                ),
+            ));
+        }
+    }
     let t = plan(table, path);
     t.base()?;
     Ok(t)

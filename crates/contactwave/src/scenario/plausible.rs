@@ -201,7 +201,7 @@ impl BarStackScenario {
     pub fn warnings(&self) -> Vec<Warning> {
         let mut w = Warnings::new(&self.file);
         for (i, seg) in self.spec.segments.iter().enumerate() {
-            let prefix = format!("segment[{i}]");
+            let prefix = format!("segment.{i}");
             w.material(&prefix, seg.youngs_modulus, seg.shear_modulus, seg.density);
             if seg.length > LONGEST_SEGMENT {
                 w.warn(

@@ -193,8 +193,11 @@ pub fn dimension_of_key(key: &str) -> Option<Dimension> {
     let last = key.rsplit('.').next().unwrap_or(key);
     Some(match last {
         "frequency" | "frequency2" | "first_mode_min" | "first_mode_max" => Dimension::Frequency,
-        "delay" | "duration" | "time_step" => Dimension::Time,
-        "x" | "length" | "cell_size" => Dimension::Length,
+        "delay" | "duration" | "time_step" | "times" | "gate" | "taper" => Dimension::Time,
+        "x" | "length" | "cell_size" | "width" | "thickness" | "element_size" | "pml_thickness"
+        | "start" | "end" | "at" | "to" | "z" | "x0" | "x1" | "position" | "gap" => {
+            Dimension::Length
+        }
         "area" => Dimension::Area,
         "static_pressure"
         | "static_shear"
@@ -206,7 +209,7 @@ pub fn dimension_of_key(key: &str) -> Option<Dimension> {
         "static_force" | "static_shear_force" | "peak" => Dimension::Force,
         "mass" => Dimension::Mass,
         "density" => Dimension::Density,
-        "cl" | "ct" => Dimension::Speed,
+        "cl" | "ct" | "p_speed" | "s_speed" => Dimension::Speed,
         "gravity" => Dimension::Acceleration,
         "stiffness" | "k0" => Dimension::Stiffness,
         "k1" => Dimension::StiffnessPerLength,
@@ -313,7 +316,7 @@ fn convert(v: &mut toml::Value, key: &str, path: &str, file: &str) -> Result<()>
         toml::Value::Table(t) => to_si_at(t, path, file),
         toml::Value::Array(items) => {
             for (i, item) in items.iter_mut().enumerate() {
-                convert(item, key, &format!("{path}[{i}]"), file)?;
+                convert(item, key, &format!("{path}.{i}"), file)?;
             }
             Ok(())
         }

@@ -190,7 +190,7 @@ pub enum FieldProblem {
 
 /// Deserialize the table of a sweep or identification file into its format type `T`
 /// (serde structs with `deny_unknown_fields`). A failure becomes an [`Error::Invalid`]
-/// naming `file`, the field (`axis[1].values`), the value as written (or `(missing)`) and
+/// naming `file`, the field (`axis.1.values`), the value as written (or `(missing)`) and
 /// what is allowed there: `allowed(key, problem)`, where `key` is the field without its
 /// array indices (`axis.values`; for an unknown key, the table that holds it: `axis`,
 /// or `""` at the top).
@@ -207,7 +207,7 @@ pub fn deserialize_format<T: serde::de::DeserializeOwned>(
             match s {
                 serde_path_to_error::Segment::Seq { index } => {
                     if let Some(last) = path.last_mut() {
-                        last.push_str(&format!("[{index}]"));
+                        last.push_str(&format!(".{index}"));
                     }
                 }
                 serde_path_to_error::Segment::Map { key: k }
@@ -262,19 +262,19 @@ pub fn deserialize_format<T: serde::de::DeserializeOwned>(
     })
 }
 
-/// The value at a path of `deserialize_format` (`axis[1]`, `values`): keys, each with
-/// optional `[i]` indices.
+/// The value at a path of `deserialize_format` (`axis.1`, `values`): keys, each with
+/// optional `.i` indices.
 fn value_at<'a>(table: &'a toml::Table, path: &[String]) -> Option<&'a toml::Value> {
     let mut cur: Option<&toml::Value> = None;
     for part in path {
-        let mut pieces = part.split('[');
+        let mut pieces = part.split('.');
         let name = pieces.next()?;
         let mut v = match cur {
             None => table.get(name)?,
             Some(c) => c.get(name)?,
         };
         for idx in pieces {
-            v = v.get(idx.trim_end_matches(']').parse::<usize>().ok()?)?;
+            v = v.get(idx.parse::<usize>().ok()?)?;
         }
         cur = Some(v);
     }

@@ -59,18 +59,18 @@ impl LawSpec for Spec {
             ));
         }
         for (i, p) in pressure.iter().enumerate() {
-            non_negative(file, &format!("{}[{i}]", key("pressure")), *p)?;
+            non_negative(file, &format!("{}.{i}", key("pressure")), *p)?;
             if i > 0 && !(*p > pressure[i - 1]) {
                 return Err(Error::invalid(
                     file,
-                    format!("{}[{i}]", key("pressure")),
+                    format!("{}.{i}", key("pressure")),
                     p,
                     "pressures must be strictly increasing",
                 ));
             }
         }
         for (i, k) in stiffness.iter().enumerate() {
-            positive(file, &format!("{}[{i}]", key("stiffness")), *k)?;
+            positive(file, &format!("{}.{i}", key("stiffness")), *k)?;
         }
         let t = TableStiffness::new(pressure, stiffness)
             .ok_or_else(|| Error::invalid(file, key("pressure"), "table", "invalid table"))?;

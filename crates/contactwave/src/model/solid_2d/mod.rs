@@ -123,16 +123,19 @@ impl Fields for CrackSpec {
         match path {
             ["static_pressure"] => Some(Slot::F64(&mut self.static_pressure)),
             ["static_shear"] => Some(Slot::F64(&mut self.static_shear)),
-            // the crack's length from its start, along its line (a given end becomes the
-            // length and the orientation it implies)
+            // the crack's length from its left (top) tip, along its line (a given end
+            // becomes the length and the orientation it implies; an end left of or above
+            // the start becomes the start, so that the crack keeps its place)
             ["length"] => {
                 if let Some(e) = self.end.take() {
                     self.vertical = e[0] == self.start[0] && e[1] != self.start[1];
-                    self.length = Some(if self.vertical {
-                        e[1] - self.start[1]
+                    let k = usize::from(self.vertical);
+                    if e[k] < self.start[k] {
+                        self.length = Some(self.start[k] - e[k]);
+                        self.start = e;
                     } else {
-                        e[0] - self.start[0]
-                    });
+                        self.length = Some(e[k] - self.start[k]);
+                    }
                 }
                 Some(Slot::OptF64(&mut self.length))
             }
@@ -259,16 +262,9 @@ impl Solid2dScenario {
         s.set("energy_absorbed", e.absorbed);
         s.set("energy_closure_error", e.closure_error());
         for (i, c) in output.cracks.iter().enumerate() {
-            let max = |v: &[f64]| v.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
-            s.set(
-                &format!("crack_max_gap_{i}"),
-                c.normal_gap.iter().fold(0.0f64, |a, &b| a.max(b)),
-            );
-            s.set(&format!("crack_max_slip_{i}"), max(&c.tangential_gap));
-            s.set(
-                &format!("crack_min_adhesion_{i}"),
-                c.adhesion.iter().fold(1.0f64, |a, &b| a.min(b)),
-            );
+            s.set(&format!("crack_max_gap_{i}"), c.peak_normal_gap);
+            s.set(&format!("crack_max_slip_{i}"), c.peak_slip);
+            s.set(&format!("crack_min_adhesion_{i}"), c.least_adhesion);
         }
         let method = self.spec.analysis.method;
         s.set("analysis_method", method.code());

@@ -74,7 +74,7 @@ pub(super) fn resolve_probes(
         if !ok_name || specs[..k].iter().any(|q| q.name == p.name) {
             return Err(inv(
                 file,
-                format!("probe[{k}].name"),
+                format!("probe.{k}.name"),
                 &p.name,
                 "a unique name of letters, digits and _",
             ));
@@ -82,7 +82,7 @@ pub(super) fn resolve_probes(
         if !(p.x.is_finite() && p.x >= 0.0 && p.x <= total) {
             return Err(inv(
                 file,
-                format!("probe[{k}].x"),
+                format!("probe.{k}.x"),
                 p.x,
                 &format!("in [0, {total}] m (the length of the stack)"),
             ));

@@ -53,7 +53,7 @@ pub(super) fn build_segments(specs: &[SegmentSpec], area: f64, file: &str) -> Re
     }
     let mut segments = Vec::new();
     for (i, s) in specs.iter().enumerate() {
-        let key = |k: &str| format!("segment[{i}].{k}");
+        let key = |k: &str| format!("segment.{i}.{k}");
         pos(file, &key("length"), s.length)?;
         let mut mat = crate::scenario::material_of(
             &MaterialSpec {
@@ -66,7 +66,7 @@ pub(super) fn build_segments(specs: &[SegmentSpec], area: f64, file: &str) -> Re
                 ..Default::default()
             },
             file,
-            &format!("segment[{i}]"),
+            &format!("segment.{i}"),
             crate::scenario::Geometry::Bar,
         )?;
         if let Some(mass) = s.mass {
@@ -77,7 +77,7 @@ pub(super) fn build_segments(specs: &[SegmentSpec], area: f64, file: &str) -> Re
                 *g *= rho_eq / mat.density;
             }
             mat.density = rho_eq;
-            crate::scenario::check_derived(&mat, file, &format!("segment[{i}]"))?;
+            crate::scenario::check_derived(&mat, file, &format!("segment.{i}"))?;
         }
         if !(s.damping.is_finite() && s.damping >= 0.0) {
             return Err(inv(file, key("damping"), s.damping, "must be >= 0 (1/s)"));
@@ -109,7 +109,7 @@ pub(super) fn require_shear_moduli(segments: &[Segment], file: &str) -> Result<(
         None => Ok(()),
         Some(i) => Err(inv(
             file,
-            format!("segment[{i}].poisson_ratio"),
+            format!("segment.{i}.poisson_ratio"),
             "(missing)",
             "a transverse field ([shear_incident], a tangential law or a static shear force) \
              needs the shear modulus of every segment: give `poisson_ratio` in (-1, 0.5), \
@@ -168,7 +168,7 @@ pub(super) fn build_interface_laws(
             _ => {
                 return Err(inv(
                     file,
-                    format!("interface[{j}].between"),
+                    format!("interface.{j}.between"),
                     format!("[\"{a}\", \"{b}\"]"),
                     "must name two consecutive segments in order (or the last segment and \"obstacle\")",
                 ))
@@ -177,7 +177,7 @@ pub(super) fn build_interface_laws(
         if laws[ia].is_some() {
             return Err(inv(
                 file,
-                format!("interface[{j}].between"),
+                format!("interface.{j}.between"),
                 a,
                 "one interface per pair of segments",
             ));
@@ -186,7 +186,7 @@ pub(super) fn build_interface_laws(
         if p < 0.0 {
             return Err(inv(
                 file,
-                format!("interface[{j}]"),
+                format!("interface.{j}"),
                 p,
                 "the static step gives a tensile interface load: the stack would fall apart",
             ));
@@ -196,7 +196,7 @@ pub(super) fn build_interface_laws(
             &itf.compression,
             &itf.traction,
             file,
-            &format!("interface[{j}]"),
+            &format!("interface.{j}"),
         )?;
         pressures[ia] = p;
         laws[ia] = Some(law);
@@ -301,7 +301,7 @@ impl InterfaceLaws {
                 laws.push(None);
                 continue;
             };
-            let prefix = format!("interface[{j}]");
+            let prefix = format!("interface.{j}");
             let tl = build_tangential(&spec.interfaces[*j].tangential, q0, law, file, &prefix)
                 .map_err(|e| match e {
                     // the static shear comes from the model's transverse force

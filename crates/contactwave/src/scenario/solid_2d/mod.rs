@@ -15,6 +15,7 @@ use crate::material::Material;
 use crate::scenario::spec::IncidentSpec;
 use crate::scenario::BuildCache;
 use crate::solver::solid_2d::dispersion::element_size_for;
+use crate::solver::solid_2d::region::Region;
 use crate::solver::solid_2d::Backend;
 use crate::solver::solid_2d::{
     pml, Crack, CrackProfile, Elastic, Incidence, Layer, Pml, Side, Solid2d, Source, SourceKind,
@@ -213,11 +214,9 @@ pub struct SourceSpec {
     /// Transducer: aperture end, m.
     pub x1: Option<f64>,
     /// Transducer: `top` (default) or `bottom` surface.
-    #[serde(default = "top")]
-    pub surface: String,
+    pub surface: Option<String>,
     /// Transducer: `normal` (default) or `shear` traction (shear is along y in SH runs).
-    #[serde(default = "normal")]
-    pub component: String,
+    pub component: Option<String>,
     /// Transducer: beam angle from the surface normal, degrees in (-90, 90) (default 0): a
     /// linear delay law `sin(angle) / c` along the aperture (c_P of the top layer for a
     /// normal traction, c_S for a shear one).
@@ -240,11 +239,30 @@ pub struct SourceSpec {
 fn transducer() -> String {
     "transducer".into()
 }
-fn top() -> String {
-    "top".into()
-}
-fn normal() -> String {
-    "normal".into()
+
+/// The keys of each source kind beside `kind` and `signal`, and whether a source sets a
+/// key of another kind (named, with the kind's own keys): such a key would be ignored.
+fn foreign_key(s: &SourceSpec) -> Option<(&'static str, &'static str)> {
+    let set = [
+        ("x0", s.x0.is_some()),
+        ("x1", s.x1.is_some()),
+        ("surface", s.surface.is_some()),
+        ("component", s.component.is_some()),
+        ("angle", s.angle != 0.0),
+        ("at", s.at.is_some()),
+        ("direction", s.direction.is_some()),
+        ("wave", s.wave.is_some()),
+        ("z", s.z.is_some()),
+    ];
+    let own = match s.kind.as_str() {
+        "transducer" => "x0, x1, surface, component, angle",
+        "force" => "at, direction",
+        "plane_wave" => "wave, z, angle",
+        _ => return None,
+    };
+    set.iter()
+        .find(|(name, given)| *given && !own.split(", ").any(|o| o == *name))
+        .map(|(name, _)| (*name, own))
 }
 
 /// `[[receiver]]`: a point (or, with `to` and `count`, a line of points) where the
@@ -378,14 +396,35 @@ fn material(l: &LayerSpec, file: &str, key: &str) -> Result<Elastic> {
             positive(file, &k("density"), rho)?,
         ));
     }
-    let rho = positive(file, &k("density"), l.density.unwrap_or(f64::NAN))?;
+    let density = || match l.density {
+        Some(rho) => positive(file, &k("density"), rho),
+        None => Err(inv(
+            file,
+            k("density"),
+            "(missing)",
+            "required with moduli or speeds: kg/m^3 > 0",
+        )),
+    };
+    let missing = |field: &str, with: &str| {
+        Err(inv(
+            file,
+            k(field),
+            "(missing)",
+            &format!("required with `{with}`"),
+        ))
+    };
     match (l.youngs_modulus, l.poisson_ratio, l.p_speed, l.s_speed) {
         (Some(e), Some(nu), None, None) => {
             positive(file, &k("youngs_modulus"), e)?;
-            if !(nu > -1.0 && nu < 0.5) {
-                return Err(inv(file, k("poisson_ratio"), nu, "in (-1, 0.5)"));
+            if !(nu > 0.0 && nu < 0.5) {
+                return Err(inv(
+                    file,
+                    k("poisson_ratio"),
+                    nu,
+                    "in (0, 0.5) (the 2D solids need a positive Lame lambda)",
+                ));
             }
-            Ok(from_moduli(e, nu, rho))
+            Ok(from_moduli(e, nu, density()?))
         }
         (None, None, Some(cp), Some(cs)) => {
             positive(file, &k("s_speed"), cs)?;
@@ -394,11 +433,23 @@ fn material(l: &LayerSpec, file: &str, key: &str) -> Result<Elastic> {
                     file,
                     k("p_speed"),
                     cp,
-                    "a finite speed above sqrt(2) s_speed (a positive Lame lambda... at least nu > 0)",
+                    &format!(
+                        "a finite speed above sqrt(2) s_speed = {} m/s (a positive Lame lambda, \
+                         nu > 0)",
+                        cs * 2f64.sqrt()
+                    ),
                 ));
             }
-            Ok(Elastic { density: rho, p_speed: cp, s_speed: cs })
+            Ok(Elastic {
+                density: density()?,
+                p_speed: cp,
+                s_speed: cs,
+            })
         }
+        (Some(_), None, None, None) => missing("poisson_ratio", "youngs_modulus"),
+        (None, Some(_), None, None) => missing("youngs_modulus", "poisson_ratio"),
+        (None, None, Some(_), None) => missing("s_speed", "p_speed"),
+        (None, None, None, Some(_)) => missing("p_speed", "s_speed"),
         _ => Err(inv(
             file,
             key,
@@ -486,6 +537,17 @@ impl Solid2dScenario {
             if i == 0 {
                 f0 = signal.fundamental();
             }
+            if let Some((name, own)) = foreign_key(s) {
+                return Err(inv(
+                    file,
+                    format!("{key}.{name}"),
+                    "given",
+                    &format!(
+                        "not a key of a `{}` source (it takes kind, signal, {own})",
+                        s.kind
+                    ),
+                ));
+            }
             let top = &layers[0].material;
             let kind = match s.kind.as_str() {
                 "transducer" => {
@@ -508,12 +570,28 @@ impl Solid2dScenario {
                             "0 <= x0 < x1 <= model.width",
                         ));
                     }
-                    let on_top = match s.surface.as_str() {
+                    let on_top = match s.surface.as_deref().unwrap_or("top") {
                         "top" => true,
                         "bottom" => false,
                         v => return Err(inv(file, format!("{key}.surface"), v, "top or bottom")),
                     };
-                    let normal = match s.component.as_str() {
+                    let (side_key, side) = if on_top {
+                        ("model.top", &m.top)
+                    } else {
+                        ("model.bottom", &m.bottom)
+                    };
+                    if side == "rigid" {
+                        return Err(inv(
+                            file,
+                            format!("{key}.surface"),
+                            s.surface.as_deref().unwrap_or("top"),
+                            &format!(
+                                "a surface that can move: `{side_key}` is rigid (a traction \
+                                 there does no work)"
+                            ),
+                        ));
+                    }
+                    let normal = match s.component.as_deref().unwrap_or("normal") {
                         "normal" => true,
                         "shear" => false,
                         v => {
@@ -647,7 +725,15 @@ impl Solid2dScenario {
                 &key,
             )?;
             let end = match (c.end, c.length, c.full_width) {
-                (_, _, true) => [m.width, c.start[1]],
+                (None, None, true) => [m.width, c.start[1]],
+                (_, _, true) => {
+                    return Err(inv(
+                        file,
+                        format!("{key}.full_width"),
+                        true,
+                        "full_width = true or an `end` / `length`, not both",
+                    ))
+                }
                 (Some(_), Some(l), false) => {
                     return Err(inv(
                         file,
@@ -674,6 +760,14 @@ impl Solid2dScenario {
                     ))
                 }
             };
+            if end == c.start {
+                return Err(inv(
+                    file,
+                    format!("{key}.end"),
+                    format!("[{}, {}]", end[0], end[1]),
+                    "a point other than the start (a crack of positive length)",
+                ));
+            }
             // a vertical crack may end on a free top or bottom side (surface-breaking)
             let vertical = !c.full_width && end[0] == c.start[0] && end[1] != c.start[1];
             let mouth = |z: f64, side: &str| vertical && (z == 0.0 || z == depth) && side == "free";
@@ -713,6 +807,7 @@ impl Solid2dScenario {
                 profile: profile.map(|p| Arc::new(p) as Arc<dyn CrackProfile<SharedLaw>>),
             });
         }
+        let region = Region::new(m.width, depth);
         let mut points = Vec::new();
         let mut receivers = Vec::new();
         let mut stress_points = Vec::new();
@@ -796,12 +891,12 @@ impl Solid2dScenario {
                         "a name no other receiver has",
                     ));
                 }
-                if !(at[0] >= 0.0 && at[0] <= m.width && at[1] >= 0.0 && at[1] <= depth) {
+                if !region.contains(at) {
                     return Err(inv(
                         file,
                         format!("{key}.at"),
                         format!("[{}, {}]", at[0], at[1]),
-                        "inside the rectangle",
+                        &region.describe(),
                     ));
                 }
                 let list = if stress {
@@ -833,7 +928,17 @@ impl Solid2dScenario {
             sources,
             receivers: points,
             duration: m.duration,
-            crack_every: m.crack_every.unwrap_or(10).max(1),
+            crack_every: match m.crack_every.unwrap_or(10) {
+                0 => {
+                    return Err(inv(
+                        file,
+                        "model.crack_every",
+                        0,
+                        "a whole number >= 1 (steps)",
+                    ))
+                }
+                n => n,
+            },
             pml: Pml {
                 thickness: match m.pml_thickness {
                     Some(l) => positive(file, "model.pml_thickness", l)?,

@@ -212,7 +212,7 @@ pub fn check_stability(mesh: &Mesh) -> Result<()> {
         if !(*r <= 1.0 + 1e-9) {
             return Err(Error::invalid(
                 "<mesh>",
-                format!("segment[{i}]"),
+                format!("segment.{i}"),
                 r,
                 "Courant number c dt / dx must be <= 1",
             ));
@@ -384,7 +384,7 @@ impl BarStack {
         let missing = |i: usize| {
             Error::invalid(
                 "<model>",
-                format!("segment[{i}].shear_modulus"),
+                format!("segment.{i}.shear_modulus"),
                 "(missing)",
                 "a stack with a shear field needs the shear modulus of every segment",
             )

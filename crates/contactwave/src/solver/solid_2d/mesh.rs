@@ -171,13 +171,13 @@ impl Mesh {
         // twins: per grid node, the twin index (u32::MAX: not split)
         let mut twin = vec![u32::MAX; nxn * nzn];
         let mut next = nxn * nzn;
-        for c in cracks {
+        for (ci, c) in cracks.iter().enumerate() {
             let mut pairs = Vec::new();
             let range = if c.full_width {
                 if !(periodic && c.horizontal) {
                     return Err(Error::invalid(
                         "",
-                        "crack",
+                        format!("crack.{ci}.full_width"),
                         "across the whole width",
                         "a crack across the whole width needs periodic x sides and a horizontal line",
                     ));
@@ -190,7 +190,7 @@ impl Mesh {
             if range.is_empty() {
                 return Err(Error::invalid(
                     "",
-                    "crack.length",
+                    format!("crack.{ci}.length"),
                     "shorter than one node spacing",
                     "a crack leaves at least one node to split (two node spacings between welded tips)",
                 ));
@@ -204,7 +204,7 @@ impl Mesh {
                 if twin[g] != u32::MAX {
                     return Err(Error::invalid(
                         "",
-                        "crack",
+                        format!("crack.{ci}"),
                         format!(
                             "node at x = {} m, z = {} m",
                             mesh.x[g % nxn],

@@ -36,6 +36,7 @@ pub mod mesh;
 pub mod plane_wave;
 pub mod pml;
 pub mod probe;
+pub mod region;
 mod simd;
 pub mod snapshot;
 mod stepping;
@@ -300,6 +301,13 @@ pub struct CrackRecord {
     /// Contact state: 0 open (normal gap > 0), 1 stick, 2 slip (sliding, or closed
     /// without friction).
     pub state: Vec<f64>,
+    /// The largest normal gap of any point at any step (every step, not only the
+    /// recorded ones; 0 if it never opens), m.
+    pub peak_normal_gap: f64,
+    /// The largest |tangential gap| of any point at any step, m.
+    pub peak_slip: f64,
+    /// The smallest adhesion of any point at any step (1 where nothing is damaged).
+    pub least_adhesion: f64,
 }
 
 /// The energy audit of a run, J/m (per unit length along y).
@@ -500,7 +508,6 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         if !(self.duration > 0.0 && self.duration.is_finite()) {
             return bad("model.duration", self.duration.to_string(), "> 0 s, finite");
         }
-        let (_, _, ls) = self.pml_thicknesses();
         if [self.top, self.bottom, self.sides].contains(&Side::Absorbing) {
             let l = self.pml.thickness;
             if !(l > 0.0 && l.is_finite()) {
@@ -511,24 +518,23 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 return bad("model.pml_reflection", r.to_string(), "in (0, 1)");
             }
         }
-        let inside =
-            |p: [f64; 2]| p[0] >= 0.0 && p[0] <= self.width && p[1] >= 0.0 && p[1] <= depth;
+        let region = region::Region::new(self.width, depth);
         for (i, r) in self.receivers.iter().enumerate() {
-            if !inside(*r) {
+            if !region.contains(*r) {
                 return bad(
                     &format!("receiver.{i}.at"),
                     format!("{r:?}"),
-                    "inside the rectangle (not in an absorbing layer outside it)",
+                    &region.describe(),
                 );
             }
         }
         for (i, s) in self.sources.iter().enumerate() {
             if let SourceKind::Force { at, .. } = s.kind {
-                if !inside(at) {
+                if !region.contains(at) {
                     return bad(
                         &format!("source.{i}.at"),
                         format!("{at:?}"),
-                        "inside the rectangle (not in an absorbing layer outside it)",
+                        &region.describe(),
                     );
                 }
             }
@@ -570,11 +576,16 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                     );
                 }
             }
-            if !horizontal && ls > 0.0 && (c.start[0] <= 0.0 || c.start[0] >= self.width) {
+            let seam = self.sides == Side::Periodic;
+            if !horizontal && !seam && (c.start[0] <= 0.0 || c.start[0] >= self.width) {
                 return bad(
                     &format!("crack.{i}.start"),
                     format!("{:?}", c.start),
-                    "a vertical crack away from the absorbing x sides (0 < x < model.width)",
+                    &format!(
+                        "a vertical crack off the x sides, 0 < x < {} m (a crack on a side is \
+                         half a crack; only periodic sides join there)",
+                        self.width
+                    ),
                 );
             }
             xs.extend([c.start[0], c.end[0]]);
@@ -663,7 +674,12 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             lines.push(line);
         }
         let mesh = Mesh::new(n, x_edges, z_edges, periodic, &lines).map_err(|e| match e {
-            Error::Invalid { value, allowed, .. } => Error::invalid(file, "crack", value, allowed),
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+                ..
+            } => Error::invalid(file, field, value, allowed),
             e => e,
         })?;
         let (nex, nez) = mesh.element_dims();

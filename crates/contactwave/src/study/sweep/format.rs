@@ -92,7 +92,7 @@ pub struct Sweep {
 
 impl Sweep {
     /// Load a sweep file and its base scenario, and build the grid. Errors name the sweep
-    /// file and the field (`axis[1].linspace`, ...). The points are validated as scenarios
+    /// file and the field (`axis.1.linspace`, ...). The points are validated as scenarios
     /// by [`Sweep::runnable`].
     pub fn load(path: &Path) -> Result<Sweep> {
         let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
@@ -119,7 +119,7 @@ impl Sweep {
             if axes.iter().any(|b| b.parameter == axis.parameter) {
                 return Err(Error::invalid(
                     &file,
-                    format!("axis[{i}].parameter"),
+                    format!("axis.{i}.parameter"),
                     format!("\"{}\"", axis.parameter),
                     "is swept by an earlier axis already",
                 ));
@@ -207,12 +207,12 @@ impl Sweep {
             if parameter.is_empty() || parameter.split('.').any(|p| p.trim().is_empty()) {
                 return Err(Error::invalid(
                     &name,
-                    format!("axis[{i}].parameter"),
+                    format!("axis.{i}.parameter"),
                     format!("\"{parameter}\""),
                     "must be a dotted scenario key such as \"incident.xi\"",
                 ));
             }
-            let field = format!("axis[{i}].values");
+            let field = format!("axis.{i}.values");
             if values.is_empty() || values.len() > MAX_AXIS_POINTS {
                 return Err(Error::invalid(
                     &name,
@@ -232,7 +232,7 @@ impl Sweep {
             if out.iter().any(|b| b.parameter == parameter) {
                 return Err(Error::invalid(
                     &name,
-                    format!("axis[{i}].parameter"),
+                    format!("axis.{i}.parameter"),
                     format!("\"{parameter}\""),
                     "is swept by an earlier axis already",
                 ));
@@ -314,7 +314,7 @@ impl Sweep {
             if let Some(k) = self.axis_named_by(&e) {
                 return Error::invalid(
                     self.file.display().to_string(),
-                    format!("axis[{k}].parameter"),
+                    format!("axis.{k}.parameter"),
                     &self.axes[k].parameter,
                     format!(
                         "the base scenario {} cannot take this key: {e}",
@@ -434,7 +434,7 @@ fn axis_error(e: Error, file: &str, k: usize) -> Error {
     match e {
         Error::Invalid { value, allowed, .. } => Error::Invalid {
             file: file.to_string(),
-            field: format!("axis[{k}].parameter"),
+            field: format!("axis.{k}.parameter"),
             value,
             allowed,
         },
@@ -459,7 +459,8 @@ pub fn point_table(
     Ok(table)
 }
 
-/// Checks that need every axis: not both `incident.xi` and `incident.amplitude`, grid size.
+/// Checks that need every axis: not both `incident.xi` and `incident.amplitude`, not both
+/// a crack's `length` and its `end` (each sets the other), grid size.
 fn check_axes(file: &str, axes: &[Axis]) -> Result<()> {
     let has = |k: &str| axes.iter().any(|a| a.parameter == k);
     if has("incident.xi") && has("incident.amplitude") {
@@ -470,6 +471,22 @@ fn check_axes(file: &str, axes: &[Axis]) -> Result<()> {
             "sweep `incident.xi` or `incident.amplitude`, not both (they give the same \
                  quantity)",
         ));
+    }
+    for a in axes {
+        let Some(crack) = a.parameter.strip_suffix(".length") else {
+            continue;
+        };
+        for end in [format!("{crack}.end.x"), format!("{crack}.end.z")] {
+            if crack.starts_with("crack.") && has(&end) {
+                return Err(Error::invalid(
+                    file,
+                    "axis",
+                    format!("{}, {end}", a.parameter),
+                    "sweep a crack's `length` or its `end`, not both (each moves the other \
+                     end)",
+                ));
+            }
+        }
     }
     let total = axes
         .iter()
@@ -561,7 +578,7 @@ impl AxisFile {
         if parameter.is_empty() || parameter.split('.').any(|p| p.trim().is_empty()) {
             return Err(Error::invalid(
                 file,
-                format!("axis[{i}].parameter"),
+                format!("axis.{i}.parameter"),
                 format!("\"{parameter}\""),
                 sweep_allowed("axis.parameter", FieldProblem::Wrong),
             ));
@@ -577,7 +594,7 @@ impl AxisFile {
         let [(key, arr)] = given.as_slice() else {
             return Err(Error::invalid(
                 file,
-                format!("axis[{i}]"),
+                format!("axis.{i}"),
                 if given.is_empty() {
                     "(none)".to_string()
                 } else {
@@ -587,7 +604,7 @@ impl AxisFile {
                  `logspace = [start_exponent, end_exponent, n]`",
             ));
         };
-        let field = format!("axis[{i}].{key}");
+        let field = format!("axis.{i}.{key}");
         let raw = || toml::Value::Array(arr.clone()).to_string();
         let spec = if *key == "values" {
             if arr.is_empty() || arr.len() > MAX_AXIS_POINTS {
@@ -710,6 +727,25 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_crack_length_and_its_end_are_not_both_swept() {
+        let axis = |p: &str| Axis {
+            parameter: p.into(),
+            spec: AxisSpec::Values(vec![1e-3]),
+            values: vec![1e-3],
+        };
+        let e = check_axes("s.toml", &[axis("crack.0.length"), axis("crack.0.end.x")])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("crack.0.length, crack.0.end.x") && e.contains("not both"),
+            "{e}"
+        );
+        // another crack's end, or the start, may be swept beside a length
+        check_axes("s.toml", &[axis("crack.0.length"), axis("crack.1.end.x")]).unwrap();
+        check_axes("s.toml", &[axis("crack.0.length"), axis("crack.0.start.x")]).unwrap();
+    }
+
+    #[test]
     fn set_overrides_index_arrays_of_tables_and_bad_indices_are_errors() {
         let dir = tmpdir("set");
         let tribo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/tribobrake.toml");
@@ -793,14 +829,14 @@ mod tests {
     fn bad_axes_are_errors_naming_file_and_field() {
         let b = "base = \"base.toml\"\n";
         let cases = [
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.1, 0.2]\n"), "axis[0].linspace"),
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.1, 0.2, 0]\n"), "axis[0].linspace"),
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nlogspace = [0.1, 0.2, 2.5]\n"), "axis[0].logspace"),
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = []\n"), "axis[0].values"),
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1, nan]\n"), "axis[0].values"),
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\nlinspace = [0.1, 0.2, 2]\n"), "axis[0]"),
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\n[[axis]]\nparameter = \"incident.cycles\"\nvalue = [3]\n"), "axis[1].value"),
-            (format!("{b}[[axis]]\nvalues = [0.1]\n"), "axis[0].parameter"),
+            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.1, 0.2]\n"), "axis.0.linspace"),
+            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.1, 0.2, 0]\n"), "axis.0.linspace"),
+            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nlogspace = [0.1, 0.2, 2.5]\n"), "axis.0.logspace"),
+            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = []\n"), "axis.0.values"),
+            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1, nan]\n"), "axis.0.values"),
+            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\nlinspace = [0.1, 0.2, 2]\n"), "axis.0"),
+            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\n[[axis]]\nparameter = \"incident.cycles\"\nvalue = [3]\n"), "axis.1.value"),
+            (format!("{b}[[axis]]\nvalues = [0.1]\n"), "axis.0.parameter"),
             (format!("{b}foo = 1\n[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\n"), "foo"),
             ("[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\n".to_string(), "base"),
             (b.to_string(), "axis"),
@@ -823,7 +859,7 @@ mod tests {
         );
         assert!(
             e.contains(
-                "field `axis[0].value` = [0.1]: unknown key; an axis has `parameter` and one of"
+                "field `axis.0.value` = [0.1]: unknown key; an axis has `parameter` and one of"
             ),
             "{e}"
         );
@@ -837,7 +873,7 @@ mod tests {
         );
         let e = load_err("missing", &format!("{b}[[axis]]\nvalues = [0.1]\n"));
         assert!(
-            e.contains("field `axis[0].parameter` = (missing): required: a dotted scenario key"),
+            e.contains("field `axis.0.parameter` = (missing): required: a dotted scenario key"),
             "{e}"
         );
         let e = load_err(
@@ -845,7 +881,7 @@ mod tests {
             &format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = 0.1\n"),
         );
         assert!(
-            e.contains("field `axis[0].values` = 0.1: must be an array of numbers"),
+            e.contains("field `axis.0.values` = 0.1: must be an array of numbers"),
             "{e}"
         );
     }
@@ -866,7 +902,7 @@ mod tests {
             "base = \"base.toml\"\n[[axis]]\nparameter = \"incident.xii\"\nvalues = [0.3]\n",
         );
         assert!(
-            e.contains("sweep.toml: field `axis[0].parameter` = incident.xii:"),
+            e.contains("sweep.toml: field `axis.0.parameter` = incident.xii:"),
             "{e}"
         );
         assert!(e.contains("unknown field `xii`"), "{e}");
@@ -875,7 +911,7 @@ mod tests {
             "base = \"base.toml\"\n[[axis]]\nparameter = \"interface.traction.stifness\"\nvalues = [1e12]\n",
         );
         assert!(
-            e.contains("sweep.toml: field `axis[0].parameter` = interface.traction.stifness:"),
+            e.contains("sweep.toml: field `axis.0.parameter` = interface.traction.stifness:"),
             "{e}"
         );
     }

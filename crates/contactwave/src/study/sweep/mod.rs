@@ -16,7 +16,7 @@
 //! ```
 //!
 //! Several axes form a grid (cartesian product, first axis slowest, last fastest). Axis
-//! indices in error messages are 0-based (`axis[0]` is the first `[[axis]]` table). Values
+//! indices in error messages are 0-based (`axis.0` is the first `[[axis]]` table). Values
 //! are written into the base scenario with [`crate::scenario::set_dotted`] (so sweeping
 //! `incident.xi` removes the base's `incident.amplitude` and vice versa), and every point is
 //! validated as a [`Scenario`] before anything runs. Units are those of the swept key
