@@ -5,13 +5,13 @@
 //! ([`crate::solver::solid_2d::Solid2d`]) with every crack's law built once.
 
 mod closure;
+mod material;
 
 use crate::analysis::{AnalysisMethod, Gate};
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::law::point::SharedLaw;
 use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
-use crate::material::Material;
 use crate::scenario::spec::IncidentSpec;
 use crate::scenario::BuildCache;
 use crate::solver::solid_2d::dispersion::element_size_for;
@@ -23,6 +23,7 @@ use crate::solver::solid_2d::{
 };
 use closure::ClosureProfile;
 pub use closure::ClosureSpec;
+use material::material;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::sync::Arc;
@@ -365,109 +366,6 @@ fn side(file: &str, field: &str, v: &str, periodic: bool) -> Result<Side> {
                 "free, rigid or absorbing"
             },
         )),
-    }
-}
-
-/// The elastic solid of a layer.
-fn material(l: &LayerSpec, file: &str, key: &str) -> Result<Elastic> {
-    let k = |f: &str| format!("{key}.{f}");
-    if let Some(name) = &l.material {
-        if l.youngs_modulus.is_some() || l.p_speed.is_some() || l.s_speed.is_some() {
-            return Err(inv(
-                file,
-                k("material"),
-                name,
-                "give a preset or the moduli, not both",
-            ));
-        }
-        let m = Material::preset(name).ok_or_else(|| {
-            inv(
-                file,
-                k("material"),
-                name,
-                &format!("one of {}", Material::PRESETS.join(", ")),
-            )
-        })?;
-        let nu = m.poisson_ratio().unwrap_or(0.3);
-        let rho = l.density.unwrap_or(m.density);
-        return Ok(from_moduli(
-            m.youngs_modulus,
-            nu,
-            positive(file, &k("density"), rho)?,
-        ));
-    }
-    let density = || match l.density {
-        Some(rho) => positive(file, &k("density"), rho),
-        None => Err(inv(
-            file,
-            k("density"),
-            "(missing)",
-            "required with moduli or speeds: kg/m^3 > 0",
-        )),
-    };
-    let missing = |field: &str, with: &str| {
-        Err(inv(
-            file,
-            k(field),
-            "(missing)",
-            &format!("required with `{with}`"),
-        ))
-    };
-    match (l.youngs_modulus, l.poisson_ratio, l.p_speed, l.s_speed) {
-        (Some(e), Some(nu), None, None) => {
-            positive(file, &k("youngs_modulus"), e)?;
-            if !(nu > 0.0 && nu < 0.5) {
-                return Err(inv(
-                    file,
-                    k("poisson_ratio"),
-                    nu,
-                    "in (0, 0.5) (the 2D solids need a positive Lame lambda)",
-                ));
-            }
-            Ok(from_moduli(e, nu, density()?))
-        }
-        (None, None, Some(cp), Some(cs)) => {
-            positive(file, &k("s_speed"), cs)?;
-            if !(cp.is_finite() && cp > cs * 2f64.sqrt()) {
-                return Err(inv(
-                    file,
-                    k("p_speed"),
-                    cp,
-                    &format!(
-                        "a finite speed above sqrt(2) s_speed = {} m/s (a positive Lame lambda, \
-                         nu > 0)",
-                        cs * 2f64.sqrt()
-                    ),
-                ));
-            }
-            Ok(Elastic {
-                density: density()?,
-                p_speed: cp,
-                s_speed: cs,
-            })
-        }
-        (Some(_), None, None, None) => missing("poisson_ratio", "youngs_modulus"),
-        (None, Some(_), None, None) => missing("youngs_modulus", "poisson_ratio"),
-        (None, None, Some(_), None) => missing("s_speed", "p_speed"),
-        (None, None, None, Some(_)) => missing("p_speed", "s_speed"),
-        _ => Err(inv(
-            file,
-            key,
-            "incomplete material",
-            "a `material` preset, or `youngs_modulus` + `poisson_ratio` + `density`, or `p_speed` + `s_speed` + `density`",
-        )),
-    }
-}
-
-/// The solid of Young's modulus `e` (Pa), Poisson's ratio `nu` and density `rho`
-/// (kg/m^3).
-fn from_moduli(e: f64, nu: f64, rho: f64) -> Elastic {
-    let g = e / (2.0 * (1.0 + nu));
-    let m = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    Elastic {
-        density: rho,
-        p_speed: (m / rho).sqrt(),
-        s_speed: (g / rho).sqrt(),
     }
 }
 
