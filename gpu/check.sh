@@ -13,7 +13,7 @@ lib=$(find /usr/local /opt /usr/lib -name 'libnvrtc.so*' 2>/dev/null | head -1)
 [ -n "$lib" ] && export LD_LIBRARY_PATH="$(dirname "$lib"):${LD_LIBRARY_PATH:-}"
 echo "NVRTC: $lib"
 "$bin/tests" gpu_ --nocapture --test-threads 1 2>&1 | tee "$out/tests.log"
-for name in plate_crack lamb_delamination sh_friction; do
+for name in plate_crack lamb_delamination sh_friction interface_reduction; do
   sed '/^\[model\]/a backend = "gpu"' "examples/solid_2d/$name.toml" > "/tmp/${name}_gpu.toml"
   for b in gpu cpu; do
     f="/tmp/${name}_gpu.toml"; [ $b = cpu ] && f="examples/solid_2d/$name.toml"

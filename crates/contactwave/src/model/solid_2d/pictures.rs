@@ -262,25 +262,57 @@ mod files {
         Ok(out)
     }
 
-    /// `receivers.svg`, `spectra.svg`, and the VTK files of the snapshots.
+    /// The receivers' traces for the figures: per receiver its title, axis label, kind
+    /// (0 velocity, 1 stress: the spectra are in dB re. the largest of their kind) and
+    /// components (label, values: m/s, or MPa for stresses).
+    #[allow(clippy::type_complexity)]
+    fn traces(r: &Solid2dResult) -> Vec<(String, &'static str, usize, Vec<(String, Vec<f64>)>)> {
+        let o = &r.output;
+        let velocity = r.receivers.iter().enumerate().map(|(i, name)| {
+            let comps = r.component_names.iter().enumerate();
+            (
+                format!("receiver {name}"),
+                "velocity (m/s)",
+                0,
+                comps
+                    .map(|(c, comp)| (format!("v{comp}"), o.trace(i, c).to_vec()))
+                    .collect(),
+            )
+        });
+        let stress = r.stress_receivers.iter().enumerate().map(|(i, name)| {
+            let comps = r.stress_component_names.iter().enumerate();
+            (
+                format!("stress receiver {name}"),
+                "stress (MPa)",
+                1,
+                comps
+                    .map(|(c, comp)| {
+                        let mpa = o.stress_trace(i, c).iter().map(|x| x * 1e-6).collect();
+                        (format!("s{comp}"), mpa)
+                    })
+                    .collect(),
+            )
+        });
+        velocity.chain(stress).collect()
+    }
+
+    /// `receivers.svg` and `spectra.svg` (every velocity and stress receiver, one panel
+    /// each), and the VTK files of the snapshots.
     pub(crate) fn text_files(r: &Solid2dResult, f0: f64) -> Result<Vec<OutputFile>> {
         let o = &r.output;
         let mut out = Vec::new();
         let us: Vec<f64> = o.time.iter().map(|t| t * 1e6).collect();
-        if !r.receivers.is_empty() && !o.time.is_empty() {
-            let panels: Vec<Panel> = r
-                .receivers
+        let traces = traces(r);
+        if !traces.is_empty() && !o.time.is_empty() {
+            let panels: Vec<Panel> = traces
                 .iter()
-                .enumerate()
-                .map(|(i, name)| Panel {
-                    title: format!("receiver {name}"),
+                .map(|(title, ylabel, _, comps)| Panel {
+                    title: title.clone(),
                     xlabel: "t (\u{b5}s)".into(),
-                    ylabel: "velocity (m/s)".into(),
-                    series: r
-                        .component_names
+                    ylabel: (*ylabel).into(),
+                    series: comps
                         .iter()
-                        .enumerate()
-                        .map(|(c, comp)| Series::new(format!("v{comp}"), &us, o.trace(i, c)))
+                        .map(|(label, y)| Series::new(label.clone(), &us, y))
                         .collect(),
                     markers: Vec::new(),
                 })
@@ -289,44 +321,46 @@ mod files {
                 "receivers.svg",
                 figure("receivers.svg", 900, &panels)?,
             ));
-            // spectra in dB re. the largest magnitude of all, markers at n f0
+            // spectra in dB re. the largest magnitude of their kind, markers at n f0
             let f_max = 6.0 * f0;
-            let spectra: Vec<Vec<(Vec<f64>, Vec<f64>)>> = (0..r.receivers.len())
-                .map(|i| {
-                    (0..o.components)
-                        .map(|c| {
-                            let s = crate::analysis::with_analyzer(|a| {
-                                a.spectrum(o.trace(i, c), o.dt, f_max)
-                            });
+            let spectra: Vec<Vec<(Vec<f64>, Vec<f64>)>> = traces
+                .iter()
+                .map(|(_, _, _, comps)| {
+                    comps
+                        .iter()
+                        .map(|(_, y)| {
+                            let s = crate::analysis::with_analyzer(|a| a.spectrum(y, o.dt, f_max));
                             (s.frequency, s.magnitude)
                         })
                         .collect()
                 })
                 .collect();
-            let top = spectra
-                .iter()
-                .flatten()
-                .flat_map(|s| s.1.iter())
-                .fold(0.0f64, |a, &b| a.max(b.abs()))
-                .max(f64::MIN_POSITIVE);
-            let panels: Vec<Panel> = r
-                .receivers
+            let mut top = [f64::MIN_POSITIVE; 2];
+            for (tr, sp) in traces.iter().zip(&spectra) {
+                for (_, m) in sp {
+                    top[tr.2] = m.iter().fold(top[tr.2], |a, &b| a.max(b.abs()));
+                }
+            }
+            let panels: Vec<Panel> = traces
                 .iter()
                 .zip(&spectra)
-                .map(|(name, sp)| Panel {
-                    title: format!("receiver {name} (dashed: harmonics n f0)"),
+                .map(|((title, _, kind, comps), sp)| Panel {
+                    title: format!("{title} (dashed: harmonics n f0)"),
                     xlabel: "frequency (MHz)".into(),
-                    ylabel: "magnitude (dB re. the largest)".into(),
+                    ylabel: format!(
+                        "magnitude (dB re. the largest {})",
+                        if *kind == 0 { "velocity" } else { "stress" }
+                    ),
                     series: sp
                         .iter()
-                        .zip(&r.component_names)
-                        .map(|((f, m), comp)| {
+                        .zip(comps)
+                        .map(|((f, m), (label, _))| {
                             let mhz: Vec<f64> = f.iter().map(|v| v * 1e-6).collect();
                             let db: Vec<f64> = m
                                 .iter()
-                                .map(|v| (20.0 * (v.abs() / top).log10()).max(-160.0))
+                                .map(|v| (20.0 * (v.abs() / top[*kind]).log10()).max(-160.0))
                                 .collect();
-                            Series::new(format!("v{comp}"), &mhz, &db)
+                            Series::new(label.clone(), &mhz, &db)
                         })
                         .collect(),
                     markers: (1..=5).map(|n| n as f64 * f0 * 1e-6).collect(),
@@ -583,6 +617,31 @@ at = [1e-3, 1e-3]
             panic!("snapshot_z")
         };
         assert!((z[0] - 1e-5).abs() < 1e-18);
+    }
+
+    /// A stress receiver has its panel in `receivers.svg` and `spectra.svg`, in MPa and
+    /// in dB re. the largest stress spectrum, beside the velocity receivers'.
+    #[test]
+    fn stress_receivers_are_plotted_beside_the_velocities() {
+        let text =
+            small("[[receiver]]\nname = \"mid\"\nat = [1e-3, 0.3e-3]\nquantity = \"stress\"\n");
+        let files = run(&text).files().unwrap();
+        let svg = |name: &str| {
+            files
+                .iter()
+                .find(|f| f.name == name)
+                .map(|f| f.contents.clone())
+                .unwrap()
+        };
+        let traces = svg("receivers.svg");
+        assert!(traces.contains("stress receiver mid"), "receivers.svg");
+        assert!(traces.contains("receiver under") && traces.contains("stress (MPa)"));
+        for comp in ["sxx", "szz", "sxz"] {
+            assert!(traces.contains(comp), "{comp}");
+        }
+        let spectra = svg("spectra.svg");
+        assert!(spectra.contains("stress receiver mid (dashed"));
+        assert!(spectra.contains("the largest stress") && spectra.contains("the largest velocity"));
     }
 
     /// Snapshots beyond the memory budget are refused before the run, naming the key.

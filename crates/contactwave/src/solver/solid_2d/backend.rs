@@ -33,19 +33,6 @@ impl Backend {
 }
 
 impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
-    /// What of this plan the GPU backend does not run (plane-wave sources and stress
-    /// receivers stay on the CPU backend for now), as the allowed-range text of an error
-    /// on `model.backend`; `None` when it runs all of it.
-    pub fn gpu_lacks(&self) -> Option<&'static str> {
-        if !self.plane_waves.is_empty() {
-            Some("`cpu` with plane-wave sources (the GPU backend has no injection yet)")
-        } else if !self.stress_probes.is_empty() {
-            Some("`cpu` with stress receivers (the GPU backend records velocities only)")
-        } else {
-            None
-        }
-    }
-
     /// Run from rest on `backend`, reporting `(steps done, steps)` to `progress` every 64
     /// steps; `file` names the scenario in errors.
     pub fn run_on(
@@ -64,9 +51,6 @@ impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
                         "gpu",
                         "`cpu` (this build has no GPU backend: build with `--features gpu`)",
                     ));
-                }
-                if let Some(allowed) = self.gpu_lacks() {
-                    return Err(Error::invalid(file, "model.backend", "gpu", allowed));
                 }
                 self.run_gpu(progress)
             }

@@ -1,8 +1,9 @@
 // The GPU backend's kernels (feature `gpu`, solver/solid_2d/gpu.rs): the same step as the
 // CPU's (docs/model.md eq. 15.2; kernel.rs): the elements' forces -K u through the
-// element-to-node map, the node-wise leapfrog, the sources' forces and work, the receivers'
-// samples, and the gather and scatter of the cracks' split nodes, whose contact update runs
-// on the host by the one per-point update of `law/`. Compiled at run time by NVRTC with
+// element-to-node map, the node-wise leapfrog, the sources' forces and work (point loads,
+// transducers and plane waves), the receivers' samples (velocities and stresses), the
+// absorbing layers, and the gather and scatter of the cracks' split nodes, whose contact
+// update runs on the host by the one per-point update of `law/`. Compiled at run time by NVRTC with
 // `M` (GLL points per element line) and `E` (elements per thread block) defined before
 // this text.
 //
@@ -170,6 +171,95 @@ extern "C" __global__ void record(const double* v, const unsigned* index, const 
                                   double* out, u64 step, int n) {
   int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < n) out[slot[i] + step] = v[index[i]];
+}
+
+// A plane wave's incident displacements of level t (plane_wave.rs, Injection::add_forces),
+// one thread a sample node: u_inc[i] = scale[i] G(t - delay[i]), G from its table (`g`,
+// with the derivative `s`, `len` entries `step` s apart) by cubic Hermite interpolation,
+// 0 before the table and its last entry after it.
+extern "C" __global__ void inject_samples(double* u_inc, const double* __restrict__ delay,
+                                          const double* __restrict__ scale,
+                                          const double* __restrict__ g,
+                                          const double* __restrict__ s, double step, u64 len,
+                                          double t, int n) {
+  int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  double tt = t - delay[i], G;
+  if (tt <= 0.0) {
+    G = 0.0;
+  } else {
+    double r = tt / step;
+    u64 k = (u64)r;
+    if (k + 1 >= len) {
+      G = g[len - 1];
+    } else {
+      double x = r - (double)k, h = step;
+      double x2 = x * x;
+      double x3 = x2 * x;
+      G = (2.0 * x3 - 3.0 * x2 + 1.0) * g[k] + (x3 - 2.0 * x2 + x) * h * s[k] +
+          (-2.0 * x3 + 3.0 * x2) * g[k + 1] + (x3 - x2) * h * s[k + 1];
+    }
+  }
+  u_inc[i] = scale[i] * G;
+}
+
+// A plane wave's forces across its line, one thread a target entry i of v and f
+// (`target[i]`): the couplings `first[i]..first[i + 1]` (weights on samples, in their
+// order) summed into force[i] and added to f.
+extern "C" __global__ void inject_forces(double* f, const unsigned* __restrict__ target,
+                                         const unsigned* __restrict__ first,
+                                         const unsigned* __restrict__ sample,
+                                         const double* __restrict__ weight,
+                                         const double* __restrict__ u_inc, double* force,
+                                         int n) {
+  int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  double x = 0.0;
+  for (unsigned p = first[i]; p < first[i + 1]; p++) x += weight[p] * u_inc[sample[p]];
+  force[i] = x;
+  f[target[i]] += x;
+}
+
+// The stress receivers' stresses of the half level (probe.rs and Records::record), one
+// thread a receiver r: its stresses of this level from u by the element's derivative
+// along its row (`node`/`w` entries 2M r .. 2M r + M) and column (the next M), Lame's
+// lambda and mu in `lame`; out[(r sc + k) n_t + step] = (last + now) / 2, `last` kept
+// (sc = 3 in plane strain, xx, zz, xz; 2 antiplane, yx, yz).
+extern "C" __global__ void record_stress(const double* __restrict__ u,
+                                         const unsigned* __restrict__ node,
+                                         const double* __restrict__ w,
+                                         const double* __restrict__ lame, double* last,
+                                         double* out, u64 n_t, u64 step, int c, int n) {
+  int r = blockIdx.x * blockDim.x + threadIdx.x;
+  if (r >= n) return;
+  const unsigned* row = node + (u64)r * 2 * M;
+  const double* wr = w + (u64)r * 2 * M;
+  double lambda = lame[2 * r], mu = lame[2 * r + 1];
+  double now[3];
+  int sc;
+  if (c == 1) {
+    double gx = 0.0, gz = 0.0;
+    for (int k = 0; k < M; k++) gx += wr[k] * u[row[k]];
+    for (int k = 0; k < M; k++) gz += wr[M + k] * u[row[M + k]];
+    now[0] = mu * gx;
+    now[1] = mu * gz;
+    sc = 2;
+  } else {
+    double uxx = 0.0, uzx = 0.0, uxz = 0.0, uzz = 0.0;
+    for (int k = 0; k < M; k++) uxx += wr[k] * u[2 * (u64)row[k]];
+    for (int k = 0; k < M; k++) uzx += wr[k] * u[2 * (u64)row[k] + 1];
+    for (int k = 0; k < M; k++) uxz += wr[M + k] * u[2 * (u64)row[M + k]];
+    for (int k = 0; k < M; k++) uzz += wr[M + k] * u[2 * (u64)row[M + k] + 1];
+    now[0] = (lambda + 2.0 * mu) * uxx + lambda * uzz;
+    now[1] = lambda * uxx + (lambda + 2.0 * mu) * uzz;
+    now[2] = mu * (uxz + uzx);
+    sc = 3;
+  }
+  for (int k = 0; k < sc; k++) {
+    u64 j = (u64)r * sc + k;
+    out[j * n_t + step] = 0.5 * (last[j] + now[k]);
+    last[j] = now[k];
+  }
 }
 
 // The split nodes' values to the host: buf = [u of every entry, then v of every entry].

@@ -3,7 +3,9 @@
 //! (`gpu.cu`, compiled at run time by NVRTC; the CUDA driver and NVRTC are loaded at run
 //! time, so the build needs no CUDA) take the elements' forces through the element-to-node
 //! map (the elements coloured so that each colour's scatter is a plain subtraction), the
-//! node-wise leapfrog, the sources' forces and work and the receivers' samples. The cracks
+//! node-wise leapfrog, the absorbing layers, the sources' forces and work (point loads,
+//! transducers, plane-wave injection) and the receivers' samples (velocities and
+//! stresses). The cracks
 //! stay on the host: each step their split nodes' predicted motion comes down, the one
 //! per-point contact update of `law/` ([`CrackNodes::update`]) runs on it, and the kicked
 //! motion goes back up, a few hundred values each way.
@@ -104,6 +106,48 @@ struct Kernels {
     band_assemble: CudaFunction,
     band_nodes: CudaFunction,
     band_stresses: CudaFunction,
+    inject_samples: CudaFunction,
+    inject_forces: CudaFunction,
+    record_stress: CudaFunction,
+}
+
+/// One plane-wave source on the device ([`super::plane_wave::Injection`]'s tables and
+/// buffers): its sample nodes' delays and scales, the table of the signal's integral, the
+/// couplings grouped by target entry, and each target's force and work.
+struct InjectionGpu {
+    samples: i32,
+    delay: CudaSlice<f64>,
+    scale: CudaSlice<f64>,
+    u_inc: CudaSlice<f64>,
+    /// The table `G(k step)` and its derivative `s(k step)`, `len` entries.
+    g: CudaSlice<f64>,
+    s: CudaSlice<f64>,
+    step: f64,
+    len: u64,
+    /// Per target entry of `f` and `v`: its couplings `first[i]..first[i + 1]` (sample,
+    /// weight), in the CPU's order.
+    targets: i32,
+    target: CudaSlice<u32>,
+    first: CudaSlice<u32>,
+    sample: CudaSlice<u32>,
+    weight: CudaSlice<f64>,
+    /// Each target's force of the step, its velocity of the previous half level and its
+    /// work so far (J/m; summed on the host at the end).
+    force: CudaSlice<f64>,
+    old: CudaSlice<f64>,
+    work: CudaSlice<f64>,
+}
+
+/// The stress receivers on the device (probe.rs's taps, flat): per receiver its row's
+/// then its column's `M` nodes and weights, its Lame constants, and its stresses of the
+/// last level.
+struct ProbesGpu {
+    probes: i32,
+    node: CudaSlice<u32>,
+    weight: CudaSlice<f64>,
+    lame: CudaSlice<f64>,
+    last: CudaSlice<f64>,
+    samples: CudaSlice<f64>,
 }
 
 /// The absorbing layers on the device ([`super::pml::Band`]'s tables and fields; see its
@@ -180,6 +224,10 @@ struct GpuRun<'p, L> {
     flag: CudaSlice<i32>,
     /// The absorbing layers, if any.
     band: Option<BandGpu>,
+    /// The plane-wave sources.
+    injections: Vec<InjectionGpu>,
+    /// The stress receivers, if any.
+    probes: Option<ProbesGpu>,
     /// Steps taken.
     step: usize,
 }
@@ -257,6 +305,9 @@ impl<'p, L: NormalPart + TangentialPart + Clone> GpuRun<'p, L> {
             band_assemble: f("band_assemble")?,
             band_nodes: f("band_nodes")?,
             band_stresses: f("band_stresses")?,
+            inject_samples: f("inject_samples")?,
+            inject_forces: f("inject_forces")?,
+            record_stress: f("record_stress")?,
         };
         let c = plan.components;
         let n = plan.mesh.n_nodes;
@@ -366,8 +417,67 @@ impl<'p, L: NormalPart + TangentialPart + Clone> GpuRun<'p, L> {
                 inner: b.n_inner as i32,
             })
         };
+        let injections = plan
+            .plane_waves
+            .iter()
+            .map(|pw| {
+                // the couplings are sorted by target: each target's run of them
+                let count = pw.targets.len();
+                let mut first = vec![0u32; count + 1];
+                for &(t, _, _) in &pw.pairs {
+                    first[t as usize + 1] += 1;
+                }
+                for i in 0..count {
+                    first[i + 1] += first[i];
+                }
+                let target: Vec<u32> = pw.targets.iter().map(|&d| d as u32).collect();
+                let sample: Vec<u32> = pw.pairs.iter().map(|p| p.1).collect();
+                let weight: Vec<f64> = pw.pairs.iter().map(|p| p.2).collect();
+                Ok(InjectionGpu {
+                    samples: pw.delay.len() as i32,
+                    delay: up(&pw.delay)?,
+                    scale: up(&pw.scale)?,
+                    u_inc: zeros(pw.delay.len())?,
+                    g: up(&pw.integral.g)?,
+                    s: up(&pw.integral.s)?,
+                    step: pw.integral.step,
+                    len: pw.integral.g.len() as u64,
+                    targets: count as i32,
+                    target: up32(&target)?,
+                    first: up32(&first)?,
+                    sample: up32(&sample)?,
+                    weight: up(&weight)?,
+                    force: zeros(count)?,
+                    old: zeros(count)?,
+                    work: zeros(count)?,
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let probes = if plan.stress_probes.is_empty() {
+            None
+        } else {
+            let sp = &plan.stress_probes;
+            let taps = sp.iter().flat_map(|p| p.row.iter().chain(&p.column));
+            let node: Vec<u32> = taps.clone().map(|&(g, _)| g as u32).collect();
+            let weight: Vec<f64> = taps.map(|&(_, w)| w).collect();
+            if node.len() != 2 * m * sp.len() {
+                return Err(device("a stress receiver's taps are not one element line"));
+            }
+            let lame: Vec<f64> = sp.iter().flat_map(|p| [p.lame.0, p.lame.1]).collect();
+            let sc = if c == 1 { 2 } else { 3 };
+            Some(ProbesGpu {
+                probes: sp.len() as i32,
+                node: up32(&node)?,
+                weight: up(&weight)?,
+                lame: up(&lame)?,
+                last: zeros(sp.len() * sc)?,
+                samples: zeros(sp.len() * sc * n_t)?,
+            })
+        };
         Ok(GpuRun {
             band,
+            injections,
+            probes,
             u: zeros(c * n)?,
             v: zeros(c * n)?,
             f: zeros(c * n)?,
@@ -457,6 +567,14 @@ impl<L: NormalPart + TangentialPart + Clone> Scheme for GpuRun<'_, L> {
             launch!(self.stream, self.k.add_loads, grid(nn as usize), "add_loads";
                 &mut self.f, &self.load_nodes, &self.load_first, &self.load_value, &nn);
         }
+        for pw in &mut self.injections {
+            launch!(self.stream, self.k.inject_samples, grid(pw.samples as usize), "inject_samples";
+                &mut pw.u_inc, &pw.delay, &pw.scale, &pw.g, &pw.s, &pw.step, &pw.len, &t,
+                &pw.samples);
+            launch!(self.stream, self.k.inject_forces, grid(pw.targets as usize), "inject_forces";
+                &mut self.f, &pw.target, &pw.first, &pw.sample, &pw.weight, &pw.u_inc,
+                &mut pw.force, &pw.targets);
+        }
         let antiplane = i32::from(c == 1);
         let ci = c as i32;
         if let Some(b) = &mut self.band {
@@ -497,6 +615,17 @@ impl<L: NormalPart + TangentialPart + Clone> Scheme for GpuRun<'_, L> {
             launch!(self.stream, self.k.load_work, grid(n_loads), "load_work";
                 &self.v, &self.load_index, &self.load_value, &mut self.load_old,
                 &mut self.input, &dt, &nl);
+        }
+        for pw in &mut self.injections {
+            // (a plane wave's work: the loads' kernel on its targets' forces)
+            launch!(self.stream, self.k.load_work, grid(pw.targets as usize), "load_work";
+                &self.v, &pw.target, &pw.force, &mut pw.old, &mut pw.work, &dt, &pw.targets);
+        }
+        if let Some(sp) = &mut self.probes {
+            let (n_t, step) = (p.steps as u64, self.step as u64);
+            launch!(self.stream, self.k.record_stress, grid(sp.probes as usize), "record_stress";
+                &self.u, &sp.node, &sp.weight, &sp.lame, &mut sp.last, &mut sp.samples, &n_t,
+                &step, &ci, &sp.probes);
         }
         if self.n_record > 0 {
             let step = self.step as u64;
@@ -563,8 +692,7 @@ impl<L: NormalPart + TangentialPart + Clone> Recorder<GpuRun<'_, L>> for GpuReco
 }
 
 impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
-    /// [`Plan::run_with`] on the GPU (see the module): the caller has checked
-    /// [`Plan::gpu_lacks`].
+    /// [`Plan::run_with`] on the GPU (see the module).
     pub(super) fn run_gpu(
         &mut self,
         progress: Option<&(dyn Fn(usize, usize) + Send + Sync)>,
@@ -599,9 +727,17 @@ impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
         let (mut u, mut v, mut f) = (vec![0.0; len], vec![0.0; len], vec![0.0; len]);
         run.download(&run.u, &mut u)?;
         run.download(&run.v, &mut v)?;
+        if let Some(sp) = &run.probes {
+            run.download(&sp.samples, &mut base.stresses)?;
+        }
         let mut work = vec![0.0; run.input.len()];
         run.download(&run.input, &mut work)?;
-        let input: f64 = work.iter().sum();
+        let mut input: f64 = work.iter().sum();
+        for pw in &run.injections {
+            let mut w = vec![0.0; pw.work.len()];
+            run.download(&pw.work, &mut w)?;
+            input += w.iter().sum::<f64>();
+        }
         let absorbed = match &run.band {
             Some(b) => {
                 let mut w = vec![0.0; b.work.len()];

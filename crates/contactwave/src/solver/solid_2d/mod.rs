@@ -682,6 +682,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             } => Error::invalid(file, field, value, allowed),
             e => e,
         })?;
+        crate::interrupt::check()?; // (Ctrl-C between the stages of a large plan)
         let (nex, nez) = mesh.element_dims();
         let layer_of = |zmid: f64| {
             self.layers
@@ -763,6 +764,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             })
             .collect();
         let omega_max = max_frequency(&stiffness, &densities);
+        crate::interrupt::check()?;
         let dt = (self.courant * 2.0 / omega_max).min(self.max_time_step);
         // the interior's operator and the absorbing layers' elements
         let c_max = self

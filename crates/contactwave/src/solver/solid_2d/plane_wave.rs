@@ -42,13 +42,13 @@ pub enum Incidence {
 
 /// The table of `G(t) = integral_0^t s`, with `s` itself as its derivative.
 #[derive(Debug, Clone)]
-struct Integral {
+pub(super) struct Integral {
     /// Step, s.
-    step: f64,
+    pub(super) step: f64,
     /// `G(k step)`, Pa s.
-    g: Vec<f64>,
+    pub(super) g: Vec<f64>,
     /// `s(k step)`, Pa.
-    s: Vec<f64>,
+    pub(super) s: Vec<f64>,
 }
 
 impl Integral {
@@ -115,17 +115,17 @@ pub struct Injection {
     /// Index of the source (its signal).
     pub source: usize,
     /// Each sample node's delay `tau` (s).
-    delay: Vec<f64>,
+    pub(super) delay: Vec<f64>,
     /// Each sample node's displacement per unit `G`: `-d_c / (rho c)`, its dof `c` in
     /// `dof_of_sample` (one sample per node and component).
-    scale: Vec<f64>,
+    pub(super) scale: Vec<f64>,
     /// The couplings `(target, sample, weight)`: the force on target dof `targets[target]`
     /// is the sum of `weight * u_inc(sample)` (N/m per m).
-    pairs: Vec<(u32, u32, f64)>,
+    pub(super) pairs: Vec<(u32, u32, f64)>,
     /// The dofs the forces act on (increasing).
-    targets: Vec<usize>,
+    pub(super) targets: Vec<usize>,
     /// The time integral of the signal.
-    integral: Integral,
+    pub(super) integral: Integral,
     /// Scratch: each sample's incident displacement of the step, m.
     u_inc: Vec<f64>,
     /// Scratch: each target's force of the step, N/m.

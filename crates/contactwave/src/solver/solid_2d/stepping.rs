@@ -200,7 +200,7 @@ pub(super) struct Records {
     /// `[receiver][component][sample]`, m/s.
     pub(super) receivers: Vec<f64>,
     /// `[stress receiver][component][sample]`, Pa.
-    stresses: Vec<f64>,
+    pub(super) stresses: Vec<f64>,
     stress_components: usize,
     /// Each stress receiver's stresses of the last level, Pa.
     last_stress: Vec<f64>,
