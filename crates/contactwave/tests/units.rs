@@ -428,3 +428,92 @@ count = 3
         .to_string();
     assert!(e.contains("model.width") && e.contains("a length"), "{e}");
 }
+
+/// The 2D model's plausibility warnings (model.md section 15, `Solid2dScenario::warnings`):
+/// a speed in km/s, a width in mm, a closure in MPa, a frequency in MHz, each one line
+/// naming its key; an element size too coarse for the harmonics (beyond the elements'
+/// band edge, then a phase error over the budget) with the default that would do; and
+/// none for the same scenario written right.
+#[test]
+fn solid_2d_slips_are_warned() {
+    let good = r#"
+[model]
+kind = "solid_2d"
+width = 4e-3
+duration = 0.5e-6
+[[layer]]
+thickness = 2e-3
+p_speed = 6300.0
+s_speed = 3100.0
+density = 2700.0
+[[crack]]
+start = [1e-3, 1e-3]
+end = [3e-3, 1e-3]
+static_pressure = 0.2e6
+[[source]]
+x0 = 1e-3
+x1 = 3e-3
+signal = { frequency = 5e6, cycles = 3, amplitude = 1e6 }
+"#;
+    let warnings = |text: &str| -> Vec<String> {
+        model::from_toml_str(text, "w.toml")
+            .unwrap()
+            .base()
+            .unwrap()
+            .warnings()
+            .iter()
+            .map(|w| w.to_string())
+            .collect()
+    };
+    assert!(warnings(good).is_empty(), "{:?}", warnings(good));
+    // (a speed or a width slip needs an element size: the default would be refused by the
+    // memory budget, which names the key too)
+    for (from, to, h, key) in [
+        (
+            "s_speed = 3100.0",
+            "s_speed = 3.1",
+            "0.25e-3",
+            "layer.0.s_speed = 3.1 m/s",
+        ),
+        ("width = 4e-3", "width = 40.0", "5e-3", "model.width = 40 m"),
+        (
+            "static_pressure = 0.2e6",
+            "static_pressure = 0.2",
+            "",
+            "crack.0.static_pressure = 0.2 Pa",
+        ),
+        (
+            "frequency = 5e6",
+            "frequency = 5.0",
+            "",
+            "source.0.signal.frequency = 5 Hz",
+        ),
+    ] {
+        let mut text = good.replace(from, to);
+        if !h.is_empty() {
+            text = text.replace("duration", &format!("element_size = {h}\nduration"));
+        }
+        let w = warnings(&text);
+        assert!(
+            w.iter().any(|w| w.starts_with(&format!("w.toml: {key}"))),
+            "{key}: {w:?}"
+        );
+        assert!(w.iter().all(|w| w.lines().count() == 1), "{w:?}");
+    }
+    let coarse =
+        |h: &str| warnings(&good.replace("duration", &format!("element_size = {h}\nduration")));
+    // the default at 5 MHz, order 6, 3 f0 is about 0.25 mm
+    assert!(coarse("0.2e-3").is_empty(), "{:?}", coarse("0.2e-3"));
+    let w = coarse("0.3e-3");
+    assert!(
+        w.len() == 1
+            && w[0].starts_with("w.toml: model.element_size = 0.0003 m: the phase velocity")
+            && w[0].contains("the default element_size for it would be"),
+        "{w:?}"
+    );
+    let w = coarse("1e-3");
+    assert!(
+        w.len() == 1 && w[0].contains("do not resolve the waves at 3 f0"),
+        "{w:?}"
+    );
+}

@@ -4,7 +4,9 @@
 //! each as one line on stderr, Python raises a `UserWarning`.
 
 use super::bar_stack::BarStackScenario;
+use super::solid_2d::{Solid2dScenario, DEFAULT_HARMONIC, DISPERSION_BUDGET};
 use super::Scenario;
+use crate::solver::solid_2d::dispersion::{element_size_for, worst_phase_error};
 use std::fmt;
 
 /// A value that is allowed but looks like a unit slip.
@@ -44,6 +46,11 @@ pub const LOWEST_DENSITY: f64 = 10.0;
 pub const LONGEST_WAVE: f64 = 1.0;
 /// Longest bar segment taken at face value, m (the Tribobrake's guide bar is 0.3 m).
 pub const LONGEST_SEGMENT: f64 = 10.0;
+/// Lowest wave speed of a solid taken at face value, m/s.
+pub const LOWEST_SPEED: f64 = 100.0;
+/// A 2D burst whose S wavelength exceeds this many times the rectangle's larger side is
+/// taken as a frequency in the wrong unit.
+pub const LONGEST_WAVELENGTH: f64 = 10.0;
 
 /// Collects the warnings of one scenario file.
 struct Warnings<'a> {
@@ -214,6 +221,170 @@ impl BarStackScenario {
                         seg.length * 1e-3
                     ),
                 );
+            }
+        }
+        w.out
+    }
+}
+
+impl Solid2dScenario {
+    /// Values of this 2D scenario that are allowed but almost surely a slip: a layer's
+    /// moduli, density or wave speeds (km/s for m/s), a width or layer thicker than 10 m
+    /// (mm for m), a crack's closure under 1 kPa (MPa for Pa), a source whose S wavelength
+    /// is more than ten times the rectangle (MHz for Hz: a run with no wave in it), and an
+    /// `element_size` (or `time_step`) coarser than the phase-velocity budget at the
+    /// highest analysed harmonic (the harmonics then carry numerical dispersion). Empty for
+    /// every shipped example.
+    ///
+    /// ```
+    /// use contactwave::model;
+    /// let m = model::from_toml_str(r#"
+    ///     [model]
+    ///     kind = "solid_2d"
+    ///     width = 4e-3
+    ///     duration = 1e-6
+    ///     element_size = 0.25e-3
+    ///     [[layer]]
+    ///     thickness = 2e-3
+    ///     material = "aluminium"
+    ///     [[source]]
+    ///     x0 = 1e-3
+    ///     x1 = 3e-3
+    ///     signal = { frequency = 5, cycles = 3, amplitude = 1e6 }   # meant: MHz
+    /// "#, "slip.toml").unwrap().base().unwrap();
+    /// let w = m.warnings();
+    /// assert!(w.iter().any(|w| w.field == "source.0.signal.frequency"), "{w:?}");
+    /// ```
+    pub fn warnings(&self) -> Vec<Warning> {
+        let mut w = Warnings::new(&self.file);
+        let spec = &self.spec;
+        let long = |w: &mut Warnings, field: String, v: f64| {
+            if v > LONGEST_SEGMENT {
+                w.warn(
+                    field,
+                    format!("{v} m"),
+                    format!(
+                        "longer than {LONGEST_SEGMENT} m; a length in mm? write \"{v} mm\" \
+                         or {} (SI units: m)",
+                        v * 1e-3
+                    ),
+                );
+            }
+        };
+        long(&mut w, "model.width".into(), spec.model.width);
+        for (i, l) in spec.layers.iter().enumerate() {
+            let prefix = format!("layer.{i}");
+            long(&mut w, format!("{prefix}.thickness"), l.thickness);
+            w.material(&prefix, l.youngs_modulus, None, l.density);
+            for (key, v) in [("p_speed", l.p_speed), ("s_speed", l.s_speed)] {
+                if let Some(v) = v.filter(|&v| v < LOWEST_SPEED) {
+                    w.warn(
+                        format!("{prefix}.{key}"),
+                        format!("{v} m/s"),
+                        format!(
+                            "slower than any solid's waves; a speed in km/s? write \
+                             \"{v} km/s\" or {} (SI units: m/s)",
+                            v * 1e3
+                        ),
+                    );
+                }
+            }
+        }
+        for (i, c) in spec.cracks.iter().enumerate() {
+            let p0 = c.static_pressure;
+            if p0 > 0.0 && p0 < LOWEST_PRESSURE {
+                w.warn(
+                    format!("crack.{i}.static_pressure"),
+                    format!("{p0} Pa"),
+                    format!(
+                        "below 1 kPa; a pressure in MPa? write \"{p0} MPa\" or {p0}e6 \
+                         (SI units: Pa)"
+                    ),
+                );
+            }
+        }
+        let p = &self.problem;
+        let cs = p
+            .layers
+            .iter()
+            .map(|l| l.material.s_speed)
+            .fold(f64::INFINITY, f64::min);
+        let size = p.width.max(p.layers.last().map_or(0.0, |l| l.bottom));
+        for (i, src) in spec.sources.iter().enumerate() {
+            for (key, f) in [
+                ("frequency", src.signal.frequency),
+                ("frequency2", src.signal.frequency2),
+            ] {
+                if let Some(f) = f.filter(|&f| cs / f > LONGEST_WAVELENGTH * size) {
+                    w.warn(
+                        format!("source.{i}.signal.{key}"),
+                        format!("{f} Hz"),
+                        format!(
+                            "its S wavelength ({:.3e} m) is over {LONGEST_WAVELENGTH} times the \
+                             rectangle ({size:.3e} m): the run would hold no wave; a frequency \
+                             in MHz? write \"{f} MHz\" or {f}e6",
+                            cs / f
+                        ),
+                    );
+                }
+            }
+        }
+        // the phase velocity at the highest analysed harmonic, where the user chose the
+        // element size or the time step (the defaults meet the budget by construction)
+        let harmonic = spec.model.harmonic.unwrap_or(DEFAULT_HARMONIC);
+        let f_max = harmonic * self.f0;
+        let dt = if p.max_time_step.is_finite() {
+            p.max_time_step
+        } else {
+            0.0
+        };
+        let slip = w.out.iter().any(|x| x.field.starts_with("source."));
+        if (spec.model.element_size.is_some() || spec.model.time_step.is_some()) && !slip {
+            // the worst over the layers; `None`: a wave beyond the elements' band edge
+            let worst = p.layers.iter().try_fold((0.0f64, None), |acc, l| {
+                let (e, branch, deg) =
+                    worst_phase_error(p.order, p.element_size, dt, &l.material, p.wave, f_max)
+                        .ok()?;
+                Some(if e.abs() > acc.0.abs() {
+                    (e, Some((branch, deg)))
+                } else {
+                    acc
+                })
+            });
+            let materials: Vec<_> = p.layers.iter().map(|l| l.material).collect();
+            let fits = || {
+                element_size_for(p.order, dt, &materials, p.wave, f_max, DISPERSION_BUDGET)
+                    .map_or(String::new(), |h| {
+                        format!("; the default element_size for it would be {h:.3e} m")
+                    })
+            };
+            let (field, value) = match spec.model.element_size {
+                Some(h) => ("model.element_size", format!("{h} m")),
+                None => ("model.time_step", format!("{dt} s")),
+            };
+            let at = format!("{harmonic} f0 ({f_max:.3e} Hz, model.harmonic)");
+            match worst {
+                None => w.warn(
+                    field.into(),
+                    value,
+                    format!(
+                        "the elements do not resolve the waves at {at}: the harmonics computed \
+                         there would be numerical artefacts{}",
+                        fits()
+                    ),
+                ),
+                Some((e, Some((branch, deg)))) if e.abs() > DISPERSION_BUDGET => w.warn(
+                    field.into(),
+                    value,
+                    format!(
+                        "the phase velocity of {branch:?} waves at {at} is {:.2} % off at {deg} \
+                         degrees, over the {:.2} % that harmonics need{}",
+                        100.0 * e,
+                        100.0 * DISPERSION_BUDGET,
+                        fits()
+                    ),
+                ),
+                Some(_) => {}
             }
         }
         w.out

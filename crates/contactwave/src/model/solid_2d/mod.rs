@@ -450,6 +450,10 @@ impl Model for Solid2dScenario {
     /// The solver's estimate ([`Solid2d::memory_estimate`]), twice for a method with a
     /// second run (both plans and outputs are alive at the end); the summary takes no
     /// snapshots.
+    fn warnings(&self) -> Vec<crate::scenario::Warning> {
+        Solid2dScenario::warnings(self)
+    }
+
     fn memory_estimate(&self) -> Result<Option<f64>> {
         let e = self.problem.memory_estimate(&self.file)?;
         let runs = match self.spec.analysis.method {
@@ -688,10 +692,14 @@ impl Outcome for Solid2dResult {
                 self.output.time.len(),
                 self.output.dt
             ),
-            format!(
-                "phase error max        {:.3e} (every wave and direction at the analysed harmonic)",
-                get("phase_error_max")
-            ),
+            match get("phase_error_max") {
+                e if e.is_nan() => "phase error max        NaN (a wave at the analysed harmonic \
+                                    is beyond what the elements resolve: a smaller element_size)"
+                    .to_string(),
+                e => format!(
+                    "phase error max        {e:.3e} (every wave and direction at the analysed harmonic)"
+                ),
+            },
             format!("energy input           {:.6e} J/m", get("energy_input")),
             format!("energy closure error   {:.3e}", get("energy_closure_error")),
         ];
