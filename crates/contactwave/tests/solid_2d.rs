@@ -253,6 +253,12 @@ fn bad_input_is_an_error_naming_the_key() {
             "duration = 0.6e-6\ncrack_every = 0",
             "model.crack_every",
         ),
+        // absorbing layers in mm given in m: a mesh beyond the budget names their key
+        (
+            "duration = 0.6e-6",
+            "duration = 0.6e-6\nsides = \"absorbing\"\npml_thickness = 100.0",
+            "field `model.pml_thickness` = 100: needs about",
+        ),
     ];
     for (from, to, key) in cases {
         assert!(SMALL.contains(from), "{from}");

@@ -488,6 +488,12 @@ signal = { frequency = 5e6, cycles = 3, amplitude = 1e6 }
             "",
             "source.0.signal.frequency = 5 Hz",
         ),
+        (
+            "width = 4e-3",
+            "width = 4e-3\nsides = \"absorbing\"\npml_thickness = 0.02",
+            "",
+            "model.pml_thickness = 0.02 m",
+        ),
     ] {
         let mut text = good.replace(from, to);
         if !h.is_empty() {

@@ -329,6 +329,26 @@ impl Solid2dScenario {
                 }
             }
         }
+        // absorbing layers many wavelengths thick absorb no better and cost their nodes
+        let cp = p
+            .layers
+            .iter()
+            .map(|l| l.material.p_speed)
+            .fold(0.0, f64::max);
+        if let Some(t) = spec.model.pml_thickness {
+            let wavelength = cp / self.f0;
+            if self.f0 > 0.0 && t > LONGEST_WAVELENGTH * wavelength {
+                w.warn(
+                    "model.pml_thickness".into(),
+                    format!("{t} m"),
+                    format!(
+                        "over {LONGEST_WAVELENGTH} P wavelengths at f0 ({wavelength:.3e} m): the \
+                         layers absorb no better and their nodes cost time; a thickness in mm? \
+                         (SI units: m; the default is 10 elements)"
+                    ),
+                );
+            }
+        }
         // the phase velocity at the highest analysed harmonic, where the user chose the
         // element size or the time step (the defaults meet the budget by construction)
         let harmonic = spec.model.harmonic.unwrap_or(DEFAULT_HARMONIC);

@@ -214,13 +214,12 @@ pub struct Solid2dResult {
 impl Solid2dScenario {
     /// Plan and run, reporting progress. The whole run's memory
     /// ([`Model::memory_estimate`]) is checked against the budget first, naming the key of
-    /// its larger part (`model.element_size` for the mesh, `model.duration` for the
-    /// records).
+    /// its larger part (`model.element_size` or `model.pml_thickness` for the mesh,
+    /// `model.duration` for the records).
     pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
         let e = self.problem.memory_estimate(&self.file)?;
         let (key, value, change) = if e.mesh >= e.series {
-            let h = self.problem.element_size;
-            ("model.element_size", h, "raise `model.element_size`")
+            self.problem.mesh_key(e.nodes)
         } else {
             let t = self.problem.duration;
             ("model.duration", t, "lower `model.duration`")

@@ -53,6 +53,28 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         (nodes, bytes)
     }
 
+    /// The key to name when a mesh of `nodes` is too large, its value and what to do:
+    /// `model.pml_thickness` where the absorbing layers hold more nodes than the rectangle
+    /// itself (a thickness in mm given in m), else `model.element_size`.
+    pub fn mesh_key(&self, nodes: f64) -> (&'static str, f64, &'static str) {
+        let per = |len: f64| (len / self.element_size).ceil() * self.order as f64 + 1.0;
+        let inner = per(self.width) * per(self.depth());
+        if nodes > 2.0 * inner {
+            (
+                "model.pml_thickness",
+                self.pml.thickness,
+                "lower `model.pml_thickness` (the absorbing layers hold most of the mesh; \
+                 the default is 10 elements)",
+            )
+        } else {
+            (
+                "model.element_size",
+                self.element_size,
+                "raise `model.element_size` (larger elements: fewer nodes)",
+            )
+        }
+    }
+
     /// The memory the run needs, bytes, without building the mesh: the problem is checked
     /// as [`Solid2d::validate`] does (errors name `file` and the key), the element edges are
     /// laid out (two short vectors), and the time step is the plan's, from the eigenvalue

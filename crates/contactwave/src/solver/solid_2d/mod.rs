@@ -458,14 +458,9 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
     pub fn validate(&self, file: &str) -> Result<(Vec<f64>, Vec<f64>)> {
         let (xs, zs) = self.lines(file)?;
         let (nodes, bytes) = self.mesh_bytes(xs.len(), zs.len());
-        crate::budget::check_or(
-            file,
-            "model.element_size",
-            self.element_size,
-            bytes,
-            &format!("a mesh of about {nodes:.3e} nodes"),
-            "raise `model.element_size` (larger elements: fewer nodes)",
-        )?;
+        let (key, value, change) = self.mesh_key(nodes);
+        let what = format!("a mesh of about {nodes:.3e} nodes");
+        crate::budget::check_or(file, key, value, bytes, &what, change)?;
         Ok((xs, zs))
     }
 
