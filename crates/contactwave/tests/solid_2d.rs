@@ -201,6 +201,12 @@ fn bad_input_is_an_error_naming_the_key() {
         ),
         ("width = 2e-3", "width = -2e-3", "model.width"),
         ("at = [1e-3, 1e-3]", "at = [1e-3, 5e-3]", "receiver.1.at"),
+        // a line receiver whose far end is outside names `to`
+        (
+            "at = [1e-3, 1e-3]",
+            "at = [1e-3, 1e-3]\nto = [3e-3, 1e-3]\ncount = 3",
+            "receiver.1.to",
+        ),
         (
             "element_size = 0.1e-3",
             "element_size = 1e-9",

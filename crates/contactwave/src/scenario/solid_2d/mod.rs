@@ -790,9 +790,11 @@ impl Solid2dScenario {
                     ));
                 }
                 if !region.contains(at) {
+                    // (a line's points between its ends are inside when its ends are)
+                    let end = if at == r.at { "at" } else { "to" };
                     return Err(inv(
                         file,
-                        format!("{key}.at"),
+                        format!("{key}.{end}"),
                         format!("[{}, {}]", at[0], at[1]),
                         &region.describe(),
                     ));
