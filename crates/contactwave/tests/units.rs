@@ -352,13 +352,9 @@ fn bar_stack_unit_slips_warn() {
     }
 }
 
-/// A 2D scenario's geometry, speeds and times take unit strings too: the same problem as
-/// with SI numbers.
-#[test]
-fn solid_2d_geometry_takes_unit_strings() {
-    use contactwave::scenario::solid_2d::{Solid2dScenario, Solid2dSpec};
-    use contactwave::scenario::BuildCache;
-    let si = r#"
+/// A small 2D scenario in SI numbers: a crack, a transducer, a line receiver, an
+/// absorbing bottom.
+const SOLID_2D: &str = r#"
 [model]
 kind = "solid_2d"
 width = 2e-3
@@ -385,6 +381,14 @@ at = [1e-3, 0.0]
 to = [1.2e-3, 0.0]
 count = 3
 "#;
+
+/// A 2D scenario's geometry, speeds and times take unit strings too: the same problem as
+/// with SI numbers.
+#[test]
+fn solid_2d_geometry_takes_unit_strings() {
+    use contactwave::scenario::solid_2d::{Solid2dScenario, Solid2dSpec};
+    use contactwave::scenario::BuildCache;
+    let si = SOLID_2D;
     let units = si
         .replace("width = 2e-3", "width = \"2 mm\"")
         .replace("element_size = 0.1e-3", "element_size = \"100 um\"")
@@ -430,33 +434,19 @@ count = 3
 }
 
 /// The 2D model's plausibility warnings (model.md section 15, `Solid2dScenario::warnings`):
-/// a speed in km/s, a width in mm, a closure in MPa, a frequency in MHz, each one line
-/// naming its key; an element size too coarse for the harmonics (beyond the elements'
-/// band edge, then a phase error over the budget) with the default that would do; and
-/// none for the same scenario written right.
+/// a speed in km/s, a width in mm, a closure in MPa, a frequency in MHz, absorbing layers
+/// tens of wavelengths thick, each one line naming its key; an element size too coarse for
+/// the harmonics (a phase error over the budget, then beyond the elements' band edge) with
+/// the default that would do; and none for the same scenario written right.
 #[test]
 fn solid_2d_slips_are_warned() {
-    let good = r#"
-[model]
-kind = "solid_2d"
-width = 4e-3
-duration = 0.5e-6
-[[layer]]
-thickness = 2e-3
-p_speed = 6300.0
-s_speed = 3100.0
-density = 2700.0
-[[crack]]
-start = [1e-3, 1e-3]
-end = [3e-3, 1e-3]
-static_pressure = 0.2e6
-[[source]]
-x0 = 1e-3
-x1 = 3e-3
-signal = { frequency = 5e6, cycles = 3, amplitude = 1e6 }
-"#;
-    let warnings = |text: &str| -> Vec<String> {
-        model::from_toml_str(text, "w.toml")
+    let warnings = |edits: &[(&str, &str)]| -> Vec<String> {
+        let mut text = SOLID_2D.to_string();
+        for (from, to) in edits {
+            assert!(text.contains(from), "{from}");
+            text = text.replace(from, to);
+        }
+        model::from_toml_str(&text, "w.toml")
             .unwrap()
             .base()
             .unwrap()
@@ -465,59 +455,47 @@ signal = { frequency = 5e6, cycles = 3, amplitude = 1e6 }
             .map(|w| w.to_string())
             .collect()
     };
-    assert!(warnings(good).is_empty(), "{:?}", warnings(good));
-    // (a speed or a width slip needs an element size: the default would be refused by the
-    // memory budget, which names the key too)
-    for (from, to, h, key) in [
+    assert!(warnings(&[]).is_empty(), "{:?}", warnings(&[]));
+    let (h, coarse) = ("element_size = 0.1e-3", "element_size = 5e-3");
+    for (edits, key) in [
         (
-            "s_speed = 3100.0",
-            "s_speed = 3.1",
-            "0.25e-3",
+            &[("s_speed = 3100.0", "s_speed = 3.1")][..],
             "layer.0.s_speed = 3.1 m/s",
         ),
-        ("width = 4e-3", "width = 40.0", "5e-3", "model.width = 40 m"),
+        // (with elements the memory budget takes: it names its key too)
         (
-            "static_pressure = 0.2e6",
-            "static_pressure = 0.2",
-            "",
+            &[("width = 2e-3", "width = 40.0"), (h, coarse)],
+            "model.width = 40 m",
+        ),
+        (
+            &[("static_pressure = 0.2e6", "static_pressure = 0.2")],
             "crack.0.static_pressure = 0.2 Pa",
         ),
         (
-            "frequency = 5e6",
-            "frequency = 5.0",
-            "",
-            "source.0.signal.frequency = 5 Hz",
+            &[("frequency = 10e6", "frequency = 10.0")],
+            "source.0.signal.frequency = 10 Hz",
         ),
         (
-            "width = 4e-3",
-            "width = 4e-3\nsides = \"absorbing\"\npml_thickness = 0.02",
-            "",
+            &[("pml_thickness = 0.4e-3", "pml_thickness = 0.02")],
             "model.pml_thickness = 0.02 m",
         ),
     ] {
-        let mut text = good.replace(from, to);
-        if !h.is_empty() {
-            text = text.replace("duration", &format!("element_size = {h}\nduration"));
-        }
-        let w = warnings(&text);
+        let w = warnings(edits);
         assert!(
             w.iter().any(|w| w.starts_with(&format!("w.toml: {key}"))),
             "{key}: {w:?}"
         );
         assert!(w.iter().all(|w| w.lines().count() == 1), "{w:?}");
     }
-    let coarse =
-        |h: &str| warnings(&good.replace("duration", &format!("element_size = {h}\nduration")));
-    // the default at 5 MHz, order 6, 3 f0 is about 0.25 mm
-    assert!(coarse("0.2e-3").is_empty(), "{:?}", coarse("0.2e-3"));
-    let w = coarse("0.3e-3");
+    // the default at 10 MHz, order 6, 3 f0 is about 0.12 mm
+    let w = warnings(&[(h, "element_size = 0.15e-3")]);
     assert!(
         w.len() == 1
-            && w[0].starts_with("w.toml: model.element_size = 0.0003 m: the phase velocity")
+            && w[0].starts_with("w.toml: model.element_size = 0.00015 m: the phase velocity")
             && w[0].contains("the default element_size for it would be"),
         "{w:?}"
     );
-    let w = coarse("1e-3");
+    let w = warnings(&[(h, "element_size = 0.5e-3")]);
     assert!(
         w.len() == 1 && w[0].contains("do not resolve the waves at 3 f0"),
         "{w:?}"
