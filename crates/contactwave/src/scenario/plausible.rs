@@ -359,7 +359,9 @@ impl Solid2dScenario {
             0.0
         };
         let slip = w.out.iter().any(|x| x.field.starts_with("source."));
-        if (spec.model.element_size.is_some() || spec.model.time_step.is_some()) && !slip {
+        let chosen = spec.model.element_size.is_some() || spec.model.time_step.is_some();
+        // (a signal without a known fundamental has no harmonic to judge)
+        if chosen && !slip && f_max > 0.0 && f_max.is_finite() {
             // the worst over the layers; `None`: a wave beyond the elements' band edge
             let worst = p.layers.iter().try_fold((0.0f64, None), |acc, l| {
                 let (e, branch, deg) =
