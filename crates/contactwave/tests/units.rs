@@ -310,21 +310,25 @@ amplitude = 1e6
     assert!((cb - (e / rho).sqrt()).abs() < 1e-9, "{cb}");
 }
 
+/// The warnings the model of `text` (read as `file`) gives, one line each (what the CLI
+/// prints and Python warns with).
+fn model_warnings(text: &str, file: &str) -> Vec<String> {
+    model::from_toml_str(text, file)
+        .unwrap()
+        .base()
+        .unwrap()
+        .warnings()
+        .iter()
+        .map(|w| w.to_string())
+        .collect()
+}
+
 /// A bar stack's unit slips warn too: a segment length in mm, a modulus in GPa, a density
 /// in g/cm^3 (what the CLI and Python ask of the model).
 #[test]
 fn bar_stack_unit_slips_warn() {
     let read = |f: &str| std::fs::read_to_string(examples().join(f)).unwrap();
-    let warnings = |text: &str| -> Vec<String> {
-        model::from_toml_str(text, "bars.toml")
-            .unwrap()
-            .base()
-            .unwrap()
-            .warnings()
-            .iter()
-            .map(|w| w.to_string())
-            .collect()
-    };
+    let warnings = |text: &str| model_warnings(text, "bars.toml");
     let (hammer, burst) = (read("tribobrake.toml"), read("bar_stack_incident.toml"));
     assert!(warnings(&hammer).is_empty() && warnings(&burst).is_empty());
     let long = hammer.replacen("length = 0.229 ", "length = 229 ", 1);
@@ -446,14 +450,7 @@ fn solid_2d_slips_are_warned() {
             assert!(text.contains(from), "{from}");
             text = text.replace(from, to);
         }
-        model::from_toml_str(&text, "w.toml")
-            .unwrap()
-            .base()
-            .unwrap()
-            .warnings()
-            .iter()
-            .map(|w| w.to_string())
-            .collect()
+        model_warnings(&text, "w.toml")
     };
     assert!(warnings(&[]).is_empty(), "{:?}", warnings(&[]));
     let (h, coarse) = ("element_size = 0.1e-3", "element_size = 5e-3");
