@@ -172,25 +172,27 @@ const LANES_512: usize = 8;
 /// their displacements (`[b][a][lane]`): the gradients along x-lines and z-lines (even-odd
 /// derivative), Hooke's law and the quadrature weights at each point, the divergence by
 /// the transposed derivative along x-lines plus along z-lines. [`simd::psv_block`] does
-/// the same operations in the same order on AVX-512 registers (the same bits).
+/// the same operations in the same order on AVX-512 registers (the same bits). `d`: the
+/// four gradients' scratch, overwritten (the caller's, once per row: zeroing it per block
+/// took 4 % of a thread).
 #[inline(always)]
 fn psv_block<const M: usize, const L: usize>(
     r: &Rule<M>,
     ux: &[[[f64; L]; M]; M],
     uz: &[[[f64; L]; M]; M],
     p: &Params<L>,
+    d: &mut [[[[f64; L]; M]; M]; 4],
     gx: &mut [[[f64; L]; M]; M],
     gz: &mut [[[f64; L]; M]; M],
 ) {
     let w = &r.w;
-    let (mut dxx, mut dxz) = ([[[0.0f64; L]; M]; M], [[[0.0f64; L]; M]; M]);
-    let (mut dzx, mut dzz) = ([[[0.0f64; L]; M]; M], [[[0.0f64; L]; M]; M]);
+    let [dxx, dxz, dzx, dzz] = d;
     for b in 0..M {
         r.grad.apply(&ux[b], &mut dxx[b]);
         r.grad.apply(&uz[b], &mut dxz[b]);
     }
-    r.grad.apply_rows::<L, false>(ux, &mut dzx);
-    r.grad.apply_rows::<L, false>(uz, &mut dzz);
+    r.grad.apply_rows::<L, false>(ux, dzx);
+    r.grad.apply_rows::<L, false>(uz, dzz);
     // the x-flux `(hz/2) w_a w_b sigma_ix` and the z-flux `(hx/2) w_a w_b sigma_iz` of
     // each component i at each quadrature point (dA sx = (hx hz / 4) w_a w_b (2 / hx),
     // and alike along z); the fluxes overwrite the gradients
@@ -216,8 +218,8 @@ fn psv_block<const M: usize, const L: usize>(
         r.div.apply(&dxx[b], &mut gx[b]);
         r.div.apply(&dxz[b], &mut gz[b]);
     }
-    r.div.apply_rows::<L, true>(&dzx, gx);
-    r.div.apply_rows::<L, true>(&dzz, gz);
+    r.div.apply_rows::<L, true>(dzx, gx);
+    r.div.apply_rows::<L, true>(dzz, gz);
 }
 
 /// A block's lane arrays as [`simd::Block`] (`L` = 8, checked).
@@ -543,6 +545,7 @@ impl Stiffness {
         let mut uz = [[[0.0f64; LANES]; M]; M];
         let mut gx = [[[0.0f64; LANES]; M]; M];
         let mut gz = [[[0.0f64; LANES]; M]; M];
+        let mut grads = [[[[0.0f64; LANES]; M]; M]; 4];
         while ex0 < nex {
             let nl = LANES.min(nex - ex0);
             let e0 = ez * nex + ex0;
@@ -604,7 +607,7 @@ impl Stiffness {
                 }
             }
             if !wide {
-                psv_block::<M, LANES>(r, &ux, &uz, &par, &mut gx, &mut gz);
+                psv_block::<M, LANES>(r, &ux, &uz, &par, &mut grads, &mut gx, &mut gz);
             }
             // scatter element by element, left to right (the order of every run)
             #[cfg(target_arch = "x86_64")]
