@@ -11,6 +11,7 @@
 //! (even rows, then odd rows; along a row, left to right) for any thread count.
 
 use super::lines::{Params, Rule};
+use super::registers;
 use super::simd;
 use multiversion::multiversion;
 use rayon::prelude::*;
@@ -171,8 +172,8 @@ const LANES_512: usize = 8;
 /// The forces `g = integral sigma : grad phi` of a block of `L` plane-strain elements from
 /// their displacements (`[b][a][lane]`): the gradients along x-lines and z-lines (even-odd
 /// derivative), Hooke's law and the quadrature weights at each point, the divergence by
-/// the transposed derivative along x-lines plus along z-lines. [`simd::psv_block`] does
-/// the same operations in the same order on AVX-512 registers (the same bits). `d`: the
+/// the transposed derivative along x-lines plus along z-lines. [`registers`] does
+/// the same operations in the same order on AVX-512 and AVX2 registers (the same bits). `d`: the
 /// four gradients' scratch, overwritten (the caller's, once per row: zeroing it per block
 /// took 4 % of a thread).
 #[inline(always)]
@@ -222,22 +223,27 @@ fn psv_block<const M: usize, const L: usize>(
     r.div.apply_rows::<L, true>(dzz, gz);
 }
 
-/// A block's lane arrays as [`simd::Block`] (`L` = 8, checked).
+/// A block's lane arrays as `W`-lane arrays ([`simd::Block`], the register kernels'; `L`
+/// = `W`, checked).
 #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
 #[inline(always)]
-fn block<const M: usize, const L: usize>(x: &[[[f64; L]; M]; M]) -> &simd::Block<M> {
-    assert!(L == simd::W);
+fn block<const M: usize, const L: usize, const W: usize>(
+    x: &[[[f64; L]; M]; M],
+) -> &[[[f64; W]; M]; M] {
+    assert!(L == W);
     // SAFETY: the same type (asserted sizes)
-    unsafe { &*(x as *const [[[f64; L]; M]; M] as *const simd::Block<M>) }
+    unsafe { &*(x as *const [[[f64; L]; M]; M] as *const [[[f64; W]; M]; M]) }
 }
 
 /// [`block`], mutable.
 #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
 #[inline(always)]
-fn block_mut<const M: usize, const L: usize>(x: &mut [[[f64; L]; M]; M]) -> &mut simd::Block<M> {
-    assert!(L == simd::W);
+fn block_mut<const M: usize, const L: usize, const W: usize>(
+    x: &mut [[[f64; L]; M]; M],
+) -> &mut [[[f64; W]; M]; M] {
+    assert!(L == W);
     // SAFETY: the same type (asserted sizes)
-    unsafe { &mut *(x as *mut [[[f64; L]; M]; M] as *mut simd::Block<M>) }
+    unsafe { &mut *(x as *mut [[[f64; L]; M]; M] as *mut [[[f64; W]; M]; M]) }
 }
 
 /// The vector extensions of the CPU the kernel runs on.
@@ -464,7 +470,7 @@ impl Stiffness {
             return;
         }
         let _ = cpu;
-        self.row::<M, LANES>(rule, ez, u, out, false);
+        self.row::<M, LANES>(rule, ez, u, out, cpu);
     }
 
     /// The forces of element row `ez`.
@@ -475,25 +481,30 @@ impl Stiffness {
         ez: usize,
         u: &[f64],
         out: &mut [f64],
-        avx512: bool,
+        cpu: Cpu,
     ) {
         if self.antiplane {
             self.row_sh::<M, L>(r, ez, u, out);
         } else {
-            self.row_psv::<M, L>(r, ez, u, out, avx512);
+            self.row_psv::<M, L>(r, ez, u, out, cpu);
         }
     }
 
-    /// [`Stiffness::row`] compiled for AVX2: the same operations in the same order on
-    /// wider vectors (no fused multiply-add: Rust does not contract `a * b + c`), so the
-    /// same bits as the baseline build.
+    /// [`Stiffness::row`] compiled for AVX2, four elements at a time, the element forces
+    /// in registers ([`super::registers`]): the same operations in the same order (no
+    /// fused multiply-add: Rust does not contract `a * b + c`), so the same bits as the
+    /// baseline build.
     ///
     /// # Safety
     /// The CPU must support AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     unsafe fn row_avx2<const M: usize>(&self, r: &Rule<M>, ez: usize, u: &[f64], out: &mut [f64]) {
-        self.row::<M, LANES>(r, ez, u, out, false);
+        let cpu = Cpu {
+            avx512: false,
+            avx2: true,
+        };
+        self.row::<M, LANES>(r, ez, u, out, cpu);
     }
 
     /// [`Stiffness::row`] compiled for AVX-512, eight elements at a time: the same
@@ -512,12 +523,17 @@ impl Stiffness {
         u: &[f64],
         out: &mut [f64],
     ) {
-        self.row::<M, LANES_512>(r, ez, u, out, true);
+        let cpu = Cpu {
+            avx512: true,
+            avx2: true,
+        };
+        self.row::<M, LANES_512>(r, ez, u, out, cpu);
     }
 
-    /// The forces of element row `ez`, `LANES` elements at a time; `avx512`: the caller is
-    /// compiled for AVX-512F, whose element forces ([`super::simd`]) take every block and
-    /// whose gather and scatter take the regular ones.
+    /// The forces of element row `ez`, `LANES` elements at a time; `cpu`: what the caller
+    /// is compiled for: AVX-512F, whose element forces ([`super::registers`]) take every
+    /// block and whose gather and scatter ([`super::simd`]) take the regular ones, or AVX2,
+    /// whose element forces take every block of four.
     #[inline(always)]
     fn row_psv<const M: usize, const LANES: usize>(
         &self,
@@ -525,16 +541,18 @@ impl Stiffness {
         ez: usize,
         u: &[f64],
         out: &mut [f64],
-        avx512: bool,
+        cpu: Cpu,
     ) {
         let nex = self.dims.0;
         let mut ex0 = 0;
         // the regular blocks of this row (marked by `with_blocks`)
         let per_row = nex.div_ceil(simd::W);
         #[cfg(target_arch = "x86_64")]
-        let wide = avx512 && M <= simd::MAX_POINTS && LANES == simd::W;
+        let wide = cpu.avx512 && M <= simd::MAX_POINTS && LANES == simd::W;
+        #[cfg(target_arch = "x86_64")]
+        let narrow = !wide && cpu.avx2 && LANES == registers::avx2::W;
         #[cfg(not(target_arch = "x86_64"))]
-        let wide = false && avx512;
+        let (wide, narrow) = (false && cpu.avx512, false);
         let marks = match self.regular.get(ez * per_row..(ez + 1) * per_row) {
             Some(m) if wide && self.regular.len() == per_row * self.dims.1 => m,
             _ => &[],
@@ -603,10 +621,21 @@ impl Stiffness {
                 unsafe {
                     let par = &*(&par as *const Params<LANES> as *const Params<{ simd::W }>);
                     let (gx, gz) = (block_mut(&mut gx), block_mut(&mut gz));
-                    simd::psv_block::<M>(r, block(&ux), block(&uz), par, gx, gz);
+                    registers::avx512::psv_block::<M>(r, block(&ux), block(&uz), par, gx, gz);
                 }
             }
-            if !wide {
+            #[cfg(target_arch = "x86_64")]
+            if narrow {
+                const W: usize = registers::avx2::W;
+                assert!(LANES == W);
+                // SAFETY: the caller runs on AVX2 (`narrow`); LANES = 4 (asserted)
+                unsafe {
+                    let par = &*(&par as *const Params<LANES> as *const Params<W>);
+                    let (gx, gz) = (block_mut(&mut gx), block_mut(&mut gz));
+                    registers::avx2::psv_block::<M>(r, block(&ux), block(&uz), par, gx, gz);
+                }
+            }
+            if !wide && !narrow {
                 psv_block::<M, LANES>(r, &ux, &uz, &par, &mut grads, &mut gx, &mut gz);
             }
             // scatter element by element, left to right (the order of every run)

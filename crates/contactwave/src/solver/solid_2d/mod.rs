@@ -37,6 +37,7 @@ pub mod plane_wave;
 pub mod pml;
 pub mod probe;
 pub mod region;
+mod registers;
 mod simd;
 pub mod snapshot;
 mod stepping;
