@@ -612,7 +612,8 @@ fn convergence_reports_first_order_fd_and_rejects_bad_resolutions() {
 }
 
 /// `bench` times each issue-13 target and prints one line per target; a missing
-/// identification file is a one-line error with exit code 2.
+/// identification file is a one-line error with exit code 2. The 2D case shorter than
+/// the example's snapshot interval (1 us) runs too (it was refused).
 #[test]
 fn bench_prints_every_target_and_rejects_a_missing_file() {
     let o = bin()
@@ -624,6 +625,8 @@ fn bench_prints_every_target_and_rejects_a_missing_file() {
             "3",
             "--tribobrake-runs",
             "1",
+            "--solid-2d-us",
+            "0.2",
         ])
         .output()
         .unwrap();
@@ -634,9 +637,17 @@ fn bench_prints_every_target_and_rejects_a_missing_file() {
         "single simulation, cold",
         "xi sweep (3 points",
         "Tribobrake hammer test",
+        "2D solid, plate crack",
     ] {
         assert!(out.contains(head), "{head} missing in\n{out}");
     }
+    let line = out.lines().find(|l| l.starts_with("2D solid")).unwrap();
+    let rate: f64 = line
+        .strip_suffix(" node-updates/s")
+        .and_then(|l| l.rsplit(' ').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no rate in {line}"));
+    assert!(rate > 0.0 && line.contains(" steps, "), "{line}");
     assert!(!out.contains("identification"));
     let o = bin()
         .args([
