@@ -469,7 +469,6 @@ impl Stiffness {
             unsafe { self.row_avx2::<M>(rule, ez, u, out) };
             return;
         }
-        let _ = cpu;
         self.row::<M, LANES>(rule, ez, u, out, cpu);
     }
 
