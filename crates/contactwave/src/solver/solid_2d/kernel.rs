@@ -11,6 +11,7 @@
 //! (even rows, then odd rows; along a row, left to right) for any thread count.
 
 use super::lines::{Params, Rule};
+#[cfg(target_arch = "x86_64")]
 use super::registers;
 use super::simd;
 use multiversion::multiversion;
