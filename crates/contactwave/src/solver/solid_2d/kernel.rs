@@ -173,8 +173,8 @@ const LANES_512: usize = 8;
 /// The forces `g = integral sigma : grad phi` of a block of `L` plane-strain elements from
 /// their displacements (`[b][a][lane]`): the gradients along x-lines and z-lines (even-odd
 /// derivative), Hooke's law and the quadrature weights at each point, the divergence by
-/// the transposed derivative along x-lines plus along z-lines. [`registers`] does
-/// the same operations in the same order on AVX-512 and AVX2 registers (the same bits). `d`: the
+/// the transposed derivative along x-lines plus along z-lines. [`registers`] does the same
+/// operations in the same order on AVX-512 and AVX2 registers (the same bits). `d`: the
 /// four gradients' scratch, overwritten (the caller's, once per row: zeroing it per block
 /// took 4 % of a thread).
 #[inline(always)]
