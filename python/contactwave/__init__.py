@@ -466,12 +466,14 @@ class Solid2dResult:
 
     ``t``: times of the receiver samples (s, the half levels of the time step).
     ``receivers``: velocities, shape ``(n_receivers, n_components, n_t)`` (m/s), in the
-    order of ``receiver_names``; ``components`` names the components (``("x", "z")`` in
+    order of ``receiver_names``, at ``receiver_x``, ``receiver_z`` (m, ``(n_receivers,)``);
+    ``components`` names the components (``("x", "z")`` in
     P-SV runs, ``("y",)`` in SH runs). ``stresses``: the stress receivers' stresses,
     shape ``(n_stress_receivers, n_stress_components, n_t)`` (Pa, tension positive,
-    dynamic), in the order of ``stress_names``, components ``stress_components``
+    dynamic), in the order of ``stress_names`` (at ``stress_x``, ``stress_z``, m), components ``stress_components``
     (``("xx", "zz", "xz")`` or ``("yx", "yz")``). ``cracks``: one dict per crack with ``position``
-    (m along it, ``(n_nodes,)``), ``time`` (s, ``(n_records,)``) and ``normal_gap``,
+    (m along it, ``(n_nodes,)``), the nodes' coordinates ``x``, ``z`` (m, ``(n_nodes,)``),
+    ``time`` (s, ``(n_records,)``) and ``normal_gap``,
     ``tangential_gap`` (m), ``normal_stress``, ``shear_stress`` (Pa, tension positive,
     ``-p0`` at rest), ``adhesion`` and ``state`` (0 open, 1 stick, 2 slip) of shape
     ``(n_nodes, n_records)``. ``dt`` (s);
@@ -486,9 +488,13 @@ class Solid2dResult:
     t: np.ndarray
     receivers: np.ndarray
     receiver_names: List[str]
+    receiver_x: np.ndarray
+    receiver_z: np.ndarray
     components: List[str]
     stresses: np.ndarray
     stress_names: List[str]
+    stress_x: np.ndarray
+    stress_z: np.ndarray
     stress_components: List[str]
     cracks: List[Dict[str, np.ndarray]]
     dt: float
@@ -503,10 +509,14 @@ class Solid2dResult:
         self.scenario = scenario
         self.t = raw["t"]
         self.receiver_names = list(raw["receiver_names"])
+        self.receiver_x = np.asarray(raw["receiver_x"], dtype=np.float64)
+        self.receiver_z = np.asarray(raw["receiver_z"], dtype=np.float64)
         self.components = list(raw["components"])
         rows = np.asarray(raw["receivers"], dtype=np.float64)
         self.receivers = rows.reshape(len(self.receiver_names), len(self.components), len(self.t))
         self.stress_names = list(raw["stress_names"])
+        self.stress_x = np.asarray(raw["stress_x"], dtype=np.float64)
+        self.stress_z = np.asarray(raw["stress_z"], dtype=np.float64)
         self.stress_components = list(raw["stress_components"])
         srows = np.asarray(raw["stresses"], dtype=np.float64)
         self.stresses = srows.reshape(

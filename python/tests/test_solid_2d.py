@@ -34,6 +34,9 @@ def test_a_clapping_crack_in_2d_gives_numpy_arrays():
     assert r.receivers.shape == (2, 2, n) and r.receivers.dtype == np.float64
     assert r.components == ["x", "z"] and r.receiver_names == ["top", "under"]
     assert np.array_equal(r.velocity("under", "z"), r.receivers[1, 1])
+    # with their coordinates: the receivers' positions, the crack nodes' x and z
+    assert np.allclose(r.receiver_x, [1e-3, 1e-3]) and np.allclose(r.receiver_z, [0.0, 1e-3])
+    assert r.stress_x.shape == (0,) and r.stress_z.shape == (0,)
     # an unknown receiver or component names the valid ones
     for name, comp, valid in (("nope", "z", "top, under"), ("top", "y", "x, z")):
         try:
@@ -46,9 +49,18 @@ def test_a_clapping_crack_in_2d_gives_numpy_arrays():
     # no stress receivers in this file: an empty array of the right shape
     assert r.stresses.shape == (0, 3, n) and r.stress_components == ["xx", "zz", "xz"]
     assert r.summary["energy_closure_error"] < 1e-9
+    # the crack's energy audit: the shear tractions' part, friction (rigid stick: close to
+    # it) and damage (no damage law here)
+    s = r.summary
+    assert s["energy_damage"] == 0.0 and s["energy_friction"] >= 0.0
+    assert abs(s["energy_friction"] - s["energy_cracks_tangential"]) <= 0.01 * abs(
+        s["energy_cracks_tangential"]
+    ) + 1e-6 * s["energy_input"]
     c = r.cracks[0]
     nodes, records = c["normal_gap"].shape
     assert nodes == len(c["position"]) and records == len(c["time"])
+    assert np.allclose(c["x"], 0.7e-3 + c["position"]) and np.allclose(c["z"], 0.5e-3)
+    assert 0.7e-3 < c["x"].min() and c["x"].max() < 1.3e-3
     gap, stress = c["normal_gap"], c["normal_stress"]
     # the crack opens, never interpenetrates, and carries no stress while open
     assert gap.max() > 0.0 and gap.min() >= 0.0

@@ -55,7 +55,13 @@ fn a_scenario_runs_closes_its_energy_and_writes_its_files() {
     assert_eq!(names[..3], ["summary.json", "receivers.csv", "crack.csv"]);
     // the plots (the `plot` feature); no snapshots without `[snapshots]`
     #[cfg(feature = "plot")]
-    assert_eq!(names[3..], ["receivers.svg", "spectra.svg"]);
+    assert_eq!(
+        names[3..],
+        ["receivers.svg", "spectra.svg", "crack_state.svg"]
+    );
+    // the crack's state map: its states in the legend
+    #[cfg(feature = "plot")]
+    assert!(files[5].contents.contains("\nstick\n</text>"));
     #[cfg(not(feature = "plot"))]
     assert_eq!(names.len(), 3);
     assert!(files[1]
@@ -259,6 +265,30 @@ fn bad_input_is_an_error_naming_the_key() {
             "duration = 0.6e-6\ncrack_every = 0",
             "model.crack_every",
         ),
+        // a time step beyond the mesh's stability limit is refused, not shortened
+        (
+            "element_size = 0.1e-3",
+            "element_size = 0.1e-3\ntime_step = 1e-6",
+            "field `model.time_step` = 0.000001: (0,",
+        ),
+        // the angle of a 2D source is its own key, not its signal's
+        (
+            "amplitude = 10e6, window",
+            "amplitude = 10e6, angle = 30, window",
+            "source.0.signal.angle",
+        ),
+        // an unknown key is named with the dotted path of every other key
+        (
+            "static_pressure = 0.2e6",
+            "static_pressur = 0.2e6",
+            "field `crack.0.static_pressur`",
+        ),
+        // the pre-stress sets the cracks' static state: not both
+        (
+            "element_size = 0.1e-3",
+            "element_size = 0.1e-3\nprestress = { zz = -1e6 }",
+            "crack.0.static_pressure",
+        ),
         // absorbing layers in mm given in m: a mesh beyond the budget names their key
         (
             "duration = 0.6e-6",
@@ -276,6 +306,59 @@ fn bad_input_is_an_error_naming_the_key() {
         assert!(err.starts_with("bad.toml"), "{err}");
         assert_eq!(err.lines().count(), 1, "{err}");
     }
+}
+
+/// A far-field pre-stress sets each crack's static state by its traction on the crack's
+/// line: `prestress = { zz = -p, xz = q }` on a horizontal crack is `static_pressure = p`,
+/// `static_shear = q` (the same bits), and `xx` is what a vertical crack feels (a tension
+/// along z does not open it).
+#[test]
+fn a_prestress_is_the_static_state_it_puts_on_each_crack() {
+    let run = |text: &str| {
+        model::from_toml_str(text, "p.toml")
+            .unwrap()
+            .base()
+            .unwrap()
+            .run(&RunControl::default())
+            .unwrap()
+            .summary()
+            .clone()
+    };
+    let own = SMALL.replace(
+        "static_pressure = 0.2e6",
+        "static_pressure = 0.2e6\nstatic_shear = 0.03e6",
+    );
+    let pre = SMALL.replace("static_pressure = 0.2e6\n", "").replace(
+        "element_size = 0.1e-3",
+        "element_size = 0.1e-3\nprestress = { zz = -0.2e6, xz = 0.03e6, xx = 5e6 }",
+    );
+    assert_ne!(pre, SMALL);
+    let (a, b) = (run(&own), run(&pre));
+    for key in [
+        "crack_max_gap_0",
+        "crack_max_slip_0",
+        "top_A1",
+        "under_A2_over_A1",
+    ] {
+        assert_eq!(a.get(key), b.get(key), "{key}");
+    }
+    // a vertical crack feels sigma_xx (compressive here) and not the tension along z
+    let vertical = pre.replace(
+        "start = [0.7e-3, 0.5e-3]\nend = [1.3e-3, 0.5e-3]",
+        "start = [1e-3, 0.2e-3]\nend = [1e-3, 0.8e-3]",
+    );
+    let text = vertical
+        .replace("xx = 5e6", "xx = -1e6")
+        .replace("zz = -0.2e6", "zz = 3e6");
+    assert!(run(&text).get("crack_max_gap_0").is_some());
+    let open = vertical.replace("xx = 5e6", "xx = 1e6");
+    let err = model::from_toml_str(&open, "p.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("model.prestress") && err.contains("crack.0"),
+        "{err}"
+    );
 }
 
 /// `model.backend`: a name other than `cpu` or `gpu` is refused; `gpu` is refused by a

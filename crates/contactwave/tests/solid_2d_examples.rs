@@ -57,6 +57,14 @@ fn sh_friction_example_slips_and_closes_its_energy() {
     assert_eq!(get("crack_max_gap_0"), 0.0);
     assert!(get("energy_cracks") > 1e-3 * get("energy_input"), "{s:?}");
     assert!(get("bottom_A3_over_A1") > 0.0);
+    // rigid stick: friction dissipates the shear tractions' work plus the static
+    // shear's through the slip (measured 2.5e-4 apart over the whole example), and no
+    // damage
+    let balance = (get("energy_cracks_tangential") + get("energy_static_shear_work"))
+        / get("energy_friction");
+    assert!((balance - 1.0).abs() < 2e-3, "{s:?}");
+    assert!(get("energy_static_shear_work") > 0.0, "{s:?}");
+    assert_eq!(get("energy_damage"), 0.0);
 }
 
 /// A0 on a delamination: the sub-laminate claps (the delamination opens), and the energy

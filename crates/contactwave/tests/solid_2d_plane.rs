@@ -1,17 +1,19 @@
 //! The 1D-reduction example (`examples/solid_2d/interface_reduction.toml`), shortened: a
 //! full-width RCCM interface under a plane P wave injected by total-field/scattered-field
-//! reproduces the exact half-space solver's max gap, and the energy closes.
+//! reproduces the exact half-space solver's max gap, and the energy closes. The 1D
+//! half-spaces take the 2D preset's P-wave modulus `E (1 - nu) / ((1 + nu) (1 - 2 nu))`
+//! (E = 71 GPa, nu = 0.33: 1.05197e11 Pa, c_P = 6230.4 m/s) as their Young's modulus.
 
 use contactwave::model::{self, RunControl};
 
 const ONE_D: &str = r#"
 [medium]
 material = "aluminium"
-youngs_modulus = 1.0785e11
+youngs_modulus = 1.05197e11
 [counterpart]
 kind = "medium"
 material = "aluminium"
-youngs_modulus = 1.0785e11
+youngs_modulus = 1.05197e11
 [interface]
 static_pressure = 0.3e6
 compression = { law = "rigid" }
@@ -58,21 +60,22 @@ fn interface_reduction_example_matches_the_exact_solver() {
         "max gap 2D {g2:e}, exact {g1:e}, error {:.2e}",
         g2 / g1 - 1.0
     );
-    assert!((g2 / g1 - 1.0).abs() < 0.02, "2D {g2:e} exact {g1:e}");
+    // measured +0.20% (+0.93% at 0.5 mm, +0.06% at 0.125 mm: docs/model.md table 15.8-3)
+    assert!((g2 / g1 - 1.0).abs() < 5e-3, "2D {g2:e} exact {g1:e}");
     // the bond is damaged (beta falls), as in the exact solution
     let (b2, b1) = (
         s2.get("crack_min_adhesion_0").unwrap(),
         s1.get("beta_end").unwrap(),
     );
     eprintln!("adhesion 2D {b2}, exact {b1}");
-    assert!(b1 < 0.99 && (b2 - b1).abs() < 0.02, "2D {b2} exact {b1}");
+    assert!(b1 < 0.99 && (b2 - b1).abs() < 5e-3, "2D {b2} exact {b1}");
     // the reflected wave's A2/A1 (the 2D receiver in the scattered-field region)
     let (r2, r1) = (
         s2.get("reflected_A2_over_A1").unwrap(),
         s1.get("A2_over_A1").unwrap(),
     );
     eprintln!("reflected A2/A1 2D {r2}, exact {r1}");
-    assert!((r2 / r1 - 1.0).abs() < 0.02, "2D {r2} exact {r1}");
+    assert!((r2 / r1 - 1.0).abs() < 0.01, "2D {r2} exact {r1}");
 }
 
 /// A bad plane-wave source is a one-line error naming its key, before any step.

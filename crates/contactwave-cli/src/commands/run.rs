@@ -19,8 +19,8 @@ use std::time::Instant;
 /// half-space scenario summary.json, timeseries.csv, probe.csv, spectrum.csv and SVG plots;
 /// for a bar stack summary.json, timeseries.csv, then frf.csv and frf.svg (hammer) or
 /// waves.csv (incident wave), and probes.csv with [[probe]] tables; for a 2D scenario
-/// summary.json, receivers.csv, crack.csv, receivers.svg, spectra.svg, crack_map.png,
-/// crack_state.png and, with [snapshots], snapshots/frame_NNNN.png, a GIF and VTK files
+/// summary.json, receivers.csv, crack.csv, receivers.svg, spectra.svg, crack_state.svg,
+/// crack_map.png, crack_state.png and, with [snapshots], snapshots/frame_NNNN.png, a GIF and VTK files
 /// (docs/scenario.md section 4). Ctrl-C stops it (exit 130, nothing written).
 #[derive(clap::Args)]
 pub struct Args {

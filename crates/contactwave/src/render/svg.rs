@@ -664,9 +664,158 @@ pub fn figure(name: &str, width: u32, panels: &[Panel]) -> Result<String> {
     })
 }
 
+/// A space-time map of a discrete state along a line (a crack's open/stick/slip state):
+/// `states[k * n + j]` the state of point `j` (at `positions[j]`, display units) at record
+/// `k` (at `times[k]`, display units), each drawn as the cell from its point's midpoints to
+/// its neighbours' and from its record's time to the next; runs of one state along a row
+/// are merged and the rows decimated to at most `MAX_ROWS`, so the file stays small.
+/// `classes`: each state's value, legend label and colour.
+pub struct StateMap<'a> {
+    /// Title above the map.
+    pub title: String,
+    /// x-axis label (with its unit).
+    pub xlabel: String,
+    /// y-axis label (with its unit).
+    pub ylabel: String,
+    /// The points' positions, increasing.
+    pub positions: &'a [f64],
+    /// The records' times, increasing.
+    pub times: &'a [f64],
+    /// The states, record-major.
+    pub states: &'a [f64],
+    /// Each state's value, label and colour.
+    pub classes: &'a [(f64, &'a str, (u8, u8, u8))],
+}
+
+/// Rows (records) drawn at most by [`state_map`].
+pub const MAX_ROWS: usize = 400;
+
+/// [`StateMap`] as an SVG string (900 x 500 px).
+pub fn state_map(name: &str, m: &StateMap) -> Result<String> {
+    let (n, rows) = (m.positions.len(), m.times.len());
+    if n == 0 || rows == 0 || m.states.len() < n * rows {
+        return Err(plot_error(
+            name,
+            "a state map needs points and records".into(),
+        ));
+    }
+    // cell edges: midpoints between the points, half a spacing beyond the ends
+    let half = |a: f64, b: f64| 0.5 * (b - a);
+    let first = if n > 1 {
+        half(m.positions[0], m.positions[1])
+    } else {
+        0.5
+    };
+    let last = if n > 1 {
+        half(m.positions[n - 2], m.positions[n - 1])
+    } else {
+        0.5
+    };
+    let mut edges = vec![m.positions[0] - first];
+    edges.extend(m.positions.windows(2).map(|w| 0.5 * (w[0] + w[1])));
+    edges.push(m.positions[n - 1] + last);
+    let step = rows.div_ceil(MAX_ROWS);
+    let dt = if rows > 1 {
+        m.times[1] - m.times[0]
+    } else {
+        1.0
+    };
+    let t_end = m.times[rows - 1] + dt;
+    render(name, (900, 500), |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(&m.title, ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(edges[0]..edges[n], m.times[0]..t_end)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(m.xlabel.as_str())
+            .y_desc(m.ylabel.as_str())
+            .draw()?;
+        let fill = |v: f64| {
+            m.classes
+                .iter()
+                .find(|c| c.0 == v)
+                .map(|c| RGBColor(c.2 .0, c.2 .1, c.2 .2))
+        };
+        let mut cells = Vec::new();
+        for k in (0..rows).step_by(step) {
+            let (t0, t1) = (m.times[k], m.times.get(k + step).copied().unwrap_or(t_end));
+            let row = &m.states[k * n..(k + 1) * n];
+            let mut j = 0;
+            while j < n {
+                let v = row[j];
+                let mut e = j + 1;
+                while e < n && row[e] == v {
+                    e += 1;
+                }
+                if let Some(c) = fill(v) {
+                    cells.push(Rectangle::new([(edges[j], t0), (edges[e], t1)], c.filled()));
+                }
+                j = e;
+            }
+        }
+        chart.draw_series(cells)?;
+        for &(_, label, (r, g, b)) in m.classes {
+            let c = RGBColor(r, g, b);
+            chart
+                .draw_series(std::iter::empty::<Rectangle<(f64, f64)>>())?
+                .label(label)
+                .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 12, y + 6)], c.filled()));
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()?;
+        Ok(())
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_state_map_merges_runs_and_names_its_states() {
+        let positions = [0.0, 1.0, 2.0, 3.0];
+        let times = [0.0, 1.0, 2.0];
+        // row 0: all stick (one cell); row 1: open, open, slip, stick (three cells);
+        // row 2: a state without a class (not drawn)
+        let states = [1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 2.0, 1.0, 5.0, 5.0, 5.0, 5.0];
+        let classes = [
+            (0.0, "open", (200, 60, 60)),
+            (1.0, "stick", (60, 60, 200)),
+            (2.0, "slip", (240, 180, 40)),
+        ];
+        let svg = state_map(
+            "m.svg",
+            &StateMap {
+                title: "t".into(),
+                xlabel: "x".into(),
+                ylabel: "t".into(),
+                positions: &positions,
+                times: &times,
+                states: &states,
+                classes: &classes,
+            },
+        )
+        .unwrap();
+        for label in ["open", "stick", "slip"] {
+            assert!(
+                svg.contains(&format!("\n{label}\n</text>")),
+                "{label}: {svg}"
+            );
+        }
+        // the cells in the map's colours: 4 (plus the 3 legend boxes)
+        let fills = |rgb: &str| svg.matches(&format!("fill=\"{rgb}\"")).count();
+        assert_eq!(fills("#C83C3C"), 2, "open");
+        assert_eq!(fills("#3C3CC8"), 3, "stick");
+        assert_eq!(fills("#F0B428"), 2, "slip");
+    }
 
     #[test]
     fn ticks_are_in_engineering_notation_without_si_letters() {

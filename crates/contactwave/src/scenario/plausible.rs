@@ -7,6 +7,7 @@ use super::bar_stack::BarStackScenario;
 use super::solid_2d::{Solid2dScenario, DEFAULT_HARMONIC, DISPERSION_BUDGET};
 use super::Scenario;
 use crate::solver::solid_2d::dispersion::{element_size_for, worst_phase_error};
+use crate::solver::solid_2d::Side;
 use std::fmt;
 
 /// A value that is allowed but looks like a unit slip.
@@ -51,6 +52,10 @@ pub const LOWEST_SPEED: f64 = 100.0;
 /// A 2D burst whose S wavelength exceeds this many times the rectangle's larger side is
 /// taken as a frequency in the wrong unit.
 pub const LONGEST_WAVELENGTH: f64 = 10.0;
+/// Node-updates (nodes times steps) of a 2D run above which it is announced with its
+/// estimated length: 1e11, about 15 minutes at 1e8 node-updates/s (the reference case is
+/// 4e9).
+pub const LONG_RUN_UPDATES: f64 = 1e11;
 
 /// Collects the warnings of one scenario file.
 struct Warnings<'a> {
@@ -233,7 +238,9 @@ impl Solid2dScenario {
     /// (mm for m), a crack's closure under 1 kPa (MPa for Pa), a source whose S wavelength
     /// is more than ten times the rectangle (MHz for Hz: a run with no wave in it), and an
     /// `element_size` (or `time_step`) coarser than the phase-velocity budget at the
-    /// highest analysed harmonic (the harmonics then carry numerical dispersion). Empty for
+    /// highest analysed harmonic (the harmonics then carry numerical dispersion), a
+    /// velocity receiver on a rigid side (zero velocity), and a run over
+    /// [`LONG_RUN_UPDATES`] node-updates (announced with its estimated length). Empty for
     /// every shipped example.
     ///
     /// ```
@@ -327,6 +334,50 @@ impl Solid2dScenario {
                         ),
                     );
                 }
+            }
+        }
+        // a velocity receiver on a rigid side records zeros (no harmonics to analyse)
+        let depth = p.depth();
+        for (i, r) in spec.receivers.iter().enumerate() {
+            if r.quantity != "velocity" {
+                continue;
+            }
+            for (k, at) in std::iter::once(r.at).chain(r.to).enumerate() {
+                let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * size;
+                let rigid = (p.top == Side::Rigid && near(at[1], 0.0))
+                    || (p.bottom == Side::Rigid && near(at[1], depth))
+                    || (p.sides == Side::Rigid && (near(at[0], 0.0) || near(at[0], p.width)));
+                if rigid {
+                    w.warn(
+                        format!("receiver.{i}.{}", if k == 0 { "at" } else { "to" }),
+                        format!("[{}, {}] m", at[0], at[1]),
+                        "on a rigid side: its velocity is zero, so it has no harmonics \
+                         (null A2/A1 in summary.json); move it inside or record the stress \
+                         (quantity = \"stress\")"
+                            .into(),
+                    );
+                }
+            }
+        }
+        // a run far longer than usual (a crack end, a receiver or a layer that forces tiny
+        // elements, or a long duration): say how long before it starts
+        if let Ok(e) = p.memory_estimate(&self.file) {
+            let updates = e.nodes * e.steps;
+            if updates > LONG_RUN_UPDATES {
+                w.warn(
+                    "model.duration".into(),
+                    format!("{} s", p.duration),
+                    format!(
+                        "about {:.1e} nodes x {:.1e} steps = {updates:.1e} node-updates, some \
+                         {:.0} minutes at 1e8 node-updates/s (2 cores; docs/performance.md); \
+                         the smallest element is set by the mesh lines of the cracks' ends, \
+                         the receivers and the layers (model.md 15.1): check the units of \
+                         short features, model.element_size and model.duration",
+                        e.nodes,
+                        e.steps,
+                        updates / 1e8 / 60.0
+                    ),
+                );
             }
         }
         // absorbing layers many wavelengths thick absorb no better and cost their nodes

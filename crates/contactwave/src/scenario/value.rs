@@ -46,7 +46,7 @@ pub fn deserialize_scenario<T: serde::de::DeserializeOwned>(
     super::units::to_si(&mut table, file)?;
     let value = toml::Value::Table(table);
     serde_path_to_error::deserialize::<_, T>(value).map_err(|e| {
-        let path = e.path().to_string();
+        let path = dotted(e.path());
         let inner = super::units::plain_serde_message(&e.into_inner().to_string());
         Error::Parse {
             file: file.to_string(),
@@ -57,6 +57,29 @@ pub fn deserialize_scenario<T: serde::de::DeserializeOwned>(
             },
         }
     })
+}
+
+/// A deserializer's field path spelled as the scenario keys are everywhere else:
+/// `crack.0.static_pressure` (array indices as dotted parts, not `crack[0]`).
+fn dotted(path: &serde_path_to_error::Path) -> String {
+    let mut out = String::new();
+    for s in path.iter() {
+        let part = match s {
+            serde_path_to_error::Segment::Seq { index } => index.to_string(),
+            serde_path_to_error::Segment::Map { key: k }
+            | serde_path_to_error::Segment::Enum { variant: k } => k.clone(),
+            serde_path_to_error::Segment::Unknown => continue,
+        };
+        if !out.is_empty() {
+            out.push('.');
+        }
+        out.push_str(&part);
+    }
+    if out.is_empty() {
+        ".".into()
+    } else {
+        out
+    }
 }
 
 /// Set `key` (dotted, e.g. `incident.xi`) to `value` in `table`, creating tables on the

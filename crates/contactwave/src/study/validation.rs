@@ -9,6 +9,7 @@ pub mod solid_2d;
 pub mod solid_2d_dispersion;
 pub mod solid_2d_plane;
 pub mod solid_2d_pml;
+pub mod solid_2d_reduction;
 
 use crate::analysis::fit::fit_power_law;
 use crate::analysis::AnalysisMethod;
@@ -466,6 +467,7 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
     v.extend(solid_2d::run_all()?);
     v.extend(solid_2d_dispersion::run_all()?);
     v.extend(solid_2d_plane::run_all()?);
+    v.extend(solid_2d_reduction::run_rows()?);
     v.extend(solid_2d_pml::run_all()?);
     Ok(v)
 }

@@ -99,6 +99,17 @@ impl Fields for ModelSpec {
             ["courant"] => Some(Slot::OptF64(&mut self.courant)),
             ["time_step"] => Some(Slot::OptF64(&mut self.time_step)),
             ["order"] => Some(Slot::OptUsize(&mut self.order)),
+            ["prestress", c] => {
+                let p = self.prestress.get_or_insert_with(Default::default);
+                match *c {
+                    "xx" => Some(Slot::F64(&mut p.xx)),
+                    "zz" => Some(Slot::F64(&mut p.zz)),
+                    "xz" => Some(Slot::F64(&mut p.xz)),
+                    "xy" => Some(Slot::F64(&mut p.xy)),
+                    "yz" => Some(Slot::F64(&mut p.yz)),
+                    _ => None,
+                }
+            }
             _ => None,
         }
     }
@@ -205,8 +216,11 @@ pub struct Solid2dResult {
     pub summary: Summary,
     /// The wavefield snapshots (`[snapshots]`), on their pixel grid.
     pub snapshots: Option<Snapshots2d>,
-    /// What the pictures draw besides the field.
+    /// What the pictures draw besides the field (the velocity receivers' positions in
+    /// the order of `receivers`).
     pub geometry: Geometry,
+    /// Positions of the stress receivers `[x, z]` (m), in the order of `stress_receivers`.
+    pub stress_points: Vec<[f64; 2]>,
     /// Fundamental of the analysis, Hz.
     pub f0: f64,
 }
@@ -259,6 +273,10 @@ impl Solid2dScenario {
         s.set("energy_solid", e.solid);
         s.set("energy_cracks", e.cracks);
         s.set("energy_absorbed", e.absorbed);
+        s.set("energy_cracks_tangential", e.cracks_tangential);
+        s.set("energy_static_shear_work", e.static_shear_work);
+        s.set("energy_friction", e.friction);
+        s.set("energy_damage", e.damage);
         s.set("energy_closure_error", e.closure_error());
         for (i, c) in output.cracks.iter().enumerate() {
             s.set(&format!("crack_max_gap_{i}"), c.peak_normal_gap);
@@ -328,6 +346,7 @@ impl Solid2dScenario {
             summary: s,
             snapshots,
             geometry: Geometry::of(self),
+            stress_points: self.stress_points.clone(),
             f0: self.f0,
         })
     }
@@ -563,8 +582,9 @@ impl Outcome for Solid2dResult {
     }
 
     /// `kind`, `t` (s), `receivers` (rows: receiver-major, then component; m/s), `receiver_names`,
-    /// `components`, `stresses` (rows like `receivers`, Pa), `stress_names`,
-    /// `stress_components`, `cracks` (per crack: `position` (m), `time` (s), and rows `(n_nodes,
+    /// `receiver_x`, `receiver_z` (m), `components`, `stresses` (rows like `receivers`, Pa),
+    /// `stress_names`, `stress_x`, `stress_z` (m), `stress_components`, `cracks` (per
+    /// crack: `position` (m along it), `x`, `z` (m), `time` (s), and rows `(n_nodes,
     /// n_records)` of `normal_gap`, `tangential_gap` (m), `normal_stress`, `shear_stress`
     /// (Pa), `adhesion`, `state` (0 open, 1 stick, 2 slip)), `dt` (s), `summary`; `snapshots` (the frames `[frame][iz][ix]`
     /// flattened, m/s; empty without `[snapshots]`), `snapshot_times` (s), `snapshot_x`,
@@ -585,11 +605,24 @@ impl Outcome for Solid2dResult {
             }
         }
         let texts = |v: &[String]| Value::Tuple(v.iter().map(|n| Value::Text(n.clone())).collect());
+        let coordinate = |v: &[[f64; 2]], i: usize| -> Value {
+            v.iter().map(|p| p[i]).collect::<Vec<f64>>().into()
+        };
         let labels =
             |v: &[&str]| Value::Tuple(v.iter().map(|n| Value::Text(n.to_string())).collect());
         let mut cracks = Vec::new();
-        for c in &o.cracks {
+        for (c, line) in o.cracks.iter().zip(&self.geometry.cracks) {
             let n = c.position.len();
+            // the nodes' coordinates from the line's start along its direction
+            let [x0, z0, x1, z1] = *line;
+            let length = (x1 - x0).hypot(z1 - z0).max(f64::MIN_POSITIVE);
+            let along = |a: f64, b: f64| -> Value {
+                c.position
+                    .iter()
+                    .map(|p| a + p * (b - a) / length)
+                    .collect::<Vec<f64>>()
+                    .into()
+            };
             let by_node = |v: &[f64]| -> Value {
                 Value::Rows(
                     (0..n)
@@ -600,6 +633,8 @@ impl Outcome for Solid2dResult {
             cracks.push(Value::Map(
                 Record::new()
                     .with("position", c.position.clone().into())
+                    .with("x", along(x0, x1))
+                    .with("z", along(z0, z1))
                     .with("time", c.time.clone().into())
                     .with("normal_gap", by_node(&c.normal_gap))
                     .with("tangential_gap", by_node(&c.tangential_gap))
@@ -614,6 +649,10 @@ impl Outcome for Solid2dResult {
             .with("t", o.time.clone().into())
             .with("receivers", Value::Rows(rows))
             .with("receiver_names", texts(&self.receivers))
+            .with("receiver_x", coordinate(&self.geometry.receivers, 0))
+            .with("receiver_z", coordinate(&self.geometry.receivers, 1))
+            .with("stress_x", coordinate(&self.stress_points, 0))
+            .with("stress_z", coordinate(&self.stress_points, 1))
             .with("components", labels(&self.component_names))
             .with("stresses", Value::Rows(stresses))
             .with("stress_names", texts(&self.stress_receivers))

@@ -3,8 +3,9 @@
 //! `snapshots/frame_NNNN.png` (the field, the cracks drawn, a colour bar in m/s, the time in
 //! us, axes in mm, receivers and transducers marked), `snapshots/snapshots.gif`,
 //! `snapshots/frame_NNNN.vti` with `snapshots/snapshots.pvd` (ParaView), and for every run
-//! `receivers.svg`, `spectra.svg`, `crack_map.png` and `crack_state.png` (each crack's normal gap, and its open/stick/slip state, along it
-//! against time).
+//! `receivers.svg`, `spectra.svg`, `crack_state.svg` (each crack's open/stick/slip state
+//! along it against time, a vector map with a legend), `crack_map.png` and
+//! `crack_state.png` (its normal gap and state as raster maps with colour bars).
 
 use crate::error::Result;
 use crate::scenario::snapshots::Snapshots;
@@ -296,8 +297,16 @@ mod files {
         velocity.chain(stress).collect()
     }
 
+    /// The crack states of `crack.csv` with their legend labels and colours.
+    const STATES: [(f64, &str, (u8, u8, u8)); 3] = [
+        (0.0, "open", (214, 39, 40)),
+        (1.0, "stick", (31, 119, 180)),
+        (2.0, "slip (or closed without friction)", (255, 187, 60)),
+    ];
+
     /// `receivers.svg` and `spectra.svg` (every velocity and stress receiver, one panel
-    /// each), and the VTK files of the snapshots.
+    /// each), `crack_state.svg` (each crack's state along it against time), and the VTK
+    /// files of the snapshots.
     pub(crate) fn text_files(r: &Solid2dResult, f0: f64) -> Result<Vec<OutputFile>> {
         let o = &r.output;
         let mut out = Vec::new();
@@ -369,6 +378,32 @@ mod files {
             out.push(OutputFile::new(
                 "spectra.svg",
                 figure("spectra.svg", 900, &panels)?,
+            ));
+        }
+        // each crack's open/stick/slip state along it against time
+        for (i, c) in o.cracks.iter().enumerate() {
+            if c.time.is_empty() || c.position.is_empty() {
+                continue;
+            }
+            let name = if i == 0 {
+                "crack_state.svg".to_string()
+            } else {
+                format!("crack_state_{i}.svg")
+            };
+            let mm: Vec<f64> = c.position.iter().map(|p| p * 1e3).collect();
+            let us: Vec<f64> = c.time.iter().map(|t| t * 1e6).collect();
+            let map = crate::render::svg::StateMap {
+                title: format!("crack {i}: contact state"),
+                xlabel: "position along the crack (mm)".into(),
+                ylabel: "t (\u{b5}s)".into(),
+                positions: &mm,
+                times: &us,
+                states: &c.state,
+                classes: &STATES,
+            };
+            out.push(OutputFile::new(
+                &name,
+                crate::render::svg::state_map(&name, &map)?,
             ));
         }
         if let Some(s) = r.snapshots.as_ref().filter(|s| s.vtk) {

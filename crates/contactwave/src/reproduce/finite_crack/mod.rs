@@ -36,10 +36,16 @@ use std::sync::atomic::Ordering;
 use std::time::Instant;
 
 /// Aluminium as the 2D presets have it: density, kg/m^3.
-const RHO: f64 = 2710.0;
-/// Its P-wave modulus `rho c_P^2` (Pa): the 1D half-spaces use it as Young's modulus so
-/// that their wave travels at the 2D c_P.
-const P_MODULUS: f64 = 1.0785e11;
+const RHO: f64 = crate::material::Material::ALUMINIUM.density;
+
+/// Its P-wave modulus `rho c_P^2 = E (1 - nu) / ((1 + nu) (1 - 2 nu))` (Pa, 1.052e11 for
+/// E = 71 GPa, nu = 0.33): the 1D half-spaces use it as Young's modulus so that their wave
+/// travels at the 2D c_P (6230.4 m/s).
+fn p_modulus() -> f64 {
+    let al = crate::material::Material::ALUMINIUM;
+    al.half_space(al.poisson_ratio().unwrap_or(0.33))
+        .youngs_modulus
+}
 /// Frequency of the bursts, Hz.
 const F0: f64 = 1e6;
 /// Cycles of the Hann bursts.
@@ -47,7 +53,7 @@ const CYCLES: f64 = 5.0;
 
 /// c_P of aluminium, m/s.
 fn c_p() -> f64 {
-    (P_MODULUS / RHO).sqrt()
+    (p_modulus() / RHO).sqrt()
 }
 
 /// P wavelength at f0, m.
@@ -129,9 +135,10 @@ const RCCM: Law = Law {
 /// The exact 1D solver's scenario for `law` (two aluminium half-spaces whose wave travels
 /// at the 2D c_P), with the closure `p0` and amplitude `amplitude`.
 fn one_d_text(law: &Law, p0: f64, amplitude: f64) -> String {
+    let modulus = p_modulus();
     format!(
-        "[medium]\nmaterial = \"aluminium\"\nyoungs_modulus = {P_MODULUS:e}\n\
-         [counterpart]\nkind = \"medium\"\nmaterial = \"aluminium\"\nyoungs_modulus = {P_MODULUS:e}\n\
+        "[medium]\nmaterial = \"aluminium\"\nyoungs_modulus = {modulus:e}\n\
+         [counterpart]\nkind = \"medium\"\nmaterial = \"aluminium\"\nyoungs_modulus = {modulus:e}\n\
          [interface]\nstatic_pressure = {p0:e}\n{}\n\
          [incident]\nfrequency = {F0:e}\ncycles = {CYCLES}\nwindow = \"hann\"\namplitude = {amplitude:e}\n",
         law.branches

@@ -1,6 +1,7 @@
-//! A crack's static state along it as a table (`[[crack]] closure`, docs/scenario.md
-//! section 2b, docs/model.md section 15.2): the spec, and the solver profile that builds
-//! each split node's law at its interpolated pressure and shear, with its initial gap.
+//! A crack's static state: from a uniform far-field pre-stress (`[model] prestress`), or
+//! along it as a table (`[[crack]] closure`, docs/scenario.md section 2b, docs/model.md
+//! section 15.2): the specs, and the solver profile that builds each split node's law at
+//! its interpolated pressure and shear, with its initial gap.
 
 use super::CrackSpec;
 use crate::error::{Error, Result};
@@ -13,6 +14,92 @@ use std::sync::Arc;
 
 fn inv(file: &str, field: impl Into<String>, v: impl std::fmt::Display, allowed: &str) -> Error {
     Error::invalid(file, field, v, allowed)
+}
+
+/// `[model] prestress`: a uniform far-field pre-stress (Pa, tension positive, the sign
+/// convention of model.md section 2) whose traction on each crack's line is the crack's
+/// static state: closure `p0 = -sigma_nn` and static shear `q0 = sigma_nt` (P-SV: `n`, `t`
+/// = z, x for a horizontal crack, x, z for a vertical one; SH: `q0 = sigma_yn`).
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct PrestressSpec {
+    /// sigma_xx, Pa.
+    #[serde(default)]
+    pub xx: f64,
+    /// sigma_zz, Pa.
+    #[serde(default)]
+    pub zz: f64,
+    /// sigma_xz, Pa (P-SV runs).
+    #[serde(default)]
+    pub xz: f64,
+    /// sigma_xy, Pa (SH runs: the shear on a vertical crack).
+    #[serde(default)]
+    pub xy: f64,
+    /// sigma_yz, Pa (SH runs: the shear on a horizontal crack).
+    #[serde(default)]
+    pub yz: f64,
+}
+
+impl PrestressSpec {
+    /// The static state `(p0, q0)` (Pa) of a crack whose line is horizontal (or vertical),
+    /// in a plane-strain (or antiplane) run.
+    pub fn on_line(&self, horizontal: bool, antiplane: bool) -> (f64, f64) {
+        match (horizontal, antiplane) {
+            (true, false) => (-self.zz, self.xz),
+            (false, false) => (-self.xx, self.xz),
+            (true, true) => (-self.zz, self.yz),
+            (false, true) => (-self.xx, self.xy),
+        }
+    }
+}
+
+/// The crack `c` with its static state from the pre-stress `pre` (when given): an error
+/// where the crack gives its own (`static_pressure`, `static_shear`, a table's pressure or
+/// shear) or where the pre-stress pulls it open.
+pub(super) fn with_prestress(
+    c: &CrackSpec,
+    pre: Option<&PrestressSpec>,
+    horizontal: bool,
+    antiplane: bool,
+    file: &str,
+    key: &str,
+) -> Result<CrackSpec> {
+    let Some(pre) = pre else {
+        return Ok(c.clone());
+    };
+    let table = c.closure.as_ref();
+    let own = [
+        ("static_pressure", c.static_pressure != 0.0),
+        ("static_shear", c.static_shear != 0.0),
+        (
+            "closure.pressure",
+            table.is_some_and(|t| t.pressure.is_some()),
+        ),
+        ("closure.shear", table.is_some_and(|t| t.shear.is_some())),
+    ];
+    if let Some((field, _)) = own.iter().find(|(_, given)| *given) {
+        return Err(inv(
+            file,
+            format!("{key}.{field}"),
+            "given",
+            "left out with model.prestress (the pre-stress sets every crack's static state)",
+        ));
+    }
+    let (p0, q0) = pre.on_line(horizontal, antiplane);
+    if p0 < 0.0 {
+        return Err(inv(
+            file,
+            "model.prestress",
+            format!("{} MPa of tension across {key}", -p0 * 1e-6),
+            "a compressive (or zero) normal stress on every crack: a crack under tension is \
+             open at rest (give it a closure table with a gap instead)",
+        ));
+    }
+    Ok(CrackSpec {
+        static_pressure: p0,
+        static_shear: q0,
+        ..c.clone()
+    })
 }
 
 /// `closure` of a `[[crack]]`: the static state at points along the crack, linear between

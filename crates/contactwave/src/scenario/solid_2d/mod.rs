@@ -22,7 +22,7 @@ use crate::solver::solid_2d::{
     WaveType,
 };
 use closure::ClosureProfile;
-pub use closure::ClosureSpec;
+pub use closure::{ClosureSpec, PrestressSpec};
 use material::material;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -133,8 +133,11 @@ pub struct ModelSpec {
     /// [`pml::DEFAULT_REFLECTION`]).
     pub pml_reflection: Option<f64>,
     /// Where the time loop runs: `cpu` (default) or `gpu` (a build with the feature `gpu`
-    /// and an NVIDIA GPU; no plane waves or stress receivers yet).
+    /// and an NVIDIA GPU).
     pub backend: Option<String>,
+    /// A uniform far-field pre-stress whose traction on each crack is its static state
+    /// (instead of the cracks' own `static_pressure`, `static_shear`).
+    pub prestress: Option<PrestressSpec>,
 }
 
 fn p_sv() -> String {
@@ -422,6 +425,15 @@ impl Solid2dScenario {
                     "a source takes `amplitude` (Pa or N/m), not xi",
                 ));
             }
+            if let Some(a) = s.signal.angle {
+                return Err(inv(
+                    file,
+                    format!("{key}.signal.angle"),
+                    a,
+                    "not a key of a 2D source's signal: give the angle as the source's own \
+                     `angle` (plane wave, transducer)",
+                ));
+            }
             let signal: Arc<dyn Excitation> = crate::scenario::build_wave(
                 &s.signal,
                 &format!("{key}.signal"),
@@ -614,14 +626,6 @@ impl Solid2dScenario {
         let mut cracks = Vec::new();
         for (i, c) in spec.cracks.iter().enumerate() {
             let key = format!("crack.{i}");
-            let normal = cache.law(c.static_pressure, &c.compression, &c.traction, file, &key)?;
-            let tangential = crate::law::registry::build_tangential(
-                &c.tangential,
-                c.static_shear,
-                &normal,
-                file,
-                &key,
-            )?;
             let end = match (c.end, c.length, c.full_width) {
                 (None, None, true) => [m.width, c.start[1]],
                 (_, _, true) => {
@@ -690,6 +694,24 @@ impl Solid2dScenario {
             } else {
                 (end[0] - c.start[0]).abs() + (end[1] - c.start[1]).abs()
             };
+            let horizontal = end[1] == c.start[1];
+            let resolved = closure::with_prestress(
+                c,
+                m.prestress.as_ref(),
+                horizontal,
+                wave == WaveType::Sh,
+                file,
+                &key,
+            )?;
+            let c = &resolved;
+            let normal = cache.law(c.static_pressure, &c.compression, &c.traction, file, &key)?;
+            let tangential = crate::law::registry::build_tangential(
+                &c.tangential,
+                c.static_shear,
+                &normal,
+                file,
+                &key,
+            )?;
             let profile = match &c.closure {
                 Some(t) => Some(ClosureProfile::new(c, t, length, file, &key)?),
                 None => None,
@@ -848,6 +870,21 @@ impl Solid2dScenario {
             },
         };
         problem.validate(file)?;
+        if let Some(dt) = m.time_step {
+            // a step the scheme cannot take is an error, not silently shortened
+            let stable = problem.memory_estimate(file)?.stable_time_step;
+            if dt > stable * (1.0 + 1e-12) {
+                return Err(inv(
+                    file,
+                    "model.time_step",
+                    dt,
+                    &format!(
+                        "(0, {stable:.4e}] s: the stability limit of this mesh times \
+                         model.courant (or refine with model.element_size)"
+                    ),
+                ));
+            }
+        }
         let backend = match m.backend.as_deref() {
             None => Backend::Cpu,
             Some(name) => match Backend::parse(name) {

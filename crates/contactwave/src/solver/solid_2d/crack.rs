@@ -45,6 +45,9 @@ pub struct CrackNodes<L> {
     pub applied: Vec<[f64; 2]>,
     /// Energy taken by the crack so far, `sum B S (U^{n+1} - U^{n-1}) / 2`, J/m.
     pub work: f64,
+    /// Its tangential part, the shear tractions' `sum B S_T (U_T^{n+1} - U_T^{n-1}) / 2`,
+    /// J/m.
+    pub tangential_work: f64,
 }
 
 impl<L: NormalPart + TangentialPart> CrackNodes<L> {
@@ -106,6 +109,7 @@ impl<L: NormalPart + TangentialPart> CrackNodes<L> {
             let new = [st.gap, st.shear.gap];
             let [old, now] = self.gaps[k];
             self.work += 0.5 * self.weight[k] * (sn * (new[0] - old[0]) + stt * (new[1] - old[1]));
+            self.tangential_work += 0.5 * self.weight[k] * (stt * (new[1] - old[1]));
             self.gaps[k] = [now, new];
             self.applied[k] = [sn, stt];
         }

@@ -17,6 +17,9 @@ pub struct MemoryEstimate {
     pub nodes: f64,
     /// Time steps of the run.
     pub steps: f64,
+    /// The longest stable step times `courant` (s): the step the run takes unless
+    /// `max_time_step` is shorter.
+    pub stable_time_step: f64,
     /// The mesh, its operator and the stepping state (u, v, f and the masses per node; the
     /// map and data per element; the absorbing layers' fields), bytes.
     pub mesh: f64,
@@ -161,7 +164,8 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             regular: Vec::new(),
         };
         let omega_max = max_frequency(&one, &densities);
-        let dt = (self.courant * 2.0 / omega_max).min(self.max_time_step);
+        let stable_time_step = self.courant * 2.0 / omega_max;
+        let dt = stable_time_step.min(self.max_time_step);
         let steps = (self.duration / dt).ceil();
         // the nodes along each crack (its split pairs)
         let along = |a: f64, b: f64, edges: &[f64]| {
@@ -196,6 +200,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         Ok(MemoryEstimate {
             nodes,
             steps,
+            stable_time_step,
             mesh: mesh_bytes,
             series,
         })

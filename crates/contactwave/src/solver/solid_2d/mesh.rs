@@ -210,7 +210,7 @@ impl Mesh {
                             mesh.x[g % nxn],
                             mesh.z[g / nxn]
                         ),
-                        "cracks may not cross or touch each other",
+                        "cracks may not cross or overlap (they may meet at a tip, which stays welded)",
                     ));
                 }
                 twin[g] = next as u32;

@@ -46,7 +46,7 @@ mod strip;
 #[cfg(all(test, feature = "gpu"))]
 mod gpu_tests;
 #[cfg(test)]
-mod reduction_tests;
+mod plane_wave_tests;
 #[cfg(test)]
 mod surface_tests;
 #[cfg(test)]
@@ -324,6 +324,21 @@ pub struct Energy2d {
     /// Energy that flowed into the absorbing layers: the work done on them through the
     /// nodes of their inner boundary (discrete, exact).
     pub absorbed: f64,
+    /// Of `cracks`, the work of the shear tractions on the tangential gaps (the rest is
+    /// the normal tractions' on the normal gaps).
+    pub cracks_tangential: f64,
+    /// The work of the cracks' static shear q0 through their final slip, `sum B q0 s`
+    /// (with friction; 0 without): done by the pre-stress, not by the sources, and
+    /// dissipated by friction too (the coupled 1D solver's `static_shear_work`).
+    pub static_shear_work: f64,
+    /// The energy dissipated by friction, `sum B tau_f Delta s` over the points and steps
+    /// (the per-point tally of the contact update, model.md 15.3): with rigid stick it is
+    /// `cracks_tangential + static_shear_work` to within the tally's own time
+    /// discretisation (6e-4 in the test `sh_wave_on_a_frictional_interface_slips_within_coulomb`).
+    pub friction: f64,
+    /// The energy released by damage, `sum B (dpsi/dbeta) (-Delta beta)` (the per-point
+    /// tally).
+    pub damage: f64,
 }
 
 impl Energy2d {
@@ -834,6 +849,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 gaps: Vec::new(),
                 applied: Vec::new(),
                 work: 0.0,
+                tangential_work: 0.0,
             };
             for &(g, twin) in pairs {
                 if inv_mass[g] == 0.0 || inv_mass[twin] == 0.0 {
