@@ -233,10 +233,20 @@ impl Solid2dScenario {
     pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
         let e = self.problem.memory_estimate(&self.file)?;
         let (key, value, change) = if e.mesh >= e.series {
-            self.problem.mesh_key(e.nodes)
+            let (key, value, change) = self.problem.mesh_key(e.nodes);
+            (key, value, change.to_string())
         } else {
             let t = self.problem.duration;
-            ("model.duration", t, "lower `model.duration`")
+            let dt = e.stable_time_step.min(self.problem.max_time_step);
+            (
+                "model.duration",
+                t,
+                format!(
+                    "lower `model.duration`; the step, {dt:.2e} s, is set by the smallest \
+                     element, which a short crack or layer or a receiver near a mesh line \
+                     makes small"
+                ),
+            )
         };
         let bytes = self.memory_estimate()?.unwrap_or(0.0);
         crate::budget::check_or(
@@ -248,7 +258,7 @@ impl Solid2dScenario {
                 "a 2D run of about {:.3e} nodes and {:.3e} steps",
                 e.nodes, e.steps
             ),
-            change,
+            &change,
         )?;
         let mut plan = self.problem.plan(&self.file)?;
         plan.add_stress_receivers(&self.stress_points, &self.problem.layers, &self.file)?;

@@ -880,7 +880,7 @@ impl Solid2dScenario {
                     dt,
                     &format!(
                         "(0, {stable:.4e}] s: the stability limit of this mesh times \
-                         model.courant (or refine with model.element_size)"
+                         model.courant (leave it out for the default step)"
                     ),
                 ));
             }
