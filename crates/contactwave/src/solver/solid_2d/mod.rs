@@ -332,9 +332,11 @@ pub struct Energy2d {
     /// dissipated by friction too (the coupled 1D solver's `static_shear_work`).
     pub static_shear_work: f64,
     /// The energy dissipated by friction, `sum B tau_f Delta s` over the points and steps
-    /// (the per-point tally of the contact update, model.md 15.3): with rigid stick it is
-    /// `cracks_tangential + static_shear_work` to within the tally's own time
-    /// discretisation (6e-4 in the test `sh_wave_on_a_frictional_interface_slips_within_coulomb`).
+    /// (the per-point tally of the contact update, model.md 15.3): on a crack that stays
+    /// shut with rigid stick it is `cracks_tangential + static_shear_work` to within the
+    /// tally's own time discretisation (6e-4 in the test
+    /// `sh_wave_on_a_frictional_interface_slips_within_coulomb`); a clapping crack also
+    /// loses tangential work when its faces are arrested at closure.
     pub friction: f64,
     /// The energy released by damage, `sum B (dpsi/dbeta) (-Delta beta)` (the per-point
     /// tally).
