@@ -27,6 +27,7 @@
 mod backend;
 pub mod crack;
 pub mod dispersion;
+mod energy;
 mod estimate;
 #[cfg(feature = "gpu")]
 mod gpu;
@@ -58,6 +59,7 @@ use crate::law::contact::PointState;
 use crate::law::{NormalPart, TangentialPart};
 pub use backend::Backend;
 use crack::CrackNodes;
+pub use energy::Energy2d;
 pub use estimate::MemoryEstimate;
 use kernel::{max_frequency, ElementData, NodeRows, Stiffness};
 use mesh::{aperture_faces, edge_weight, CrackLine, Mesh};
@@ -309,46 +311,6 @@ pub struct CrackRecord {
     pub peak_slip: f64,
     /// The smallest adhesion of any point at any step (1 where nothing is damaged).
     pub least_adhesion: f64,
-}
-
-/// The energy audit of a run, J/m (per unit length along y).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Energy2d {
-    /// Work of the sources.
-    pub input: f64,
-    /// Discrete energy of the solid at the end (`E^{N-1/2}`).
-    pub solid: f64,
-    /// Energy taken by the cracks (stored in their laws, dissipated by friction, damage
-    /// and the discrete impacts of rigid contact).
-    pub cracks: f64,
-    /// Energy that flowed into the absorbing layers: the work done on them through the
-    /// nodes of their inner boundary (discrete, exact).
-    pub absorbed: f64,
-    /// Of `cracks`, the work of the shear tractions on the tangential gaps (the rest is
-    /// the normal tractions' on the normal gaps).
-    pub cracks_tangential: f64,
-    /// The work of the cracks' static shear q0 through their final slip, `sum B q0 s`
-    /// (with friction; 0 without): done by the pre-stress, not by the sources, and
-    /// dissipated by friction too (the coupled 1D solver's `static_shear_work`).
-    pub static_shear_work: f64,
-    /// The energy dissipated by friction, `sum B tau_f Delta s` over the points and steps
-    /// (the per-point tally of the contact update, model.md 15.3): on a crack that stays
-    /// shut with rigid stick it is `cracks_tangential + static_shear_work` to within the
-    /// tally's own time discretisation (6e-4 in the test
-    /// `sh_wave_on_a_frictional_interface_slips_within_coulomb`); a clapping crack also
-    /// loses tangential work when its faces are arrested at closure.
-    pub friction: f64,
-    /// The energy released by damage, `sum B (dpsi/dbeta) (-Delta beta)` (the per-point
-    /// tally).
-    pub damage: f64,
-}
-
-impl Energy2d {
-    /// `|input - solid - cracks - absorbed| / input`.
-    pub fn closure_error(&self) -> f64 {
-        (self.input - self.solid - self.cracks - self.absorbed).abs()
-            / self.input.abs().max(f64::MIN_POSITIVE)
-    }
 }
 
 /// What a 2D run returns.
