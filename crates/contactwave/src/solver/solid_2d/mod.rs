@@ -140,6 +140,20 @@ pub struct Crack<L> {
     pub profile: Option<Arc<dyn CrackProfile<L>>>,
 }
 
+impl<L> Crack<L> {
+    /// A plane interface across the whole width `width` (m) of a periodic rectangle at
+    /// depth `z` (m), with `law` at every point.
+    pub fn across(width: f64, z: f64, law: L) -> Self {
+        Crack {
+            start: [0.0, z],
+            end: [width, z],
+            full_width: true,
+            law,
+            profile: None,
+        }
+    }
+}
+
 /// A crack's static state along its length (docs/model.md section 15.2): the law of the
 /// point at `position` (m from the crack's start, along +x or +z) and its initial normal
 /// gap (m, >= 0; a point with a gap is traction-free at rest).

@@ -6,21 +6,6 @@
 use super::tests::{burst, Signorini, ALUMINIUM};
 use super::*;
 
-/// The plane-wave strip of aluminium ([`Solid2d::plane_wave_strip`]).
-fn plane_strip<L>(
-    wave: WaveType,
-    incidence: Incidence,
-    h: f64,
-    depth: f64,
-    z_line: f64,
-    signal: Arc<dyn Excitation>,
-    duration: f64,
-) -> Solid2d<L> {
-    Solid2d::plane_wave_strip(
-        ALUMINIUM, wave, incidence, h, depth, z_line, signal, duration,
-    )
-}
-
 /// No crack: below the line the velocity is the incident wave's `-s(t - tau)/(rho c)`,
 /// above it (the scattered region) the field stays below -40 dB of the incident peak and
 /// falls with the resolution; P-SV (P and SV) and SH. Returns, per element size (of
@@ -50,7 +35,8 @@ fn leakage(wave: WaveType, incidence: Incidence, order: usize, sizes: &[f64]) ->
         let problem: Solid2d<Signorini> = Solid2d {
             receivers: vec![[0.0, z_s], [0.0, z_t]],
             order,
-            ..plane_strip(
+            ..Solid2d::plane_wave_strip(
+                ALUMINIUM,
                 wave,
                 incidence,
                 h,
@@ -125,15 +111,14 @@ fn plane_wave_runs_are_bit_identical_for_any_thread_count() {
     let h = 0.25 * lambda;
     let problem = Solid2d {
         width: 8.0 * h,
-        cracks: vec![Crack {
-            start: [0.0, 2.5 * lambda],
-            end: [8.0 * h, 2.5 * lambda],
-            full_width: true,
-            law: super::tests::signorini(0.3e6),
-            profile: None,
-        }],
+        cracks: vec![Crack::across(
+            8.0 * h,
+            2.5 * lambda,
+            super::tests::signorini(0.3e6),
+        )],
         receivers: vec![[0.0, 0.5 * lambda], [3.0 * h, 4.5 * lambda]],
-        ..plane_strip(
+        ..Solid2d::plane_wave_strip(
+            ALUMINIUM,
             WaveType::PSv,
             Incidence::P,
             h,

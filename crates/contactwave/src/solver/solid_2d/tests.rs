@@ -326,13 +326,7 @@ fn reduction_errors<L: NormalPart + TangentialPart + Clone>(
     for &size in sizes {
         let h = size * lambda;
         let problem = Solid2d {
-            cracks: vec![Crack {
-                start: [0.0, zc],
-                end: [h, zc],
-                full_width: true,
-                law: law_2d.clone(),
-                profile: None,
-            }],
+            cracks: vec![Crack::across(h, zc, law_2d.clone())],
             ..strip(
                 WaveType::PSv,
                 h,
@@ -429,13 +423,7 @@ fn sh_wave_on_a_frictional_interface_slips_within_coulomb() {
     let law = frictional(p0, mu);
     let h = lambda / 4.0;
     let problem = Solid2d {
-        cracks: vec![Crack {
-            start: [0.0, 2.0 * lambda],
-            end: [h, 2.0 * lambda],
-            full_width: true,
-            law,
-            profile: None,
-        }],
+        cracks: vec![Crack::across(h, 2.0 * lambda, law)],
         receivers: vec![[0.0, 4.0 * lambda]],
         ..strip(
             WaveType::Sh,

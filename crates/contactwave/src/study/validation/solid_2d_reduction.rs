@@ -127,13 +127,7 @@ pub fn reduction<L: NormalPart + TangentialPart + Clone>(
     for &size in sizes {
         let h = size * lambda;
         let problem = Solid2d {
-            cracks: vec![Crack {
-                start: [0.0, zc],
-                end: [h, zc],
-                full_width: true,
-                law: law.clone(),
-                profile: None,
-            }],
+            cracks: vec![Crack::across(h, zc, law.clone())],
             receivers: vec![[0.0, zr], [0.0, zt]],
             ..Solid2d::plane_wave_strip(
                 ALUMINIUM,
