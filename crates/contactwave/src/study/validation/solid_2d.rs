@@ -485,22 +485,14 @@ pub struct Damaging {
 /// An adhesive RCCM bond with damage (rigid in compression; C_N 2e13 Pa/m, w 0.01 J/m^2,
 /// b 1e-8 s; 0.3 MPa closure) as the crack of [`closed_plate`]: the burst breaks it.
 pub fn damaging() -> Result<Damaging> {
-    use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
     let p0 = 0.3e6;
-    let parse = |e: toml::de::Error| failed(&e.to_string());
-    let c: CompressionSpec = toml::from_str("law = \"rigid\"").map_err(parse)?;
-    let t: TractionSpec =
-        toml::from_str("law = \"rccm\"\nstiffness = 2e13\nenergy = 0.01\nviscosity = 1e-8")
-            .map_err(parse)?;
-    let b: TangentialSpec = toml::from_str("law = \"free\"").map_err(parse)?;
-    let normal = crate::law::registry::build_law(p0, &c, &t, "<validation>", "crack")?;
-    let tangential =
-        crate::law::registry::build_tangential(&b, 0.0, &normal, "<validation>", "crack")?;
-    let normal = Arc::new(normal);
-    let law = crate::law::point::SharedLaw {
-        normal: normal.clone(),
-        tangential: Arc::new(tangential),
-    };
+    let law = super::solid_2d_reduction::law(
+        p0,
+        "law = \"rigid\"",
+        "law = \"rccm\"\nstiffness = 2e13\nenergy = 0.01\nviscosity = 1e-8",
+        "law = \"free\"",
+    )?;
+    let normal = law.normal.clone();
     let out = closed_plate(law)?;
     let rec = &out.cracks[0];
     let n = rec.position.len();

@@ -239,7 +239,12 @@ pub fn orders(e: &[f64]) -> Vec<f64> {
 }
 
 /// A law from its scenario tables (TOML), for the 2D crack and the 1D solvers alike.
-fn law(p0: f64, compression: &str, traction: &str, tangential: &str) -> Result<SharedLaw> {
+pub(crate) fn law(
+    p0: f64,
+    compression: &str,
+    traction: &str,
+    tangential: &str,
+) -> Result<SharedLaw> {
     let parse = |e: toml::de::Error| failed(&e.to_string());
     let c: CompressionSpec = toml::from_str(compression).map_err(parse)?;
     let t: TractionSpec = toml::from_str(traction).map_err(parse)?;
