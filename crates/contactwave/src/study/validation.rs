@@ -20,6 +20,14 @@ use crate::material::Material;
 use crate::run::Executor;
 use crate::scenario::Scenario;
 use crate::simulate;
+use crate::solver::solid_2d::Elastic;
+
+/// The solid of every 2D case (aluminium: 2700 kg/m^3, c_P 6320 m/s, c_S 3130 m/s).
+pub const ALUMINIUM: Elastic = Elastic {
+    density: 2700.0,
+    p_speed: 6320.0,
+    s_speed: 3130.0,
+};
 
 /// One validation case: a check (a finite tolerance, counted by `contactwave validate`) or
 /// an informational row (no criterion: shown apart, never counted as a passed check).

@@ -13,7 +13,7 @@
 //! vibration of the next 100 periods, Hann-windowed, gives the frequency as the maximum
 //! of its Fourier transform's modulus (golden section), and `c = f L`.
 
-use super::ValidationCase;
+use super::{ValidationCase, ALUMINIUM};
 use crate::analytic::guided::{lamb_phase_velocity, rayleigh_speed, LambMode, Speeds};
 use crate::error::{Error, Result};
 use crate::excitation::{Excitation, ToneBurst, Window};
@@ -22,17 +22,10 @@ use crate::law::point::PointLaw;
 use crate::law::tangential::{Coulomb, Free as Sliding};
 use crate::law::traction::{Free, Linear as LinearTraction};
 use crate::solver::solid_2d::{
-    Crack, Elastic, Layer, Side, Solid2d, Solid2dOutput, Source, SourceKind, WaveType,
+    Crack, Layer, Side, Solid2d, Solid2dOutput, Source, SourceKind, WaveType,
 };
 use std::f64::consts::PI;
 use std::sync::Arc;
-
-/// The solid of every case.
-pub const ALUMINIUM: Elastic = Elastic {
-    density: 2700.0,
-    p_speed: 6320.0,
-    s_speed: 3130.0,
-};
 
 /// Plate thickness of the Lamb cases, m.
 const PLATE: f64 = 1e-3;

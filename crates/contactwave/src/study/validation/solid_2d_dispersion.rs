@@ -4,8 +4,8 @@
 //! ([`crate::solver::solid_2d::dispersion`]) against it, and the analysis' largest error
 //! over every direction of travel.
 
-use super::solid_2d::ALUMINIUM;
 use super::ValidationCase;
+use super::ALUMINIUM;
 use crate::error::Result;
 use crate::excitation::{Excitation, ToneBurst, Window};
 use crate::law::compression::Rigid;

@@ -3,7 +3,7 @@
 //! across a wide rectangle with absorbing sides, against the closed-form reflection and
 //! transmission coefficients of model.md section 14 (mode conversion included).
 
-use super::ValidationCase;
+use super::{ValidationCase, ALUMINIUM};
 use crate::analytic::oblique::{self, coefficients, Bond, Geometry};
 use crate::error::{Error, Result};
 use crate::excitation::{Excitation, ToneBurst, Window};
@@ -11,19 +11,13 @@ use crate::law::point::SharedLaw;
 use crate::law::registry::{build_law, build_tangential};
 use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 use crate::solver::solid_2d::{
-    Crack, Elastic, Incidence, Layer, Side, Solid2d, Source, SourceKind, WaveType,
+    Crack, Incidence, Layer, Side, Solid2d, Source, SourceKind, WaveType,
 };
 use rustfft::num_complex::Complex64;
 use std::f64::consts::PI;
 use std::sync::Arc;
 
 const F0: f64 = 1e6;
-
-const ALUMINIUM: Elastic = Elastic {
-    density: 2700.0,
-    p_speed: 6320.0,
-    s_speed: 3130.0,
-};
 
 /// The measured magnitudes `|R_P|, |R_SV|, |T_P|, |T_SV|` (particle velocity per unit
 /// incident particle velocity, at f0 = 1 MHz) of a 2-cycle Hann burst of `incidence` (P or

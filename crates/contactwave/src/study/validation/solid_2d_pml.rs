@@ -5,7 +5,7 @@
 //! closes at round-off), their long-time stability and, undamped, the interior's scheme
 //! continued.
 
-use super::ValidationCase;
+use super::{ValidationCase, ALUMINIUM};
 use crate::error::Result;
 use crate::excitation::{ToneBurst, Window};
 use crate::law::compression::Rigid;
@@ -14,17 +14,11 @@ use crate::law::tangential::Free as FreeSliding;
 use crate::law::traction::Free;
 use crate::scenario::solid_2d::DEFAULT_ORDER;
 use crate::solver::solid_2d::{
-    pml, Elastic, Layer, Pml, Side, Solid2d, Solid2dOutput, Source, SourceKind, WaveType,
+    pml, Layer, Pml, Side, Solid2d, Solid2dOutput, Source, SourceKind, WaveType,
 };
 use std::sync::Arc;
 
 type Law = PointLaw<Rigid, Free, FreeSliding>;
-
-const ALUMINIUM: Elastic = Elastic {
-    density: 2700.0,
-    p_speed: 6320.0,
-    s_speed: 3130.0,
-};
 
 /// The scenarios' default element size for a burst of `f0` (resolved for 3 f0), m.
 fn default_h(f0: f64) -> f64 {

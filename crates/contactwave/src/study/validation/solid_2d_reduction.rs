@@ -6,8 +6,8 @@
 //! or more element sizes: gap, contact stress, reflected and transmitted A1 and A2/A1, and
 //! the observed order of convergence.
 
-use super::solid_2d::ALUMINIUM;
 use super::ValidationCase;
+use super::ALUMINIUM;
 use crate::error::{Error, Result};
 use crate::excitation::{Excitation, ToneBurst, Window};
 use crate::law::point::SharedLaw;
