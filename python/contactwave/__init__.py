@@ -460,18 +460,52 @@ def _position(what: str, name: str, names: Sequence[str]) -> int:
         raise ValueError(f"{what} {name!r}: not in this run ({valid})") from None
 
 
+def _unique(names: Sequence[str]) -> List[str]:
+    """``names`` without repeats, in their first order."""
+    return list(dict.fromkeys(names))
+
+
+def _rows(
+    records: Any, names: Sequence[str], components: Sequence[str], x: Any, z: Any, nt: int
+) -> Any:
+    """One row per point and component (point-major, the order of ``receivers.csv``):
+    the records ``(n_points * n_components, n_t)`` and, per row, the point's name, the
+    component and the point's x and z (m)."""
+    names, components = list(names), list(components)
+    k = len(components)
+    rows = np.asarray(records, dtype=np.float64).reshape(len(names) * k, nt)
+    return (
+        rows,
+        [n for n in names for _ in range(k)],
+        components * len(names),
+        np.repeat(np.asarray(x, dtype=np.float64), k),
+        np.repeat(np.asarray(z, dtype=np.float64), k),
+    )
+
+
+def _row(what: str, name: str, component: str, names: Sequence[str], comps: Sequence[str]) -> int:
+    """The row of point ``name``, component ``component``; a ``ValueError`` naming the
+    valid names or components if either is absent."""
+    _position(what, name, _unique(names))
+    _position(f"{what} component", component, _unique(comps))
+    return next(i for i, (n, c) in enumerate(zip(names, comps)) if n == name and c == component)
+
+
 class Solid2dResult:
     """Everything one 2D run produces (``[model] kind = "solid_2d"``, docs/scenario.md
     section 2b; docs/model.md section 15), as float64 numpy arrays.
 
     ``t``: times of the receiver samples (s, the half levels of the time step).
-    ``receivers``: velocities, shape ``(n_receivers, n_components, n_t)`` (m/s), in the
-    order of ``receiver_names``, at ``receiver_x``, ``receiver_z`` (m, ``(n_receivers,)``);
-    ``components`` names the components (``("x", "z")`` in
-    P-SV runs, ``("y",)`` in SH runs). ``stresses``: the stress receivers' stresses,
-    shape ``(n_stress_receivers, n_stress_components, n_t)`` (Pa, tension positive,
-    dynamic), in the order of ``stress_names`` (at ``stress_x``, ``stress_z``, m), components ``stress_components``
-    (``("xx", "zz", "xz")`` or ``("yx", "yz")``). ``cracks``: one dict per crack with ``position``
+    ``receivers``: the velocity records, shape ``(n_receivers, n_t)`` (m/s), one row per
+    receiver and component, in the column order of ``receivers.csv``; per row,
+    ``receiver_names`` (the scenario's name), ``receiver_components`` (``"x"``, ``"z"``
+    or ``"y"``) and the position ``receiver_x``, ``receiver_z`` (m). ``components``
+    names the run's velocity components (``("x", "z")`` in P-SV runs, ``("y",)`` in SH
+    runs). ``stresses``: the stress receivers' records, shape ``(n_stress_receivers,
+    n_t)`` (Pa, tension positive, dynamic), one row per stress receiver and component;
+    per row ``stress_names``, ``stress_components`` (``"xx"``, ``"zz"``, ``"xz"`` or
+    ``"yx"``, ``"yz"``) and ``stress_x``, ``stress_z`` (m).
+    ``cracks``: one dict per crack with ``position``
     (m along it, ``(n_nodes,)``), the nodes' coordinates ``x``, ``z`` (m, ``(n_nodes,)``),
     ``time`` (s, ``(n_records,)``) and ``normal_gap``,
     ``tangential_gap`` (m), ``normal_stress``, ``shear_stress`` (Pa, tension positive,
@@ -488,6 +522,7 @@ class Solid2dResult:
     t: np.ndarray
     receivers: np.ndarray
     receiver_names: List[str]
+    receiver_components: List[str]
     receiver_x: np.ndarray
     receiver_z: np.ndarray
     components: List[str]
@@ -508,20 +543,24 @@ class Solid2dResult:
     def __init__(self, raw: Dict[str, Any], scenario: Optional[Scenario] = None) -> None:
         self.scenario = scenario
         self.t = raw["t"]
-        self.receiver_names = list(raw["receiver_names"])
-        self.receiver_x = np.asarray(raw["receiver_x"], dtype=np.float64)
-        self.receiver_z = np.asarray(raw["receiver_z"], dtype=np.float64)
+        nt = len(self.t)
         self.components = list(raw["components"])
-        rows = np.asarray(raw["receivers"], dtype=np.float64)
-        self.receivers = rows.reshape(len(self.receiver_names), len(self.components), len(self.t))
-        self.stress_names = list(raw["stress_names"])
-        self.stress_x = np.asarray(raw["stress_x"], dtype=np.float64)
-        self.stress_z = np.asarray(raw["stress_z"], dtype=np.float64)
-        self.stress_components = list(raw["stress_components"])
-        srows = np.asarray(raw["stresses"], dtype=np.float64)
-        self.stresses = srows.reshape(
-            len(self.stress_names), len(self.stress_components), len(self.t)
-        )
+        (
+            self.receivers,
+            self.receiver_names,
+            self.receiver_components,
+            self.receiver_x,
+            self.receiver_z,
+        ) = _rows(raw["receivers"], raw["receiver_names"], self.components,
+                  raw["receiver_x"], raw["receiver_z"], nt)
+        (
+            self.stresses,
+            self.stress_names,
+            self.stress_components,
+            self.stress_x,
+            self.stress_z,
+        ) = _rows(raw["stresses"], raw["stress_names"], raw["stress_components"],
+                  raw["stress_x"], raw["stress_z"], nt)
         self.cracks = [dict(c) for c in raw["cracks"]]
         self.dt = raw["dt"]
         self.summary = raw["summary"]
@@ -538,8 +577,7 @@ class Solid2dResult:
         """The velocity (m/s) of receiver ``name`` along ``component`` (``x``, ``z`` or
         ``y``). An unknown name or component is a ``ValueError`` listing the valid ones."""
         return self.receivers[
-            _position("receiver", name, self.receiver_names),
-            _position("component", component, self.components),
+            _row("receiver", name, component, self.receiver_names, self.receiver_components)
         ]
 
     def stress(self, name: str, component: str) -> np.ndarray:
@@ -547,8 +585,7 @@ class Solid2dResult:
         ``zz``, ``xz``, ``yx`` or ``yz``). An unknown name or component is a
         ``ValueError`` listing the valid ones."""
         return self.stresses[
-            _position("stress receiver", name, self.stress_names),
-            _position("stress component", component, self.stress_components),
+            _row("stress receiver", name, component, self.stress_names, self.stress_components)
         ]
 
     def to_pandas(self) -> Any:
@@ -586,7 +623,7 @@ class Solid2dResult:
         s = self.summary
         return (
             f"Solid2dResult(scenario={self.scenario.file if self.scenario else None!r}, "
-            f"receivers={self.receiver_names}, "
+            f"receivers={_unique(self.receiver_names)}, "
             f"cracks={len(self.cracks)}, steps={len(self.t)}, "
             f"energy_closure_error={s.get('energy_closure_error'):.3g})"
         )

@@ -156,14 +156,12 @@ def solid_2d_pandas(r: Any) -> Any:
     pd = require("pandas", "pandas", "Solid2dResult.to_pandas()")
     cols: Dict[str, np.ndarray] = {}
     units = {"t": "s"}
-    for i, name in enumerate(r.receiver_names):
-        for j, c in enumerate(r.components):
-            cols[f"{name}_v{c}"] = r.receivers[i, j]
-            units[f"{name}_v{c}"] = "m/s"
-    for i, name in enumerate(r.stress_names):
-        for j, c in enumerate(r.stress_components):
-            cols[f"{name}_s{c}"] = r.stresses[i, j]
-            units[f"{name}_s{c}"] = "Pa"
+    for row, name, c in zip(r.receivers, r.receiver_names, r.receiver_components):
+        cols[f"{name}_v{c}"] = row
+        units[f"{name}_v{c}"] = "m/s"
+    for row, name, c in zip(r.stresses, r.stress_names, r.stress_components):
+        cols[f"{name}_s{c}"] = row
+        units[f"{name}_s{c}"] = "Pa"
     df = pd.DataFrame(cols, index=pd.Index(r.t, name="t"))
     df.attrs["units"] = units
     return df
@@ -171,22 +169,29 @@ def solid_2d_pandas(r: Any) -> Any:
 
 def solid_2d_xarray(r: Any) -> Any:
     xr = require("xarray", "xarray", "Solid2dResult.to_xarray()")
+    # the rows (one per point and component, point-major) as point x component x time
+    points = list(dict.fromkeys(r.receiver_names))
+    comps = list(r.components)
+    spoints = list(dict.fromkeys(r.stress_names))
+    scomps = list(dict.fromkeys(r.stress_components))
+    nt = len(r.t)
     data = {
-        "velocity": (("receiver", "component", "time"), r.receivers, {"units": "m/s"}),
-        "stress": (("stress_receiver", "stress_component", "time"), r.stresses,
-                   {"units": "Pa"}),
+        "velocity": (("receiver", "component", "time"),
+                     r.receivers.reshape(len(points), len(comps), nt), {"units": "m/s"}),
+        "stress": (("stress_receiver", "stress_component", "time"),
+                   r.stresses.reshape(len(spoints), len(scomps), nt), {"units": "Pa"}),
         "snapshot": (("snapshot_time", "z", "x"), r.snapshots,
                      {"units": "m/s", "field": r.snapshot_field}),
     }
     coords = {
         "time": ("time", r.t, {"units": "s"}),
         # labels: no unit (CF's "1" for a dimensionless quantity would mislead)
-        "receiver": ("receiver", list(r.receiver_names), {"units": "", "long_name": "receiver name"}),
-        "component": ("component", list(r.components),
+        "receiver": ("receiver", points, {"units": "", "long_name": "receiver name"}),
+        "component": ("component", comps,
                       {"units": "", "long_name": "velocity component (axis)"}),
-        "stress_receiver": ("stress_receiver", list(r.stress_names),
+        "stress_receiver": ("stress_receiver", spoints,
                             {"units": "", "long_name": "stress receiver name"}),
-        "stress_component": ("stress_component", list(r.stress_components),
+        "stress_component": ("stress_component", scomps,
                              {"units": "", "long_name": "stress component (axes)"}),
         "snapshot_time": ("snapshot_time", r.snapshot_times, {"units": "s"}),
         "z": ("z", r.snapshot_z, {"units": "m"}),

@@ -161,7 +161,7 @@ def solid_2d(r: Any, kind: str, ax: Any, receivers: Any, component: Any) -> Any:
     kinds = ("receivers", "spectrum")
     if kind not in kinds:
         raise ValueError(f"kind {kind!r}: one of {', '.join(map(repr, kinds))}")
-    names = _pick(r.receiver_names, receivers, "receiver")
+    names = _pick(list(dict.fromkeys(r.receiver_names)), receivers, "receiver")
     comps = _pick(r.components, component, "component")
     ax = _axes(ax, "Solid2dResult.plot()")
     if kind == "receivers":

@@ -31,11 +31,16 @@ def test_a_clapping_crack_in_2d_gives_numpy_arrays():
     r = cw.run(SMALL)
     assert isinstance(r, cw.Solid2dResult)
     n = len(r.t)
-    assert r.receivers.shape == (2, 2, n) and r.receivers.dtype == np.float64
-    assert r.components == ["x", "z"] and r.receiver_names == ["top", "under"]
-    assert np.array_equal(r.velocity("under", "z"), r.receivers[1, 1])
+    # one row per receiver and component (n_receivers, n_t), in receivers.csv's order
+    assert r.receivers.shape == (4, n) and r.receivers.dtype == np.float64
+    assert r.components == ["x", "z"]
+    assert r.receiver_names == ["top", "top", "under", "under"]
+    assert r.receiver_components == ["x", "z", "x", "z"]
+    assert np.array_equal(r.velocity("under", "z"), r.receivers[3])
+    assert np.array_equal(r.velocity("top", "x"), r.receivers[0])
     # with their coordinates: the receivers' positions, the crack nodes' x and z
-    assert np.allclose(r.receiver_x, [1e-3, 1e-3]) and np.allclose(r.receiver_z, [0.0, 1e-3])
+    assert np.allclose(r.receiver_x, [1e-3] * 4)
+    assert np.allclose(r.receiver_z, [0.0, 0.0, 1e-3, 1e-3])
     assert r.stress_x.shape == (0,) and r.stress_z.shape == (0,)
     # an unknown receiver or component names the valid ones
     for name, comp, valid in (("nope", "z", "top, under"), ("top", "y", "x, z")):
@@ -47,7 +52,7 @@ def test_a_clapping_crack_in_2d_gives_numpy_arrays():
             raise AssertionError("no error")
     assert repr(r).startswith("Solid2dResult(scenario=")
     # no stress receivers in this file: an empty array of the right shape
-    assert r.stresses.shape == (0, 3, n) and r.stress_components == ["xx", "zz", "xz"]
+    assert r.stresses.shape == (0, n) and r.stress_components == []
     assert r.summary["energy_closure_error"] < 1e-9
     # the crack's energy audit: friction dissipates part of the shear tractions' work (the
     # rest: the tangential arrest of the faces at each closure, rigid stick storing nothing;
@@ -68,6 +73,20 @@ def test_a_clapping_crack_in_2d_gives_numpy_arrays():
     # the contact state: open (0) exactly where the gap is
     assert c["state"].shape == gap.shape
     assert np.array_equal(c["state"] == 0.0, gap > 0.0)
+
+
+def test_stress_receivers_come_one_row_per_component():
+    d = {**SMALL, "receiver": SMALL["receiver"] + [
+        {"name": "s", "at": [0.5e-3, 0.25e-3], "quantity": "stress"}]}
+    r = cw.run(d)
+    n = len(r.t)
+    assert r.stresses.shape == (3, n)
+    assert r.stress_names == ["s", "s", "s"] and r.stress_components == ["xx", "zz", "xz"]
+    assert np.allclose(r.stress_x, 0.5e-3) and np.allclose(r.stress_z, 0.25e-3)
+    assert np.array_equal(r.stress("s", "zz"), r.stresses[1])
+    # the burst reaches the point: a dynamic stress, and the velocity receivers unchanged
+    assert np.abs(r.stress("s", "zz")).max() > 1e4
+    assert np.array_equal(cw.run(SMALL).receivers, r.receivers)
 
 
 def test_snapshots_come_as_an_image_stack_with_coordinates():
