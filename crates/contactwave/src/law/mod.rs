@@ -104,6 +104,11 @@ pub trait TractionBranch: Debug + Send + Sync {
     fn is_rigid(&self) -> bool {
         false
     }
+    /// `true` when the branch carries no stress at any opening (traction-free faces):
+    /// an open point then carries exactly nothing over the step, in every time scheme.
+    fn is_free(&self) -> bool {
+        false
+    }
     /// Stress `sigma(d, beta)`, Pa (>= 0).
     fn stress(&self, opening: f64, adhesion: f64) -> f64;
     /// `d sigma / d d`, Pa/m.

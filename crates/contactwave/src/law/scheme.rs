@@ -14,7 +14,9 @@ pub enum InterfaceScheme {
     /// replaces the stress at the current level in the centred scheme (trapezoidal /
     /// average acceleration): second order, no numerical dissipation for a linear spring,
     /// unconditionally stable. Rigid (Signorini, bonded) branches keep the backward
-    /// projection, which enforces the constraint at the new level.
+    /// projection, which enforces the constraint at the new level, and so do open
+    /// traction-free faces (their stress is the new level's, none: the mean with an
+    /// earlier contact stress would do work on faces that carry nothing).
     #[default]
     Average,
 }

@@ -172,8 +172,11 @@ pub fn normal_step<N: NormalPart + ?Sized, G: TangentialPart + ?Sized>(
             t,
         )?;
         let uc = law.critical_gap();
+        // on a constraint (rigid contact, a bond), or open on traction-free faces (the
+        // mean with an earlier contact stress would push the faces apart while they
+        // open, work that the stress-free branch cannot do): the new level's stress
         let on_constraint = (upd.gap <= uc && law.compression().is_rigid())
-            || (upd.gap >= uc && law.traction().is_rigid());
+            || (upd.gap >= uc && (law.traction().is_rigid() || law.traction().is_free()));
         if !on_constraint {
             return Ok((upd, 0.5 * (upd.dynamic_stress + s_old)));
         }
@@ -491,6 +494,54 @@ mod tests {
     use super::*;
     use crate::law::registry::{build_law, build_tangential};
     use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
+
+    /// Faces that open on a traction-free branch carry exactly nothing over the step in
+    /// the average scheme too: the dynamic stress applied is the new level's (p0: no
+    /// total stress), not its mean with the contact stress of the previous-but-one level,
+    /// which would push the opening faces apart (energy the free branch cannot give).
+    /// With a spring branch the mean stays (second order).
+    #[test]
+    fn opening_free_faces_carry_nothing_over_the_step_in_the_average_scheme() {
+        let p0 = 1e5;
+        let chi = 1e-16; // m/Pa: chi p0 = 1e-11 m, below the opening
+        let s_old = -2e6; // dynamic stress of the previous-but-one level: in contact, Pa
+        let opening = 1e-9; // the predicted gap, m: the faces separate
+        for traction in [
+            TractionSpec::Free(Default::default()),
+            TractionSpec::Linear(crate::law::traction::linear::Spec { stiffness: 1e13 }),
+        ] {
+            let law = build_law(
+                p0,
+                &CompressionSpec::Rigid(Default::default()),
+                &traction,
+                "<t>",
+                "i",
+            )
+            .unwrap();
+            let (upd, applied) = normal_step(
+                InterfaceScheme::Average,
+                &law,
+                None::<&TangentialLaw>,
+                opening,
+                chi,
+                1.0,
+                s_old,
+                0.0,
+                None,
+                1e-9,
+                1e-9,
+            )
+            .unwrap();
+            assert!(upd.gap > 0.0, "{traction:?}: {upd:?}");
+            if matches!(traction, TractionSpec::Free(_)) {
+                let total = upd.dynamic_stress - p0;
+                assert!(total.abs() < 1e-9 * p0, "total stress {total:e} while open");
+                assert_eq!(applied, upd.dynamic_stress);
+            } else {
+                assert_eq!(applied, 0.5 * (upd.dynamic_stress + s_old));
+            }
+        }
+    }
 
     #[test]
     fn adhesion_update_matches_the_traction_update_without_shear_and_the_closed_form_with() {

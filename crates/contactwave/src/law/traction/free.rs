@@ -12,6 +12,9 @@ impl TractionBranch for Free {
     fn name(&self) -> &'static str {
         "free"
     }
+    fn is_free(&self) -> bool {
+        true
+    }
     fn stress(&self, _opening: f64, _adhesion: f64) -> f64 {
         0.0
     }
