@@ -460,9 +460,7 @@ def _position(what: str, name: str, names: Sequence[str]) -> int:
         raise ValueError(f"{what} {name!r}: not in this run ({valid})") from None
 
 
-def _unique(names: Sequence[str]) -> List[str]:
-    """``names`` without repeats, in their first order."""
-    return list(dict.fromkeys(names))
+from ._frames import unique as _unique  # noqa: E402
 
 
 def _rows(

@@ -12,6 +12,11 @@ from typing import Any, Dict, Mapping
 
 import numpy as np
 
+
+def unique(names: Any) -> list:
+    """``names`` without repeats, in their first order (a 2D result's per-row labels)."""
+    return list(dict.fromkeys(names))
+
 #: Units of the columns of the half-space result (timeseries, probe, spectrum).
 HALF_SPACE_UNITS: Dict[str, str] = {
     "t": "s",
@@ -170,10 +175,10 @@ def solid_2d_pandas(r: Any) -> Any:
 def solid_2d_xarray(r: Any) -> Any:
     xr = require("xarray", "xarray", "Solid2dResult.to_xarray()")
     # the rows (one per point and component, point-major) as point x component x time
-    points = list(dict.fromkeys(r.receiver_names))
+    points = unique(r.receiver_names)
     comps = list(r.components)
-    spoints = list(dict.fromkeys(r.stress_names))
-    scomps = list(dict.fromkeys(r.stress_components))
+    spoints = unique(r.stress_names)
+    scomps = unique(r.stress_components)
     nt = len(r.t)
     data = {
         "velocity": (("receiver", "component", "time"),

@@ -17,7 +17,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence
 import numpy as np
 
 from . import _core
-from ._frames import require
+from ._frames import require, unique
 
 #: Harmonics marked on the spectra: n f0 for n = 1 ... HARMONICS.
 HARMONICS = 5
@@ -161,7 +161,7 @@ def solid_2d(r: Any, kind: str, ax: Any, receivers: Any, component: Any) -> Any:
     kinds = ("receivers", "spectrum")
     if kind not in kinds:
         raise ValueError(f"kind {kind!r}: one of {', '.join(map(repr, kinds))}")
-    names = _pick(list(dict.fromkeys(r.receiver_names)), receivers, "receiver")
+    names = _pick(unique(r.receiver_names), receivers, "receiver")
     comps = _pick(r.components, component, "component")
     ax = _axes(ax, "Solid2dResult.plot()")
     if kind == "receivers":

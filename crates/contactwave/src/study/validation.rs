@@ -29,6 +29,30 @@ pub const ALUMINIUM: Elastic = Elastic {
     s_speed: 3130.0,
 };
 
+/// A crack's law from its scenario tables (TOML strings, as in a scenario's `[[crack]]`),
+/// for the 2D crack and the 1D solvers alike; `p0` the static pressure, Pa.
+pub(crate) fn law_from_toml(
+    p0: f64,
+    compression: &str,
+    traction: &str,
+    tangential: &str,
+) -> Result<crate::law::point::SharedLaw> {
+    use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
+    let parse = |e: toml::de::Error| {
+        crate::error::Error::invalid("<validation>", "crack", e.to_string(), "a law table")
+    };
+    let c: CompressionSpec = toml::from_str(compression).map_err(parse)?;
+    let t: TractionSpec = toml::from_str(traction).map_err(parse)?;
+    let b: TangentialSpec = toml::from_str(tangential).map_err(parse)?;
+    let normal = crate::law::registry::build_law(p0, &c, &t, "<validation>", "crack")?;
+    let tangential =
+        crate::law::registry::build_tangential(&b, 0.0, &normal, "<validation>", "crack")?;
+    Ok(crate::law::point::SharedLaw {
+        normal: std::sync::Arc::new(normal),
+        tangential: std::sync::Arc::new(tangential),
+    })
+}
+
 /// One validation case: a check (a finite tolerance, counted by `contactwave validate`) or
 /// an informational row (no criterion: shown apart, never counted as a passed check).
 #[derive(Debug, Clone, PartialEq)]

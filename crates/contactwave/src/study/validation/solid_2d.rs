@@ -479,7 +479,7 @@ pub struct Damaging {
 /// b 1e-8 s; 0.3 MPa closure) as the crack of [`closed_plate`]: the burst breaks it.
 pub fn damaging() -> Result<Damaging> {
     let p0 = 0.3e6;
-    let law = super::solid_2d_reduction::law(
+    let law = super::law_from_toml(
         p0,
         "law = \"rigid\"",
         "law = \"rccm\"\nstiffness = 2e13\nenergy = 0.01\nviscosity = 1e-8",

@@ -7,11 +7,10 @@
 //! the observed order of convergence.
 
 use super::ValidationCase;
-use super::ALUMINIUM;
+use super::{law_from_toml as law, ALUMINIUM};
 use crate::error::{Error, Result};
 use crate::excitation::{Excitation, ToneBurst, Window};
 use crate::law::point::SharedLaw;
-use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 use crate::law::{ContactLaw, NormalPart, TangentialPart};
 use crate::material::Material;
 use crate::solver::half_space::{HalfSpace, HalfSpaceSettings};
@@ -236,26 +235,6 @@ pub fn reduction<L: NormalPart + TangentialPart + Clone>(
 /// The observed orders between successive halvings of the element size.
 pub fn orders(e: &[f64]) -> Vec<f64> {
     e.windows(2).map(|w| (w[0] / w[1]).log2()).collect()
-}
-
-/// A law from its scenario tables (TOML), for the 2D crack and the 1D solvers alike.
-pub(crate) fn law(
-    p0: f64,
-    compression: &str,
-    traction: &str,
-    tangential: &str,
-) -> Result<SharedLaw> {
-    let parse = |e: toml::de::Error| failed(&e.to_string());
-    let c: CompressionSpec = toml::from_str(compression).map_err(parse)?;
-    let t: TractionSpec = toml::from_str(traction).map_err(parse)?;
-    let b: TangentialSpec = toml::from_str(tangential).map_err(parse)?;
-    let normal = crate::law::registry::build_law(p0, &c, &t, "<validation>", "crack")?;
-    let tangential =
-        crate::law::registry::build_tangential(&b, 0.0, &normal, "<validation>", "crack")?;
-    Ok(SharedLaw {
-        normal: Arc::new(normal),
-        tangential: Arc::new(tangential),
-    })
 }
 
 /// Aluminium as the 1D solvers take it (P-wave modulus as Young's modulus).
