@@ -104,3 +104,20 @@ def test_snapshots_come_as_an_image_stack_with_coordinates():
     plain = cw.run(SMALL)
     assert np.array_equal(plain.receivers, r.receivers)
     assert plain.snapshots.shape == (0, 0, 0)
+
+
+def test_sweep_keys_may_leave_out_the_only_index_and_name_friction_mu(root):
+    """`source.angle` is `source.0.angle` and `crack.tangential.mu` is
+    `crack.0.tangential.friction` when the scenario has one source and one crack."""
+    base = str(root / "examples" / "solid_2d" / "plate_crack_quick.toml")
+    short = cw.sweep(
+        base, {"source.angle": [0.0, 20.0], "crack.tangential.mu": [0.1]}, as_frame=False
+    )
+    full = cw.sweep(
+        base,
+        {"source.0.angle": [0.0, 20.0], "crack.0.tangential.friction": [0.1]},
+        as_frame=False,
+    )
+    a, b = short["bottom_A2_over_A1"], full["bottom_A2_over_A1"]
+    assert np.array_equal(a, b)
+    assert np.all(np.isfinite(a)) and a[0] != a[1]

@@ -179,6 +179,32 @@ fn sweep_keys_reach_the_crack_and_the_source() {
     ] {
         assert!(t.param(key).is_ok(), "{key}");
     }
+    // with one crack and one source the index may be left out, and the friction
+    // coefficient answers to `mu` too: the same run as the spelled-out key, not the base
+    let summary = |key: &str, v: f64| {
+        let p = t.param(key).unwrap();
+        t.build(&[(&p, v)]).unwrap().summary().unwrap()
+    };
+    let gap = |s: &contactwave::analysis::Summary| s.get("crack_max_gap_0").unwrap();
+    let base = t.base().unwrap().summary().unwrap();
+    let angled = summary("source.0.angle", 20.0);
+    assert_ne!(gap(&angled), gap(&base));
+    assert_eq!(gap(&summary("source.angle", 20.0)), gap(&angled));
+    let slippery = summary("crack.0.tangential.friction", 0.05);
+    assert_ne!(gap(&slippery), gap(&base));
+    for key in [
+        "crack.0.tangential.mu",
+        "crack.tangential.mu",
+        "crack.tangential.friction",
+    ] {
+        assert_eq!(gap(&summary(key, 0.05)), gap(&slippery), "{key}");
+    }
+    let written = SMALL.replace("friction = 0.3", "mu = 0.05");
+    let t_mu = model::from_toml_str(&written, "small.toml").unwrap();
+    assert_eq!(
+        gap(&t_mu.base().unwrap().summary().unwrap()),
+        gap(&slippery)
+    );
 }
 
 #[test]

@@ -23,6 +23,18 @@ pub const GL4_WEIGHTS: [f64; 4] = [
     0.173_927_422_568_726_93,
 ];
 
+/// An angle of `rad` radians in degrees as a person wrote it: rounded to 1e-9 degree, so
+/// that 30 degrees read in and shown back in a message is 30, not 29.999999999999996.
+pub fn shown_degrees(rad: f64) -> f64 {
+    let deg = rad.to_degrees();
+    let r = (deg * 1e9).round() / 1e9;
+    if r.is_finite() {
+        r
+    } else {
+        deg
+    }
+}
+
 /// Integral of `f` over [a, b] by 4-point Gauss-Legendre (exact for degree 7).
 #[inline]
 pub fn gauss4(a: f64, b: f64, mut f: impl FnMut(f64) -> f64) -> f64 {
@@ -93,6 +105,13 @@ pub fn t975(dof: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    #[test]
+    fn degrees_read_back_as_written() {
+        assert_eq!(shown_degrees(30f64.to_radians()), 30.0);
+        assert_eq!(shown_degrees((-12.5f64).to_radians()), -12.5);
+        assert!(shown_degrees(f64::NAN).is_nan());
+        assert_eq!(shown_degrees(f64::INFINITY), f64::INFINITY);
+    }
     #[test]
     fn gauss4_exact_for_degree_7() {
         let v = gauss4(-1.0, 2.0, |x| x.powi(7) - 3.0 * x.powi(2));

@@ -52,6 +52,28 @@ pub struct Heatmap<'a> {
     pub marks: Vec<(f64, f64)>,
     /// Segments drawn in a second colour (display units), e.g. transducer apertures.
     pub sources: Vec<[(f64, f64); 2]>,
+    /// Named classes with their colours, for a field of class indices (e.g. a contact
+    /// state: 0 open, 1 stick, 2 slip): when given, each value is drawn in the colour of
+    /// its nearest index (clipped to the classes) and the colour bar is one labelled band
+    /// per class instead of a continuous scale; `scale` is then unused.
+    pub classes: Vec<(String, [u8; 3])>,
+}
+
+impl Heatmap<'_> {
+    /// The colour of value `v`.
+    fn colour_of(&self, v: f64) -> [u8; 3] {
+        if let Some(last) = self.classes.len().checked_sub(1) {
+            let k = if v.is_finite() {
+                v.round().clamp(0.0, last as f64) as usize
+            } else {
+                0
+            };
+            return self.classes[k].1;
+        }
+        let (lo, hi) = self.scale;
+        let span = if hi > lo { hi - lo } else { 1.0 };
+        colour((v - lo) / span, self.diverging)
+    }
 }
 
 fn font() -> &'static FontRef<'static> {
@@ -236,11 +258,7 @@ pub fn heatmap(h: &Heatmap) -> RgbImage {
     for iz in 0..nz {
         for ix in 0..nx {
             let v = h.values[(iz * nx + ix) as usize];
-            img.put_pixel(
-                LEFT + ix,
-                TOP + iz,
-                Rgb(colour((v - lo) / span, h.diverging)),
-            );
+            img.put_pixel(LEFT + ix, TOP + iz, Rgb(h.colour_of(v)));
         }
     }
     // display units to pixels (continuous: the field's edges at LEFT, LEFT + nx, ...)
@@ -321,10 +339,16 @@ pub fn heatmap(h: &Heatmap) -> RgbImage {
         &h.title,
         black,
     );
-    // the colour bar: the top is the scale's high end
+    // the colour bar: the top is the scale's high end (the last class)
     let bx = LEFT + nx + BAR.0;
+    let n_classes = h.classes.len();
     for j in 0..bar_h {
-        let c = colour(1.0 - (j as f64 + 0.5) / bar_h as f64, h.diverging);
+        let f = 1.0 - (j as f64 + 0.5) / bar_h as f64;
+        let c = if n_classes > 0 {
+            h.classes[((f * n_classes as f64) as usize).min(n_classes - 1)].1
+        } else {
+            colour(f, h.diverging)
+        };
         for i in 0..BAR.1 {
             img.put_pixel(bx + i, TOP + j, Rgb(c));
         }
@@ -340,17 +364,22 @@ pub fn heatmap(h: &Heatmap) -> RgbImage {
         segment(&mut img, a, c, 1.0, black);
     }
     let by = |v: f64| TOP as f64 + (1.0 - (v - lo) / span) * bar_h as f64;
-    for v in ticks(lo, hi, (bar_h as f64 / 40.0).clamp(2.0, 6.0)) {
-        let y = by(v);
+    // a continuous bar's ticks at round values, a class bar's names at its bands' middles
+    let marks: Vec<(f64, String)> = if n_classes > 0 {
+        let band = bar_h as f64 / n_classes as f64;
+        let top = TOP as f64 + bar_h as f64;
+        (h.classes.iter().enumerate())
+            .map(|(k, (name, _))| (top - (k as f64 + 0.5) * band, name.clone()))
+            .collect()
+    } else {
+        ticks(lo, hi, (bar_h as f64 / 40.0).clamp(2.0, 6.0))
+            .into_iter()
+            .map(|v| (by(v), label(v)))
+            .collect()
+    };
+    for (y, name) in marks {
         segment(&mut img, (br, y), (br + 5.0, y), 1.0, black);
-        text(
-            &mut img,
-            br as f32 + 8.0,
-            y as f32 + 5.0,
-            0.0,
-            &label(v),
-            black,
-        );
+        text(&mut img, br as f32 + 8.0, y as f32 + 5.0, 0.0, &name, black);
     }
     text(
         &mut img,

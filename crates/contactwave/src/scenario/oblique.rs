@@ -125,7 +125,7 @@ pub(super) fn apply(
         Some(m) => Some(elastic(m).ok_or_else(|| missing("counterpart"))?),
         None => None,
     };
-    let deg = req.angle.to_degrees();
+    let deg = crate::numeric::shown_degrees(req.angle);
     let geometry = Geometry::new(&e1, e2.as_ref(), req.wave, req.angle).map_err(|c| {
         Error::invalid(
             file,

@@ -349,12 +349,32 @@ pub fn plain_serde_message(message: &str) -> String {
     ] {
         m = m.replace(rust, plain);
     }
-    m
+    // toml ends some messages with the table they arose in (` in `crack``) and a newline:
+    // the error's key names the place already
+    let m = m.trim_end();
+    match m.rsplit_once(" in `") {
+        Some((head, table)) if table.ends_with('`') && !table[..table.len() - 1].contains('`') => {
+            head.to_string()
+        }
+        _ => m.to_string(),
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn serde_messages_read_as_plain_words() {
+        assert_eq!(
+            plain_serde_message("unknown field `x`, expected `a` or `b` in `crack`\n"),
+            "unknown field `x`, expected `a` or `b`"
+        );
+        assert_eq!(
+            plain_serde_message("invalid type: string \"a\", expected f64"),
+            "invalid type: string \"a\", expected a number"
+        );
+    }
 
     #[test]
     fn unit_strings_convert_to_si() {

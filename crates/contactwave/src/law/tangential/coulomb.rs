@@ -40,7 +40,8 @@ impl TangentialBranch for Coulomb {
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Spec {
-    /// Friction coefficient mu (>= 0).
+    /// Friction coefficient mu (>= 0); the key `mu` is read as this one.
+    #[serde(alias = "mu")]
     pub friction: f64,
     /// Stick stiffness k_t, Pa/m (> 0; default: rigid stick).
     #[serde(default)]
@@ -61,7 +62,7 @@ impl LawSpec for Spec {
     }
     fn param_mut(&mut self, name: &str) -> Option<ParamMut<'_>> {
         match name {
-            "friction" => Some(ParamMut::F64(&mut self.friction)),
+            "friction" | "mu" => Some(ParamMut::F64(&mut self.friction)),
             "stiffness" => Some(ParamMut::OptF64(&mut self.stiffness)),
             _ => None,
         }

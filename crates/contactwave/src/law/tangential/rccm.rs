@@ -44,7 +44,8 @@ impl TangentialBranch for Rccm {
 pub struct Spec {
     /// C_T, Pa/m (>= 0).
     pub stiffness: f64,
-    /// Friction coefficient mu (>= 0).
+    /// Friction coefficient mu (>= 0); the key `mu` is read as this one.
+    #[serde(alias = "mu")]
     pub friction: f64,
 }
 
@@ -61,7 +62,7 @@ impl LawSpec for Spec {
     fn param_mut(&mut self, name: &str) -> Option<ParamMut<'_>> {
         match name {
             "stiffness" => Some(ParamMut::F64(&mut self.stiffness)),
-            "friction" => Some(ParamMut::F64(&mut self.friction)),
+            "friction" | "mu" => Some(ParamMut::F64(&mut self.friction)),
             _ => None,
         }
     }

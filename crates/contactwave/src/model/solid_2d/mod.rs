@@ -71,19 +71,29 @@ impl FromSpec for Solid2dScenario {
     }
 }
 
-/// The item of an array of tables named by a decimal index.
-fn item<'a, T>(items: &'a mut [T], index: &str) -> Option<&'a mut T> {
-    index.parse::<usize>().ok().and_then(|i| items.get_mut(i))
+/// The number at `path` in an array of tables: the item named by a leading decimal index
+/// (`source.1.angle`), or the only item when the array has one and the key gives no index
+/// (`source.angle` for `source.0.angle`).
+fn nth<'a, T: Fields>(items: &'a mut [T], path: &[&str]) -> Option<Slot<'a>> {
+    match path {
+        [i, rest @ ..] if !i.is_empty() && i.bytes().all(|b| b.is_ascii_digit()) => {
+            items.get_mut(i.parse::<usize>().ok()?)?.slot(rest)
+        }
+        _ => match items {
+            [only] => only.slot(path),
+            _ => None,
+        },
+    }
 }
 
 impl Fields for Solid2dSpec {
     fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
         match path {
             ["model", rest @ ..] => self.model.slot(rest),
-            ["layer", i, rest @ ..] => item(&mut self.layers, i)?.slot(rest),
-            ["crack", i, rest @ ..] => item(&mut self.cracks, i)?.slot(rest),
-            ["source", i, rest @ ..] => item(&mut self.sources, i)?.slot(rest),
-            ["receiver", i, rest @ ..] => item(&mut self.receivers, i)?.slot(rest),
+            ["layer", rest @ ..] => nth(&mut self.layers, rest),
+            ["crack", rest @ ..] => nth(&mut self.cracks, rest),
+            ["source", rest @ ..] => nth(&mut self.sources, rest),
+            ["receiver", rest @ ..] => nth(&mut self.receivers, rest),
             _ => None,
         }
     }
@@ -757,11 +767,13 @@ impl Outcome for Solid2dResult {
                 get(&format!("crack_max_gap_{i}"))
             ));
         }
-        for name in &self.receivers {
+        // every receiver, velocity then stress, as summary.json names them
+        for name in self.receivers.iter().chain(&self.stress_receivers) {
             lines.push(format!(
-                "{:<23}{:.6e}",
+                "{:<23}{:.6e}   A3/A1 {:.6e}",
                 format!("{name} A2/A1"),
-                get(&format!("{name}_A2_over_A1"))
+                get(&format!("{name}_A2_over_A1")),
+                get(&format!("{name}_A3_over_A1"))
             ));
         }
         lines

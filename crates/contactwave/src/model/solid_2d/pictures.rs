@@ -159,6 +159,7 @@ mod files {
                 .iter()
                 .map(|c| [(c[0] * mm, c[1] * mm), (c[2] * mm, c[3] * mm)])
                 .collect(),
+            classes: Vec::new(),
         };
         picture::heatmap(&h)
     }
@@ -204,9 +205,22 @@ mod files {
             values.iter().fold(0.0f64, |a, &b| a.max(b))
         };
         let (title, bar) = if state {
-            ("contact state", "0 open, 1 stick, 2 slip")
+            ("contact state", "state")
         } else {
             ("normal gap", "gap (nm)")
+        };
+        // the states in the colours of crack_state.svg, named as in its legend
+        let classes = if state {
+            (STATES.iter())
+                .map(|(_, name, (r, g, b))| {
+                    (
+                        name.split(' ').next().unwrap_or(name).to_string(),
+                        [*r, *g, *b],
+                    )
+                })
+                .collect()
+        } else {
+            Vec::new()
         };
         picture::heatmap(&Heatmap {
             nx,
@@ -220,6 +234,7 @@ mod files {
             xlabel: "position along the crack (mm)".into(),
             ylabel: "t (\u{b5}s)".into(),
             bar_label: bar.into(),
+            classes,
             ..Default::default()
         })
     }
@@ -298,7 +313,7 @@ mod files {
     }
 
     /// The crack states of `crack.csv` with their legend labels and colours.
-    const STATES: [(f64, &str, (u8, u8, u8)); 3] = [
+    pub(super) const STATES: [(f64, &str, (u8, u8, u8)); 3] = [
         (0.0, "open", (214, 39, 40)),
         (1.0, "stick", (31, 119, 180)),
         (2.0, "slip (or closed without friction)", (255, 187, 60)),
@@ -603,6 +618,22 @@ at = [1e-3, 1e-3]
         // 120 px high)
         let png = image::load_from_memory(&bin[1].bytes).unwrap();
         assert_eq!((png.width(), png.height()), (100 + 176, 120 + 88));
+        // the state map draws only the three states' colours (no blend of a continuous
+        // scale), and a clapping crack shows at least two of them
+        let state = image::load_from_memory(&bin[5].bytes).unwrap().to_rgb8();
+        let colours: Vec<[u8; 3]> = super::files::STATES
+            .iter()
+            .map(|(_, _, (r, g, b))| [*r, *g, *b])
+            .collect();
+        let mut seen = std::collections::BTreeSet::new();
+        for y in 40..40 + 400 {
+            for x in 64..64 + 600 {
+                let c = state.get_pixel(x, y).0;
+                assert!(colours.contains(&c), "{c:?} at ({x}, {y})");
+                seen.insert(c);
+            }
+        }
+        assert!(seen.len() >= 2, "{seen:?}");
         let gif = image::codecs::gif::GifDecoder::new(std::io::Cursor::new(&bin[3].bytes))
             .unwrap()
             .into_frames()

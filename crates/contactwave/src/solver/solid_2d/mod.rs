@@ -534,7 +534,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 return bad(
                     &format!("layer.{i}"),
                     format!("rho {}, c_P {}, c_S {}", m.density, m.p_speed, m.s_speed),
-                    "rho > 0, c_S > 0 and c_P > sqrt(2) c_S (lambda > 0... at least a positive P-wave modulus)",
+                    "rho > 0, c_S > 0 and c_P > sqrt(2) c_S (a Poisson ratio in (0, 0.5))",
                 );
             }
         }

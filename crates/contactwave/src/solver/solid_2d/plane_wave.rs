@@ -373,7 +373,7 @@ impl<L> super::Solid2d<L> {
             return Err(Error::invalid(
                 file,
                 format!("{key}.angle"),
-                angle.to_degrees(),
+                crate::numeric::shown_degrees(angle),
                 "in (-90, 90) degrees",
             ));
         }
@@ -381,7 +381,7 @@ impl<L> super::Solid2d<L> {
             return Err(Error::invalid(
                 file,
                 format!("{key}.angle"),
-                angle.to_degrees(),
+                crate::numeric::shown_degrees(angle),
                 "0 with periodic sides (an oblique burst does not repeat across the width: use absorbing sides)",
             ));
         }

@@ -477,7 +477,7 @@ fn check_axes(file: &str, axes: &[Axis]) -> Result<()> {
             continue;
         };
         for end in [format!("{crack}.end.x"), format!("{crack}.end.z")] {
-            if crack.starts_with("crack.") && has(&end) {
+            if (crack == "crack" || crack.starts_with("crack.")) && has(&end) {
                 return Err(Error::invalid(
                     file,
                     "axis",

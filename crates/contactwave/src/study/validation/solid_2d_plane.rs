@@ -19,6 +19,10 @@ use std::sync::Arc;
 
 const F0: f64 = 1e6;
 
+/// The largest |measured - closed form| of a coefficient the validation rows allow at
+/// 1.5 mm elements.
+const ABSOLUTE: f64 = 3e-3;
+
 /// The measured magnitudes `|R_P|, |R_SV|, |T_P|, |T_SV|` (particle velocity per unit
 /// incident particle velocity, at f0 = 1 MHz) of a 2-cycle Hann burst of `incidence` (P or
 /// SV) at `deg` degrees on a linear spring interface (K_N = 1e14, K_T = 0.5e14 Pa/m) in
@@ -201,8 +205,9 @@ fn oblique_run(
 }
 
 /// The cases: P at 40 degrees, SV at 20 degrees (below SV's critical angle for P, 29.7
-/// degrees), 1.5 mm elements (two per S wavelength at f0): every coefficient within 0.01
-/// of the closed form's.
+/// degrees), 1.5 mm elements (two per S wavelength at f0): every coefficient within 0.003
+/// of the closed form's (the largest error measured there is 1.7e-3, model.md table
+/// 15.8-4).
 pub fn run_all() -> Result<Vec<ValidationCase>> {
     let mut v = Vec::new();
     for (inc, deg) in [(Incidence::P, 40.0), (Incidence::Sv, 20.0)] {
@@ -215,8 +220,8 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
                 ),
                 e[k],
                 m[k],
-                // absolute: |measured - exact| <= 0.01
-                0.01 / e[k].max(1e-3),
+                // absolute: |measured - exact| <= ABSOLUTE
+                ABSOLUTE / e[k].max(1e-3),
             ));
         }
     }
@@ -229,7 +234,7 @@ mod tests {
 
     /// Oblique P and SV plane waves on a linear spring interface: the 2D solver's reflected
     /// and transmitted P and SV magnitudes (mode conversion) against the closed form,
-    /// within 0.01 at 1.5 mm elements (two per S wavelength at f0), and closer at 1 mm.
+    /// within 0.003 at 1.5 mm elements (two per S wavelength at f0), and closer at 1 mm.
     #[test]
     fn oblique_plane_waves_match_the_closed_form() {
         for (inc, deg) in [(Incidence::P, 40.0), (Incidence::Sv, 20.0)] {
@@ -240,7 +245,7 @@ mod tests {
                 eprintln!("{inc:?} {deg} deg, h {h}: measured {m:?}, closed form {e:?}, max error {err:.2e}");
                 errs.push(err);
             }
-            assert!(errs[0] < 0.01, "{inc:?} {deg}: {errs:?}");
+            assert!(errs[0] < ABSOLUTE, "{inc:?} {deg}: {errs:?}");
             // without the interface the scattered region stays quiet at an angle too
             let (_, _, leak) = oblique_run(inc, deg, 1.5e-3, false).unwrap();
             let db = 20.0 * leak.log10();
