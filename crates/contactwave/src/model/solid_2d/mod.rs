@@ -763,8 +763,9 @@ impl Outcome for Solid2dResult {
         ];
         for i in 0..self.output.cracks.len() {
             lines.push(format!(
-                "crack {i} max gap        {:.6e} m",
-                get(&format!("crack_max_gap_{i}"))
+                "crack {i} max gap        {:.6e} m   max slip {:.6e} m",
+                get(&format!("crack_max_gap_{i}")),
+                get(&format!("crack_max_slip_{i}"))
             ));
         }
         // every receiver, velocity then stress, as summary.json names them

@@ -168,8 +168,12 @@ mod files {
     /// 2 slip; `state` true) along it (mm) against time (us, downwards).
     fn crack_map(r: &Solid2dResult, i: usize, state: bool) -> image::RgbImage {
         let c = &r.output.cracks[i];
+        // an antiplane crack never opens: its map is the jump of u_y across it (signed)
+        let antiplane = r.component_names == ["y"];
         let (field, unit) = if state {
             (&c.state, 1.0)
+        } else if antiplane {
+            (&c.tangential_gap, 1e9)
         } else {
             (&c.normal_gap, 1e9)
         };
@@ -202,13 +206,17 @@ mod files {
         let top = if state {
             2.0
         } else {
-            values.iter().fold(0.0f64, |a, &b| a.max(b))
+            values.iter().fold(0.0f64, |a, &b| a.max(b.abs()))
         };
         let (title, bar) = if state {
             ("contact state", "state")
+        } else if antiplane {
+            ("tangential gap [u_y]", "gap (nm)")
         } else {
             ("normal gap", "gap (nm)")
         };
+        let top = if top > 0.0 { top } else { 1.0 };
+        let signed = antiplane && !state;
         // the states in the colours of crack_state.svg, named as in its legend
         let classes = if state {
             (STATES.iter())
@@ -228,8 +236,8 @@ mod files {
             values: &values,
             x_range: (p0 * 1e3, p1 * 1e3),
             y_range: (0.0, t1 * 1e6),
-            scale: (0.0, if top > 0.0 { top } else { 1.0 }),
-            diverging: false,
+            scale: (if signed { -top } else { 0.0 }, top),
+            diverging: signed,
             title: format!("crack {i}: {title}"),
             xlabel: "position along the crack (mm)".into(),
             ylabel: "t (\u{b5}s)".into(),
@@ -565,6 +573,31 @@ at = [1e-3, 1e-3]
     fn run(text: &str) -> Box<dyn model::Outcome> {
         let t = model::from_toml_str(text, "small.toml").unwrap();
         t.base().unwrap().run(&RunControl::default()).unwrap()
+    }
+
+    /// An SH crack never opens: its gap map is the signed jump of u_y, drawn blue-white-red
+    /// about zero (the normal gap would be one flat colour), and it slips both ways.
+    #[test]
+    fn an_antiplane_crack_map_draws_the_signed_tangential_gap() {
+        let text = small("")
+            .replace("kind = \"solid_2d\"", "kind = \"solid_2d\"\nwave = \"sh\"")
+            .replace("x1 = 1.4e-3", "x1 = 1.4e-3\ncomponent = \"shear\"")
+            .replace("at = [1e-3, 0.0]", "at = [1e-3, 0.0]\ncomponent = \"y\"")
+            .replace("at = [1e-3, 1e-3]", "at = [1e-3, 1e-3]\ncomponent = \"y\"");
+        let out = run(&text);
+        let bin = out.binary_files().unwrap();
+        let map = bin.iter().find(|f| f.name == "crack_map.png").unwrap();
+        let img = image::load_from_memory(&map.bytes).unwrap().to_rgb8();
+        // reddish (positive jump) and bluish (negative) pixels in the field
+        let (mut red, mut blue) = (0, 0);
+        for y in 40..40 + 400 {
+            for x in 64..64 + 600 {
+                let [r, _, b] = img.get_pixel(x, y).0;
+                red += usize::from(r > b + 40);
+                blue += usize::from(b > r + 40);
+            }
+        }
+        assert!(red > 0 && blue > 0, "red {red}, blue {blue}");
     }
 
     /// A run with snapshots writes its PNG frames (decoding at the expected size), a GIF of
