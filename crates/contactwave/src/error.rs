@@ -66,6 +66,17 @@ pub enum Error {
     },
 }
 
+/// A value as a message shows it: a number written out with many zeros (`1e-9` displays as
+/// `0.000000001`) in exponent form, anything else as it is.
+fn shown_value(value: String) -> String {
+    match value.parse::<f64>() {
+        Ok(v) if v.is_finite() && v != 0.0 && (v.abs() < 1e-4 || v.abs() >= 1e16) => {
+            format!("{v:e}")
+        }
+        _ => value,
+    }
+}
+
 impl Error {
     /// Build an [`Error::Invalid`].
     pub fn invalid(
@@ -77,7 +88,7 @@ impl Error {
         Error::Invalid {
             file: file.into(),
             field: field.into(),
-            value: value.to_string(),
+            value: shown_value(value.to_string()),
             allowed: allowed.into(),
         }
     }
@@ -138,5 +149,27 @@ impl Error {
             },
             other => other,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn small_and_huge_numbers_show_in_exponent_form() {
+        let shown = |v: &dyn std::fmt::Display| match Error::invalid("f", "k", v, "a") {
+            Error::Invalid { value, .. } => value,
+            _ => unreachable!(),
+        };
+        assert_eq!(shown(&1.8460981591096744e-9), "1.8460981591096744e-9");
+        assert_eq!(shown(&1e-6), "1e-6");
+        assert_eq!(shown(&2e20), "2e20");
+        assert_eq!(shown(&0.0037500000000000003), "0.0037500000000000003");
+        assert_eq!(shown(&-20e12), "-20000000000000");
+        assert_eq!(shown(&0.0), "0");
+        assert_eq!(shown(&f64::NAN), "NaN");
+        assert_eq!(shown(&"rigid"), "rigid");
+        assert_eq!(shown(&"[0.019, 0.015]"), "[0.019, 0.015]");
     }
 }

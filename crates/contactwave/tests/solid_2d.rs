@@ -295,7 +295,7 @@ fn bad_input_is_an_error_naming_the_key() {
         (
             "element_size = 0.1e-3",
             "element_size = 0.1e-3\ntime_step = 1e-6",
-            "field `model.time_step` = 0.000001: (0,",
+            "field `model.time_step` = 1e-6: (0,",
         ),
         // the angle of a 2D source is its own key, not its signal's
         (
