@@ -162,6 +162,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             derivative: gll.derivative.clone(),
             antiplane: self.wave == WaveType::Sh,
             regular: Vec::new(),
+            coefs: Vec::new(),
         };
         let omega_max = max_frequency(&one, &densities);
         let stable_time_step = self.courant * 2.0 / omega_max;

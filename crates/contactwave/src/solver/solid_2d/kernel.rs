@@ -47,10 +47,29 @@ pub struct Stiffness {
     pub derivative: Vec<f64>,
     /// Antiplane (one component) or plane strain (two, interleaved `[x, z]` per node).
     pub antiplane: bool,
-    /// Whether each block of eight elements along a row (row by row, the last partial
-    /// block included) is regular (see [`super::simd`]): filled by
-    /// [`Stiffness::with_blocks`]; empty, or of another length, means none is.
-    pub regular: Vec<bool>,
+    /// Each block of eight elements along a row (row by row, the last partial block
+    /// included), where it is regular (see [`super::simd`]): its first node and the node
+    /// stride between its node rows (so that the time loop does not read the map); filled
+    /// by [`Stiffness::with_blocks`]; empty, or of another length, means none is.
+    pub regular: Vec<Option<(usize, usize)>>,
+    /// Per element, the constants of [`Params`] (`2 / hx`, `2 / hz`, `lambda + 2 mu`,
+    /// `lambda`, `mu`, `hx / 2`, `hz / 2`): filled by [`Stiffness::with_blocks`] so that
+    /// the time loop divides nothing; empty means computed per block (the same values).
+    pub coefs: Vec<[f64; 7]>,
+}
+
+/// The constants of [`Params`] of one element (see [`Stiffness::coefs`]).
+#[inline(always)]
+fn coefs_of(el: &ElementData) -> [f64; 7] {
+    [
+        2.0 / el.hx,
+        2.0 / el.hz,
+        el.lambda + 2.0 * el.mu,
+        el.lambda,
+        el.mu,
+        0.5 * el.hx,
+        0.5 * el.hz,
+    ]
 }
 
 /// The grid node rows of the operator's elements, advanced by [`Stiffness::step`] as soon
@@ -273,11 +292,12 @@ impl Stiffness {
     /// The operator with its regular blocks marked (plane strain: the blocks whose gather
     /// and scatter the AVX-512 kernel does by rows).
     pub fn with_blocks(mut self) -> Self {
+        self.coefs = self.elements.iter().map(coefs_of).collect();
         let (nex, nez) = self.dims;
         let (m, w) = (self.order + 1, simd::W);
         let per_row = nex.div_ceil(w);
-        self.regular = vec![false; per_row * nez];
-        if self.antiplane || m > simd::MAX_POINTS || nex < w {
+        self.regular = vec![None; per_row * nez];
+        if nex < w {
             return self;
         }
         for ez in 0..nez {
@@ -285,8 +305,9 @@ impl Stiffness {
             let offsets = simd::block_offsets(m, c[m].wrapping_sub(c[0]));
             for blk in 0..nex / w {
                 let e0 = ez * nex + blk * w;
-                self.regular[ez * per_row + blk] =
-                    simd::is_regular(&self.conn[e0 * m * m..(e0 + w) * m * m], &offsets);
+                if simd::is_regular(&self.conn[e0 * m * m..(e0 + w) * m * m], &offsets) {
+                    self.regular[ez * per_row + blk] = Some(self.block_rows(e0));
+                }
             }
         }
         self
@@ -553,9 +574,15 @@ impl Stiffness {
         let narrow = !wide && cpu.avx2 && LANES == registers::avx2::W;
         #[cfg(not(target_arch = "x86_64"))]
         let (wide, narrow) = (false && cpu.avx512, false);
+        // (AVX-512 takes the marked blocks of eight, the others their halves)
         let marks = match self.regular.get(ez * per_row..(ez + 1) * per_row) {
-            Some(m) if wide && self.regular.len() == per_row * self.dims.1 => m,
+            Some(m) if self.regular.len() == per_row * self.dims.1 => m,
             _ => &[],
+        };
+        let coefs = if self.coefs.len() == self.elements.len() {
+            &self.coefs[..]
+        } else {
+            &[]
         };
         // the element block's scratch, once per row (no clearing per block: the lanes past
         // the row's end keep the last block's finite values, computed and never scattered)
@@ -567,7 +594,17 @@ impl Stiffness {
         while ex0 < nex {
             let nl = LANES.min(nex - ex0);
             let e0 = ez * nex + ex0;
-            let regular = marks.get(ex0 / LANES).copied().unwrap_or(false);
+            // a regular block (of eight, or of four: half of one) starts at node `first`
+            // (its node rows `stride` apart)
+            let start = marks
+                .get(ex0 / simd::W)
+                .copied()
+                .flatten()
+                .map(|(first, stride)| (first + (ex0 % simd::W) * (M - 1), stride));
+            let regular = start.is_some();
+            // a regular block of four (AVX2, portable): each element's node rows are runs
+            // of `M` nodes at `first + b stride + (M - 1) l` (its map, without reading it)
+            let runs = if wide { None } else { start };
             let (mut sx, mut sz, mut l2m, mut lam, mut mu, mut hx2, mut hz2) = (
                 [1.0; LANES],
                 [1.0; LANES],
@@ -578,14 +615,22 @@ impl Stiffness {
                 [0.0; LANES],
             );
             for l in 0..nl {
-                let el = &self.elements[e0 + l];
-                sx[l] = 2.0 / el.hx;
-                sz[l] = 2.0 / el.hz;
-                l2m[l] = el.lambda + 2.0 * el.mu;
-                lam[l] = el.lambda;
-                mu[l] = el.mu;
-                hx2[l] = 0.5 * el.hx;
-                hz2[l] = 0.5 * el.hz;
+                let c = match coefs.get(e0 + l) {
+                    Some(c) => *c,
+                    None => coefs_of(&self.elements[e0 + l]),
+                };
+                [sx[l], sz[l], l2m[l], lam[l], mu[l], hx2[l], hz2[l]] = c;
+                if let Some((first, stride)) = runs {
+                    for b in 0..M {
+                        let at = 2 * (first + b * stride + (M - 1) * l);
+                        let run = &u[at..at + 2 * M];
+                        for a in 0..M {
+                            ux[b][a][l] = run[2 * a];
+                            uz[b][a][l] = run[2 * a + 1];
+                        }
+                    }
+                    continue;
+                }
                 if regular {
                     continue;
                 }
@@ -599,8 +644,7 @@ impl Stiffness {
                 }
             }
             #[cfg(target_arch = "x86_64")]
-            if regular {
-                let rows = self.block_rows(e0);
+            if let (true, Some(rows)) = (wide, start) {
                 // SAFETY: the caller runs on AVX-512F (`wide`); the block is regular
                 unsafe { simd::gather_block::<M>(u, rows, block_mut(&mut ux), block_mut(&mut uz)) };
             }
@@ -640,10 +684,23 @@ impl Stiffness {
             }
             // scatter element by element, left to right (the order of every run)
             #[cfg(target_arch = "x86_64")]
-            if regular {
-                let rows = self.block_rows(e0);
+            if let (true, Some(rows)) = (wide, start) {
                 // SAFETY: as for the gather
                 unsafe { simd::scatter_block::<M>(out, rows, block(&gx), block(&gz)) };
+                ex0 += LANES;
+                continue;
+            }
+            if let Some((first, stride)) = runs {
+                for l in 0..nl {
+                    for b in 0..M {
+                        let at = 2 * (first + b * stride + (M - 1) * l);
+                        let run = &mut out[at..at + 2 * M];
+                        for a in 0..M {
+                            run[2 * a] -= gx[b][a][l];
+                            run[2 * a + 1] -= gz[b][a][l];
+                        }
+                    }
+                }
                 ex0 += LANES;
                 continue;
             }
@@ -688,15 +745,37 @@ impl Stiffness {
         let mut fx = [[[0.0f64; LANES]; M]; M];
         let mut fz = [[[0.0f64; LANES]; M]; M];
         let mut g = [[[0.0f64; LANES]; M]; M];
+        // the regular blocks of this row (as in [`Stiffness::row_psv`])
+        let per_row = nex.div_ceil(simd::W);
+        let marks = match self.regular.get(ez * per_row..(ez + 1) * per_row) {
+            Some(m) if self.regular.len() == per_row * self.dims.1 => m,
+            _ => &[],
+        };
         while ex0 < nex {
             let nl = LANES.min(nex - ex0);
             let e0 = ez * nex + ex0;
+            // a regular block's element node rows: runs of `M` nodes (see `row_psv`)
+            let runs = marks
+                .get(ex0 / simd::W)
+                .copied()
+                .flatten()
+                .map(|(first, stride)| (first + (ex0 % simd::W) * (M - 1), stride));
             let (mut cx, mut cz) = ([0.0; LANES], [0.0; LANES]);
             for l in 0..nl {
                 let el = &self.elements[e0 + l];
                 // (hz/2) mu sx and (hx/2) mu sz
                 cx[l] = 0.5 * el.hz * el.mu * (2.0 / el.hx);
                 cz[l] = 0.5 * el.hx * el.mu * (2.0 / el.hz);
+                if let Some((first, stride)) = runs {
+                    for b in 0..M {
+                        let at = first + b * stride + (M - 1) * l;
+                        let run = &u[at..at + M];
+                        for a in 0..M {
+                            uy[b][a][l] = run[a];
+                        }
+                    }
+                    continue;
+                }
                 let conn = &self.conn[(e0 + l) * M * M..(e0 + l + 1) * M * M];
                 for b in 0..M {
                     for a in 0..M {
@@ -721,6 +800,19 @@ impl Stiffness {
                 r.div.apply(&fx[b], &mut g[b]);
             }
             r.div.apply_rows::<LANES, true>(&fz, &mut g);
+            if let Some((first, stride)) = runs {
+                for l in 0..nl {
+                    for b in 0..M {
+                        let at = first + b * stride + (M - 1) * l;
+                        let run = &mut out[at..at + M];
+                        for a in 0..M {
+                            run[a] -= g[b][a][l];
+                        }
+                    }
+                }
+                ex0 += LANES;
+                continue;
+            }
             for l in 0..nl {
                 let conn = &self.conn[(e0 + l) * M * M..(e0 + l + 1) * M * M];
                 for b in 0..M {
@@ -761,6 +853,7 @@ pub(super) fn max_frequency(k: &Stiffness, densities: &[f64]) -> f64 {
             derivative: k.derivative.clone(),
             antiplane: k.antiplane,
             regular: Vec::new(),
+            coefs: Vec::new(),
         };
         let w = &k.weights;
         let mass: Vec<f64> = (0..m * m)

@@ -743,6 +743,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             derivative: mesh.gll.derivative.clone(),
             antiplane: components == 1,
             regular: Vec::new(),
+            coefs: Vec::new(),
         };
         let densities: Vec<f64> = (0..nez)
             .flat_map(|ez| {

@@ -215,6 +215,7 @@ impl Injection {
                 derivative: stiffness.derivative.clone(),
                 antiplane: stiffness.antiplane,
                 regular: Vec::new(),
+                coefs: Vec::new(),
             };
             let conn = &mesh.conn[e * m * m..(e + 1) * m * m];
             let (x0, z0) = (mesh.x_edges[ex], mesh.z_edges[ez]);
