@@ -78,6 +78,29 @@ fn interface_reduction_example_matches_the_exact_solver() {
     assert!((r2 / r1 - 1.0).abs() < 0.01, "2D {r2} exact {r1}");
 }
 
+/// A plane wave's type may be written in any case (`"p"`, `"Sv"`); a type the run does
+/// not carry stays an error whatever its case.
+#[test]
+fn plane_wave_types_may_be_written_in_any_case() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/solid_2d/interface_reduction.toml"
+    );
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(text.contains("wave = \"P\" "));
+    for name in ["p", "sv", "Sv"] {
+        let text = text.replace("wave = \"P\" ", &format!("wave = \"{name}\" "));
+        let built = model::from_toml_str(&text, "case.toml").and_then(|t| t.base().map(|_| ()));
+        assert!(built.is_ok(), "{name}: {built:?}");
+    }
+    let text = text.replace("wave = \"P\" ", "wave = \"sh\" ");
+    let err = model::from_toml_str(&text, "case.toml")
+        .and_then(|t| t.base().map(|_| ()))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("source.0.wave") && err.contains("sh"), "{err}");
+}
+
 /// A bad plane-wave source is a one-line error naming its key, before any step.
 #[test]
 fn bad_plane_wave_sources_are_errors_naming_the_key() {

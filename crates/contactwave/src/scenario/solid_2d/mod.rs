@@ -558,15 +558,17 @@ impl Solid2dScenario {
                     }
                 }
                 "plane_wave" => {
-                    let incidence = match (s.wave.as_deref(), wave) {
+                    // (the wave's name in any case: "P", "p", "Sv", ...)
+                    let name = s.wave.as_deref().map(str::to_ascii_uppercase);
+                    let incidence = match (name.as_deref(), wave) {
                         (None | Some("P"), WaveType::PSv) => Incidence::P,
                         (Some("SV"), WaveType::PSv) => Incidence::Sv,
                         (None | Some("SH"), WaveType::Sh) => Incidence::Sh,
-                        (v, _) => {
+                        _ => {
                             return Err(inv(
                                 file,
                                 format!("{key}.wave"),
-                                v.unwrap_or("P"),
+                                s.wave.as_deref().unwrap_or("P"),
                                 "P or SV in a P-SV run, SH in an SH run",
                             ))
                         }
