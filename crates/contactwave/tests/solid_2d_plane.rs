@@ -25,13 +25,18 @@ window = "hann"
 amplitude = 3e6
 "#;
 
-#[test]
-fn interface_reduction_example_matches_the_exact_solver() {
+/// The text of `examples/solid_2d/interface_reduction.toml`.
+fn reduction_example() -> String {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../examples/solid_2d/interface_reduction.toml"
     );
-    let text = std::fs::read_to_string(path).unwrap();
+    std::fs::read_to_string(path).unwrap()
+}
+
+#[test]
+fn interface_reduction_example_matches_the_exact_solver() {
+    let text = reduction_example();
     // shortened: the gap's history ends within 8 us
     let short = text.replace("duration = 11e-6", "duration = 8e-6");
     assert_ne!(short, text, "the example's duration line changed");
@@ -82,11 +87,7 @@ fn interface_reduction_example_matches_the_exact_solver() {
 /// not carry stays an error whatever its case.
 #[test]
 fn plane_wave_types_may_be_written_in_any_case() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../examples/solid_2d/interface_reduction.toml"
-    );
-    let text = std::fs::read_to_string(path).unwrap();
+    let text = reduction_example();
     assert!(text.contains("wave = \"P\" "));
     for name in ["p", "sv", "Sv"] {
         let text = text.replace("wave = \"P\" ", &format!("wave = \"{name}\" "));
@@ -104,11 +105,7 @@ fn plane_wave_types_may_be_written_in_any_case() {
 /// A bad plane-wave source is a one-line error naming its key, before any step.
 #[test]
 fn bad_plane_wave_sources_are_errors_naming_the_key() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../examples/solid_2d/interface_reduction.toml"
-    );
-    let text = std::fs::read_to_string(path).unwrap();
+    let text = reduction_example();
     for (from, to, key) in [
         ("wave = \"P\" ", "wave = \"SH\" ", "source.0.wave"),
         ("angle = 0 ", "angle = 10 ", "source.0.angle"),

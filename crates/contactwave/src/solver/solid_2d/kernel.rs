@@ -289,8 +289,9 @@ impl Cpu {
 }
 
 impl Stiffness {
-    /// The operator with its regular blocks marked (plane strain: the blocks whose gather
-    /// and scatter the AVX-512 kernel does by rows).
+    /// The operator with its regular blocks marked (those whose nodes every CPU path
+    /// addresses by node rows, and AVX-512 gathers and scatters row by row) and its
+    /// elements' constants computed ([`Stiffness::coefs`]).
     pub fn with_blocks(mut self) -> Self {
         self.coefs = self.elements.iter().map(coefs_of).collect();
         let (nex, nez) = self.dims;
@@ -745,7 +746,13 @@ impl Stiffness {
         let mut fx = [[[0.0f64; LANES]; M]; M];
         let mut fz = [[[0.0f64; LANES]; M]; M];
         let mut g = [[[0.0f64; LANES]; M]; M];
-        // the regular blocks of this row (as in [`Stiffness::row_psv`])
+        // the regular blocks of this row and the elements' constants (as in
+        // [`Stiffness::row_psv`])
+        let coefs = if self.coefs.len() == self.elements.len() {
+            &self.coefs[..]
+        } else {
+            &[]
+        };
         let per_row = nex.div_ceil(simd::W);
         let marks = match self.regular.get(ez * per_row..(ez + 1) * per_row) {
             Some(m) if self.regular.len() == per_row * self.dims.1 => m,
@@ -762,10 +769,13 @@ impl Stiffness {
                 .map(|(first, stride)| (first + (ex0 % simd::W) * (M - 1), stride));
             let (mut cx, mut cz) = ([0.0; LANES], [0.0; LANES]);
             for l in 0..nl {
-                let el = &self.elements[e0 + l];
+                let [sx, sz, _, _, mu, hx2, hz2] = match coefs.get(e0 + l) {
+                    Some(c) => *c,
+                    None => coefs_of(&self.elements[e0 + l]),
+                };
                 // (hz/2) mu sx and (hx/2) mu sz
-                cx[l] = 0.5 * el.hz * el.mu * (2.0 / el.hx);
-                cz[l] = 0.5 * el.hx * el.mu * (2.0 / el.hz);
+                cx[l] = hz2 * mu * sx;
+                cz[l] = hx2 * mu * sz;
                 if let Some((first, stride)) = runs {
                     for b in 0..M {
                         let at = first + b * stride + (M - 1) * l;
