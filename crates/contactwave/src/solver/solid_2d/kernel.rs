@@ -58,6 +58,21 @@ pub struct Stiffness {
     pub coefs: Vec<[f64; 7]>,
 }
 
+/// Where the elements from `ex0` on (of a row whose block marks are `marks`, see
+/// [`Stiffness::with_blocks`]) start when their block is regular: the first node of
+/// element `ex0` and the node stride between its node rows (order `M - 1`); none otherwise.
+#[inline(always)]
+fn block_start<const M: usize>(
+    marks: &[Option<(usize, usize)>],
+    ex0: usize,
+) -> Option<(usize, usize)> {
+    marks
+        .get(ex0 / simd::W)
+        .copied()
+        .flatten()
+        .map(|(first, stride)| (first + (ex0 % simd::W) * (M - 1), stride))
+}
+
 /// The constants of [`Params`] of one element (see [`Stiffness::coefs`]).
 #[inline(always)]
 fn coefs_of(el: &ElementData) -> [f64; 7] {
@@ -568,7 +583,6 @@ impl Stiffness {
         let nex = self.dims.0;
         let mut ex0 = 0;
         // the regular blocks of this row (marked by `with_blocks`)
-        let per_row = nex.div_ceil(simd::W);
         #[cfg(target_arch = "x86_64")]
         let wide = cpu.avx512 && M <= simd::MAX_POINTS && LANES == simd::W;
         #[cfg(target_arch = "x86_64")]
@@ -576,15 +590,7 @@ impl Stiffness {
         #[cfg(not(target_arch = "x86_64"))]
         let (wide, narrow) = (false && cpu.avx512, false);
         // (AVX-512 takes the marked blocks of eight, the others their halves)
-        let marks = match self.regular.get(ez * per_row..(ez + 1) * per_row) {
-            Some(m) if self.regular.len() == per_row * self.dims.1 => m,
-            _ => &[],
-        };
-        let coefs = if self.coefs.len() == self.elements.len() {
-            &self.coefs[..]
-        } else {
-            &[]
-        };
+        let marks = self.row_marks(ez);
         // the element block's scratch, once per row (no clearing per block: the lanes past
         // the row's end keep the last block's finite values, computed and never scattered)
         let mut ux = [[[0.0f64; LANES]; M]; M];
@@ -597,11 +603,7 @@ impl Stiffness {
             let e0 = ez * nex + ex0;
             // a regular block (of eight, or of four: half of one) starts at node `first`
             // (its node rows `stride` apart)
-            let start = marks
-                .get(ex0 / simd::W)
-                .copied()
-                .flatten()
-                .map(|(first, stride)| (first + (ex0 % simd::W) * (M - 1), stride));
+            let start = block_start::<M>(marks, ex0);
             let regular = start.is_some();
             // a regular block of four (AVX2, portable): each element's node rows are runs
             // of `M` nodes at `first + b stride + (M - 1) l` (its map, without reading it)
@@ -616,11 +618,7 @@ impl Stiffness {
                 [0.0; LANES],
             );
             for l in 0..nl {
-                let c = match coefs.get(e0 + l) {
-                    Some(c) => *c,
-                    None => coefs_of(&self.elements[e0 + l]),
-                };
-                [sx[l], sz[l], l2m[l], lam[l], mu[l], hx2[l], hz2[l]] = c;
+                [sx[l], sz[l], l2m[l], lam[l], mu[l], hx2[l], hz2[l]] = self.coefs_at(e0 + l);
                 if let Some((first, stride)) = runs {
                     for b in 0..M {
                         let at = 2 * (first + b * stride + (M - 1) * l);
@@ -719,6 +717,27 @@ impl Stiffness {
         }
     }
 
+    /// The marks of element row `ez` (one per block of [`simd::W`] elements, set by
+    /// [`Stiffness::with_blocks`]); none where the blocks were not marked.
+    #[inline(always)]
+    fn row_marks(&self, ez: usize) -> &[Option<(usize, usize)>] {
+        let per_row = self.dims.0.div_ceil(simd::W);
+        match self.regular.get(ez * per_row..(ez + 1) * per_row) {
+            Some(m) if self.regular.len() == per_row * self.dims.1 => m,
+            _ => &[],
+        }
+    }
+
+    /// Element `e`'s constants ([`coefs_of`]): kept in `coefs` where it was filled,
+    /// computed otherwise.
+    #[inline(always)]
+    fn coefs_at(&self, e: usize) -> [f64; 7] {
+        match self.coefs.get(e) {
+            Some(c) if self.coefs.len() == self.elements.len() => *c,
+            _ => coefs_of(&self.elements[e]),
+        }
+    }
+
     /// The first node of the regular block starting at element `e0` and the node stride
     /// between its node rows (the map's regular pattern).
     #[inline(always)]
@@ -746,33 +765,16 @@ impl Stiffness {
         let mut fx = [[[0.0f64; LANES]; M]; M];
         let mut fz = [[[0.0f64; LANES]; M]; M];
         let mut g = [[[0.0f64; LANES]; M]; M];
-        // the regular blocks of this row and the elements' constants (as in
-        // [`Stiffness::row_psv`])
-        let coefs = if self.coefs.len() == self.elements.len() {
-            &self.coefs[..]
-        } else {
-            &[]
-        };
-        let per_row = nex.div_ceil(simd::W);
-        let marks = match self.regular.get(ez * per_row..(ez + 1) * per_row) {
-            Some(m) if self.regular.len() == per_row * self.dims.1 => m,
-            _ => &[],
-        };
+        // the regular blocks of this row (as in [`Stiffness::row_psv`])
+        let marks = self.row_marks(ez);
         while ex0 < nex {
             let nl = LANES.min(nex - ex0);
             let e0 = ez * nex + ex0;
             // a regular block's element node rows: runs of `M` nodes (see `row_psv`)
-            let runs = marks
-                .get(ex0 / simd::W)
-                .copied()
-                .flatten()
-                .map(|(first, stride)| (first + (ex0 % simd::W) * (M - 1), stride));
+            let runs = block_start::<M>(marks, ex0);
             let (mut cx, mut cz) = ([0.0; LANES], [0.0; LANES]);
             for l in 0..nl {
-                let [sx, sz, _, _, mu, hx2, hz2] = match coefs.get(e0 + l) {
-                    Some(c) => *c,
-                    None => coefs_of(&self.elements[e0 + l]),
-                };
+                let [sx, sz, _, _, mu, hx2, hz2] = self.coefs_at(e0 + l);
                 // (hz/2) mu sx and (hx/2) mu sz
                 cx[l] = hz2 * mu * sx;
                 cz[l] = hx2 * mu * sz;
