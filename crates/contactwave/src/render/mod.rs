@@ -181,11 +181,7 @@ impl Serialize for SummaryJson<'_> {
         let mut m = s.serialize_map(None)?;
         m.serialize_entry("scenario", self.scenario)?;
         for (k, v) in self.summary.iter() {
-            if v.is_finite() {
-                m.serialize_entry(k, &v)?;
-            } else {
-                m.serialize_entry(k, &Option::<f64>::None)?;
-            }
+            m.serialize_entry(k, &crate::analysis::json_number(v))?;
         }
         m.end()
     }

@@ -4,6 +4,7 @@
 //! with `[[probe]]` points.
 
 use super::BarStackResult;
+use crate::analysis::json_number;
 use crate::error::Result;
 use crate::render::{csv_columns, time_series, OutputFile, Rows};
 
@@ -30,10 +31,7 @@ pub fn bar_stack_files(
             // one value per interface: an array under the base name
             Some((base, _)) => per.entry(base.to_string()).or_default().push(v),
             None => {
-                obj.insert(
-                    k.to_string(),
-                    serde_json::json!(Some(v).filter(|x| x.is_finite())),
-                );
+                obj.insert(k.to_string(), json_number(v));
             }
         }
     }
@@ -42,7 +40,7 @@ pub fn bar_stack_files(
             "min_contact_pressure" => "min_contact_pressure_per_interface".to_string(),
             _ => k,
         };
-        obj.insert(key, serde_json::json!(v));
+        obj.insert(key, v.into_iter().map(json_number).collect());
     }
     let mut summary =
         serde_json::to_string_pretty(&serde_json::Value::Object(obj)).unwrap_or_default();
