@@ -11,7 +11,6 @@ pub mod svg;
 pub mod vtk;
 
 use crate::analysis::Summary;
-use serde::ser::{Serialize, SerializeMap, Serializer};
 
 /// A rendered output file: its name in the output folder and its contents.
 #[derive(Debug, Clone, PartialEq)]
@@ -171,20 +170,13 @@ pub fn pick_rows(file: OutputFile, rows: Rows) -> Option<OutputFile> {
     Some(OutputFile::new(&file.name, out))
 }
 
+/// `summary.json`'s object: the scenario, then the summary's keys in order (written by
+/// [`Summary`]'s own serializer).
+#[derive(serde::Serialize)]
 struct SummaryJson<'a> {
     scenario: &'a str,
+    #[serde(flatten)]
     summary: &'a Summary,
-}
-
-impl Serialize for SummaryJson<'_> {
-    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let mut m = s.serialize_map(None)?;
-        m.serialize_entry("scenario", self.scenario)?;
-        for (k, v) in self.summary.iter() {
-            m.serialize_entry(k, &crate::analysis::json_number(v))?;
-        }
-        m.end()
-    }
 }
 
 /// `summary.json`: `{"scenario": <file>, <summary keys in order>...}`.
