@@ -96,13 +96,16 @@ pub fn edges(length: f64, required: &[f64], h: f64) -> Vec<f64> {
     e
 }
 
-/// Index of the edge equal to `v` (within a millionth of the smallest element), if any.
-pub fn edge_index(edges: &[f64], v: f64) -> Option<usize> {
-    let hmin = edges
-        .windows(2)
-        .map(|w| w[1] - w[0])
-        .fold(f64::INFINITY, f64::min);
-    edges.iter().position(|&e| (e - v).abs() <= 1e-6 * hmin)
+/// Index of the edge nearest `v`: for a coordinate that [`edges`] was given, the edge it
+/// became (itself, or the point it was merged with, within a millionth of an element).
+pub fn edge_index(edges: &[f64], v: f64) -> usize {
+    let mut best = 0;
+    for (k, e) in edges.iter().enumerate() {
+        if (e - v).abs() < (edges[best] - v).abs() {
+            best = k;
+        }
+    }
+    best
 }
 
 impl Mesh {

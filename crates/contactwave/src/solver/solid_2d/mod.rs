@@ -622,7 +622,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         let mut lines = Vec::new();
         for (i, c) in self.cracks.iter().enumerate() {
             let line = if c.full_width {
-                let iz = mesh::edge_index(&z_edges, c.start[1]).unwrap_or(0) * n;
+                let iz = mesh::edge_index(&z_edges, c.start[1]) * n;
                 CrackLine {
                     horizontal: true,
                     line: iz,
@@ -631,9 +631,9 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                     full_width: true,
                 }
             } else if c.start[1] == c.end[1] {
-                let iz = mesh::edge_index(&z_edges, c.start[1]).unwrap_or(0) * n;
-                let a = mesh::edge_index(&x_edges, c.start[0]).unwrap_or(0) * n;
-                let b = mesh::edge_index(&x_edges, c.end[0]).unwrap_or(0) * n;
+                let iz = mesh::edge_index(&z_edges, c.start[1]) * n;
+                let a = mesh::edge_index(&x_edges, c.start[0]) * n;
+                let b = mesh::edge_index(&x_edges, c.end[0]) * n;
                 CrackLine {
                     horizontal: true,
                     line: iz,
@@ -642,9 +642,9 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                     full_width: false,
                 }
             } else {
-                let ix = mesh::edge_index(&x_edges, c.start[0]).unwrap_or(0) * n;
-                let a = mesh::edge_index(&z_edges, c.start[1]).unwrap_or(0) * n;
-                let b = mesh::edge_index(&z_edges, c.end[1]).unwrap_or(0) * n;
+                let ix = mesh::edge_index(&x_edges, c.start[0]) * n;
+                let a = mesh::edge_index(&z_edges, c.start[1]) * n;
+                let b = mesh::edge_index(&z_edges, c.end[1]) * n;
                 CrackLine {
                     horizontal: false,
                     line: ix,
@@ -908,7 +908,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                     angle,
                     z,
                 } => {
-                    let iz = mesh::edge_index(&mesh.z_edges, z).unwrap_or(1).max(1);
+                    let iz = mesh::edge_index(&mesh.z_edges, z).max(1);
                     let zmid = 0.5 * (mesh.z_edges[iz - 1] + mesh.z_edges[iz]);
                     plane_waves.push(plane_wave::Injection::new(
                         &mesh,

@@ -169,7 +169,7 @@ impl Injection {
         let (bx, bz) = offset;
         let nx_in = stiffness.dims.0;
         let comps = if stiffness.antiplane { 1 } else { 2 };
-        let ez_line = super::mesh::edge_index(&mesh.z_edges, z_line)
+        let ez_line = Some(super::mesh::edge_index(&mesh.z_edges, z_line))
             .filter(|&k| k > 0 && k + 1 < mesh.z_edges.len())
             .ok_or_else(|| {
                 Error::invalid(

@@ -213,10 +213,10 @@ mod tests {
         let z_edges = mesh::edges(0.01, &[0.005], h);
         let cracks = [mesh::CrackLine {
             horizontal: true,
-            line: mesh::edge_index(&z_edges, 0.005).unwrap() * order,
+            line: mesh::edge_index(&z_edges, 0.005) * order,
             tips: (
-                mesh::edge_index(&x_edges, 0.015).unwrap() * order,
-                mesh::edge_index(&x_edges, 0.025).unwrap() * order,
+                mesh::edge_index(&x_edges, 0.015) * order,
+                mesh::edge_index(&x_edges, 0.025) * order,
             ),
             open: (false, false),
             full_width: false,
