@@ -315,6 +315,29 @@ fn bad_input_is_an_error_naming_the_key() {
             "element_size = 0.1e-3\nprestress = { zz = -1e6 }",
             "crack.0.static_pressure",
         ),
+        // keys that would be ignored are refused: a preset's Poisson ratio, a pre-stress
+        // component of the other wave type, `vertical` beside an `end`
+        (
+            "material = \"aluminium\"",
+            "material = \"aluminium\"\npoisson_ratio = 0.45",
+            "field `layer.0.poisson_ratio` = 0.45",
+        ),
+        (
+            "element_size = 0.1e-3",
+            "element_size = 0.1e-3\nprestress = { zz = -1e6, yz = 5e5 }",
+            "field `model.prestress.yz`",
+        ),
+        (
+            "end = [1.3e-3, 0.5e-3]",
+            "end = [1.3e-3, 0.5e-3]\nvertical = true",
+            "field `crack.0.vertical`",
+        ),
+        // two receivers whose summary keys would collide (`top_A2_over_A1`)
+        (
+            "name = \"under\"",
+            "name = \"top_A2_over\"",
+            "receiver `top` writes `top_A2_over_A1` too",
+        ),
         // absorbing layers in mm given in m: a mesh beyond the budget names their key
         (
             "duration = 0.6e-6",
@@ -680,4 +703,25 @@ fn a_surface_breaking_crack_runs_and_is_refused_under_an_absorbing_top() {
         .to_string();
     assert!(err.contains("crack.0.start"), "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
+}
+
+/// An end within a millionth of an element of the start is merged with it (one element
+/// edge): a crack with no node to split is refused when the mesh is built, not read as a
+/// crack from another edge (it once became one from x = 0).
+#[test]
+fn a_crack_end_merged_with_its_start_is_refused() {
+    for end in ["0.70000000001e-3", "0.69999999999e-3"] {
+        let text = SMALL.replace("end = [1.3e-3, 0.5e-3]", &format!("end = [{end}, 0.5e-3]"));
+        let t = model::from_toml_str(&text, "short.toml").unwrap();
+        let err = t
+            .base()
+            .and_then(|b| b.run(&RunControl::default()))
+            .map(|_| ())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("short.toml: field `crack.0.length`"),
+            "{end}: {err}"
+        );
+    }
 }

@@ -106,13 +106,41 @@ pub fn set_shear_harmonics(
 /// velocity), `A2_over_A1`, `A3_over_A1` and `beta_star` = A2/A1^2 (the inverse of the
 /// record's unit).
 pub fn set_record_harmonics(s: &mut Summary, prefix: &str, h: &[f64; 6]) {
-    for (n, a) in h.iter().enumerate().skip(1) {
-        s.set(&format!("{prefix}A{n}"), *a);
-    }
     let a1 = h[1];
-    s.set(&format!("{prefix}A2_over_A1"), h[2] / a1);
-    s.set(&format!("{prefix}A3_over_A1"), h[3] / a1);
-    s.set(&format!("{prefix}beta_star"), h[2] / (a1 * a1));
+    let values = [
+        h[1],
+        h[2],
+        h[3],
+        h[4],
+        h[5],
+        h[2] / a1,
+        h[3] / a1,
+        h[2] / (a1 * a1),
+    ];
+    for (key, v) in RECORD_KEYS.iter().zip(values) {
+        s.set(&format!("{prefix}{key}"), v);
+    }
+}
+
+/// The keys [`set_record_harmonics`] writes after its prefix, in order.
+pub const RECORD_KEYS: [&str; 8] = [
+    "A1",
+    "A2",
+    "A3",
+    "A4",
+    "A5",
+    "A2_over_A1",
+    "A3_over_A1",
+    "beta_star",
+];
+
+/// The first key that two records named `a` and `b` (prefixes `a_` and `b_`) would both
+/// write by [`set_record_harmonics`] (e.g. `p_A2_over_A1`, for `p` and `p_A2_over`); none
+/// where their keys differ.
+pub fn record_keys_shared(a: &str, b: &str) -> Option<String> {
+    let keys = |name: &str| RECORD_KEYS.map(|k| format!("{name}_{k}"));
+    let theirs = keys(b);
+    keys(a).into_iter().find(|k| theirs.contains(k))
 }
 
 /// The reflected wave's summary keys: `A1_over_Ainc` ... `A5_over_Ainc`, `Asub_over_Ainc`,
@@ -224,5 +252,34 @@ mod tests {
         }
         assert_eq!(back["steps"].as_i64(), Some(15708));
         assert!(back["half"].is_f64() && back["negative_zero"].is_f64());
+    }
+
+    /// Two records share a key exactly when one name is the other's plus `_A2_over` or
+    /// `_A3_over` (or the same name).
+    #[test]
+    fn records_whose_keys_collide_are_found() {
+        assert_eq!(
+            record_keys_shared("p", "p_A2_over").as_deref(),
+            Some("p_A2_over_A1")
+        );
+        assert_eq!(
+            record_keys_shared("q_A3_over", "q").as_deref(),
+            Some("q_A3_over_A1")
+        );
+        assert_eq!(record_keys_shared("top", "top").as_deref(), Some("top_A1"));
+        for (a, b) in [
+            ("top", "top_far"),
+            ("p", "p_A2"),
+            ("p", "p_beta"),
+            ("a_b", "a"),
+        ] {
+            assert_eq!(record_keys_shared(a, b), None, "{a} {b}");
+        }
+        let mut s = Summary::new();
+        set_record_harmonics(&mut s, "p_", &[0.0, 2.0, 1.0, 0.5, 0.25, 0.125]);
+        let keys: Vec<&str> = s.keys().collect();
+        assert_eq!(keys.len(), RECORD_KEYS.len());
+        assert_eq!(s.get("p_A2_over_A1"), Some(0.5));
+        assert_eq!(s.get("p_beta_star"), Some(0.25));
     }
 }

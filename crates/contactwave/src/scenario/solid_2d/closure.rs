@@ -41,6 +41,27 @@ pub struct PrestressSpec {
 }
 
 impl PrestressSpec {
+    /// An error naming the first component the run's wave type has not (P-SV: `xx`, `zz`,
+    /// `xz`; SH: `xx`, `zz`, `xy`, `yz`), given non-zero: it would be ignored.
+    pub fn check(&self, antiplane: bool, file: &str) -> Result<()> {
+        let sh = [("xz", self.xz)];
+        let psv = [("xy", self.xy), ("yz", self.yz)];
+        let foreign: &[(&str, f64)] = if antiplane { &sh } else { &psv };
+        match foreign.iter().copied().find(|(_, v)| *v != 0.0) {
+            Some((c, v)) => Err(inv(
+                file,
+                format!("model.prestress.{c}"),
+                v,
+                if antiplane {
+                    "xx, zz, xy and yz in an antiplane (SH) run"
+                } else {
+                    "xx, zz and xz in a plane-strain (P-SV) run"
+                },
+            )),
+            None => Ok(()),
+        }
+    }
+
     /// The static state `(p0, q0)` (Pa) of a crack whose line is horizontal (or vertical),
     /// in a plane-strain (or antiplane) run.
     pub fn on_line(&self, horizontal: bool, antiplane: bool) -> (f64, f64) {

@@ -10,12 +10,21 @@ use crate::solver::solid_2d::Elastic;
 pub(super) fn material(l: &LayerSpec, file: &str, key: &str) -> Result<Elastic> {
     let k = |f: &str| format!("{key}.{f}");
     if let Some(name) = &l.material {
-        if l.youngs_modulus.is_some() || l.p_speed.is_some() || l.s_speed.is_some() {
+        let moduli = [
+            ("youngs_modulus", l.youngs_modulus),
+            ("poisson_ratio", l.poisson_ratio),
+            ("p_speed", l.p_speed),
+            ("s_speed", l.s_speed),
+        ];
+        if let Some((field, Some(v))) = moduli.into_iter().find(|(_, v)| v.is_some()) {
             return Err(inv(
                 file,
-                k("material"),
-                name,
-                "give a preset or the moduli, not both",
+                k(field),
+                v,
+                &format!(
+                    "no value beside `material = \"{name}\"`: give a preset (only its \
+                     `density` may be changed) or the moduli, not both"
+                ),
             ));
         }
         let m = Material::preset(name).ok_or_else(|| {

@@ -7,7 +7,7 @@
 mod closure;
 mod material;
 
-use crate::analysis::{AnalysisMethod, Gate};
+use crate::analysis::{record_keys_shared, AnalysisMethod, Gate};
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::law::point::SharedLaw;
@@ -625,9 +625,21 @@ impl Solid2dScenario {
             }
         };
         let depth = bottom;
+        if let Some(pre) = &m.prestress {
+            pre.check(wave == WaveType::Sh, file)?;
+        }
         let mut cracks = Vec::new();
         for (i, c) in spec.cracks.iter().enumerate() {
             let key = format!("crack.{i}");
+            if c.vertical && c.length.is_none() {
+                return Err(inv(
+                    file,
+                    format!("{key}.vertical"),
+                    true,
+                    "only with `length` (an `end` gives the direction itself; a full-width \
+                     crack is horizontal)",
+                ));
+            }
             let end = match (c.end, c.length, c.full_width) {
                 (None, None, true) => [m.width, c.start[1]],
                 (_, _, true) => {
@@ -811,6 +823,21 @@ impl Solid2dScenario {
                         format!("{key}.name"),
                         &name,
                         "a name no other receiver has",
+                    ));
+                }
+                // (`p` and `p_A2_over` would both write `p_A2_over_A1` into the summary)
+                if let Some((other, shared)) = receivers
+                    .iter()
+                    .find_map(|o| record_keys_shared(&o.name, &name).map(|k| (&o.name, k)))
+                {
+                    return Err(inv(
+                        file,
+                        format!("{key}.name"),
+                        &name,
+                        &format!(
+                            "a name whose summary keys differ from every other receiver's \
+                             (receiver `{other}` writes `{shared}` too)"
+                        ),
                     ));
                 }
                 if !region.contains(at) {
