@@ -16,10 +16,15 @@ mod commands;
 use clap::{Parser, Subcommand};
 use commands::{
     analyze, bench, convergence, fit, identify, law, merge, reproduce, run, sweep, validate,
-    EXIT_FAILED, EXIT_INTERRUPTED, EXIT_INVALID_INPUT,
+    EXIT_FAILED, EXIT_INTERRUPTED, EXIT_INVALID_INPUT, EXIT_OUTPUT_CLOSED,
 };
 use contactwave::Error;
+use std::io::Write;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Set when a print found standard output or error closed by its reader (a broken pipe).
+static OUTPUT_CLOSED: AtomicBool = AtomicBool::new(false);
 
 const AFTER_HELP: &str = "\
 Units are SI throughout: Pa (stress, p0, amplitude), m (gap, probe position), s, Hz,
@@ -79,8 +84,17 @@ fn main() -> ExitCode {
             .location()
             .map(|l| format!(" at {}:{}", l.file(), l.line()))
             .unwrap_or_default();
+        // `println!` into a pipe whose reader has gone (`| head`): not a bug, stop silently
+        if msg.starts_with("failed printing to std") && msg.contains("Broken pipe") {
+            OUTPUT_CLOSED.store(true, Ordering::SeqCst);
+            return;
+        }
         let msg = msg.replace(['\n', '\r'], " ");
-        eprintln!("error: internal error (panic{at}): {msg}");
+        // (never a panic in the hook: a closed stderr is ignored)
+        let _ = writeln!(
+            std::io::stderr(),
+            "error: internal error (panic{at}): {msg}"
+        );
     }));
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| dispatch(cli.command)))
         .unwrap_or_else(|_| {
@@ -88,6 +102,9 @@ fn main() -> ExitCode {
                 message: "the command stopped on a bug (see the line above)".into(),
             })
         });
+    if OUTPUT_CLOSED.load(Ordering::SeqCst) {
+        return ExitCode::from(EXIT_OUTPUT_CLOSED);
+    }
     match result {
         Ok(code) => ExitCode::from(code),
         Err(e) => {
@@ -99,7 +116,7 @@ fn main() -> ExitCode {
                 _ => EXIT_INVALID_INPUT,
             };
             let msg = e.to_string().replace(['\n', '\r'], " ");
-            eprintln!("error: {msg}");
+            let _ = writeln!(std::io::stderr(), "error: {msg}");
             ExitCode::from(code)
         }
     }

@@ -608,3 +608,38 @@ fn csv_cells_that_are_not_numbers_name_their_line_and_column() {
     assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// A reader that goes away (`contactwave ... | head`): with standard output, or standard
+/// output and error, a pipe whose reader is closed, the command stops silently with 141
+/// (128 + SIGPIPE, as `cat` does): no "internal error", no abort (134).
+#[test]
+fn a_closed_output_pipe_stops_the_command_silently_with_141() {
+    let dir = tmpdir("closed_pipe");
+    let scenario = dir.join("half_space.toml");
+    std::fs::write(&scenario, HALF_SPACE).unwrap();
+    for close_stderr in [false, true] {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let mut cmd = bin();
+        cmd.arg("run")
+            .arg(&scenario)
+            .arg("--out")
+            .arg(dir.join(format!("out_{close_stderr}")));
+        if close_stderr {
+            cmd.stderr(writer.try_clone().unwrap());
+        } else {
+            cmd.stderr(Stdio::piped());
+        }
+        let out = cmd.stdout(writer).stdin(Stdio::null()).output().unwrap();
+        assert_eq!(
+            out.status.code(),
+            Some(141),
+            "stderr closed: {close_stderr}"
+        );
+        assert!(
+            out.stderr.is_empty(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}

@@ -28,12 +28,15 @@ pub const EXIT_VALIDATION_FAILED: u8 = 1;
 /// Exit code: a failed computation: the work finished but some of its points failed (a
 /// sweep without `--tolerate-failures`), or a simulation failed numerically (or on a bug);
 /// the same code as [`EXIT_VALIDATION_FAILED`]. No command exits with a code other than
-/// 0, 1, 2 or 130.
+/// 0, 1, 2, 130 or 141.
 pub const EXIT_FAILED: u8 = 1;
 /// Exit code: invalid input (scenario or sweep file, missing file, output path, I/O).
 pub const EXIT_INVALID_INPUT: u8 = 2;
 /// Exit code: interrupted (Ctrl-C).
 pub const EXIT_INTERRUPTED: u8 = 130;
+/// Exit code: standard output or error closed by its reader (`contactwave ... | head`):
+/// the command stops silently, as `cat` does (128 + SIGPIPE).
+pub const EXIT_OUTPUT_CLOSED: u8 = 141;
 
 /// Refuse an output path that exists and is not a folder (before any work is done).
 pub fn check_out_dir(out: &Path) -> contactwave::Result<()> {
