@@ -86,6 +86,34 @@ fn run_writes_summary_and_timeseries() {
     let _ = std::fs::remove_dir_all(d);
 }
 
+/// `law` on a 2D scenario draws each crack's law at its static state: the SH example's
+/// Coulomb crack (p0 = 1 MPa, mu = 0.3) slides at mu p0 = 0.3 MPa; `convergence` refuses
+/// the kind by name.
+#[test]
+fn law_draws_each_crack_of_a_2d_scenario() {
+    let d = tmpdir("law_2d");
+    let scenario = examples().join("solid_2d/sh_friction.toml");
+    let out = d.join("law");
+    let o = cli("law", &scenario, &out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("law_tangential_0.csv")).unwrap();
+    let tau_max = csv
+        .lines()
+        .skip(1)
+        .filter_map(|l| l.split(',').nth(1)?.parse::<f64>().ok())
+        .fold(0.0f64, f64::max);
+    assert!((tau_max - 0.3e6).abs() < 1e-6 * 0.3e6, "{tau_max}");
+    assert!(out.join("law_curve_0.csv").is_file());
+    let o = bin().args(["convergence"]).arg(&scenario).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("field `model.kind` = \"solid_2d\""),
+        "{}",
+        stderr(&o)
+    );
+    let _ = std::fs::remove_dir_all(d);
+}
+
 /// The quantities of a run headline (`contactwave run`) that carry a physical unit, and
 /// the unit that follows their number (friction dissipation: J over a bar stack's area,
 /// J/m^2 on a half-space).

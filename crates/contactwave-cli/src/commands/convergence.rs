@@ -7,6 +7,7 @@
 use super::{check_out_dir, output_file, progress_bar, read_table, EXIT_OK, STEPS_TEMPLATE};
 use contactwave::output;
 use contactwave::scenario::bar_stack::BarStackScenario;
+use contactwave::scenario::solid_2d::Solid2dScenario;
 use contactwave::study::convergence::{run_convergence, ConvergenceMethod, ConvergenceSpec};
 use contactwave::Error;
 use std::path::PathBuf;
@@ -49,11 +50,18 @@ pub struct Args {
 pub fn run(args: Args) -> contactwave::Result<u8> {
     let (path, out) = (args.scenario.as_path(), args.out.as_deref());
     let table = read_table(path)?;
-    if BarStackScenario::is_bar_stack(&table) {
+    let other = if BarStackScenario::is_bar_stack(&table) {
+        Some("\"bar_stack\"")
+    } else if Solid2dScenario::is_solid_2d(&table) {
+        Some("\"solid_2d\" (its convergence: docs/model.md section 15.4 and `validate`)")
+    } else {
+        None
+    };
+    if let Some(kind) = other {
         return Err(Error::invalid(
             path.display().to_string(),
             "model.kind",
-            "\"bar_stack\"",
+            kind,
             "a half-space scenario (the study compares with the exact solver)",
         ));
     }

@@ -3,15 +3,19 @@
 //! tangential part DIR/law_tangential.csv (tangential gap m, shear stress Pa) and
 //! DIR/law_tangential.svg; prints `wrote PATH` per file. For a bar stack, the same files
 //! per interface with its number before the extension (`law_curve_0.csv`, ...; the
-//! obstacle contact last), each law at its interface's static pressure.
+//! obstacle contact last), each law at its interface's static pressure; for a 2D scenario
+//! (`[model] kind = "solid_2d"`), per crack (`law_curve_0.csv`, `law_tangential_0.csv`,
+//! ...), each law at the crack's static pressure (its closure table's values aside).
 
 use super::{check_out_dir, EXIT_OK};
 use contactwave::output;
 use contactwave::scenario::bar_stack::BarStackScenario;
 use contactwave::scenario::read_table;
-use contactwave::scenario::Scenario;
+use contactwave::scenario::solid_2d::{Solid2dScenario, Solid2dSpec};
+use contactwave::scenario::{BuildCache, Scenario};
 use contactwave::solver::bar_stack::End;
-use std::path::PathBuf;
+use contactwave::Error;
+use std::path::{Path, PathBuf};
 
 /// Write the contact law of a scenario as law_curve.csv (gap m, stress Pa) and
 /// law_curve.svg into DIR.
@@ -41,13 +45,30 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         let mut files = Vec::new();
         for (i, law) in laws.enumerate() {
             let tl = tangential.get(i).copied().flatten().map(|t| &**t);
-            for mut f in output::law_files_with(law, tl)? {
-                f.name = match f.name.rsplit_once('.') {
-                    Some((stem, ext)) => format!("{stem}_{i}.{ext}"),
-                    None => format!("{}_{i}", f.name),
-                };
-                files.push(f);
-            }
+            files.extend(numbered(output::law_files_with(law, tl)?, i));
+        }
+        files
+    } else if Solid2dScenario::is_solid_2d(&table) {
+        let file = args.scenario.display().to_string();
+        let spec = Solid2dSpec::from_table(table, &file)?;
+        let dir = args.scenario.parent().unwrap_or(Path::new("."));
+        let s = Solid2dScenario::from_spec(spec, &file, dir, &BuildCache::new())?;
+        if s.problem.cracks.is_empty() {
+            return Err(Error::invalid(
+                file,
+                "crack",
+                "none",
+                "at least one `[[crack]]` (a 2D scenario's contact laws are its cracks')",
+            ));
+        }
+        check_out_dir(&args.out)?;
+        let mut files = Vec::new();
+        for (i, c) in s.problem.cracks.iter().enumerate() {
+            let law = &c.law;
+            files.extend(numbered(
+                output::law_files_with(&law.normal, Some(&law.tangential))?,
+                i,
+            ));
         }
         files
     } else {
@@ -58,4 +79,18 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     };
     super::write_out(&args.out, "law", &files)?;
     Ok(EXIT_OK)
+}
+
+/// `files` with the number `i` before each name's extension (`law_curve_0.csv`).
+fn numbered(files: Vec<output::OutputFile>, i: usize) -> Vec<output::OutputFile> {
+    files
+        .into_iter()
+        .map(|mut f| {
+            f.name = match f.name.rsplit_once('.') {
+                Some((stem, ext)) => format!("{stem}_{i}.{ext}"),
+                None => format!("{}_{i}", f.name),
+            };
+            f
+        })
+        .collect()
 }

@@ -395,7 +395,7 @@ impl Solid2dScenario {
                     format!(
                         "over {LONGEST_WAVELENGTH} P wavelengths at f0 ({wavelength:.3e} m): the \
                          layers absorb no better and their nodes cost time; a thickness in mm? \
-                         (SI units: m; the default is 10 elements)"
+                         (SI units: m; the default is 4 elements)"
                     ),
                 );
             }

@@ -67,7 +67,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 "model.pml_thickness",
                 self.pml.thickness,
                 "lower `model.pml_thickness` (the absorbing layers hold most of the mesh; \
-                 the default is 10 elements)",
+                 the default is 4 elements)",
             )
         } else {
             (

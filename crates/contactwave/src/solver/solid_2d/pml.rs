@@ -27,6 +27,8 @@ use rayon::prelude::*;
 
 /// Default thickness of the layers, in elements of the largest element size: -48 dB or
 /// less at normal incidence at the default resolution (docs/model.md section 15.7).
+/// (Named in the messages of `estimate.rs` and `scenario/plausible.rs`: "the default is 4
+/// elements".)
 pub const DEFAULT_ELEMENTS: f64 = 4.0;
 /// Default target reflection `R0` of the damping profile (the continuum's reflection at
 /// normal incidence of a wave at c_P).
