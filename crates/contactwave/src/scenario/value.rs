@@ -103,24 +103,34 @@ pub fn set_dotted(table: &mut toml::Table, key: &str, value: toml::Value) -> Res
         let mut entry = cur
             .entry(p.to_string())
             .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-        // `interface.1.compression`: an index into an array of tables
+        // `interface.1.compression`: an index into an array of tables; none before a key
+        // where the array holds one table (`source.angle` is `source.0.angle`)
         if let toml::Value::Array(items) = entry {
             let index = parts.get(k).and_then(|i| i.parse::<usize>().ok());
             let len = items.len();
-            match index.and_then(|i| items.get_mut(i)) {
-                Some(item) if k + 1 < parts.len() => {
+            let at = match index {
+                Some(i) if i < len && k + 1 < parts.len() => {
                     k += 1;
-                    entry = item;
+                    Some(i)
                 }
-                _ => {
+                None if len == 1 => Some(0),
+                _ => None,
+            };
+            match at {
+                Some(i) => entry = &mut items[i],
+                None => {
                     return Err(Error::invalid(
                         "<sweep>",
                         "parameter",
                         key,
-                        format!(
-                            "`{p}` is an array of {len} tables: follow it with an index \
-                             0..{len} and a key"
-                        ),
+                        match len {
+                            0 => format!("`{p}` is an empty array: there is no table to set"),
+                            _ => format!(
+                                "`{p}` is an array of {len} tables: follow it with an index \
+                                 from 0 to {} and a key",
+                                len - 1
+                            ),
+                        },
                     ))
                 }
             }
@@ -302,4 +312,28 @@ fn value_at<'a>(table: &'a toml::Table, path: &[String]) -> Option<&'a toml::Val
         cur = Some(v);
     }
     cur
+}
+
+#[cfg(test)]
+mod tests {
+    use super::set_dotted;
+
+    /// An array of one table takes keys with or without its index; one of several needs
+    /// the index, and an index past the end is an error naming the last one.
+    #[test]
+    fn dotted_keys_reach_arrays_of_tables() {
+        let mut t: toml::Table =
+            toml::from_str("[[source]]\nx0 = 1.0\n[[layer]]\n[[layer]]\n").unwrap();
+        set_dotted(&mut t, "source.angle", toml::Value::Float(30.0)).unwrap();
+        set_dotted(&mut t, "source.0.x1", toml::Value::Float(2.0)).unwrap();
+        let s = &t["source"].as_array().unwrap()[0];
+        assert_eq!(s["angle"].as_float(), Some(30.0));
+        assert_eq!(s["x1"].as_float(), Some(2.0));
+        set_dotted(&mut t, "layer.1.density", toml::Value::Float(7.8e3)).unwrap();
+        assert_eq!(t["layer"][1]["density"].as_float(), Some(7.8e3));
+        let e = set_dotted(&mut t, "layer.density", toml::Value::Float(1.0)).unwrap_err();
+        assert!(e.to_string().contains("an index from 0 to 1"), "{e}");
+        let e = set_dotted(&mut t, "source.1.x0", toml::Value::Float(1.0)).unwrap_err();
+        assert!(e.to_string().contains("from 0 to 0"), "{e}");
+    }
 }
