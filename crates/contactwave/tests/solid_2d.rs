@@ -725,3 +725,25 @@ fn a_crack_end_merged_with_its_start_is_refused() {
         );
     }
 }
+
+/// A run whose records exceed the memory budget because of the scenario's own
+/// `time_step` names that key (not `model.duration`), and nothing else is printed first.
+#[test]
+fn a_time_step_that_makes_the_records_too_large_is_named() {
+    let text = SMALL.replace(
+        "element_size = 0.1e-3",
+        "element_size = 0.1e-3\ntime_step = 1e-16",
+    );
+    let t = model::from_toml_str(&text, "tiny_step.toml").unwrap();
+    let err = t
+        .base()
+        .and_then(|b| b.run(&RunControl::default()))
+        .map(|_| ())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.starts_with("tiny_step.toml: field `model.time_step` = 1e-16: needs about"),
+        "{err}"
+    );
+    assert!(err.contains("raise `model.time_step`"), "{err}");
+}

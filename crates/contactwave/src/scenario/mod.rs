@@ -687,7 +687,11 @@ pub(crate) fn build_wave(
                     file,
                     key("amplitude"),
                     "(missing)",
-                    "give `amplitude` (Pa, > 0) or `xi` (> 0)",
+                    // (xi, the amplitude relative to the static pressure, needs an interface)
+                    match xi_ref {
+                        Some(_) => "give `amplitude` (Pa, > 0) or `xi` (> 0)",
+                        None => "give `amplitude` (> 0: Pa, or N/m for a 2D point force)",
+                    },
                 ));
             }
             None

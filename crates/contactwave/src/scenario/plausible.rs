@@ -361,7 +361,12 @@ impl Solid2dScenario {
         }
         // a run far longer than usual (a crack end, a receiver or a layer that forces tiny
         // elements, or a long duration): say how long before it starts
-        if let Ok(e) = p.memory_estimate(&self.file) {
+        // (not for a run beyond the memory budget: its refusal says what to change)
+        let within = |bytes: f64| crate::budget::limit().is_ok_and(|l| bytes <= l);
+        if let (Ok(e), Ok(true)) = (
+            p.memory_estimate(&self.file),
+            self.memory_bytes().map(within),
+        ) {
             let updates = e.nodes * e.steps;
             if updates > LONG_RUN_UPDATES {
                 w.warn(

@@ -248,15 +248,35 @@ impl Solid2dScenario {
         } else {
             let t = self.problem.duration;
             let dt = e.stable_time_step.min(self.problem.max_time_step);
-            (
-                "model.duration",
-                t,
-                format!(
-                    "lower `model.duration`; the step, {dt:.2e} s, is set by the smallest \
-                     element, which a short crack or layer or a receiver near a mesh line \
-                     makes small"
+            // what sets the step: the scenario's `time_step`, the phase accuracy at the
+            // highest analysed harmonic, or the smallest element's stability
+            let by_accuracy = self.problem.max_time_step < e.stable_time_step;
+            match (by_accuracy, self.spec.model.time_step) {
+                (true, Some(ts)) => (
+                    "model.time_step",
+                    ts,
+                    "raise `model.time_step` (fewer steps; at most the stable step) or lower \
+                     `model.duration`"
+                        .to_string(),
                 ),
-            )
+                (true, None) => (
+                    "model.duration",
+                    t,
+                    format!(
+                        "lower `model.duration`; the step, {dt:.2e} s, is set by the phase \
+                         accuracy at the highest analysed harmonic (`model.harmonic`)"
+                    ),
+                ),
+                (false, _) => (
+                    "model.duration",
+                    t,
+                    format!(
+                        "lower `model.duration`; the step, {dt:.2e} s, is set by the smallest \
+                         element, which a short crack or layer or a receiver near a mesh \
+                         line makes small"
+                    ),
+                ),
+            }
         };
         let bytes = self.memory_estimate()?.unwrap_or(0.0);
         crate::budget::check_or(
@@ -493,12 +513,7 @@ impl Model for Solid2dScenario {
     }
 
     fn memory_estimate(&self) -> Result<Option<f64>> {
-        let e = self.problem.memory_estimate(&self.file)?;
-        let runs = match self.spec.analysis.method {
-            AnalysisMethod::PulseInversion | AnalysisMethod::LinearReference => 2.0,
-            AnalysisMethod::BandPeak | AnalysisMethod::PlateauFit => 1.0,
-        };
-        Ok(Some(runs * e.total()))
+        self.memory_bytes().map(Some)
     }
 
     fn as_any(&self) -> &dyn Any {

@@ -373,6 +373,20 @@ fn side(file: &str, field: &str, v: &str, periodic: bool) -> Result<Side> {
 }
 
 impl Solid2dScenario {
+    /// The simulations one run holds at once: two where its analysis method needs a twin
+    /// (pulse inversion, linear reference), else one.
+    pub fn runs(&self) -> f64 {
+        match self.spec.analysis.method {
+            AnalysisMethod::PulseInversion | AnalysisMethod::LinearReference => 2.0,
+            AnalysisMethod::BandPeak | AnalysisMethod::PlateauFit => 1.0,
+        }
+    }
+
+    /// The memory a run needs, bytes ([`Solid2d::memory_estimate`] times [`Self::runs`]).
+    pub fn memory_bytes(&self) -> Result<f64> {
+        Ok(self.runs() * self.problem.memory_estimate(&self.file)?.total())
+    }
+
     /// Does this TOML table describe a 2D scenario?
     pub fn is_solid_2d(table: &toml::Table) -> bool {
         table
