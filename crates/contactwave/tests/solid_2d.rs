@@ -747,3 +747,20 @@ fn a_time_step_that_makes_the_records_too_large_is_named() {
     );
     assert!(err.contains("raise `model.time_step`"), "{err}");
 }
+
+/// A run that ends before its source's burst does is warned about (its harmonics are those
+/// of a cut burst), and a run that holds the burst is not.
+#[test]
+fn a_duration_shorter_than_the_burst_is_warned_about() {
+    let fields = |duration: &str| -> Vec<String> {
+        let text = SMALL.replace("duration = 0.6e-6", &format!("duration = {duration}"));
+        let m = model::from_toml_str(&text, "short.toml")
+            .unwrap()
+            .base()
+            .unwrap();
+        m.warnings().into_iter().map(|w| w.field).collect()
+    };
+    // the burst: 2 cycles at 10 MHz, 0.2 us
+    assert!(fields("0.1e-6").contains(&"model.duration".to_string()));
+    assert!(!fields("0.6e-6").contains(&"model.duration".to_string()));
+}

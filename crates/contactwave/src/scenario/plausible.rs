@@ -5,7 +5,7 @@
 
 use super::bar_stack::BarStackScenario;
 use super::solid_2d::{Solid2dScenario, DEFAULT_HARMONIC, DISPERSION_BUDGET};
-use super::Scenario;
+use super::{IncidentKind, Scenario};
 use crate::solver::solid_2d::dispersion::{element_size_for, worst_phase_error};
 use crate::solver::solid_2d::Side;
 use std::fmt;
@@ -334,6 +334,29 @@ impl Solid2dScenario {
                         ),
                     );
                 }
+            }
+        }
+        // a run that ends before a source's burst does: the harmonics of a cut burst
+        for (i, src) in spec.sources.iter().enumerate() {
+            let burst = match (src.signal.kind, src.signal.frequency) {
+                (IncidentKind::File, _) | (_, None) => continue,
+                (_, Some(f)) => {
+                    src.signal.delay.unwrap_or(0.0) + src.signal.cycles.unwrap_or(15.0) / f
+                }
+            };
+            if burst.is_finite() && p.duration < burst {
+                w.warn(
+                    "model.duration".into(),
+                    format!("{} s", p.duration),
+                    format!(
+                        "shorter than source {i}'s burst ({burst:.3e} s with its delay): the \
+                         run ends before the source does, and its harmonics are those of a \
+                         cut burst (A2/A1 of a few samples means nothing); a duration in us? \
+                         write \"{} us\" or {:e} (SI units: s)",
+                        p.duration,
+                        p.duration * 1e-6
+                    ),
+                );
             }
         }
         // a velocity receiver on a rigid side records zeros (no harmonics to analyse)
