@@ -46,6 +46,7 @@ __all__ = [
     "Spectrum",
     "load_scenario",
     "scenario_from_dict",
+    "scenario_from_toml",
     "run",
     "run_bar_stack",
     "law_curve",
@@ -152,15 +153,28 @@ def scenario_from_dict(d: Mapping[str, Any], file: str = "<dict>") -> Scenario:
     return _core.scenario_from_json(_to_json(d, file), file)
 
 
+def scenario_from_toml(text: str, file: str = "<toml>") -> Scenario:
+    """Validate a scenario given as TOML text, the contents of a scenario file (e.g. a
+    notebook cell's triple-quoted string). ``file`` names it in error messages; relative
+    paths in it resolve against its folder (``<toml>``: the working directory). Raises
+    ``ValueError`` naming the line of a TOML syntax error, or the field of an invalid value.
+    """
+    return _core.scenario_from_toml(text, file)
+
+
 def _as_scenario(s: ScenarioLike) -> Scenario:
     if isinstance(s, Scenario):
         return s
     if isinstance(s, Mapping):
         return scenario_from_dict(s)
+    # a string with a line break is a scenario's text, never a file name
+    if isinstance(s, str) and "\n" in s:
+        return scenario_from_toml(s)
     if isinstance(s, (str, os.PathLike)):
         return load_scenario(s)
     raise TypeError(
-        f"expected a Scenario, a dict or a scenario file path, not {type(s).__name__}"
+        f"expected a Scenario, a dict, a scenario file path or its TOML text, not "
+        f"{type(s).__name__}"
     )
 
 
@@ -609,10 +623,12 @@ class Solid2dResult:
         self, kind: str = "receivers", ax: Any = None, receivers: Any = None, component: Any = None
     ) -> Any:
         """One matplotlib panel into ``ax`` (a new figure when ``None``); returns the
-        Axes (needs the ``plot`` extra). ``kind``: ``"receivers"`` (the velocities against
+        Axes (needs the ``plot`` extra). ``kind``: ``"receivers"`` (the records against
         ``t``) or ``"spectrum"`` (each record's spectrum as ``cw.analyze`` gives it, log
         scale, dotted markers at n f0); ``receivers`` (a name or names) and ``component``
-        (``"x"``, ``"z"``, ``"y"`` or a list) choose the records (default all)."""
+        (``"x"``, ``"z"``, ``"y"``, or a stress component, or a list) choose the records:
+        by default every velocity receiver, or every stress receiver in a run that has
+        only those; names of stress receivers only draw stresses (Pa)."""
         from ._plot import solid_2d
 
         return solid_2d(self, kind, ax, receivers, component)
@@ -664,11 +680,12 @@ def run_bar_stack(
 
 
 def run(scenario: ScenarioLike) -> Union[Result, BarStackResult, "Solid2dResult"]:
-    """Simulate one scenario (a :class:`Scenario`, a dict, or a TOML file path) and return
-    a :class:`Result`: the arrays of ``timeseries.csv`` and ``probe.csv``, the summary of
-    ``summary.json``, ``spectrum()`` and ``harmonics()``. A bar-stack scenario (``[model]
-    kind = "bar_stack"``) gives a :class:`BarStackResult` (as :func:`run_bar_stack`), a 2D
-    scenario (``kind = "solid_2d"``) a :class:`Solid2dResult`.
+    """Simulate one scenario (a :class:`Scenario`, a dict, a TOML file path or its TOML
+    text) and return a :class:`Result`: the arrays of ``timeseries.csv`` and
+    ``probe.csv``, the summary of ``summary.json``, ``spectrum()`` and ``harmonics()``.
+    A bar-stack scenario (``[model] kind = "bar_stack"``) gives a :class:`BarStackResult`
+    (as :func:`run_bar_stack`), a 2D scenario (``kind = "solid_2d"``) a
+    :class:`Solid2dResult`.
 
     The GIL is released while the simulation runs. Raises ``ValueError`` for an invalid
     scenario and :class:`SimulationError` for a numerical failure.

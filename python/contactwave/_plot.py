@@ -157,19 +157,38 @@ def _pick(names: Sequence[str], chosen: Any, what: str) -> List[str]:
     return chosen
 
 
+def _records_2d(r: Any, receivers: Any, component: Any) -> Any:
+    """The records a 2D plot draws: velocity receivers (the default where the run has
+    any) or stress receivers (where it has only those, or where ``receivers`` names only
+    stress receivers), as ``(names, components, record(name, c), quantity, unit, symbol)``."""
+    velocity, stress = unique(r.receiver_names), unique(r.stress_names)
+    chosen = [receivers] if isinstance(receivers, str) else receivers
+    use_stress = (not velocity and bool(stress)) or (
+        chosen is not None and bool(list(chosen)) and all(c in stress for c in chosen)
+    )
+    if use_stress:
+        names = _pick(stress, receivers, "stress receiver")
+        comps = _pick(unique(r.stress_components), component, "stress component")
+        return names, comps, r.stress, "stress", "Pa", "s"
+    if not velocity:
+        raise ValueError("the run has no receivers to plot (add a [[receiver]] table)")
+    names = _pick(velocity, receivers, "receiver")
+    comps = _pick(r.components, component, "component")
+    return names, comps, r.velocity, "particle velocity", "m/s", "v"
+
+
 def solid_2d(r: Any, kind: str, ax: Any, receivers: Any, component: Any) -> Any:
     kinds = ("receivers", "spectrum")
     if kind not in kinds:
         raise ValueError(f"kind {kind!r}: one of {', '.join(map(repr, kinds))}")
-    names = _pick(unique(r.receiver_names), receivers, "receiver")
-    comps = _pick(r.components, component, "component")
+    names, comps, record, quantity, unit, symbol = _records_2d(r, receivers, component)
     ax = _axes(ax, "Solid2dResult.plot()")
     if kind == "receivers":
         for name in names:
             for c in comps:
-                ax.plot(r.t, r.velocity(name, c), label=f"{name} v{c}", linewidth=1.0)
+                ax.plot(r.t, record(name, c), label=f"{name} {symbol}{c}", linewidth=1.0)
         ax.set_xlabel("time t (s)")
-        ax.set_ylabel("particle velocity (m/s)")
+        ax.set_ylabel(f"{quantity} ({unit})")
         ax.set_title("receivers")
         _eng(ax.xaxis)
         _eng(ax.yaxis)
@@ -183,13 +202,13 @@ def solid_2d(r: Any, kind: str, ax: Any, receivers: Any, component: Any) -> Any:
         for c in comps:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                a = analyze(r.velocity(name, c), dt=float(r.t[1] - r.t[0]), t0=float(r.t[0]),
+                a = analyze(record(name, c), dt=float(r.t[1] - r.t[0]), t0=float(r.t[0]),
                             f0=f0 if math.isfinite(f0) else None)
-            ax.semilogy(a.frequency, a.magnitude, label=f"{name} v{c}", linewidth=1.0)
+            ax.semilogy(a.frequency, a.magnitude, label=f"{name} {symbol}{c}", linewidth=1.0)
             f0 = a.f0
     _harmonic_markers(ax, f0)
     ax.set_xlabel("frequency f (Hz)")
-    ax.set_ylabel("velocity spectrum |V(f)| (m/s s)")
+    ax.set_ylabel(f"{quantity} spectrum ({unit} s)")
     ax.set_title("receiver spectra")
     _eng(ax.xaxis)
     ax.legend()

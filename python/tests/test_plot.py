@@ -98,6 +98,27 @@ def test_solid_2d_receivers_and_their_spectrum():
         r.plot(receivers="nobody")
 
 
+def test_solid_2d_stress_receivers_are_drawn_in_pascals():
+    stress = {"name": "s", "at": [0.5e-3, 0.25e-3], "quantity": "stress"}
+    # a run with only stress receivers draws them (it once drew an empty panel)
+    r = cw.run({**SMALL_2D, "receiver": [stress]})
+    ax = r.plot()
+    got = lines(ax)
+    assert set(got) == {"s sxx", "s szz", "s sxz"}
+    assert np.array_equal(got["s szz"].get_ydata(), r.stress("s", "zz"))
+    assert ax.get_ylabel() == "stress (Pa)"
+    # beside velocity receivers: velocities by default, stresses when named
+    r = cw.run({**SMALL_2D, "receiver": SMALL_2D["receiver"] + [stress]})
+    assert set(lines(r.plot())) == {"top vx", "top vz", "under vx", "under vz"}
+    ax = r.plot("spectrum", receivers="s", component="zz")
+    (line,) = lines(ax).values()
+    a = cw.analyze(r.stress("s", "zz"), dt=r.t[1] - r.t[0], t0=r.t[0], f0=10e6)
+    assert np.array_equal(line.get_ydata(), a.magnitude)
+    assert "(Pa s)" in ax.get_ylabel()
+    with pytest.raises(ValueError, match="no receivers to plot"):
+        cw.run({**SMALL_2D, "receiver": []}).plot()
+
+
 def test_bar_stack_frf_and_waves(root):
     r = cw.run(root / "examples" / "tribobrake.toml")
     ax = r.plot("frf")

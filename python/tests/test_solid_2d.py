@@ -2,6 +2,7 @@
 and the crack's fields, the energy audit, Signorini in the crack's records."""
 
 import numpy as np
+import pytest
 
 import contactwave as cw
 
@@ -121,3 +122,13 @@ def test_sweep_keys_may_leave_out_the_only_index_and_name_friction_mu(root):
     a, b = short["bottom_A2_over_A1"], full["bottom_A2_over_A1"]
     assert np.array_equal(a, b)
     assert np.all(np.isfinite(a)) and a[0] != a[1]
+
+
+def test_a_scenario_may_be_given_as_toml_text(root):
+    path = root / "examples" / "solid_2d" / "plate_crack_quick.toml"
+    text = path.read_text()
+    assert cw.scenario_from_toml(text, file="quick.toml").kind == "solid_2d"
+    # a string with a line break is the scenario's text, not a file name
+    assert cw._as_scenario(text).kind == "solid_2d"
+    with pytest.raises(ValueError, match=r"^bad\.toml: line 2"):
+        cw.scenario_from_toml("[model]\nkind = \n", file="bad.toml")

@@ -72,7 +72,7 @@ impl PyScenario {
         self.template.file().to_string()
     }
 
-    /// Kind of scenario: `half_space` or `bar_stack`.
+    /// Kind of scenario: `half_space`, `bar_stack` or `solid_2d`.
     #[getter]
     fn kind(&self) -> &'static str {
         self.template.kind()
@@ -204,6 +204,20 @@ fn load_scenario(py: Python<'_>, path: PathBuf) -> PyResult<PyScenario> {
 #[pyo3(signature = (text, file = "<dict>"))]
 fn scenario_from_json(py: Python<'_>, text: &str, file: &str) -> PyResult<PyScenario> {
     let table = table_from_json(text, file).map_err(to_py)?;
+    let path = PathBuf::from(file);
+    let p = path.clone();
+    let template = py
+        .detach(move || model::plan_valid(table, &p))
+        .map_err(to_py)?;
+    Ok(PyScenario { template, path })
+}
+
+/// Validate a scenario given as TOML text (a scenario file's contents). `file` names it
+/// in errors and its folder resolves relative paths (`<toml>`: the working directory).
+#[pyfunction]
+#[pyo3(signature = (text, file = "<toml>"))]
+fn scenario_from_toml(py: Python<'_>, text: &str, file: &str) -> PyResult<PyScenario> {
+    let table = contactwave::scenario::parse_toml(text, file).map_err(to_py)?;
     let path = PathBuf::from(file);
     let p = path.clone();
     let template = py
@@ -800,6 +814,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(load_scenario, m)?)?;
     m.add_function(wrap_pyfunction!(scenario_from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario_from_toml, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(analyze, m)?)?;
     m.add_function(wrap_pyfunction!(table_json, m)?)?;
