@@ -764,3 +764,25 @@ fn a_duration_shorter_than_the_burst_is_warned_about() {
     assert!(fields("0.1e-6").contains(&"model.duration".to_string()));
     assert!(!fields("0.6e-6").contains(&"model.duration".to_string()));
 }
+
+/// A snapshot interval below its bound (the run's duration over 2000 frames) names the
+/// bound as it can be typed: 2e-9 s, not the quotient's 1.9999999999999997e-9.
+#[test]
+fn the_snapshot_interval_bound_is_shown_as_typed() {
+    let text =
+        SMALL.replace("duration = 0.6e-6", "duration = 4e-6") + "\n[snapshots]\nevery = 1e-12\n";
+    let err = model::from_toml_str(&text, "snap.toml")
+        .and_then(|t| t.base().map(|_| ()))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("field `snapshots.every` = 1e-12: an interval in [2e-9, 4e-6] s"),
+        "{err}"
+    );
+    // and 2e-9 itself is allowed
+    let ok =
+        SMALL.replace("duration = 0.6e-6", "duration = 4e-6") + "\n[snapshots]\nevery = 2e-9\n";
+    assert!(model::from_toml_str(&ok, "snap.toml")
+        .and_then(|t| t.base().map(|_| ()))
+        .is_ok());
+}

@@ -96,10 +96,16 @@ impl SnapshotsSpec {
             (None, Some(e)) => {
                 let min = duration / MAX_FRAMES as f64;
                 if !(e.is_finite() && e >= min && e <= duration) {
+                    // the shortest decimal at or above the bound (2e-9, not
+                    // 1.9999999999999997e-9): a value typed as shown is allowed
+                    let shown = (0..17)
+                        .map(|p| format!("{min:.p$e}"))
+                        .find(|t| t.parse::<f64>().is_ok_and(|v| v >= min))
+                        .unwrap_or_else(|| format!("{min:e}"));
                     return bad(
                         "every",
                         e.to_string(),
-                        &format!("an interval in [{min:e}, {duration:e}] s"),
+                        &format!("an interval in [{shown}, {duration:e}] s"),
                     );
                 }
                 let n = (duration / e * (1.0 + 1e-12)).floor() as usize;
