@@ -73,7 +73,9 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             (
                 "model.element_size",
                 self.element_size,
-                "raise `model.element_size` (larger elements: fewer nodes)",
+                "raise `model.element_size` (larger elements: fewer nodes; by default the \
+                 size that resolves `model.harmonic` f0), or check the units of `model.width` \
+                 and the layers' `thickness` (m)",
             )
         }
     }
