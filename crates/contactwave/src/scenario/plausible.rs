@@ -386,10 +386,11 @@ impl Solid2dScenario {
         // elements, or a long duration): say how long before it starts
         // (not for a run beyond the memory budget: its refusal says what to change)
         let within = |bytes: f64| crate::budget::limit().is_ok_and(|l| bytes <= l);
-        if let (Ok(e), Ok(true)) = (
-            p.memory_estimate(&self.file),
-            self.memory_bytes().map(within),
-        ) {
+        if let Some(e) = p
+            .memory_estimate(&self.file)
+            .ok()
+            .filter(|e| within(self.runs() * e.total()))
+        {
             let updates = e.nodes * e.steps;
             if updates > LONG_RUN_UPDATES {
                 w.warn(
