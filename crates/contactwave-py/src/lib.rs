@@ -204,6 +204,11 @@ fn load_scenario(py: Python<'_>, path: PathBuf) -> PyResult<PyScenario> {
 #[pyo3(signature = (text, file = "<dict>"))]
 fn scenario_from_json(py: Python<'_>, text: &str, file: &str) -> PyResult<PyScenario> {
     let table = table_from_json(text, file).map_err(to_py)?;
+    planned(py, table, file)
+}
+
+/// A scenario table validated as if read from `file` (the GIL released meanwhile).
+fn planned(py: Python<'_>, table: toml::Table, file: &str) -> PyResult<PyScenario> {
     let path = PathBuf::from(file);
     let p = path.clone();
     let template = py
@@ -218,12 +223,7 @@ fn scenario_from_json(py: Python<'_>, text: &str, file: &str) -> PyResult<PyScen
 #[pyo3(signature = (text, file = "<toml>"))]
 fn scenario_from_toml(py: Python<'_>, text: &str, file: &str) -> PyResult<PyScenario> {
     let table = contactwave::scenario::parse_toml(text, file).map_err(to_py)?;
-    let path = PathBuf::from(file);
-    let p = path.clone();
-    let template = py
-        .detach(move || model::plan_valid(table, &p))
-        .map_err(to_py)?;
-    Ok(PyScenario { template, path })
+    planned(py, table, file)
 }
 
 /// A record (plain values of a run) as Python objects: numbers, strings, lists, numpy

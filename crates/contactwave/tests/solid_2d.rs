@@ -712,13 +712,7 @@ fn a_surface_breaking_crack_runs_and_is_refused_under_an_absorbing_top() {
 fn a_crack_end_merged_with_its_start_is_refused() {
     for end in ["0.70000000001e-3", "0.69999999999e-3"] {
         let text = SMALL.replace("end = [1.3e-3, 0.5e-3]", &format!("end = [{end}, 0.5e-3]"));
-        let t = model::from_toml_str(&text, "short.toml").unwrap();
-        let err = t
-            .base()
-            .and_then(|b| b.run(&RunControl::default()))
-            .map(|_| ())
-            .unwrap_err()
-            .to_string();
+        let err = run_error(&text, "short.toml");
         assert!(
             err.starts_with("short.toml: field `crack.0.length`"),
             "{end}: {err}"
@@ -734,13 +728,7 @@ fn a_time_step_that_makes_the_records_too_large_is_named() {
         "element_size = 0.1e-3",
         "element_size = 0.1e-3\ntime_step = 1e-16",
     );
-    let t = model::from_toml_str(&text, "tiny_step.toml").unwrap();
-    let err = t
-        .base()
-        .and_then(|b| b.run(&RunControl::default()))
-        .map(|_| ())
-        .unwrap_err()
-        .to_string();
+    let err = run_error(&text, "tiny_step.toml");
     assert!(
         err.starts_with("tiny_step.toml: field `model.time_step` = 1e-16: needs about"),
         "{err}"
@@ -785,4 +773,14 @@ fn the_snapshot_interval_bound_is_shown_as_typed() {
     assert!(model::from_toml_str(&ok, "snap.toml")
         .and_then(|t| t.base().map(|_| ()))
         .is_ok());
+}
+
+/// The one-line error of running the scenario `text` (named `file`), which must fail.
+fn run_error(text: &str, file: &str) -> String {
+    model::from_toml_str(text, file)
+        .and_then(|t| t.base())
+        .and_then(|b| b.run(&RunControl::default()))
+        .map(|_| ())
+        .unwrap_err()
+        .to_string()
 }

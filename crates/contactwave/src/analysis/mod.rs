@@ -26,5 +26,5 @@ pub use spectrum::{
 };
 pub use summary::{
     harmonics_near_floor, json_number, record_keys_shared, set_analysis_keys, set_record_harmonics,
-    set_reflected_harmonics, set_shear_harmonics, Summary,
+    set_reflected_harmonics, set_shear_harmonics, Summary, HARMONIC_KEYS,
 };

@@ -117,13 +117,14 @@ pub fn set_record_harmonics(s: &mut Summary, prefix: &str, h: &[f64; 6]) {
         h[3] / a1,
         h[2] / (a1 * a1),
     ];
-    for (key, v) in RECORD_KEYS.iter().zip(values) {
+    for (key, v) in HARMONIC_KEYS.iter().zip(values) {
         s.set(&format!("{prefix}{key}"), v);
     }
 }
 
-/// The keys [`set_record_harmonics`] writes after its prefix, in order.
-pub const RECORD_KEYS: [&str; 8] = [
+/// The per-record harmonic keys, in order: what [`set_record_harmonics`] writes after its
+/// prefix, and the values of a measured record's analysis (`measured::RecordAnalysis`).
+pub const HARMONIC_KEYS: [&str; 8] = [
     "A1",
     "A2",
     "A3",
@@ -138,7 +139,7 @@ pub const RECORD_KEYS: [&str; 8] = [
 /// write by [`set_record_harmonics`] (e.g. `p_A2_over_A1`, for `p` and `p_A2_over`); none
 /// where their keys differ.
 pub fn record_keys_shared(a: &str, b: &str) -> Option<String> {
-    let keys = |name: &str| RECORD_KEYS.map(|k| format!("{name}_{k}"));
+    let keys = |name: &str| HARMONIC_KEYS.map(|k| format!("{name}_{k}"));
     let theirs = keys(b);
     keys(a).into_iter().find(|k| theirs.contains(k))
 }
@@ -278,7 +279,7 @@ mod tests {
         let mut s = Summary::new();
         set_record_harmonics(&mut s, "p_", &[0.0, 2.0, 1.0, 0.5, 0.25, 0.125]);
         let keys: Vec<&str> = s.keys().collect();
-        assert_eq!(keys.len(), RECORD_KEYS.len());
+        assert_eq!(keys.len(), HARMONIC_KEYS.len());
         assert_eq!(s.get("p_A2_over_A1"), Some(0.5));
         assert_eq!(s.get("p_beta_star"), Some(0.25));
     }

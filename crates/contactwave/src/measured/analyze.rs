@@ -38,17 +38,8 @@ pub struct Settings {
 }
 
 /// The per-record values of an analysis by name ([`RecordAnalysis::value`]): the
-/// harmonics' amplitudes, the ratios and beta*.
-pub const HARMONIC_KEYS: [&str; 8] = [
-    "A1",
-    "A2",
-    "A3",
-    "A4",
-    "A5",
-    "A2_over_A1",
-    "A3_over_A1",
-    "beta_star",
-];
+/// harmonics' amplitudes, the ratios and beta* (the keys of a 2D receiver's summary).
+pub use crate::analysis::HARMONIC_KEYS;
 
 /// The analysis of one record.
 #[derive(Debug, Clone, PartialEq)]

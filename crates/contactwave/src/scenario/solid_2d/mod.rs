@@ -6,8 +6,9 @@
 
 mod closure;
 mod material;
+mod receivers;
 
-use crate::analysis::{record_keys_shared, AnalysisMethod, Gate};
+use crate::analysis::{AnalysisMethod, Gate};
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::law::point::SharedLaw;
@@ -15,7 +16,6 @@ use crate::law::spec::{CompressionSpec, TangentialSpec, TractionSpec};
 use crate::scenario::spec::IncidentSpec;
 use crate::scenario::BuildCache;
 use crate::solver::solid_2d::dispersion::element_size_for;
-use crate::solver::solid_2d::region::Region;
 use crate::solver::solid_2d::Backend;
 use crate::solver::solid_2d::{
     pml, Crack, CrackProfile, Elastic, Incidence, Layer, Pml, Side, Solid2d, Source, SourceKind,
@@ -24,6 +24,7 @@ use crate::solver::solid_2d::{
 use closure::ClosureProfile;
 pub use closure::{ClosureSpec, PrestressSpec};
 use material::material;
+pub use receivers::{component_names, Receiver2d, ReceiverSpec};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::sync::Arc;
@@ -267,55 +268,6 @@ fn foreign_key(s: &SourceSpec) -> Option<(&'static str, &'static str)> {
     set.iter()
         .find(|(name, given)| *given && !own.split(", ").any(|o| o == *name))
         .map(|(name, _)| (*name, own))
-}
-
-/// `[[receiver]]`: a point (or, with `to` and `count`, a line of points) where the
-/// velocity or the stress is recorded and analysed.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ReceiverSpec {
-    /// Name (summary key prefix and CSV column prefix: letters, digits, `_`); a line's
-    /// points are `<name>_0` ... `<name>_<count - 1>`.
-    pub name: String,
-    /// Position `[x, z]`, m (the nearest node); a line's first point.
-    pub at: [f64; 2],
-    /// A line's last point `[x, z]`, m (with `count`).
-    pub to: Option<[f64; 2]>,
-    /// Points of a line, evenly spaced from `at` to `to` (>= 2).
-    pub count: Option<usize>,
-    /// `velocity` (default, m/s) or `stress` (Pa).
-    #[serde(default = "velocity")]
-    pub quantity: String,
-    /// The analysed component: velocity `x`, `z` (default in P-SV runs) or `y` (SH runs);
-    /// stress `xx`, `zz` (default), `xz` (P-SV) or `yx`, `yz` (default, SH).
-    pub component: Option<String>,
-}
-
-fn velocity() -> String {
-    "velocity".into()
-}
-
-/// A receiver point of a validated scenario.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Receiver2d {
-    /// Name (a line's points carry their index).
-    pub name: String,
-    /// Records the stress (Pa) rather than the velocity (m/s).
-    pub stress: bool,
-    /// Index among the solver's velocity receivers or among its stress receivers.
-    pub index: usize,
-    /// The analysed component (index into the quantity's components).
-    pub component: usize,
-}
-
-/// Component names of a velocity or stress receiver in P-SV or SH runs.
-pub fn component_names(stress: bool, wave: WaveType) -> &'static [&'static str] {
-    match (stress, wave) {
-        (false, WaveType::PSv) => &["x", "z"],
-        (false, WaveType::Sh) => &["y"],
-        (true, WaveType::PSv) => &["xx", "zz", "xz"],
-        (true, WaveType::Sh) => &["yx", "yz"],
-    }
 }
 
 /// A validated 2D scenario.
@@ -755,129 +707,11 @@ impl Solid2dScenario {
                 profile: profile.map(|p| Arc::new(p) as Arc<dyn CrackProfile<SharedLaw>>),
             });
         }
-        let region = Region::new(m.width, depth);
-        let mut points = Vec::new();
-        let mut receivers = Vec::new();
-        let mut stress_points = Vec::new();
-        for (i, r) in spec.receivers.iter().enumerate() {
-            let key = format!("receiver.{i}");
-            if r.name.is_empty()
-                || !r
-                    .name
-                    .chars()
-                    .all(|c| c.is_ascii_alphanumeric() || c == '_')
-            {
-                return Err(inv(
-                    file,
-                    format!("{key}.name"),
-                    &r.name,
-                    "letters, digits and `_`",
-                ));
-            }
-            let stress = match r.quantity.as_str() {
-                "velocity" => false,
-                "stress" => true,
-                v => {
-                    return Err(inv(
-                        file,
-                        format!("{key}.quantity"),
-                        v,
-                        "velocity or stress",
-                    ))
-                }
-            };
-            let names = component_names(stress, wave);
-            // defaults: z (P-SV) or y (SH) velocity, zz (P-SV) or yz (SH) stress
-            let comp = match r.component.as_deref() {
-                None if stress || wave == WaveType::PSv => 1,
-                None => 0,
-                Some(v) => names
-                    .iter()
-                    .position(|n| *n == v)
-                    .ok_or_else(|| inv(file, format!("{key}.component"), v, &names.join(", ")))?,
-            };
-            let line: Vec<([f64; 2], String)> = match (r.to, r.count) {
-                (None, None) => vec![(r.at, r.name.clone())],
-                (Some(to), Some(n)) if (2..=10_000).contains(&n) => (0..n)
-                    .map(|k| {
-                        let w = k as f64 / (n - 1) as f64;
-                        (
-                            [
-                                r.at[0] + w * (to[0] - r.at[0]),
-                                r.at[1] + w * (to[1] - r.at[1]),
-                            ],
-                            format!("{}_{k}", r.name),
-                        )
-                    })
-                    .collect(),
-                (Some(_), Some(n)) => {
-                    return Err(inv(file, format!("{key}.count"), n, "2 to 10000 points"))
-                }
-                (Some(_), None) => {
-                    return Err(inv(
-                        file,
-                        format!("{key}.count"),
-                        "missing",
-                        "the points of the line from `at` to `to`, >= 2",
-                    ))
-                }
-                (None, Some(_)) => {
-                    return Err(inv(
-                        file,
-                        format!("{key}.to"),
-                        "missing",
-                        "the line's last point [x, z], m (with `count`)",
-                    ))
-                }
-            };
-            for (at, name) in line {
-                if receivers.iter().any(|o: &Receiver2d| o.name == name) {
-                    return Err(inv(
-                        file,
-                        format!("{key}.name"),
-                        &name,
-                        "a name no other receiver has",
-                    ));
-                }
-                // (`p` and `p_A2_over` would both write `p_A2_over_A1` into the summary)
-                if let Some((other, shared)) = receivers
-                    .iter()
-                    .find_map(|o| record_keys_shared(&o.name, &name).map(|k| (&o.name, k)))
-                {
-                    return Err(inv(
-                        file,
-                        format!("{key}.name"),
-                        &name,
-                        &format!(
-                            "a name whose summary keys differ from every other receiver's \
-                             (receiver `{other}` writes `{shared}` too)"
-                        ),
-                    ));
-                }
-                if !region.contains(at) {
-                    // (a line's points between its ends are inside when its ends are)
-                    let end = if at == r.at { "at" } else { "to" };
-                    return Err(inv(
-                        file,
-                        format!("{key}.{end}"),
-                        format!("[{}, {}]", at[0], at[1]),
-                        &region.describe(),
-                    ));
-                }
-                let list = if stress {
-                    &mut stress_points
-                } else {
-                    &mut points
-                };
-                receivers.push(Receiver2d {
-                    name,
-                    stress,
-                    index: list.len(),
-                    component: comp,
-                });
-                list.push(at);
-            }
-        }
+        let receivers::Checked {
+            points,
+            receivers,
+            stress_points,
+        } = receivers::check(&spec.receivers, wave, m.width, depth, file)?;
         let problem = Solid2d {
             width: m.width,
             layers,
