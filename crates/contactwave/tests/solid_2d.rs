@@ -338,6 +338,22 @@ fn bad_input_is_an_error_naming_the_key() {
             "name = \"top_A2_over\"",
             "receiver `top` writes `top_A2_over_A1` too",
         ),
+        // a count of the wrong sign or type names its range, a missing table what it takes
+        (
+            "element_size = 0.1e-3",
+            "element_size = 0.1e-3\norder = -3",
+            "field `model.order` = -3: a whole number from 2 to 8",
+        ),
+        (
+            "duration = 0.6e-6",
+            "duration = 0.6e-6\ncrack_every = 2.5",
+            "field `model.crack_every` = 2.5: a whole number >= 1",
+        ),
+        (
+            "[[layer]]\nthickness = 1e-3\nmaterial = \"aluminium\"\n",
+            "",
+            "field `layer` = (missing): required: at least one [[layer]] table",
+        ),
         // absorbing layers in mm given in m: a mesh beyond the budget names their key
         (
             "duration = 0.6e-6",

@@ -210,7 +210,7 @@ impl Scenario {
             ));
         }
         let spp = spec.solver.samples_per_period();
-        if !(16..=100_000).contains(&spp) {
+        if !spec::SAMPLES_PER_PERIOD.contains(&spp) {
             return Err(Error::invalid(
                 file,
                 "solver.samples_per_period",

@@ -282,6 +282,9 @@ impl From<InterfaceUpdate> for crate::solver::bar_stack::InterfaceScheme {
 
 /// Default samples per period of the exact solver.
 pub const DEFAULT_SPP_EXACT: usize = 200;
+/// The samples per period a scenario may ask for (half-space `solver.samples_per_period`,
+/// bar stack `model.samples_per_period`).
+pub const SAMPLES_PER_PERIOD: std::ops::RangeInclusive<usize> = 16..=100_000;
 /// Default samples per period of the FD solver.
 pub const DEFAULT_SPP_FD: usize = 1000;
 
@@ -293,4 +296,25 @@ impl SolverSpec {
             Method::Fd => DEFAULT_SPP_FD,
         })
     }
+}
+
+/// What a half-space scenario's key takes where serde's own message would not say it
+/// ([`super::value::deserialize_scenario`]).
+pub fn hint(key: &str, problem: super::value::FieldProblem) -> Option<String> {
+    use super::value::FieldProblem::{Missing, Wrong};
+    Some(match (key, problem) {
+        ("medium", Missing) => {
+            "a [medium] table: a material preset, or youngs_modulus, poisson_ratio and density"
+                .into()
+        }
+        ("interface", Missing) => {
+            "an [interface] table: its static_pressure (Pa) and contact laws".into()
+        }
+        ("solver.samples_per_period", Wrong) => format!(
+            "a whole number from {} to {}",
+            SAMPLES_PER_PERIOD.start(),
+            SAMPLES_PER_PERIOD.end()
+        ),
+        _ => return None,
+    })
 }

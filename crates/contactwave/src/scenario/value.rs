@@ -34,26 +34,32 @@ pub fn parse_toml(text: &str, file: &str) -> Result<toml::Table> {
 /// Deserialize a table into a [`ScenarioSpec`], naming the field path on failure.
 /// Unit strings (`frequency = "1 MHz"`) are converted to SI first ([`super::units`]).
 pub fn table_to_spec(table: toml::Table, file: &str) -> Result<ScenarioSpec> {
-    deserialize_scenario(table, file)
+    deserialize_scenario(table, file, super::spec::hint)
 }
 
 /// Deserialize a scenario table of any kind into its spec `T` (half-space, bar stack,
 /// 2D), naming the field path on failure; unit strings are converted to SI first.
+/// `hint(key, problem)` gives what is allowed at a key (without array indices:
+/// `model.order`, `receiver.count`) where serde's own words would not say it (a count's
+/// range, a required table); `None` keeps serde's message.
 pub fn deserialize_scenario<T: serde::de::DeserializeOwned>(
     mut table: toml::Table,
     file: &str,
+    hint: impl Fn(&str, FieldProblem) -> Option<String>,
 ) -> Result<T> {
     super::units::to_si(&mut table, file)?;
-    let value = toml::Value::Table(table);
+    let value = toml::Value::Table(table.clone());
     serde_path_to_error::deserialize::<_, T>(value).map_err(|e| {
         let path = dotted(e.path());
-        let inner = super::units::plain_serde_message(&e.into_inner().to_string());
-        Error::Parse {
-            file: file.to_string(),
-            message: if path.is_empty() || path == "." {
-                inner
-            } else {
-                format!("field `{path}`: {inner}")
+        match field_error(e, &table, file, hint, false) {
+            Ok(err) => err,
+            Err(inner) => Error::Parse {
+                file: file.to_string(),
+                message: if path.is_empty() || path == "." {
+                    inner
+                } else {
+                    format!("field `{path}`: {inner}")
+                },
             },
         }
     })
@@ -234,65 +240,94 @@ pub fn deserialize_format<T: serde::de::DeserializeOwned>(
 ) -> Result<T> {
     let value = toml::Value::Table(table.clone());
     serde_path_to_error::deserialize::<_, T>(value).map_err(|e| {
-        let mut path: Vec<String> = Vec::new();
-        let mut key: Vec<String> = Vec::new();
-        for s in e.path().iter() {
-            match s {
-                serde_path_to_error::Segment::Seq { index } => {
-                    if let Some(last) = path.last_mut() {
-                        last.push_str(&format!(".{index}"));
-                    }
-                }
-                serde_path_to_error::Segment::Map { key: k }
-                | serde_path_to_error::Segment::Enum { variant: k } => {
-                    path.push(k.clone());
-                    key.push(k.clone());
-                }
-                serde_path_to_error::Segment::Unknown => {}
+        field_error(e, table, file, |k, p| Some(allowed(k, p)), true).unwrap_or_else(|m| {
+            Error::Parse {
+                file: file.to_string(),
+                message: m,
             }
+        })
+    })
+}
+
+/// A deserializer's failure as an [`Error::Invalid`] naming `file`, the field
+/// (`axis.1.values`), the value as written (or `(missing)`) and `allowed(key, problem)`;
+/// where `allowed` has nothing to say, serde's message in plain words (`Err`). A wrong
+/// value's message ends with serde's words in brackets when `explain` is set.
+fn field_error(
+    e: serde_path_to_error::Error<toml::de::Error>,
+    table: &toml::Table,
+    file: &str,
+    allowed: impl Fn(&str, FieldProblem) -> Option<String>,
+    explain: bool,
+) -> std::result::Result<Error, String> {
+    let mut path: Vec<String> = Vec::new();
+    let mut key: Vec<String> = Vec::new();
+    for s in e.path().iter() {
+        match s {
+            serde_path_to_error::Segment::Seq { index } => {
+                if let Some(last) = path.last_mut() {
+                    last.push_str(&format!(".{index}"));
+                }
+            }
+            serde_path_to_error::Segment::Map { key: k }
+            | serde_path_to_error::Segment::Enum { variant: k } => {
+                path.push(k.clone());
+                key.push(k.clone());
+            }
+            serde_path_to_error::Segment::Unknown => {}
         }
-        let message = e.into_inner().to_string();
-        let quoted = |prefix: &str| {
-            message
-                .strip_prefix(prefix)
-                .and_then(|m| m.split('`').next())
-                .map(str::to_string)
+    }
+    let message = e.into_inner().to_string();
+    let plain = super::units::plain_serde_message(&message);
+    let quoted = |prefix: &str| {
+        message
+            .strip_prefix(prefix)
+            .and_then(|m| m.split('`').next())
+            .map(str::to_string)
+    };
+    let join = |v: &[String]| v.join(".");
+    if let Some(name) = quoted("missing field `") {
+        path.push(name.clone());
+        key.push(name);
+        let Some(what) = allowed(&join(&key), FieldProblem::Missing) else {
+            return Err(plain);
         };
-        let join = |v: &[String]| v.join(".");
-        if let Some(name) = quoted("missing field `") {
-            path.push(name.clone());
-            key.push(name);
-            return Error::invalid(
-                file,
-                join(&path),
-                "(missing)",
-                format!("required: {}", allowed(&join(&key), FieldProblem::Missing)),
-            );
-        }
-        let shown = value_at(table, &path)
-            .map(|v| v.to_string())
-            .unwrap_or_else(|| "?".into());
-        if message.starts_with("unknown field `") {
-            // serde's path ends at the unknown key itself
-            key.pop();
-            return Error::invalid(
-                file,
-                join(&path),
-                shown,
-                format!(
-                    "unknown key; {}",
-                    allowed(&join(&key), FieldProblem::Unknown)
-                ),
-            );
-        }
-        let why = super::units::plain_serde_message(&message);
-        Error::invalid(
+        return Ok(Error::invalid(
+            file,
+            join(&path),
+            "(missing)",
+            format!("required: {what}"),
+        ));
+    }
+    let shown = value_at(table, &path)
+        .map(|v| v.to_string())
+        .unwrap_or_else(|| "?".into());
+    if message.starts_with("unknown field `") {
+        // serde's path ends at the unknown key itself
+        key.pop();
+        let Some(what) = allowed(&join(&key), FieldProblem::Unknown) else {
+            return Err(plain);
+        };
+        return Ok(Error::invalid(
             file,
             join(&path),
             shown,
-            format!("{} ({why})", allowed(&join(&key), FieldProblem::Wrong)),
-        )
-    })
+            format!("unknown key; {what}"),
+        ));
+    }
+    let Some(what) = allowed(&join(&key), FieldProblem::Wrong) else {
+        return Err(plain);
+    };
+    Ok(Error::invalid(
+        file,
+        join(&path),
+        shown,
+        if explain {
+            format!("{what} ({plain})")
+        } else {
+            what
+        },
+    ))
 }
 
 /// The value at a path of `deserialize_format` (`axis.1`, `values`): keys, each with

@@ -78,7 +78,15 @@ impl Solid2dScenario {
     /// After a run: the kept fields on the pixel grid.
     pub(crate) fn snapshots_of<L>(&self, plan: &Plan<L>, capture: &Capture) -> Option<Snapshots2d> {
         let s: &Snapshots = self.snapshots.as_ref()?;
-        let raster = snapshot::raster(&plan.mesh, plan.components, capture, s.field, s.pixels);
+        let size = [self.problem.width, self.problem.depth()];
+        let raster = snapshot::raster(
+            &plan.mesh,
+            plan.components,
+            capture,
+            s.field,
+            s.pixels,
+            size,
+        );
         let largest = raster.values.iter().fold(0.0f64, |a, b| a.max(b.abs()));
         let scale = s.scale.unwrap_or(if largest > 0.0 { largest } else { 1.0 });
         Some(Snapshots2d {

@@ -217,6 +217,24 @@ impl BarStackSpec {
     /// Deserialize a table into a spec, naming the field path on failure. Unit strings
     /// (`length = "5 mm"`) are converted to SI first ([`crate::scenario::units`]).
     pub fn from_table(table: toml::Table, file: &str) -> Result<Self> {
-        crate::scenario::value::deserialize_scenario(table, file)
+        crate::scenario::value::deserialize_scenario(table, file, hint)
     }
+}
+
+/// What a bar-stack scenario's key takes where serde's own message would not say it.
+fn hint(key: &str, problem: crate::scenario::value::FieldProblem) -> Option<String> {
+    use crate::scenario::value::FieldProblem::{Missing, Wrong};
+    let range = crate::scenario::spec::SAMPLES_PER_PERIOD;
+    Some(match (key, problem) {
+        ("model", Missing) => {
+            "a [model] table with kind = \"bar_stack\" and the cross-section area (m^2)".into()
+        }
+        ("segment", Missing) => {
+            "at least one [[segment]] table: name, length (m) and a material".into()
+        }
+        ("model.samples_per_period", Wrong) => {
+            format!("a whole number from {} to {}", range.start(), range.end())
+        }
+        _ => return None,
+    })
 }

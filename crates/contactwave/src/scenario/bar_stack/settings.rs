@@ -36,7 +36,7 @@ pub(super) fn time_step(
         .fold(None, |m: Option<f64>, f| Some(m.map_or(f, |m| m.max(f))));
     if let Some(highest) = highest {
         let spp = m.samples_per_period.unwrap_or(DEFAULT_INCIDENT_SPP);
-        if !(16..=100_000).contains(&spp) {
+        if !crate::scenario::spec::SAMPLES_PER_PERIOD.contains(&spp) {
             return Err(inv(
                 file,
                 "model.samples_per_period",

@@ -8,6 +8,9 @@ use crate::solver::solid_2d::region::Region;
 use crate::solver::solid_2d::WaveType;
 use serde::{Deserialize, Serialize};
 
+/// The points a receiver line may have.
+pub const LINE_POINTS: std::ops::RangeInclusive<usize> = 2..=10_000;
+
 /// `[[receiver]]`: a point (or, with `to` and `count`, a line of points) where the
 /// velocity or the stress is recorded and analysed.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -120,7 +123,7 @@ pub(super) fn check(
         };
         let line: Vec<([f64; 2], String)> = match (r.to, r.count) {
             (None, None) => vec![(r.at, r.name.clone())],
-            (Some(to), Some(n)) if (2..=10_000).contains(&n) => (0..n)
+            (Some(to), Some(n)) if LINE_POINTS.contains(&n) => (0..n)
                 .map(|k| {
                     let w = k as f64 / (n - 1) as f64;
                     (

@@ -109,7 +109,7 @@ fn spatial(
     let bad = |field: &str, value: f64, allowed: &str| {
         Err(Error::invalid("<dispersion>", field, value, allowed))
     };
-    if !(2..=8).contains(&order) {
+    if !super::ORDERS.contains(&order) {
         return bad("order", order as f64, "2 to 8");
     }
     if !(h > 0.0 && h.is_finite()) {

@@ -50,9 +50,11 @@ impl CrackLine {
 pub struct Mesh {
     /// GLL rule of the elements.
     pub gll: Gll,
-    /// Element edges along x, m (increasing, from 0 to the width).
+    /// Element edges along x, m (increasing, from 0 to the width; from minus the absorbing
+    /// layer's thickness to the width plus it where the sides absorb).
     pub x_edges: Vec<f64>,
-    /// Element edges along z, m (increasing, from 0 to the depth).
+    /// Element edges along z, m (increasing, from 0 to the depth, or beyond them by the
+    /// absorbing layers at the top and bottom).
     pub z_edges: Vec<f64>,
     /// Node-grid coordinates along x (`n_ex * n + 1` values), m.
     pub x: Vec<f64>,

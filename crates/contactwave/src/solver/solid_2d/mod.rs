@@ -58,6 +58,9 @@ use crate::excitation::Excitation;
 use crate::law::contact::PointState;
 use crate::law::{NormalPart, TangentialPart};
 pub use backend::Backend;
+
+/// The GLL orders of the elements the kernels take.
+pub const ORDERS: std::ops::RangeInclusive<usize> = 2..=8;
 use crack::CrackNodes;
 pub use energy::Energy2d;
 pub use estimate::MemoryEstimate;
@@ -471,8 +474,12 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 "a rectangle of positive, finite size",
             );
         }
-        if !(2..=8).contains(&self.order) {
-            return bad("model.order", self.order.to_string(), "2 to 8");
+        if !ORDERS.contains(&self.order) {
+            return bad(
+                "model.order",
+                self.order.to_string(),
+                &format!("{} to {}", ORDERS.start(), ORDERS.end()),
+            );
         }
         if !(self.courant > 0.0 && self.courant < 1.0) {
             return bad("model.courant", self.courant.to_string(), "in (0, 1)");

@@ -143,19 +143,20 @@ fn locate(edges: &[f64], points: &[f64], at: &[f64]) -> (Vec<usize>, Vec<f64>) {
 }
 
 /// Resample the frames of `capture` (fields of `components` values per node on `mesh`) onto
-/// `nx` pixel columns across the width (and as many rows as keep the pixels square, at
-/// least one) by each element's GLL interpolant at the pixel centres; `field` picks the
-/// value drawn. A pixel takes the element it lies in, so a crack's two faces show their own
-/// motion on each side of it.
+/// `nx` pixel columns across the rectangle `[0, width] x [0, depth]` (m; `size`, the
+/// solid without its absorbing layers, which the mesh extends beyond it) and as many rows
+/// as keep the pixels square (at least one), by each element's GLL interpolant at the
+/// pixel centres; `field` picks the value drawn. A pixel takes the element it lies in, so
+/// a crack's two faces show their own motion on each side of it.
 pub fn raster(
     mesh: &Mesh,
     components: usize,
     capture: &Capture,
     field: Field,
     nx: usize,
+    size: [f64; 2],
 ) -> Raster {
-    let width = *mesh.x_edges.last().unwrap_or(&0.0);
-    let depth = *mesh.z_edges.last().unwrap_or(&0.0);
+    let [width, depth] = size;
     let nx = nx.max(1);
     let nz = ((nx as f64 * depth / width).round() as usize).max(1);
     let centres = |n: usize, len: f64| -> Vec<f64> {
@@ -206,11 +207,13 @@ mod tests {
 
     /// The relative error (largest over the pixels and both frames) of the rasters of the
     /// field `f` (component vz = 2 f, and the magnitude) on an order-4 mesh of elements no
-    /// larger than `h` (m) with a 10 mm crack.
+    /// larger than `h` (m) with a 10 mm crack, of a 40 x 10 mm solid whose mesh goes on
+    /// into absorbing layers at the sides and the bottom (the pictures show the solid).
     fn raster_error(f: &dyn Fn(f64, f64) -> f64, h: f64) -> f64 {
         let order = 4;
-        let x_edges = mesh::edges(0.04, &[0.015, 0.025], h);
-        let z_edges = mesh::edges(0.01, &[0.005], h);
+        let (x_edges, _) =
+            super::super::pml::extend(mesh::edges(0.04, &[0.015, 0.025], h), 3e-3, 3e-3, h);
+        let (z_edges, _) = super::super::pml::extend(mesh::edges(0.01, &[0.005], h), 0.0, 2e-3, h);
         let cracks = [mesh::CrackLine {
             horizontal: true,
             line: mesh::edge_index(&z_edges, 0.005) * order,
@@ -245,10 +248,11 @@ mod tests {
         cap.take(5, 2e-6, &neg);
         cap.take(7, 3e-6, &neg);
         assert_eq!(cap.times, [1e-6, 3e-6]);
-        let r = raster(&mesh, 2, &cap, Field::Component(1), 160);
+        let size = [0.04, 0.01];
+        let r = raster(&mesh, 2, &cap, Field::Component(1), 160, size);
         assert_eq!((r.x.len(), r.z.len(), r.frames()), (160, 40, 2));
         assert!((r.x[0] - 0.125e-3).abs() < 1e-15 && (r.z[39] - 9.875e-3).abs() < 1e-15);
-        let mag = raster(&mesh, 2, &cap, Field::Magnitude, 160);
+        let mag = raster(&mesh, 2, &cap, Field::Magnitude, 160, size);
         let mut worst = 0.0f64;
         let scale = r.values.iter().fold(0.0f64, |a, b| a.max(b.abs()));
         for (iz, &z) in r.z.iter().enumerate() {
