@@ -78,6 +78,30 @@ fn shown_value(value: String) -> String {
 }
 
 impl Error {
+    /// The error with `ctx` (where it arose: `in sweep s.toml at point 3: ...`) in brackets
+    /// at the end of its message; other errors than invalid values and parse errors as
+    /// they are.
+    pub fn within(self, ctx: &str) -> Error {
+        match self {
+            Error::Invalid {
+                file,
+                field,
+                value,
+                allowed,
+            } => Error::Invalid {
+                file,
+                field,
+                value,
+                allowed: format!("{allowed} ({ctx})"),
+            },
+            Error::Parse { file, message } => Error::Parse {
+                file,
+                message: format!("{message} ({ctx})"),
+            },
+            other => other,
+        }
+    }
+
     /// Build an [`Error::Invalid`].
     pub fn invalid(
         file: impl Into<String>,

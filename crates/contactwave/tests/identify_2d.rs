@@ -73,3 +73,36 @@ fn closure_pressure_and_friction_recovered_from_2d_receiver_harmonics() {
         );
     }
 }
+
+/// On a 2D base an experiment design without a key varies the first source's frequency
+/// (a 2D scenario has no `incident`), and a `[set]` the base cannot take names the
+/// identification file as well as the base.
+#[test]
+fn a_2d_design_varies_the_source_frequency_and_set_errors_name_the_file() {
+    let mut table: toml::Table =
+        toml::from_str(&std::fs::read_to_string(example()).unwrap()).unwrap();
+    table.insert(
+        "design".into(),
+        toml::Value::Table(toml::toml! { values = [4e6, 6e6] }),
+    );
+    let spec = IdentifySpec::from_table(table.clone(), &example()).unwrap();
+    assert_eq!(
+        spec.design.unwrap().key,
+        "source.0.signal.frequency".to_string()
+    );
+    let set = table
+        .entry("set")
+        .or_insert(toml::Value::Table(Default::default()))
+        .as_table_mut()
+        .unwrap();
+    set.insert("crack.0.static_shear".into(), toml::Value::Float(5e7));
+    let e = IdentifySpec::from_table(table, &example())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("crack.0.static_shear")
+            && e.contains("[set] of")
+            && e.contains("crack_closure_friction.toml"),
+        "{e}"
+    );
+}

@@ -78,6 +78,25 @@ fn crack_end_and_length_are_sweep_keys() {
         "{:?}",
         c.end
     );
+    // a vertical crack given by its length: its end moves down along its line
+    let mut table = t.table().clone();
+    let crack = table["crack"].as_array_mut().unwrap()[0]
+        .as_table_mut()
+        .unwrap();
+    crack.remove("end");
+    crack.insert(
+        "start".into(),
+        toml::Value::try_from([20e-3, 4e-3]).unwrap(),
+    );
+    crack.insert("length".into(), toml::Value::Float(2e-3));
+    crack.insert("vertical".into(), toml::Value::Boolean(true));
+    let t4 = model::plan(table, Path::new("vertical.toml"));
+    assert_eq!(crack_end(&t4.base().unwrap()), [20e-3, 6e-3]);
+    let end_z = t4.param("crack.0.end.z").unwrap();
+    assert_eq!(
+        crack_end(&t4.build(&[(&end_z, 7e-3)]).unwrap()),
+        [20e-3, 7e-3]
+    );
 }
 
 #[test]

@@ -137,7 +137,13 @@ impl IdentifySpec {
         crate::scenario::units::to_si(&mut base_table, &base_file)?;
         default_analysis(&mut base_table);
         // the base (with overrides) must be a valid scenario
-        model::plan_valid(base_table.clone(), &base)?;
+        model::plan_valid(base_table.clone(), &base).map_err(|e| {
+            e.within(&if f.set.is_some() {
+                format!("the base with the [set] of {file}")
+            } else {
+                format!("the base of {file}")
+            })
+        })?;
 
         let fit = f.fit.check(&file)?;
         let (measured, data_file, records) = match (&f.data, f.records) {
@@ -187,7 +193,8 @@ impl IdentifySpec {
             }
         };
         let parameters = parse_parameters(f.parameter, &file, &base_table)?;
-        let design = f.design.map(|d| d.check(&file)).transpose()?;
+        let frequency = model::kind_of(&base_table).frequency_key();
+        let design = f.design.map(|d| d.check(&file, frequency)).transpose()?;
 
         if measured.residual_count() < parameters.len() {
             return Err(Error::invalid(
@@ -480,12 +487,12 @@ fn parse_parameters(
                 allowed("parameter.key", FieldProblem::Wrong),
             ));
         }
-        if out.iter().any(|p| p.key == key) {
+        if let Some(p) = out.iter().find(|p| crate::scenario::same_key(&p.key, &key)) {
             return Err(Error::invalid(
                 file,
                 f("key"),
                 &key,
-                "each key at most once",
+                format!("each key at most once (`{}` sets the same value)", p.key),
             ));
         }
         let scale = match t.scale {
@@ -568,10 +575,10 @@ fn parse_parameters(
 }
 
 impl DesignFile {
-    /// Check the candidates; their values take the unit of the design key (a frequency by
-    /// default).
-    fn check(self, file: &str) -> Result<DesignSpec> {
-        let key = self.key.unwrap_or_else(|| "incident.frequency".into());
+    /// Check the candidates; their values take the unit of the design key (by default
+    /// `frequency`, the base's frequency key).
+    fn check(self, file: &str, frequency: &str) -> Result<DesignSpec> {
+        let key = self.key.unwrap_or_else(|| frequency.into());
         if !key.contains('.') {
             return Err(Error::invalid(
                 file,

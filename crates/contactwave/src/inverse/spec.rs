@@ -138,7 +138,8 @@ impl Default for FitOptions {
 /// `[design]`: candidate values of a condition key to rank (`identify --design`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct DesignSpec {
-    /// Dotted key varied between candidates (default `incident.frequency`).
+    /// Dotted key varied between candidates (default the base's frequency:
+    /// `incident.frequency`, or `source.0.signal.frequency` for a 2D base).
     pub key: String,
     /// Candidate values (key's unit).
     pub values: Vec<f64>,

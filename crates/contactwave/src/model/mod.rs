@@ -104,6 +104,11 @@ pub trait Kind: Sync {
     /// in it resolve against `path`'s folder. Values are validated when a model is built
     /// ([`Template::build`], [`Template::base`]).
     fn plan(&self, table: toml::Table, path: &Path) -> Arc<dyn Template>;
+    /// The dotted key of the frequency a run is driven at (what an experiment design
+    /// varies when its file names no key).
+    fn frequency_key(&self) -> &'static str {
+        "incident.frequency"
+    }
 }
 
 /// The registered kinds, tried in order (the half-space problem, the default, last).

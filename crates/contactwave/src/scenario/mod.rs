@@ -17,8 +17,8 @@ pub use cache::{BuildCache, Columns};
 pub use oblique::ObliqueSetup;
 pub use plausible::Warning;
 pub use value::{
-    apply_set, deserialize_format, parse_toml, read_base, read_table, set_dotted, table_to_spec,
-    FieldProblem,
+    apply_set, deserialize_format, parse_toml, read_base, read_table, same_key, set_dotted,
+    table_to_spec, FieldProblem,
 };
 
 use crate::error::{Error, Result};

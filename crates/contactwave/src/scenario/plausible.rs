@@ -351,10 +351,9 @@ impl Solid2dScenario {
                     format!(
                         "shorter than source {i}'s burst ({burst:.3e} s with its delay): the \
                          run ends before the source does, and its harmonics are those of a \
-                         cut burst (A2/A1 of a few samples means nothing); a duration in us? \
-                         write \"{} us\" or {:e} (SI units: s)",
-                        p.duration,
-                        p.duration * 1e-6
+                         cut burst (A2/A1 of a few samples means nothing); a duration longer \
+                         than {burst:.3e} s, plus the waves' time of flight to the receivers, \
+                         takes the whole burst in"
                     ),
                 );
             }

@@ -160,8 +160,34 @@ pub fn set_dotted(table: &mut toml::Table, key: &str, value: toml::Value) -> Res
     if key == "incident.amplitude" {
         cur.remove("xi");
     }
+    // a friction coefficient replaces the one the table spells the other way
+    if let Some(other) = other_spelling(&parts) {
+        cur.remove(other);
+    }
     cur.insert(last.to_string(), value);
     Ok(())
+}
+
+/// The other name of the key whose dotted parts are `parts`, where the scenario files take
+/// two (a tangential law's `mu` and `friction`).
+fn other_spelling(parts: &[&str]) -> Option<&'static str> {
+    match parts {
+        [.., "tangential", "mu"] => Some("friction"),
+        [.., "tangential", "friction"] => Some("mu"),
+        _ => None,
+    }
+}
+
+/// Whether two dotted keys set the same value (equal, or one quantity's two spellings:
+/// `crack.0.tangential.mu` and `crack.0.tangential.friction`).
+pub fn same_key(a: &str, b: &str) -> bool {
+    if a == b {
+        return true;
+    }
+    let (pa, pb): (Vec<&str>, Vec<&str>) = (a.split('.').collect(), b.split('.').collect());
+    pa.len() == pb.len()
+        && pa[..pa.len() - 1] == pb[..pb.len() - 1]
+        && other_spelling(&pa) == pb.last().copied()
 }
 
 /// Write the `[set]` table of a sweep or identification file (dotted keys, any TOML value)
@@ -351,7 +377,43 @@ fn value_at<'a>(table: &'a toml::Table, path: &[String]) -> Option<&'a toml::Val
 
 #[cfg(test)]
 mod tests {
-    use super::set_dotted;
+    use super::{same_key, set_dotted};
+
+    /// A friction coefficient set under either name replaces the one the table has under
+    /// the other (a table with both is refused by the law), and the two names are one key.
+    #[test]
+    fn a_friction_coefficient_is_one_key_under_two_names() {
+        let mut t: toml::Table =
+            toml::from_str("[[crack]]\ntangential = { law = \"coulomb\", friction = 0.3 }\n")
+                .unwrap();
+        set_dotted(&mut t, "crack.0.tangential.mu", toml::Value::Float(0.1)).unwrap();
+        let tangential = &t["crack"].as_array().unwrap()[0]["tangential"];
+        assert_eq!(tangential.get("mu").and_then(|v| v.as_float()), Some(0.1));
+        assert!(tangential.get("friction").is_none());
+        set_dotted(&mut t, "crack.tangential.friction", toml::Value::Float(0.2)).unwrap();
+        let tangential = &t["crack"].as_array().unwrap()[0]["tangential"];
+        assert_eq!(
+            tangential.get("friction").and_then(|v| v.as_float()),
+            Some(0.2)
+        );
+        assert!(tangential.get("mu").is_none());
+        assert!(same_key(
+            "crack.0.tangential.mu",
+            "crack.0.tangential.friction"
+        ));
+        assert!(same_key(
+            "interface.tangential.friction",
+            "interface.tangential.mu"
+        ));
+        assert!(!same_key(
+            "crack.0.tangential.mu",
+            "crack.1.tangential.friction"
+        ));
+        assert!(!same_key(
+            "crack.0.traction.mu",
+            "crack.0.traction.friction"
+        ));
+    }
 
     /// An array of one table takes keys with or without its index; one of several needs
     /// the index, and an index past the end is an error naming the last one.

@@ -49,6 +49,10 @@ impl Kind for Solid2dKind {
         Solid2dScenario::is_solid_2d(table)
     }
 
+    fn frequency_key(&self) -> &'static str {
+        "source.0.signal.frequency"
+    }
+
     fn plan(&self, table: toml::Table, path: &Path) -> Arc<dyn Template> {
         Arc::new(SpecTemplate::<Solid2dScenario>::new(table, path))
     }
@@ -169,6 +173,8 @@ impl Fields for CrackSpec {
                     } else {
                         [x + l, z]
                     });
+                    // the end gives the direction now
+                    self.vertical = false;
                 }
                 let e = self.end.as_mut()?;
                 Some(Slot::F64(&mut e[usize::from(*c == "z")]))

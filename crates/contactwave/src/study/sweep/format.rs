@@ -12,7 +12,9 @@ use super::csv_io::{fmt_f64, hash_sweep};
 use super::grid::{grid, linspace, logspace};
 use crate::error::{Error, Result};
 use crate::model::{self, toml_number, Model, Param, Template};
-use crate::scenario::{deserialize_format, parse_toml, read_base, set_dotted, FieldProblem};
+use crate::scenario::{
+    deserialize_format, parse_toml, read_base, same_key, set_dotted, FieldProblem,
+};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -116,12 +118,15 @@ impl Sweep {
         let mut axes: Vec<Axis> = Vec::with_capacity(f.axis.len());
         for (i, a) in f.axis.into_iter().enumerate() {
             let axis = a.check(i, &file)?;
-            if axes.iter().any(|b| b.parameter == axis.parameter) {
+            if let Some(b) = axes
+                .iter()
+                .find(|b| same_key(&b.parameter, &axis.parameter))
+            {
                 return Err(Error::invalid(
                     &file,
                     format!("axis.{i}.parameter"),
                     format!("\"{}\"", axis.parameter),
-                    "is swept by an earlier axis already",
+                    swept_already(&b.parameter),
                 ));
             }
             axes.push(axis);
@@ -229,12 +234,12 @@ impl Sweep {
                     "every value must be a finite number",
                 ));
             }
-            if out.iter().any(|b| b.parameter == parameter) {
+            if let Some(b) = out.iter().find(|b| same_key(&b.parameter, &parameter)) {
                 return Err(Error::invalid(
                     &name,
                     format!("axis.{i}.parameter"),
                     format!("\"{parameter}\""),
-                    "is swept by an earlier axis already",
+                    swept_already(&b.parameter),
                 ));
             }
             out.push(Axis {
@@ -329,10 +334,10 @@ impl Sweep {
                 .map(|(a, v)| format!("{} = {}", a.parameter, fmt_f64(*v)))
                 .collect::<Vec<_>>()
                 .join(", ");
-            with_context(
-                e,
-                &format!("in sweep {} at point {i}: {values}", self.file.display()),
-            )
+            e.within(&format!(
+                "in sweep {} at point {i}: {values}",
+                self.file.display()
+            ))
         })
     }
 
@@ -457,6 +462,11 @@ pub fn point_table(
             .map_err(|e| axis_error(e, file, k))?;
     }
     Ok(table)
+}
+
+/// Why an axis whose key sets what the earlier axis `earlier` sets is refused.
+fn swept_already(earlier: &str) -> String {
+    format!("is swept by an earlier axis already (`{earlier}` sets the same value)")
 }
 
 /// Checks that need every axis: not both `incident.xi` and `incident.amplitude`, not both
@@ -697,27 +707,6 @@ impl AxisFile {
             spec,
             values,
         })
-    }
-}
-
-fn with_context(e: Error, ctx: &str) -> Error {
-    match e {
-        Error::Invalid {
-            file,
-            field,
-            value,
-            allowed,
-        } => Error::Invalid {
-            file,
-            field,
-            value,
-            allowed: format!("{allowed} ({ctx})"),
-        },
-        Error::Parse { file, message } => Error::Parse {
-            file,
-            message: format!("{message} ({ctx})"),
-        },
-        other => other,
     }
 }
 
