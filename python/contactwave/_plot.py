@@ -172,6 +172,13 @@ def _records_2d(r: Any, receivers: Any, component: Any) -> Any:
         return names, comps, r.stress, "stress", "Pa", "s"
     if not velocity:
         raise ValueError("the run has no receivers to plot (add a [[receiver]] table)")
+    if chosen is not None:
+        mixed = [c for c in chosen if c in stress and c not in velocity]
+        if mixed:
+            raise ValueError(
+                f"receiver {mixed[0]!r} records stress (Pa): a plot draws velocity "
+                f"receivers or stress receivers, not both; velocity receivers: "
+                f"{', '.join(map(repr, velocity))}")
     names = _pick(velocity, receivers, "receiver")
     comps = _pick(r.components, component, "component")
     return names, comps, r.velocity, "particle velocity", "m/s", "v"

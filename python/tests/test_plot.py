@@ -115,6 +115,9 @@ def test_solid_2d_stress_receivers_are_drawn_in_pascals():
     a = cw.analyze(r.stress("s", "zz"), dt=r.t[1] - r.t[0], t0=r.t[0], f0=10e6)
     assert np.array_equal(line.get_ydata(), a.magnitude)
     assert "(Pa s)" in ax.get_ylabel()
+    # a stress receiver named beside velocity ones: said so, not "unknown"
+    with pytest.raises(ValueError, match="'s' records stress"):
+        r.plot("spectrum", receivers=["s", "top"])
     with pytest.raises(ValueError, match="no receivers to plot"):
         cw.run({**SMALL_2D, "receiver": []}).plot()
 

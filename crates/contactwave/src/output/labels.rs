@@ -10,6 +10,37 @@ pub fn quantity(key: &str) -> (String, &'static str) {
     if let Some((name, unit)) = known(key) {
         return (name.to_string(), unit);
     }
+    // per-crack summary keys of 2D runs: `crack_max_gap_0` -> largest opening, crack 0
+    if let Some((base, i)) = key.strip_prefix("crack_").and_then(|k| k.rsplit_once('_')) {
+        if let Ok(i) = i.parse::<usize>() {
+            let (name, unit) = match base {
+                "max_gap" => ("largest opening".to_string(), "m"),
+                "max_slip" => ("largest slip".to_string(), "m"),
+                "min_adhesion" => ("least adhesion beta".to_string(), ""),
+                other => (other.replace('_', " "), guess_unit(other)),
+            };
+            return (format!("{name}, crack {i}"), unit);
+        }
+    }
+    // per-receiver harmonic keys of 2D runs and measured records: `top_A2_over_A1` ->
+    // A2 / A1 at top
+    // (the longest first: `top_A2_over_A1` ends in `A1` too)
+    let mut harmonics = crate::analysis::HARMONIC_KEYS;
+    harmonics.sort_by_key(|h| std::cmp::Reverse(h.len()));
+    for h in harmonics {
+        if let Some(receiver) = key
+            .strip_suffix(h)
+            .and_then(|r| r.strip_suffix('_'))
+            .filter(|r| !r.is_empty())
+        {
+            // an amplitude's unit is its record's (m/s or Pa), which the key does not say
+            let (name, unit) = match h {
+                "A1" | "A2" | "A3" | "A4" | "A5" => (h.to_string(), ""),
+                _ => quantity(h),
+            };
+            return (format!("{name} at {receiver}"), unit);
+        }
+    }
     // per-interface summary keys: `mean_contact_stiffness_0` -> interface 0 (numbered from
     // 0, as the keys `_0`, `_1` and `interface.0` are)
     if let Some((base, i)) = key.rsplit_once('_') {
@@ -151,5 +182,15 @@ mod tests {
             axis_label("solver.unknown_thing", ""),
             "solver unknown thing"
         );
+        // 2D sweeps: a crack's extrema, a receiver's harmonics
+        assert_eq!(
+            axis_label("crack_max_slip_0", "n"),
+            "largest slip, crack 0, nm"
+        );
+        assert_eq!(
+            axis_label("crack_max_gap_1", ""),
+            "largest opening, crack 1, m"
+        );
+        assert_eq!(axis_label("top_far_A2_over_A1", ""), "A2 / A1 at top_far");
     }
 }

@@ -722,7 +722,10 @@ pub fn state_map(name: &str, m: &StateMap) -> Result<String> {
     };
     let t_end = m.times[rows - 1] + dt;
     render(name, (900, 500), |root| {
-        let mut chart = ChartBuilder::on(root)
+        // the legend in a column of its own right of the map: over the map it would hide
+        // the states at late times near the far end
+        let (map_area, legend_area) = root.split_horizontally(800);
+        let mut chart = ChartBuilder::on(&map_area)
             .caption(&m.title, ("sans-serif", 18))
             .margin(12)
             .x_label_area_size(40)
@@ -758,19 +761,14 @@ pub fn state_map(name: &str, m: &StateMap) -> Result<String> {
             }
         }
         chart.draw_series(cells)?;
-        for &(_, label, (r, g, b)) in m.classes {
-            let c = RGBColor(r, g, b);
-            chart
-                .draw_series(std::iter::empty::<Rectangle<(f64, f64)>>())?
-                .label(label)
-                .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 12, y + 6)], c.filled()));
+        for (row, &(_, label, (r, g, b))) in m.classes.iter().enumerate() {
+            let y = 50 + 24 * row as i32;
+            legend_area.draw(&Rectangle::new(
+                [(6, y - 6), (18, y + 6)],
+                RGBColor(r, g, b).filled(),
+            ))?;
+            legend_area.draw(&Text::new(label, (24, y - 7), ("sans-serif", 14)))?;
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()?;
         Ok(())
     })
 }

@@ -159,6 +159,7 @@ mod files {
                 .geometry
                 .receivers
                 .iter()
+                .chain(&r.geometry.stress_receivers)
                 .map(|p| (p[0] * mm, p[1] * mm))
                 .collect(),
             sources: r
@@ -501,8 +502,10 @@ pub struct Geometry {
     pub depth: f64,
     /// Cracks `[x0, z0, x1, z1]`.
     pub cracks: Vec<[f64; 4]>,
-    /// Receivers `[x, z]`.
+    /// Velocity receivers `[x, z]`.
     pub receivers: Vec<[f64; 2]>,
+    /// Stress receivers `[x, z]`.
+    pub stress_receivers: Vec<[f64; 2]>,
     /// Transducer apertures `[x0, z, x1, z]`.
     pub sources: Vec<[f64; 4]>,
 }
@@ -527,6 +530,7 @@ impl Geometry {
                 })
                 .collect(),
             receivers: p.receivers.clone(),
+            stress_receivers: s.stress_points.clone(),
             #[cfg(feature = "plot")]
             sources: files::apertures(&p.sources, depth),
             #[cfg(not(feature = "plot"))]
@@ -581,6 +585,29 @@ at = [1e-3, 1e-3]
     fn run(text: &str) -> Box<dyn model::Outcome> {
         let t = model::from_toml_str(text, "small.toml").unwrap();
         t.base().unwrap().run(&RunControl::default()).unwrap()
+    }
+
+    /// The frames mark stress receivers as well as velocity ones.
+    #[test]
+    fn the_pictures_know_every_receiver() {
+        let text =
+            small("[[receiver]]\nname = \"s\"\nat = [0.5e-3, 0.25e-3]\nquantity = \"stress\"\n");
+        let m = model::from_toml_str(&text, "small.toml")
+            .unwrap()
+            .base()
+            .unwrap();
+        let s = m
+            .as_any()
+            .downcast_ref::<crate::scenario::solid_2d::Solid2dScenario>()
+            .unwrap();
+        let g = super::Geometry::of(s);
+        assert_eq!(g.receivers.len(), 2);
+        assert_eq!(g.stress_receivers.len(), 1);
+        let [x, z] = g.stress_receivers[0];
+        assert!(
+            (x - 0.5e-3).abs() < 0.06e-3 && (z - 0.25e-3).abs() < 0.06e-3,
+            "{x} {z}"
+        );
     }
 
     /// An SH crack never opens: its gap map is the signed jump of u_y, drawn blue-white-red
