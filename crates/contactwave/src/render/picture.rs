@@ -46,6 +46,9 @@ pub struct Heatmap<'a> {
     pub ylabel: String,
     /// Colour bar label with its unit.
     pub bar_label: String,
+    /// Heights at which a dashed grey line crosses the field (display units), e.g. the
+    /// boundaries between layers.
+    pub boundaries: Vec<f64>,
     /// Segments drawn over the field (display units), e.g. cracks.
     pub lines: Vec<[(f64, f64); 2]>,
     /// Points marked over the field (display units), e.g. receivers.
@@ -266,6 +269,15 @@ pub fn heatmap(h: &Heatmap) -> RgbImage {
     let (y0, y1) = h.y_range;
     let px = |x: f64| LEFT as f64 + (x - x0) / (x1 - x0) * nx as f64;
     let py = |y: f64| TOP as f64 + (y - y0) / (y1 - y0) * nz as f64;
+    for &y in &h.boundaries {
+        let row = py(y).floor();
+        if row >= TOP as f64 && row < (TOP + nz) as f64 {
+            // dashes of 6 px, gaps of 4 px
+            for ix in (0..nx).filter(|ix| ix % 10 < 6) {
+                img.put_pixel(LEFT + ix, row as u32, Rgb([90, 90, 90]));
+            }
+        }
+    }
     for l in &h.lines {
         let (a, b) = ((px(l[0].0), py(l[0].1)), (px(l[1].0), py(l[1].1)));
         segment(&mut img, a, b, 5.0, [0, 0, 0]);
@@ -442,5 +454,31 @@ mod tests {
         assert_eq!(colour(0.0, false), [68, 1, 84]);
         assert_eq!(colour(0.5, true), [247, 247, 247]);
         assert_eq!(colour(7.0, true), [178, 24, 43]);
+    }
+
+    /// A layer boundary is a dashed grey line across the field at its height, over the
+    /// field's colours and nowhere else.
+    #[test]
+    fn a_boundary_is_a_dashed_line_at_its_height() {
+        let values = vec![0.5; 100 * 50];
+        let h = Heatmap {
+            nx: 100,
+            nz: 50,
+            values: &values,
+            x_range: (0.0, 10.0),
+            y_range: (0.0, 5.0),
+            scale: (0.0, 1.0),
+            boundaries: vec![2.0],
+            ..Default::default()
+        };
+        let img = heatmap(&h);
+        let grey = |row: u32| {
+            (0..100)
+                .filter(|&ix| img.get_pixel(LEFT + ix, TOP + row).0 == [90, 90, 90])
+                .count()
+        };
+        // 2 of 5 units: row 20; 6 px of every 10
+        assert_eq!(grey(20), 60);
+        assert_eq!(grey(19) + grey(21) + grey(0) + grey(49), 0);
     }
 }

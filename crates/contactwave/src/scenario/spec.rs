@@ -297,24 +297,3 @@ impl SolverSpec {
         })
     }
 }
-
-/// What a half-space scenario's key takes where serde's own message would not say it
-/// ([`super::value::deserialize_scenario`]).
-pub fn hint(key: &str, problem: super::value::FieldProblem) -> Option<String> {
-    use super::value::FieldProblem::{Missing, Wrong};
-    Some(match (key, problem) {
-        ("medium", Missing) => {
-            "a [medium] table: a material preset, or youngs_modulus, poisson_ratio and density"
-                .into()
-        }
-        ("interface", Missing) => {
-            "an [interface] table: its static_pressure (Pa) and contact laws".into()
-        }
-        ("solver.samples_per_period", Wrong) => format!(
-            "a whole number from {} to {}",
-            SAMPLES_PER_PERIOD.start(),
-            SAMPLES_PER_PERIOD.end()
-        ),
-        _ => return None,
-    })
-}

@@ -34,7 +34,28 @@ pub fn parse_toml(text: &str, file: &str) -> Result<toml::Table> {
 /// Deserialize a table into a [`ScenarioSpec`], naming the field path on failure.
 /// Unit strings (`frequency = "1 MHz"`) are converted to SI first ([`super::units`]).
 pub fn table_to_spec(table: toml::Table, file: &str) -> Result<ScenarioSpec> {
-    deserialize_scenario(table, file, super::spec::hint)
+    deserialize_scenario(table, file, half_space_hint)
+}
+
+/// What a half-space scenario's key takes where serde's own message would not say it
+/// ([`deserialize_scenario`]).
+fn half_space_hint(key: &str, problem: FieldProblem) -> Option<String> {
+    use FieldProblem::{Missing, Wrong};
+    Some(match (key, problem) {
+        ("medium", Missing) => {
+            "a [medium] table: a material preset, or youngs_modulus, poisson_ratio and density"
+                .into()
+        }
+        ("interface", Missing) => {
+            "an [interface] table: its static_pressure (Pa) and contact laws".into()
+        }
+        ("solver.samples_per_period", Wrong) => format!(
+            "a whole number from {} to {}",
+            super::spec::SAMPLES_PER_PERIOD.start(),
+            super::spec::SAMPLES_PER_PERIOD.end()
+        ),
+        _ => return None,
+    })
 }
 
 /// Deserialize a scenario table of any kind into its spec `T` (half-space, bar stack,

@@ -149,6 +149,7 @@ mod files {
             xlabel: "x (mm)".into(),
             ylabel: "z (mm)".into(),
             bar_label: field_label(s),
+            boundaries: r.geometry.layer_boundaries.iter().map(|z| z * mm).collect(),
             lines: r
                 .geometry
                 .cracks
@@ -502,6 +503,8 @@ pub struct Geometry {
     pub depth: f64,
     /// Cracks `[x0, z0, x1, z1]`.
     pub cracks: Vec<[f64; 4]>,
+    /// Depths of the boundaries between layers, m.
+    pub layer_boundaries: Vec<f64>,
     /// Velocity receivers `[x, z]`.
     pub receivers: Vec<[f64; 2]>,
     /// Stress receivers `[x, z]`.
@@ -528,6 +531,12 @@ impl Geometry {
                         [c.start[0], c.start[1], c.end[0], c.end[1]]
                     }
                 })
+                .collect(),
+            layer_boundaries: p
+                .layers
+                .iter()
+                .map(|l| l.bottom)
+                .take(p.layers.len().saturating_sub(1))
                 .collect(),
             receivers: p.receivers.clone(),
             stress_receivers: s.stress_points.clone(),
