@@ -133,6 +133,8 @@ def analyze(
 
     paths = [records] if is_path(records) else (list(records) if isinstance(records, (list, tuple)) and records and all(is_path(r) for r in records) else None)
     if paths is not None:
+        if dt is not None:
+            raise ValueError("dt: files carry their time base (a time column, or sample_rate for a file without one)")
         opts["files"] = [os.fspath(p) for p in paths]
         if sample_rate is not None:
             opts["sample_rate"] = float(sample_rate)
@@ -150,6 +152,8 @@ def analyze(
             if sample_rate is None:
                 raise ValueError("analyze: arrays need dt (s) or sample_rate (Hz)")
             dt = 1.0 / float(sample_rate)
+        elif sample_rate is not None and abs(float(dt) * float(sample_rate) - 1.0) > 1e-9:
+            raise ValueError(f"dt = {dt} s and sample_rate = {sample_rate} Hz disagree: give one of them")
         opts["dt"] = float(dt)
         out = _core.analyze(arrays(records), arrays(inverse), arrays(linear), json.dumps(opts))
     result = Analysis(json.loads(out[0]), out[1:])

@@ -77,6 +77,18 @@ def test_bad_input_is_a_value_error():
         cw.analyze(burst())
     with pytest.raises(ValueError, match="--inverse"):
         cw.analyze(burst(), dt=DT, method="pulse_inversion")
+    # records of different lengths, a time step and a rate that disagree, a companion the
+    # method does not read, a record without content at f0, a gate beyond the record
+    with pytest.raises(ValueError, match="as many samples"):
+        cw.analyze([burst(), burst()[:100]], dt=DT)
+    with pytest.raises(ValueError, match="disagree"):
+        cw.analyze(burst(), dt=DT, sample_rate=50e6)
+    with pytest.raises(ValueError, match="only with method pulse_inversion"):
+        cw.analyze(burst(), dt=DT, inverse=burst(sign=-1.0))
+    with pytest.raises(ValueError, match="A1 = 0"):
+        cw.analyze(np.zeros(N), dt=DT, f0=F0)
+    with pytest.raises(ValueError, match="inside the record"):
+        cw.analyze(burst(), dt=DT, gate=(30e-6, 60e-6))
 
 
 def test_to_pandas():

@@ -27,7 +27,7 @@ pub struct Args {
     f0: Option<f64>,
     /// Time gate around the echo, s: START,END or START,END,TAPER (half-cosine ramps
     /// TAPER long inside the gate; default a tenth of the gate).
-    #[arg(long, value_name = "T0,T1[,TAPER]")]
+    #[arg(long, value_name = "T0,T1[,TAPER]", allow_hyphen_values = true)]
     gate: Option<String>,
     /// Analysis method.
     #[arg(long, value_enum, default_value_t = Method::BandPeak)]

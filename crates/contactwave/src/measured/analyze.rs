@@ -169,6 +169,17 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
         ));
     }
     for r in &series.records {
+        if r.samples.len() != n {
+            return Err(Error::invalid(
+                file,
+                &r.name,
+                format!("{} samples", r.samples.len()),
+                format!(
+                    "as many samples as {} ({n}): every record on one time base",
+                    first.name
+                ),
+            ));
+        }
         let companions = [("inverse", &r.inverse), ("linear", &r.linear)];
         for (what, c) in companions {
             if let Some(c) = c {
@@ -193,11 +204,11 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
     }
     if let Some(g) = &settings.gate {
         let end = t0 + (n - 1) as f64 * dt;
-        if !g.is_valid() || g.end <= t0 || g.start >= end {
+        if !g.is_valid() || g.start < t0 - 0.5 * dt || g.end > end + 0.5 * dt {
             return Err(Error::invalid(
                 file,
                 "gate",
-                format!("{}, {} (taper {})", g.start, g.end, g.taper),
+                format!("{:e}, {:e} (taper {:e})", g.start, g.end, g.taper),
                 format!(
                     "start < end inside the record ({t0:e} .. {end:e} s), the taper at most half the gate"
                 ),
@@ -224,6 +235,23 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
                 "method",
                 method.name(),
                 format!("{} needs {m}", method.name()),
+            ));
+        }
+        // a companion record the method does not read would be listed as an input
+        // without being used
+        let unused = if r.inverse.is_some() && method != AnalysisMethod::PulseInversion {
+            Some(("inverse", "pulse_inversion"))
+        } else if r.linear.is_some() && method != AnalysisMethod::LinearReference {
+            Some(("linear", "linear_reference"))
+        } else {
+            None
+        };
+        if let Some((what, needs)) = unused {
+            return Err(Error::invalid(
+                file,
+                what,
+                format!("given with method {}", method.name()),
+                format!("only with method {needs}, which reads it"),
             ));
         }
     }
@@ -331,6 +359,15 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
             a
         })
         .collect::<Vec<_>>();
+    if let Some(r) = records.iter().find(|r| !(r.harmonics[1] > 0.0)) {
+        return Err(Error::invalid(
+            file,
+            &r.name,
+            format!("A1 = {:e} at f0 = {f0:e} Hz", r.harmonics[1]),
+            "a record with content at f0 (with pulse inversion, an opposite-polarity record \
+             that is not the record itself)",
+        ));
+    }
     let fit = fit_series(&records);
     Ok(Analysis {
         f0,

@@ -153,7 +153,15 @@ pub fn load(sources: &Sources) -> Result<Series> {
                     })?
             }
         };
-        if values.len() != count || values.iter().any(|v| !v.is_finite()) {
+        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+            return Err(Error::invalid(
+                &first_shown,
+                "amplitudes",
+                format!("{} (value {k}, from 0)", values[k]),
+                "finite drive amplitudes, one per record",
+            ));
+        }
+        if values.len() != count {
             return Err(Error::invalid(
                 &first_shown,
                 "amplitudes",

@@ -108,7 +108,38 @@ pub fn read_records(path: &Path, layout: &Layout) -> Result<Records> {
             .iter()
             .find(|a| a.name == name.trim_start_matches('/'))
     };
-    // the time base
+    // the time base: a column named as a time is one, so a sampling rate beside it would
+    // make it a record, and two of them are ambiguous
+    let is_time = |a: &&NamedArray| {
+        let base = a.name.rsplit('/').next().unwrap_or("").to_ascii_lowercase();
+        TIME_NAMES.contains(&base.as_str())
+    };
+    if layout.time.is_none() {
+        let named: Vec<&str> = arrays
+            .iter()
+            .filter(is_time)
+            .map(|a| a.name.as_str())
+            .collect();
+        if let (Some(fs), Some(first)) = (layout.sample_rate, named.first()) {
+            return Err(Error::invalid(
+                &shown,
+                "sample_rate",
+                format!("{fs} Hz"),
+                format!(
+                    "only for a file without a time column: this one has `{first}`, which \
+                     gives the time base (leave out the sampling rate)"
+                ),
+            ));
+        }
+        if named.len() > 1 {
+            return Err(Error::invalid(
+                &shown,
+                "time",
+                named.join(", "),
+                "one time column: name it with --time (Python: time=...)",
+            ));
+        }
+    }
     let time: Option<&NamedArray> = match (&layout.time, layout.sample_rate) {
         (Some(t), _) => Some(find(t).ok_or_else(|| {
             Error::invalid(
@@ -119,10 +150,7 @@ pub fn read_records(path: &Path, layout: &Layout) -> Result<Records> {
             )
         })?),
         (None, Some(_)) => None,
-        (None, None) => arrays.iter().find(|a| {
-            let base = a.name.rsplit('/').next().unwrap_or("").to_ascii_lowercase();
-            TIME_NAMES.contains(&base.as_str())
-        }),
+        (None, None) => arrays.iter().find(is_time),
     };
     let time_name = time.map(|a| a.name.clone());
     // the records
@@ -318,5 +346,44 @@ mod tests {
         assert!(uniform_step("f", "t", &t, 99).is_err());
         let rev: Vec<f64> = t.iter().rev().copied().collect();
         assert!(uniform_step("f", "t", &rev, 100).is_err());
+    }
+
+    /// A time column is never read as a record: a sampling rate beside one is refused,
+    /// and two time columns need `--time`.
+    #[test]
+    fn a_time_column_is_never_a_record() {
+        let path = std::env::temp_dir().join(format!("cw-time-{}.csv", std::process::id()));
+        let write = |header: &str, cols: usize| {
+            let mut s = format!("{header}\n");
+            for k in 0..32 {
+                let row: Vec<String> = (0..cols)
+                    .map(|c| format!("{}", if c < 2 { k as f64 * 1e-8 } else { 0.1 * k as f64 }))
+                    .collect();
+                s.push_str(&row.join(","));
+                s.push('\n');
+            }
+            std::fs::write(&path, s).unwrap();
+        };
+        write("time,t,ch1", 3);
+        let e = read_records(&path, &Layout::default()).unwrap_err().to_string();
+        assert!(e.contains("time, t") && e.contains("--time"), "{e}");
+        let named = Layout {
+            time: Some("t".into()),
+            ..Layout::default()
+        };
+        let r = read_records(&path, &named).unwrap();
+        let names: Vec<&str> = r.traces.iter().map(|t| t.name.as_str()).collect();
+        assert_eq!(names, ["time", "ch1"]);
+        write("time,ch1", 2);
+        let rate = Layout {
+            sample_rate: Some(50e6),
+            ..Layout::default()
+        };
+        let e = read_records(&path, &rate).unwrap_err().to_string();
+        assert!(e.contains("sample_rate") && e.contains("`time`"), "{e}");
+        let r = read_records(&path, &Layout::default()).unwrap();
+        assert_eq!(r.traces.len(), 1);
+        assert!((r.dt - 1e-8).abs() < 1e-20);
+        std::fs::remove_file(&path).ok();
     }
 }
