@@ -221,6 +221,30 @@ fn synthetic_records_are_recovered_by_every_method() {
     }
 }
 
+/// A linear reference recorded at a fifth of the drive is scaled five times before it is
+/// subtracted, and its noise with it: the floor says so.
+#[test]
+fn a_noisy_linear_reference_raises_the_floor() {
+    let floor = |reference_noise: f64| {
+        let mut m = Measured::new("echo", record(1.0, 1.0, false, false, 2e-5, 11, 0.0));
+        m.linear = Some(record(0.2, 1.0, true, false, reference_noise, 13, 0.0));
+        let series = Series {
+            dt: DT,
+            t0: 0.0,
+            records: vec![m],
+        };
+        let s = Settings {
+            f0: Some(F0),
+            gate: Some(gate(false)),
+            method: AnalysisMethod::LinearReference,
+            keep_dc: false,
+        };
+        analyze(&series, &s, "lin").unwrap().records[0].noise[2]
+    };
+    let (quiet, noisy) = (floor(2e-5), floor(2e-3));
+    assert!(noisy > 20.0 * quiet, "{quiet:e} {noisy:e}");
+}
+
 #[test]
 fn the_floor_flags_a_harmonic_buried_in_noise() {
     // noise 100 times larger: A4 and A5 (2e-3, 1e-3 of A1) are within 10x of the floor

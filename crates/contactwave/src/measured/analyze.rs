@@ -339,7 +339,15 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
                 let fundamental = band_limited(&gated, dt, 0.5 * f0, 1.5 * f0);
                 method_floor(method, &fundamental, &sig).harmonic
             };
-            let noise = noise_floor(&p.samples, gate, &sig);
+            // a linear reference is scaled onto the record before it is subtracted: its
+            // noise, scaled alike, adds to the record's
+            let mut noise = noise_floor(&p.samples, gate, &sig);
+            if let Some(l) = &linear {
+                let reference = noise_floor(l, gate, &sig);
+                for (a, b) in noise.iter_mut().zip(reference) {
+                    *a = a.hypot(b);
+                }
+            }
             let mut a = RecordAnalysis {
                 name: r.name.clone(),
                 amplitude: r.amplitude,
