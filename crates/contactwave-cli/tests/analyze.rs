@@ -73,7 +73,11 @@ fn bad_records_are_one_line_errors_with_exit_code_2_and_nothing_written() {
         ),
         // a negative start is a value, not an option (a record may start before 0); this
         // one lies before the record
-        ("records.csv", vec!["--gate", "-4e-6,5e-6"], "inside the record"),
+        (
+            "records.csv",
+            vec!["--gate", "-4e-6,5e-6"],
+            "inside the record",
+        ),
         // a sampling rate beside a time column would make the time a record
         ("records.csv", vec!["--sample-rate", "50e6"], "sample_rate"),
     ] {

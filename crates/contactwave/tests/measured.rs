@@ -245,6 +245,32 @@ fn a_noisy_linear_reference_raises_the_floor() {
     assert!(noisy > 20.0 * quiet, "{quiet:e} {noisy:e}");
 }
 
+/// A given f0 far from the records' spectral peak reads A1 in a band without the
+/// fundamental: warned about; the right one is not.
+#[test]
+fn a_given_f0_far_from_the_records_peak_is_warned_about() {
+    let warnings = |f0: f64| {
+        let m = Measured::new("echo", record(1.0, 1.0, false, false, 2e-5, 11, 0.0));
+        let series = Series {
+            dt: DT,
+            t0: 0.0,
+            records: vec![m],
+        };
+        let s = Settings {
+            f0: Some(f0),
+            gate: Some(gate(false)),
+            ..Settings::default()
+        };
+        let a = analyze(&series, &s, "f0").unwrap();
+        assert!((a.peak - F0).abs() < 2e-3 * F0, "{}", a.peak);
+        contactwave::output::analyze::warnings(&a)
+    };
+    assert!(warnings(1.5 * F0)
+        .iter()
+        .any(|w| w.contains("spectral peak")));
+    assert!(!warnings(F0).iter().any(|w| w.contains("spectral peak")));
+}
+
 #[test]
 fn the_floor_flags_a_harmonic_buried_in_noise() {
     // noise 100 times larger: A4 and A5 (2e-3, 1e-3 of A1) are within 10x of the floor

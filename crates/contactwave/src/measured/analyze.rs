@@ -127,6 +127,9 @@ pub struct Analysis {
     pub f0: f64,
     /// Whether `f0` was detected (not given).
     pub f0_detected: bool,
+    /// The records' spectral peak, Hz (what detection gives; NaN where there is none):
+    /// a given `f0` far from it reads A1 in a band without the fundamental.
+    pub peak: f64,
     /// Method.
     pub method: AnalysisMethod,
     /// Gate.
@@ -262,6 +265,7 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
         .map(|r| Prepared::of(r, settings))
         .collect();
     // the fundamental
+    let peak = detect_f0(&prepared, settings.gate.as_ref(), t0, dt, file).unwrap_or(f64::NAN);
     let (f0, f0_detected) = match settings.f0 {
         Some(f) => {
             let nyquist = 0.5 / dt;
@@ -380,6 +384,7 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
     Ok(Analysis {
         f0,
         f0_detected,
+        peak,
         method,
         gate: settings.gate,
         plateau,

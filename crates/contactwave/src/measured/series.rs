@@ -357,7 +357,16 @@ mod tests {
             let mut s = format!("{header}\n");
             for k in 0..32 {
                 let row: Vec<String> = (0..cols)
-                    .map(|c| format!("{}", if c < 2 { k as f64 * 1e-8 } else { 0.1 * k as f64 }))
+                    .map(|c| {
+                        format!(
+                            "{}",
+                            if c < 2 {
+                                k as f64 * 1e-8
+                            } else {
+                                0.1 * k as f64
+                            }
+                        )
+                    })
                     .collect();
                 s.push_str(&row.join(","));
                 s.push('\n');
@@ -365,7 +374,9 @@ mod tests {
             std::fs::write(&path, s).unwrap();
         };
         write("time,t,ch1", 3);
-        let e = read_records(&path, &Layout::default()).unwrap_err().to_string();
+        let e = read_records(&path, &Layout::default())
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("time, t") && e.contains("--time"), "{e}");
         let named = Layout {
             time: Some("t".into()),

@@ -54,9 +54,19 @@ fn record_values(r: &crate::measured::RecordAnalysis) -> Vec<f64> {
     v
 }
 
-/// One line per record with a harmonic near its floor.
+/// One line per record with a harmonic near its floor, and one where a given f0 is more
+/// than 10 % from the records' spectral peak.
 pub fn warnings(a: &Analysis) -> Vec<String> {
-    a.records
+    let far = !a.f0_detected && (a.peak - a.f0).abs() > 0.1 * a.f0;
+    let f0 = far.then(|| {
+        format!(
+            "f0 = {:e} Hz given, but the records' spectral peak is at {:.6e} Hz: A1 is read in \
+             the band of f0, which may not hold the fundamental (check --f0)",
+            a.f0, a.peak
+        )
+    });
+    f0.into_iter()
+        .chain(a.records
         .iter()
         .filter(|r| !r.near_floor.is_empty())
         .map(|r| {
@@ -66,7 +76,7 @@ pub fn warnings(a: &Analysis) -> Vec<String> {
                 r.name,
                 h.join(", ")
             )
-        })
+        }))
         .collect()
 }
 
