@@ -269,12 +269,14 @@ impl<R: BufRead> CsvReader<R> {
                     self.header = Some((0..self.cells).map(|c| self.cell(c).to_string()).collect());
                 }
                 Some(c) => {
-                    return Err(self.error(
-                        line,
-                        Some(self.column_name(c)),
-                        self.cell(c),
-                        "a number",
-                    ))
+                    // a file separated by `;` or tabs reads as one column of text
+                    let separator = [';', '\t'].into_iter().find(|s| self.cell(c).contains(*s));
+                    let allowed = match separator {
+                        Some(';') => "a number (cells separated by commas; this line uses `;`)",
+                        Some(_) => "a number (cells separated by commas; this line uses tabs)",
+                        None => "a number",
+                    };
+                    return Err(self.error(line, Some(self.column_name(c)), self.cell(c), allowed));
                 }
             }
         }
@@ -338,6 +340,9 @@ mod tests {
             Error::from(e).to_string(),
             "d.csv: field `line 3, column A` = abc: a number"
         );
+        // a file separated by semicolons says so
+        let e = table("t;ch1\n0.0;0.3\n").unwrap_err();
+        assert!(e.expected.contains("this line uses `;`"), "{e}");
         let e = table("xi,A\n0.1,2,3\n").unwrap_err();
         assert_eq!((e.line, e.value.as_str()), (2, "3 cells"));
         assert!(e.expected.contains("2 cells, as the header"), "{e}");
