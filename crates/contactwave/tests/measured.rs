@@ -221,6 +221,22 @@ fn synthetic_records_are_recovered_by_every_method() {
     }
 }
 
+/// The analysis of the one record `m` with f0 given, the default gate and `method`.
+fn analyze_one(m: Measured, f0: f64, method: AnalysisMethod) -> contactwave::measured::Analysis {
+    let series = Series {
+        dt: DT,
+        t0: 0.0,
+        records: vec![m],
+    };
+    let s = Settings {
+        f0: Some(f0),
+        gate: Some(gate(false)),
+        method,
+        keep_dc: false,
+    };
+    analyze(&series, &s, "one").unwrap()
+}
+
 /// A linear reference recorded at a fifth of the drive is scaled five times before it is
 /// subtracted, and its noise with it: the floor says so.
 #[test]
@@ -228,18 +244,7 @@ fn a_noisy_linear_reference_raises_the_floor() {
     let floor = |reference_noise: f64| {
         let mut m = Measured::new("echo", record(1.0, 1.0, false, false, 2e-5, 11, 0.0));
         m.linear = Some(record(0.2, 1.0, true, false, reference_noise, 13, 0.0));
-        let series = Series {
-            dt: DT,
-            t0: 0.0,
-            records: vec![m],
-        };
-        let s = Settings {
-            f0: Some(F0),
-            gate: Some(gate(false)),
-            method: AnalysisMethod::LinearReference,
-            keep_dc: false,
-        };
-        analyze(&series, &s, "lin").unwrap().records[0].noise[2]
+        analyze_one(m, F0, AnalysisMethod::LinearReference).records[0].noise[2]
     };
     let (quiet, noisy) = (floor(2e-5), floor(2e-3));
     assert!(noisy > 20.0 * quiet, "{quiet:e} {noisy:e}");
@@ -251,17 +256,7 @@ fn a_noisy_linear_reference_raises_the_floor() {
 fn a_given_f0_far_from_the_records_peak_is_warned_about() {
     let warnings = |f0: f64| {
         let m = Measured::new("echo", record(1.0, 1.0, false, false, 2e-5, 11, 0.0));
-        let series = Series {
-            dt: DT,
-            t0: 0.0,
-            records: vec![m],
-        };
-        let s = Settings {
-            f0: Some(f0),
-            gate: Some(gate(false)),
-            ..Settings::default()
-        };
-        let a = analyze(&series, &s, "f0").unwrap();
+        let a = analyze_one(m, f0, AnalysisMethod::BandPeak);
         assert!((a.peak - F0).abs() < 2e-3 * F0, "{}", a.peak);
         contactwave::output::analyze::warnings(&a)
     };
@@ -275,17 +270,7 @@ fn a_given_f0_far_from_the_records_peak_is_warned_about() {
 fn the_floor_flags_a_harmonic_buried_in_noise() {
     // noise 100 times larger: A4 and A5 (2e-3, 1e-3 of A1) are within 10x of the floor
     let m = Measured::new("noisy", record(1.0, 1.0, false, false, 2e-3, 5, 0.0));
-    let series = Series {
-        dt: DT,
-        t0: 0.0,
-        records: vec![m],
-    };
-    let s = Settings {
-        f0: Some(F0),
-        gate: Some(gate(false)),
-        ..Settings::default()
-    };
-    let a = analyze(&series, &s, "noisy").unwrap();
+    let a = analyze_one(m, F0, AnalysisMethod::BandPeak);
     let r = &a.records[0];
     assert!(r.noise[5].is_finite() && r.noise[5] > 0.0);
     assert!(r.near_floor.contains(&5), "{:?}", r.near_floor);
