@@ -265,7 +265,8 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
         .map(|r| Prepared::of(r, settings))
         .collect();
     // the fundamental
-    let peak = detect_f0(&prepared, settings.gate.as_ref(), t0, dt, file).unwrap_or(f64::NAN);
+    let detected = detect_f0(&prepared, settings.gate.as_ref(), t0, dt, file);
+    let peak = detected.as_ref().copied().unwrap_or(f64::NAN);
     let (f0, f0_detected) = match settings.f0 {
         Some(f) => {
             let nyquist = 0.5 / dt;
@@ -279,10 +280,7 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
             }
             (f, false)
         }
-        None => (
-            detect_f0(&prepared, settings.gate.as_ref(), t0, dt, file)?,
-            true,
-        ),
+        None => (detected?, true),
     };
     let periods = duration * f0;
     if periods < 3.0 {
@@ -476,10 +474,7 @@ fn refine_peak(x: &[f64], dt: f64, f: f64, df: f64) -> f64 {
     };
     let x = &x[a..=b];
     let magnitude = |f: f64| {
-        let (c, s) = (
-            (2.0 * std::f64::consts::PI * f * dt).cos(),
-            (2.0 * std::f64::consts::PI * f * dt).sin(),
-        );
+        let (s, c) = (2.0 * std::f64::consts::PI * f * dt).sin_cos();
         // the phasor e^{-i w k} by rotation, the sums in one pass
         let (mut pr, mut pi, mut re, mut im) = (1.0f64, 0.0f64, 0.0, 0.0);
         for v in x {
