@@ -49,13 +49,14 @@ fn half_space_hint(key: &str, problem: FieldProblem) -> Option<String> {
         ("interface", Missing) => {
             "an [interface] table: its static_pressure (Pa) and contact laws".into()
         }
-        ("solver.samples_per_period", Wrong) => format!(
-            "a whole number from {} to {}",
-            super::spec::SAMPLES_PER_PERIOD.start(),
-            super::spec::SAMPLES_PER_PERIOD.end()
-        ),
+        ("solver.samples_per_period", Wrong) => whole_numbers(super::spec::SAMPLES_PER_PERIOD),
         _ => return None,
     })
+}
+
+/// What a count in `range` takes, as the field hints say it.
+pub(super) fn whole_numbers(range: std::ops::RangeInclusive<usize>) -> String {
+    format!("a whole number from {} to {}", range.start(), range.end())
 }
 
 /// Deserialize a scenario table of any kind into its spec `T` (half-space, bar stack,

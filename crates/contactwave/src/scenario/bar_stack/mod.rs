@@ -224,7 +224,6 @@ impl BarStackSpec {
 /// What a bar-stack scenario's key takes where serde's own message would not say it.
 fn hint(key: &str, problem: crate::scenario::value::FieldProblem) -> Option<String> {
     use crate::scenario::value::FieldProblem::{Missing, Wrong};
-    let range = crate::scenario::spec::SAMPLES_PER_PERIOD;
     Some(match (key, problem) {
         ("model", Missing) => {
             "a [model] table with kind = \"bar_stack\" and the cross-section area (m^2)".into()
@@ -233,7 +232,7 @@ fn hint(key: &str, problem: crate::scenario::value::FieldProblem) -> Option<Stri
             "at least one [[segment]] table: name, length (m) and a material".into()
         }
         ("model.samples_per_period", Wrong) => {
-            format!("a whole number from {} to {}", range.start(), range.end())
+            crate::scenario::value::whole_numbers(crate::scenario::spec::SAMPLES_PER_PERIOD)
         }
         _ => return None,
     })

@@ -850,9 +850,7 @@ impl Solid2dSpec {
 /// range, a required table).
 fn hint(key: &str, problem: crate::scenario::value::FieldProblem) -> Option<String> {
     use crate::scenario::value::FieldProblem::{Missing, Wrong};
-    let whole = |r: std::ops::RangeInclusive<usize>| {
-        format!("a whole number from {} to {}", r.start(), r.end())
-    };
+    let whole = crate::scenario::value::whole_numbers;
     Some(match (key, problem) {
         ("model", Missing) => {
             "a [model] table with kind = \"solid_2d\", width (m) and duration (s)".into()
