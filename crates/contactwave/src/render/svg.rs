@@ -721,9 +721,17 @@ pub fn state_map(name: &str, m: &StateMap) -> Result<String> {
         1.0
     };
     let t_end = m.times[rows - 1] + dt;
-    render(name, (900, 500), |root| {
-        // the legend in a column of its own right of the map: over the map it would hide
-        // the states at late times near the far end
+    // the legend in a column of its own right of the map (over the map it would hide the
+    // states at late times near the far end), as wide as its longest label (about 7.5 px a
+    // character of 14 px sans-serif)
+    let longest = m
+        .classes
+        .iter()
+        .map(|c| c.1.chars().count())
+        .max()
+        .unwrap_or(0);
+    let legend = 40 + (7.5 * longest as f64).ceil() as u32;
+    render(name, (800 + legend, 500), |root| {
         let (map_area, legend_area) = root.split_horizontally(800);
         let mut chart = ChartBuilder::on(&map_area)
             .caption(&m.title, ("sans-serif", 18))

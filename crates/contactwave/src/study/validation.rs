@@ -75,6 +75,17 @@ impl ValidationCase {
         Self::with(name.into(), reference, computed, Some(tolerance))
     }
 
+    /// A one-sided check: `computed` at least `expected` within `tolerance` (relative), i.e.
+    /// `computed >= expected (1 - tolerance)`; a value above `expected` has no error (an
+    /// observed order of convergence higher than the scheme's least). NaN fails.
+    pub fn at_least(name: impl Into<String>, expected: f64, computed: f64, tolerance: f64) -> Self {
+        let mut c = Self::with(name.into(), expected, computed, Some(tolerance));
+        if computed >= expected {
+            c.rel_error = 0.0;
+        }
+        c
+    }
+
     /// An informational row: the reference and computed values are shown, with their
     /// relative error, but there is no criterion and the row is not counted as a check.
     pub fn informational(name: impl Into<String>, reference: f64, computed: f64) -> Self {
@@ -511,6 +522,19 @@ mod tests {
     fn table2_fit_matches_thesis() {
         for c in table2_fit() {
             assert!(c.passed(), "{c:?}");
+        }
+    }
+
+    #[test]
+    fn one_sided_rows_fail_only_below_their_bound() {
+        let row = |order: f64| ValidationCase::at_least("order", 1.0, order, 0.5);
+        for order in [0.5, 0.9, 1.0, 2.3, 40.0] {
+            assert!(row(order).passed(), "{:?}", row(order));
+        }
+        assert_eq!(row(2.3).rel_error, 0.0);
+        assert!((row(0.9).rel_error - 0.1).abs() < 1e-15);
+        for order in [0.49, 0.0, -1.0, f64::NAN] {
+            assert!(row(order).failed(), "{:?}", row(order));
         }
     }
 }

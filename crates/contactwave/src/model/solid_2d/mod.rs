@@ -798,6 +798,23 @@ impl Outcome for Solid2dResult {
                 get(&format!("{name}_A3_over_A1"))
             ));
         }
+        let code = get("analysis_method");
+        let method = AnalysisMethod::ALL.into_iter().find(|m| m.code() == code);
+        if let Some(m) =
+            method.filter(|_| !self.receivers.is_empty() || !self.stress_receivers.is_empty())
+        {
+            lines.push(format!("analysis method        {}", m.name()));
+            if matches!(m, AnalysisMethod::BandPeak | AnalysisMethod::PlateauFit) {
+                // in 2D the linear path from source to receiver shapes the spectrum, so a
+                // one-run method has a floor of its own (model.md section 15.10)
+                lines.push(format!(
+                    "note: {} analyses one run, so A2..A5 include the linear wavefield's own content near n f0 \
+                     (the source's spectrum as the solid carries it to the receiver), not only what the cracks add; \
+                     pulse_inversion or linear_reference (a second run) keep only the cracks' harmonics",
+                    m.name()
+                ));
+            }
+        }
         lines
     }
 

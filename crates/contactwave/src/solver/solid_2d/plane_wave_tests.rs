@@ -81,8 +81,8 @@ fn plane_wave_injection_leaks_less_than_40_db() {
     }
 }
 
-/// The same at the default order 6 and its default element size for 3 f0 (1.18 per S
-/// wavelength at 3 f0: 3.5 per S wavelength, 1.8 per P wavelength at f0), and at half
+/// The same at the default order 6 and its default element size for 3 f0 (0.85 elements
+/// per S wavelength at 3 f0: 2.55 per S wavelength, 5.2 per P wavelength at f0), and at half
 /// of it: below -40 dB there, and falling.
 #[test]
 fn plane_wave_injection_at_the_default_order() {

@@ -447,8 +447,8 @@ pub const ROW_SIZES: [f64; 3] = [0.25, 0.125, 0.0625];
 /// the observed orders between them, and the reflected and transmitted A2/A1 at 16
 /// against the exact ratio. Smooth laws: gap within 1e-2, 2e-3 and 1e-3, order 2 within
 /// 0.4; laws with impacts or stick-slip (first order expected, table 15.8-2): within 0.1,
-/// 0.05 and 0.03, order between 0.5 and 3.5; A2/A1 within 0.01 of the exact ratio
-/// (absolute).
+/// 0.05 and 0.03, order at least 0.5 (one-sided: [`ValidationCase::at_least`]); A2/A1
+/// within 0.01 of the exact ratio (absolute).
 pub fn run_rows() -> Result<Vec<ValidationCase>> {
     let mut v = Vec::new();
     let per = |k: usize| (1.0 / ROW_SIZES[k]).round();
@@ -473,17 +473,23 @@ pub fn run_rows() -> Result<Vec<ValidationCase>> {
         }
         let gaps: Vec<f64> = r.iter().map(|x| x.gap).collect();
         for (k, order) in orders(&gaps).into_iter().enumerate() {
-            v.push(ValidationCase::new(
-                format!(
-                    "2D 1D reduction, {}: observed order of the gap error, {} to {} el./wavelength",
-                    c.label,
-                    per(k),
-                    per(k + 1)
-                ),
-                2.0,
-                order,
-                if c.smooth { 0.2 } else { 0.75 },
-            ));
+            let name = format!(
+                "2D 1D reduction, {}: observed order of the gap error, {} to {} el./wavelength",
+                c.label,
+                per(k),
+                per(k + 1)
+            );
+            v.push(if c.smooth {
+                ValidationCase::new(name, 2.0, order, 0.2)
+            } else {
+                // impacts and stick-slip: first order expected, at least 0.5 checked
+                ValidationCase::at_least(
+                    name + " (at least first order, within 0.5)",
+                    1.0,
+                    order,
+                    0.5,
+                )
+            });
         }
         let last = r[r.len() - 1];
         for (what, got) in [
