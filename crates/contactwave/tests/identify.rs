@@ -332,6 +332,38 @@ fn bad_input_is_an_invalid_error() {
     .unwrap_err();
     let (_, field, _) = invalid_field(e);
     assert_eq!(field, "parameter.0.bounds");
+    // bounds within which the scenario is not valid everywhere: a negative pressure at
+    // the lower bound, and the whole numbers of a count inside (once a panic of the
+    // optimiser, halfway through the search)
+    let head = "base = \"../rccm_0.82MPa.toml\"\n[data]\n\"incident.xi\" = [0.1, 0.2]\nA2_over_A1 = [0.5, 0.4]\n";
+    for (param, fails) in [
+        (
+            "key = \"interface.static_pressure\"\nbounds = [-1e6, 2e6]",
+            "interface.static_pressure = -1e6 fails",
+        ),
+        (
+            "key = \"solver.samples_per_period\"\nbounds = [100, 300]\ninitial = 200",
+            "solver.samples_per_period = 1.763932e2 fails",
+        ),
+    ] {
+        let e = load(&format!("{head}[[parameter]]\n{param}\n")).unwrap_err();
+        let msg = e.to_string();
+        let (_, field, _) = invalid_field(e);
+        assert_eq!(field, "parameter.0.bounds", "{msg}");
+        assert!(msg.contains(fails), "{msg}");
+    }
+    // a design candidate that makes no valid scenario
+    let e = load(&format!(
+        "{head}{GOOD_PARAM}\n[design]\nvalues = [1e6, 0.0]\n"
+    ))
+    .unwrap_err();
+    let msg = e.to_string();
+    let (_, field, value) = invalid_field(e);
+    assert_eq!(
+        (field.as_str(), value.as_str()),
+        ("design.values", "0e0"),
+        "{msg}"
+    );
 }
 
 /// The derived format and its validation pass (issue 25, item 7): an unknown key, a value of

@@ -354,6 +354,43 @@ fn bad_input_is_an_error_naming_the_key() {
             "",
             "field `layer` = (missing): required: at least one [[layer]] table",
         ),
+        // an amplitude far beyond any solid's strength (its energies would overflow)
+        (
+            "amplitude = 10e6, window",
+            "amplitude = 1e300, window",
+            "field `source.0.signal.amplitude` = 1e300: a number > 0 and <= 1e12",
+        ),
+        // a sliver of an aperture would make slivers of elements
+        ("x1 = 1.4e-3", "x1 = 0.6000001e-3", "field `source.0.x1`"),
+        // the elements resolve f0 at least; a gate holds a period of it at least
+        (
+            "element_size = 0.1e-3",
+            "element_size = 0.1e-3\nharmonic = 1e-9",
+            "field `model.harmonic` = 1e-9: a finite number >= 1",
+        ),
+        (
+            "at = [1e-3, 1e-3]",
+            "at = [1e-3, 1e-3]\n[analysis]\ngate = [0.2e-6, 0.2000001e-6]",
+            "field `analysis.gate`",
+        ),
+        // a pre-stress that is not a number names its own key, not the crack's
+        (
+            "element_size = 0.1e-3",
+            "element_size = 0.1e-3\nprestress = { zz = nan }",
+            "field `model.prestress.zz` = NaN",
+        ),
+        // a receiver at NaN names `at` (NaN equals nothing, not even itself)
+        (
+            "at = [1e-3, 1e-3]",
+            "at = [nan, 1e-3]",
+            "field `receiver.1.at`",
+        ),
+        // a law given as a name, not a table: what it takes, in plain words
+        (
+            "tangential = { law = \"coulomb\", friction = 0.3 }",
+            "tangential = { law = \"coulomb\", friction = 0.3 }\ntraction = \"free\"",
+            "expected a table naming its law",
+        ),
         // absorbing layers in mm given in m: a mesh beyond the budget names their key
         (
             "duration = 0.6e-6",

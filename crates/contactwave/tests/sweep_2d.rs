@@ -129,3 +129,31 @@ fn the_2d_model_estimates_its_memory_before_it_runs() {
     let twin = model::plan(table, Path::new("twin.toml")).base().unwrap();
     assert_eq!(twin.memory_estimate().unwrap().unwrap(), 2.0 * base);
 }
+
+/// Every point of a 2D sweep is checked against the memory budget before any runs: a
+/// duration of 1000 s (a unit slip) is refused up front, naming the key, the sweep file
+/// and the point, rather than failing when its turn comes.
+#[test]
+fn a_sweep_checks_every_points_memory_before_it_runs() {
+    let d = std::env::temp_dir().join(format!("contactwave-sweep-budget-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    let base = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/solid_2d/plate_crack_quick.toml");
+    std::fs::write(
+        d.join("sweep.toml"),
+        format!(
+            "base = {:?}\n[[axis]]\nparameter = \"model.duration\"\nvalues = [20e-6, 1e3]\n",
+            base.display().to_string()
+        ),
+    )
+    .unwrap();
+    let s = contactwave::study::Sweep::load(&d.join("sweep.toml")).unwrap();
+    let e = s.validate().map(drop).unwrap_err().to_string();
+    assert!(
+        e.contains("field `model.duration` = 1000: needs about")
+            && e.contains("in sweep")
+            && e.contains("at point 1"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&d).unwrap();
+}

@@ -95,8 +95,8 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     if args.hdf5 {
         binary.push(output::hdf5::run_file(&files, &provenance)?);
     }
-    output::write_files(out, &files)?;
-    output::write_binary_files(out, &binary)?;
+    // all or none: an interruption while writing leaves the folder as it was
+    output::write_all(out, &files, &binary)?;
     let mut names: Vec<String> = files.iter().map(|f| f.name.clone()).collect();
     names.extend(binary.iter().map(|f| f.name.clone()));
     super::claim_out(out, "run", &names)?;

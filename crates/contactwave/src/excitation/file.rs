@@ -46,13 +46,16 @@ impl FileWaveform {
         let mut row = Vec::with_capacity(2);
         while let Some(line) = rdr.next_row(&[0, 1], &mut row)? {
             let (a, b) = (row[0], row[1]);
-            if !a.is_finite() || !b.is_finite() {
+            if !a.is_finite() || !b.is_finite() || b.abs() > super::MAX_AMPLITUDE {
                 return Err(rdr
                     .error(
                         line,
                         None,
                         format!("{a}, {b}"),
-                        "time and stress must be finite",
+                        format!(
+                            "finite times, and stresses within +-{:e} Pa",
+                            super::MAX_AMPLITUDE
+                        ),
                     )
                     .into());
             }
@@ -87,8 +90,11 @@ impl FileWaveform {
             return Err(Error::invalid(
                 &shown,
                 field,
-                t.len(),
-                "need at least 2 samples",
+                &shown,
+                format!(
+                    "a file of at least 2 samples (rows of time, stress); it has {}",
+                    t.len()
+                ),
             ));
         }
         Ok((t, s))

@@ -48,6 +48,11 @@ pub(crate) fn grid_by_steps<E: Excitation + ?Sized>(
     }
 }
 
+/// The largest signal amplitude a scenario takes (Pa, or N/m for a 2D point force): a
+/// thousand times the strength of any solid, and far from double precision's overflow in
+/// the energies (squares of the fields).
+pub const MAX_AMPLITUDE: f64 = 1e12;
+
 /// An incident stress waveform.
 pub trait Excitation: Debug + Send + Sync {
     /// Incident stress at the interface `s_inc(t)`, Pa (tension positive); 0 outside

@@ -11,6 +11,7 @@ use argmin::solver::neldermead::NelderMead;
 use argmin::solver::particleswarm::ParticleSwarm;
 use rand::rngs::StdRng;
 use rand::SeedableRng;
+use std::sync::{Arc, Mutex};
 
 /// Cost given to a parameter point whose forward run failed numerically.
 const FAILED_COST: f64 = 1e30;
@@ -23,9 +24,38 @@ pub struct LeastSquares<'m, 'a> {
     pub model: &'m Model<'a>,
     /// Rows of the data used (with repetitions).
     pub rows: Vec<usize>,
+    /// The first error of a cost evaluation under argmin (which unwraps some of them):
+    /// kept here, the cost made infinite, and every later evaluation skipped; the caller
+    /// returns it after the executor ([`LeastSquares::solved`]).
+    failure: Arc<Mutex<Option<Error>>>,
 }
 
-impl LeastSquares<'_, '_> {
+impl<'m, 'a> LeastSquares<'m, 'a> {
+    /// The problem over `rows` of `model`.
+    pub fn new(model: &'m Model<'a>, rows: Vec<usize>) -> Self {
+        LeastSquares {
+            model,
+            rows,
+            failure: Arc::default(),
+        }
+    }
+
+    /// A handle on the failure slot, to read after the executor has taken the problem.
+    fn failures(&self) -> Arc<Mutex<Option<Error>>> {
+        self.failure.clone()
+    }
+
+    /// `result`, unless a cost evaluation failed meanwhile: then that error.
+    fn solved<T>(
+        failure: &Mutex<Option<Error>>,
+        result: std::result::Result<T, argmin::core::Error>,
+    ) -> Result<T> {
+        if let Some(e) = failure.lock().ok().and_then(|mut f| f.take()) {
+            return Err(e);
+        }
+        result.map_err(argmin_err)
+    }
+
     /// Sum of squared weighted residuals at scaled coordinates `z` (bounds penalty
     /// included); `Err` only for errors other than numerical failures.
     pub fn evaluate(&self, z: &[f64]) -> Result<f64> {
@@ -71,8 +101,21 @@ impl CostFunction for LeastSquares<'_, '_> {
     type Output = f64;
 
     fn cost(&self, z: &Self::Param) -> std::result::Result<f64, argmin::core::Error> {
-        self.evaluate(z)
-            .map_err(|e| argmin::core::Error::msg(e.to_string()))
+        // argmin's Nelder-Mead unwraps the costs of its first simplex: an error is kept
+        // for the caller instead, and the search runs out on infinite costs
+        let failed = |f: &Mutex<Option<Error>>| f.lock().map(|f| f.is_some()).unwrap_or(true);
+        if failed(&self.failure) {
+            return Ok(f64::INFINITY);
+        }
+        match self.evaluate(z) {
+            Ok(c) => Ok(c),
+            Err(e) => {
+                if let Ok(mut f) = self.failure.lock() {
+                    f.get_or_insert(e);
+                }
+                Ok(f64::INFINITY)
+            }
+        }
     }
 }
 
@@ -176,7 +219,7 @@ fn refine_simplex(
     tolerance: f64,
 ) -> Result<(Vec<f64>, f64, u64)> {
     let params = &model.spec.parameters;
-    let problem = LeastSquares { model, rows };
+    let problem = LeastSquares::new(model, rows);
     let c0 = problem.evaluate(z0)?;
     if iters == 0 {
         return Ok((z0.to_vec(), c0, 0));
@@ -184,10 +227,13 @@ fn refine_simplex(
     let solver = NelderMead::new(simplex)
         .with_sd_tolerance(tolerance)
         .map_err(argmin_err)?;
-    let res = Executor::new(problem, solver)
-        .configure(|s| s.max_iters(iters))
-        .run()
-        .map_err(argmin_err)?;
+    let failure = problem.failures();
+    let res = LeastSquares::solved(
+        &failure,
+        Executor::new(problem, solver)
+            .configure(|s| s.max_iters(iters))
+            .run(),
+    )?;
     let st = res.state();
     let z = st.get_best_param().cloned().unwrap_or_else(|| z0.to_vec());
     let cost = st.get_best_cost();
@@ -217,11 +263,7 @@ pub fn estimate(model: &Model, progress: &(dyn Fn(&str) + Sync)) -> Result<Estim
         .iter()
         .map(|p| p.to_scaled(p.initial))
         .collect();
-    let init_cost = LeastSquares {
-        model,
-        rows: rows.clone(),
-    }
-    .evaluate(&z_init)?;
+    let init_cost = LeastSquares::new(model, rows.clone()).evaluate(&z_init)?;
     let (mut global_z, mut global_cost) = (z_init.clone(), init_cost);
     // starting points of the local stage: the best particles of the swarm
     let mut starts: Vec<(Vec<f64>, f64)> = vec![(z_init.clone(), init_cost)];
@@ -230,14 +272,14 @@ pub fn estimate(model: &Model, progress: &(dyn Fn(&str) + Sync)) -> Result<Estim
             spec.parameters.iter().map(|p| p.scaled_bounds()).unzip();
         let pso = ParticleSwarm::new((lo, hi), fit.particles)
             .with_rng_generator(StdRng::seed_from_u64(fit.seed));
-        let problem = LeastSquares {
-            model,
-            rows: rows.clone(),
-        };
-        let res = Executor::new(problem, pso)
-            .configure(|s| s.max_iters(fit.iterations))
-            .run()
-            .map_err(argmin_err)?;
+        let problem = LeastSquares::new(model, rows.clone());
+        let failure = problem.failures();
+        let res = LeastSquares::solved(
+            &failure,
+            Executor::new(problem, pso)
+                .configure(|s| s.max_iters(fit.iterations))
+                .run(),
+        )?;
         let st = res.state();
         if let Some(best) = st.get_best_param() {
             if st.get_best_cost() < global_cost {

@@ -123,10 +123,7 @@ pub fn analyse(
     }
     let t = t975(dof.max(1));
     // bound check
-    let ls = LeastSquares {
-        model,
-        rows: rows.clone(),
-    };
+    let ls = LeastSquares::new(model, rows.clone());
     let bound_delta_chi2: Vec<(f64, f64)> = (0..p)
         .map(|j| {
             let (lo, hi) = params[j].scaled_bounds();

@@ -152,6 +152,17 @@ impl<'a> Model<'a> {
             .to_string()
     }
 
+    /// [`Self::scenario`] with the extra `(key, value)` pairs `extra` set (a design's
+    /// candidate), its errors as the scenario's own.
+    pub(super) fn scenario_with(
+        &self,
+        i: usize,
+        values: &[f64],
+        extra: &[(String, f64)],
+    ) -> Result<Arc<dyn ForwardModel>> {
+        self.build(i, values, extra)
+    }
+
     /// The validated scenario of row `i` at parameter values `values`.
     pub fn scenario(&self, i: usize, values: &[f64]) -> Result<Arc<dyn ForwardModel>> {
         self.build(i, values, &[]).map_err(|e| match e {

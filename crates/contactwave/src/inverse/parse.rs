@@ -243,11 +243,7 @@ impl IdentifySpec {
         let model = Model::new(&spec);
         for (k, p) in spec.parameters.iter().enumerate() {
             model.at_start(p).map_err(|e| {
-                let why = match e {
-                    Error::Invalid { field, allowed, .. } => format!("{field}: {allowed}"),
-                    Error::Parse { message, .. } => message,
-                    other => other.to_string(),
-                };
+                let why = reason(e);
                 Error::invalid(
                     &file,
                     format!("parameter.{k}.key"),
@@ -259,6 +255,48 @@ impl IdentifySpec {
                     ),
                 )
             })?;
+        }
+        // every value within a parameter's bounds must make a valid scenario (the others
+        // at their starting values): checked at both bounds and at a point inside that is
+        // no round number (a key of whole numbers, or a length whose far end leaves the
+        // rectangle, is refused here rather than halfway through the search)
+        let start = model.values(&z0);
+        for (k, p) in spec.parameters.iter().enumerate() {
+            let (lo, hi) = p.scaled_bounds();
+            for z in [lo, hi, lo + 0.381_966 * (hi - lo)] {
+                let mut v = start.clone();
+                v[k] = p.from_scaled(z).clamp(p.lower, p.upper);
+                if let Err(e) = model.scenario(0, &v) {
+                    let why = reason(e);
+                    return Err(Error::invalid(
+                        &file,
+                        format!("parameter.{k}.bounds"),
+                        format!("[{:e}, {:e}]", p.lower, p.upper),
+                        format!(
+                            "bounds within which every value makes a valid scenario ({} = {:e} \
+                             fails: {why})",
+                            p.key, v[k]
+                        ),
+                    ));
+                }
+            }
+        }
+        // every candidate of a design must make a valid scenario too
+        if let Some(d) = &spec.design {
+            for &v in &d.values {
+                if let Err(e) = model.scenario_with(0, &start, &[(d.key.clone(), v)]) {
+                    return Err(Error::invalid(
+                        &file,
+                        "design.values",
+                        format!("{v:e}"),
+                        format!(
+                            "values for which the base scenario is valid ({} = {v:e} fails: {})",
+                            d.key,
+                            reason(e)
+                        ),
+                    ));
+                }
+            }
         }
         for i in 0..spec.measured.len() {
             model.scenario(i, &model.values(&z0))?;
@@ -283,6 +321,15 @@ impl IdentifySpec {
             }
         }
         Ok(spec)
+    }
+}
+
+/// Why a scenario was refused, in a few words: the field and what it allows.
+fn reason(e: Error) -> String {
+    match e {
+        Error::Invalid { field, allowed, .. } => format!("{field}: {allowed}"),
+        Error::Parse { message, .. } => message,
+        other => other.to_string(),
     }
 }
 

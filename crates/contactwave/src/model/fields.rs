@@ -15,27 +15,28 @@ pub enum Slot<'a> {
     F64(&'a mut f64),
     /// An optional number.
     OptF64(&'a mut Option<f64>),
-    /// A required count.
-    Usize(&'a mut usize),
-    /// An optional count.
-    OptUsize(&'a mut Option<usize>),
+    /// An optional count and the range it takes (checked again when the spec is).
+    OptUsize(&'a mut Option<usize>, std::ops::RangeInclusive<usize>),
 }
 
 impl Slot<'_> {
-    /// Write `v` (SI units); a count takes only whole numbers >= 0.
+    /// Write `v` (SI units); a count takes only whole numbers in its range.
     pub fn set(self, v: f64, file: &str, key: &str) -> Result<()> {
-        let count = || -> Result<usize> {
-            if v.is_finite() && v >= 0.0 && v.fract() == 0.0 && v <= usize::MAX as f64 {
-                Ok(v as usize)
-            } else {
-                Err(Error::invalid(file, key, v, "must be a whole number >= 0"))
-            }
-        };
         match self {
             Slot::F64(x) => *x = v,
             Slot::OptF64(x) => *x = Some(v),
-            Slot::Usize(x) => *x = count()?,
-            Slot::OptUsize(x) => *x = Some(count()?),
+            Slot::OptUsize(x, range) => {
+                let n = v as usize;
+                if !(v.is_finite() && v.fract() == 0.0 && v >= 0.0 && range.contains(&n)) {
+                    return Err(Error::invalid(
+                        file,
+                        key,
+                        v,
+                        crate::scenario::whole_numbers(range),
+                    ));
+                }
+                *x = Some(n)
+            }
         }
         Ok(())
     }
@@ -174,8 +175,14 @@ impl Fields for ProbeSpec {
 
 impl Fields for SolverSpec {
     fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
-        leaf!(path; OptUsize "samples_per_period" => &mut self.samples_per_period,
-                    OptF64 "tail_periods" => &mut self.tail_periods)
+        match path {
+            ["samples_per_period"] => Some(Slot::OptUsize(
+                &mut self.samples_per_period,
+                crate::scenario::spec::SAMPLES_PER_PERIOD,
+            )),
+            ["tail_periods"] => Some(Slot::OptF64(&mut self.tail_periods)),
+            _ => None,
+        }
     }
 }
 

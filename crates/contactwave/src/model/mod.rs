@@ -318,6 +318,12 @@ pub trait Model: Debug + Send + Sync {
     fn memory_estimate(&self) -> Result<Option<f64>> {
         Ok(None)
     }
+    /// Whether one run fits the local memory budget ([`crate::budget`]), checked without
+    /// running it: an error names the key to change. What a sweep asks of every point
+    /// before it runs any; the default accepts (a kind whose runs are small).
+    fn check_budget(&self) -> Result<()> {
+        Ok(())
+    }
     /// Values of the scenario that are allowed but almost surely a unit slip (the run goes
     /// on; the CLI prints them on stderr, Python warns). None by default.
     fn warnings(&self) -> Vec<crate::scenario::Warning> {

@@ -34,6 +34,8 @@ impl CsvError {
     pub fn place(&self) -> String {
         match (self.line, &self.column) {
             (0, _) => "file".to_string(),
+            // (a file without a header names its columns `column N` already)
+            (l, Some(c)) if c.starts_with("column ") => format!("line {l}, {c}"),
             (l, Some(c)) => format!("line {l}, column {c}"),
             (l, None) => format!("line {l}"),
         }

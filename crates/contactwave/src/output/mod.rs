@@ -165,6 +165,17 @@ pub fn write_files(dir: &Path, files: &[OutputFile]) -> Result<Vec<PathBuf>> {
     )
 }
 
+/// [`write_files`] and [`write_binary_files`] in one go: all of them or none.
+pub fn write_all(dir: &Path, files: &[OutputFile], binary: &[BinaryFile]) -> Result<Vec<PathBuf>> {
+    write_named(
+        dir,
+        files
+            .iter()
+            .map(|f| (f.name.as_str(), f.contents.as_bytes()))
+            .chain(binary.iter().map(|f| (f.name.as_str(), f.bytes.as_slice()))),
+    )
+}
+
 /// [`write_files`] for binary files (names may hold a subfolder, created if needed).
 pub fn write_binary_files(dir: &Path, files: &[BinaryFile]) -> Result<Vec<PathBuf>> {
     write_named(
@@ -173,23 +184,42 @@ pub fn write_binary_files(dir: &Path, files: &[BinaryFile]) -> Result<Vec<PathBu
     )
 }
 
-/// Write `(name, bytes)` pairs into `dir`, each through a temporary name beside it and a
-/// rename; a name with a subfolder (`snapshots/frame_0000.png`) creates the subfolder.
+/// Write `(name, bytes)` pairs into `dir`, all or none: each is staged under a temporary
+/// name beside its place, and once every one is staged they are renamed into place; an
+/// interruption (Ctrl-C) or an error while staging removes what was staged (and the
+/// subfolders it created), so that a command's files are either all new or all as they
+/// were. A name with a subfolder (`snapshots/frame_0000.png`) creates the subfolder.
 fn write_named<'a>(
     dir: &Path,
-    files: impl ExactSizeIterator<Item = (&'a str, &'a [u8])>,
+    files: impl Iterator<Item = (&'a str, &'a [u8])>,
 ) -> Result<Vec<PathBuf>> {
     crate::interrupt::check()?;
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    let mut written = Vec::with_capacity(files.len());
+    let mut staged: Vec<(PathBuf, PathBuf)> = Vec::new();
+    let mut created: Vec<PathBuf> = Vec::new();
+    // (called while a `Writing` guard holds the process's exit back)
+    let undo = |staged: &[(PathBuf, PathBuf)], created: &[PathBuf]| {
+        for (tmp, _) in staged {
+            let _ = std::fs::remove_file(tmp);
+        }
+        for folder in created.iter().rev() {
+            let _ = std::fs::remove_dir(folder);
+        }
+    };
     for (name, bytes) in files {
-        // an interruption stops between files: those written are complete
-        crate::interrupt::check()?;
         let _writing = crate::interrupt::Writing::start();
+        if let Err(e) = crate::interrupt::check() {
+            undo(&staged, &created);
+            return Err(e);
+        }
         let path = dir.join(name);
         let folder = path.parent().unwrap_or(dir).to_path_buf();
-        if folder != dir {
-            std::fs::create_dir_all(&folder).map_err(|e| Error::io(&folder, e))?;
+        if folder != dir && !folder.is_dir() {
+            if let Err(e) = std::fs::create_dir_all(&folder) {
+                undo(&staged, &created);
+                return Err(Error::io(&folder, e));
+            }
+            created.push(folder.clone());
         }
         let base = path.file_name().map(|n| n.to_string_lossy().into_owned());
         let tmp = folder.join(format!(
@@ -197,23 +227,28 @@ fn write_named<'a>(
             base.unwrap_or_default(),
             std::process::id()
         ));
-        std::fs::write(&tmp, bytes).map_err(|e| Error::write_in(dir, e))?;
-        std::fs::rename(&tmp, &path).map_err(|e| {
+        if let Err(e) = std::fs::write(&tmp, bytes) {
             let _ = std::fs::remove_file(&tmp);
-            Error::io(&path, e)
-        })?;
-        written.push(path);
+            undo(&staged, &created);
+            return Err(Error::write_in(dir, e));
+        }
+        staged.push((tmp, path));
+    }
+    let _writing = crate::interrupt::Writing::start();
+    let mut written = Vec::with_capacity(staged.len());
+    for (k, (tmp, path)) in staged.iter().enumerate() {
+        if let Err(e) = std::fs::rename(tmp, path) {
+            undo(&staged[k..], &[]);
+            return Err(Error::io(path, e));
+        }
+        written.push(path.clone());
     }
     Ok(written)
 }
 
 /// Render and write every file of a run's outcome into `dir` (created if needed).
 pub fn write_outcome(outcome: &dyn Outcome, dir: &Path) -> Result<Vec<PathBuf>> {
-    let files = outcome.files()?;
-    let binary = outcome.binary_files()?;
-    let mut written = write_files(dir, &files)?;
-    written.extend(write_binary_files(dir, &binary)?);
-    Ok(written)
+    write_all(dir, &outcome.files()?, &outcome.binary_files()?)
 }
 
 /// Render and write the files of a law ([`law_files`]) into `dir` (created if needed).
@@ -227,6 +262,38 @@ mod tests {
     use super::*;
     use crate::analysis::Summary;
     use crate::scenario::Scenario;
+
+    /// A command's files are written all or none: a file that cannot be staged (its
+    /// temporary name is taken by a folder) leaves the files before it unwritten too, no
+    /// temporary file and no subfolder behind, and the earlier contents in place.
+    #[test]
+    fn files_are_written_all_or_none() {
+        let d = std::env::temp_dir().join(format!("contactwave-all-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        std::fs::write(d.join("a.csv"), "old\n").unwrap();
+        std::fs::create_dir_all(d.join(format!(".c.csv.tmp{}", std::process::id()))).unwrap();
+        let file = |name: &str| OutputFile {
+            name: name.into(),
+            contents: "new\n".into(),
+        };
+        let files = [file("a.csv"), file("sub/b.csv"), file("c.csv")];
+        assert!(write_files(&d, &files).is_err());
+        assert_eq!(std::fs::read_to_string(d.join("a.csv")).unwrap(), "old\n");
+        assert!(!d.join("sub").exists());
+        let left: Vec<String> = std::fs::read_dir(&d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(left.len(), 2, "{left:?}");
+        // and once the way is clear, all of them
+        std::fs::remove_dir(d.join(format!(".c.csv.tmp{}", std::process::id()))).unwrap();
+        assert_eq!(write_files(&d, &files).unwrap().len(), 3);
+        for f in &files {
+            assert_eq!(std::fs::read_to_string(d.join(&f.name)).unwrap(), "new\n");
+        }
+        std::fs::remove_dir_all(&d).unwrap();
+    }
 
     /// Issue 24: a folder that cannot take the files was reported under the temporary
     /// name (`.summary.json.tmp1234: ...`); the error names the user's folder.

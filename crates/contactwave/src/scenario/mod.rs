@@ -12,6 +12,7 @@ pub mod solid_2d;
 pub mod spec;
 pub mod units;
 mod value;
+pub(crate) use value::whole_numbers;
 
 pub use cache::{BuildCache, Columns};
 pub use oblique::ObliqueSetup;
@@ -651,12 +652,15 @@ pub(crate) fn build_wave(
             ))
         }
         (Some(a), None) => {
-            if !(a.is_finite() && a > 0.0) {
+            if !(a.is_finite() && a > 0.0 && a <= spec::MAX_AMPLITUDE) {
                 return Err(Error::invalid(
                     file,
                     key("amplitude"),
                     a,
-                    "must be a finite number > 0 (Pa)",
+                    format!(
+                        "a number > 0 and <= {:e} (Pa, or N/m for a 2D point force)",
+                        spec::MAX_AMPLITUDE
+                    ),
                 ));
             }
             Some(a)
@@ -679,7 +683,19 @@ pub(crate) fn build_wave(
                     format!("xi needs a static pressure > 0 ({p_key}); give `amplitude` instead"),
                 ));
             }
-            Some(p0 * xf / (bf * x))
+            let a = p0 * xf / (bf * x);
+            if !(a <= spec::MAX_AMPLITUDE) {
+                return Err(Error::invalid(
+                    file,
+                    key("xi"),
+                    x,
+                    format!(
+                        "an xi whose amplitude p0 xf / (bf xi) = {a:e} Pa is at most {:e} Pa",
+                        spec::MAX_AMPLITUDE
+                    ),
+                ));
+            }
+            Some(a)
         }
         (None, None) => {
             if inc.kind != IncidentKind::File {
@@ -708,7 +724,7 @@ pub(crate) fn build_wave(
                     file,
                     key("frequency2"),
                     f2,
-                    "must differ from incident.frequency",
+                    format!("must differ from {}", key("frequency")),
                 ));
             }
             let r = positive_opt(

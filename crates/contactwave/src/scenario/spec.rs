@@ -280,6 +280,8 @@ impl From<InterfaceUpdate> for crate::solver::bar_stack::InterfaceScheme {
     }
 }
 
+pub use crate::excitation::MAX_AMPLITUDE;
+
 /// Default samples per period of the exact solver.
 pub const DEFAULT_SPP_EXACT: usize = 200;
 /// The samples per period a scenario may ask for (half-space `solver.samples_per_period`,

@@ -349,6 +349,23 @@ pub fn plain_serde_message(message: &str) -> String {
     ] {
         m = m.replace(rust, plain);
     }
+    // Rust type names: `expected struct IncidentSpec`, `expected internally tagged enum
+    // TractionSpec` (every tagged enum here is a law, tagged by `law`)
+    for (rust, plain) in [
+        (
+            "expected internally tagged enum ",
+            "expected a table naming its law, e.g. { law = \"rigid\" }",
+        ),
+        ("expected struct ", "expected a table { key = value, ... }"),
+    ] {
+        while let Some(at) = m.find(rust) {
+            let rest = &m[at + rust.len()..];
+            let name_len = rest
+                .find(|c: char| !c.is_ascii_alphanumeric() && c != '_')
+                .unwrap_or(rest.len());
+            m = format!("{}{plain}{}", &m[..at], &rest[name_len..]);
+        }
+    }
     // toml ends some messages with the table they arose in (` in `crack``) and a newline:
     // the error's key names the place already
     let m = m.trim_end();
@@ -373,6 +390,16 @@ mod tests {
         assert_eq!(
             plain_serde_message("invalid type: string \"a\", expected f64"),
             "invalid type: string \"a\", expected a number"
+        );
+        assert_eq!(
+            plain_serde_message("invalid type: integer `5`, expected struct IncidentSpec"),
+            "invalid type: integer `5`, expected a table { key = value, ... }"
+        );
+        assert_eq!(
+            plain_serde_message(
+                "invalid type: string \"free\", expected internally tagged enum TractionSpec"
+            ),
+            "invalid type: string \"free\", expected a table naming its law, e.g. { law = \"rigid\" }"
         );
     }
 

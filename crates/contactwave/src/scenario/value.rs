@@ -55,7 +55,7 @@ fn half_space_hint(key: &str, problem: FieldProblem) -> Option<String> {
 }
 
 /// What a count in `range` takes, as the field hints say it.
-pub(super) fn whole_numbers(range: std::ops::RangeInclusive<usize>) -> String {
+pub(crate) fn whole_numbers(range: std::ops::RangeInclusive<usize>) -> String {
     format!("a whole number from {} to {}", range.start(), range.end())
 }
 
@@ -136,6 +136,24 @@ pub fn set_dotted(table: &mut toml::Table, key: &str, value: toml::Value) -> Res
         if let toml::Value::Array(items) = entry {
             let index = parts.get(k).and_then(|i| i.parse::<usize>().ok());
             let len = items.len();
+            let numbers = items.iter().all(|v| !v.is_table());
+            // `crack.0.start.1`: one number of an array of numbers
+            if let Some(i) = index.filter(|&i| numbers && i < len && k + 1 == parts.len()) {
+                items[i] = value;
+                return Ok(());
+            }
+            if numbers && len > 0 {
+                return Err(Error::invalid(
+                    "<sweep>",
+                    "parameter",
+                    key,
+                    format!(
+                        "`{p}` is an array of {len} numbers: follow it with an index from 0 to \
+                         {} (or, for a point [x, z], `.x` or `.z`)",
+                        len - 1
+                    ),
+                ));
+            }
             let at = match index {
                 Some(i) if i < len && k + 1 < parts.len() => {
                     k += 1;

@@ -33,7 +33,10 @@ impl Fields for ModelSpec {
             ["gravity"] => Some(Slot::F64(&mut self.gravity)),
             ["static_force"] => Some(Slot::F64(&mut self.static_force)),
             ["duration"] => Some(Slot::OptF64(&mut self.duration)),
-            ["samples_per_period"] => Some(Slot::OptUsize(&mut self.samples_per_period)),
+            ["samples_per_period"] => Some(Slot::OptUsize(
+                &mut self.samples_per_period,
+                crate::scenario::spec::SAMPLES_PER_PERIOD,
+            )),
             ["cell_size"] => Some(Slot::OptF64(&mut self.cell_size)),
             ["time_step"] => Some(Slot::OptF64(&mut self.time_step)),
             _ => None,

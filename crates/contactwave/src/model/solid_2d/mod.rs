@@ -112,7 +112,10 @@ impl Fields for ModelSpec {
             ["harmonic"] => Some(Slot::OptF64(&mut self.harmonic)),
             ["courant"] => Some(Slot::OptF64(&mut self.courant)),
             ["time_step"] => Some(Slot::OptF64(&mut self.time_step)),
-            ["order"] => Some(Slot::OptUsize(&mut self.order)),
+            ["order"] => Some(Slot::OptUsize(
+                &mut self.order,
+                crate::solver::solid_2d::ORDERS,
+            )),
             ["prestress", c] => {
                 let p = self.prestress.get_or_insert_with(Default::default);
                 match *c {
@@ -242,11 +245,10 @@ pub struct Solid2dResult {
 }
 
 impl Solid2dScenario {
-    /// Plan and run, reporting progress. The whole run's memory
-    /// ([`Model::memory_estimate`]) is checked against the budget first, naming the key of
-    /// its larger part (`model.element_size` or `model.pml_thickness` for the mesh,
+    /// The whole run's memory ([`Model::memory_estimate`]) against the budget, naming the
+    /// key of its larger part (`model.element_size` or `model.pml_thickness` for the mesh,
     /// `model.duration` for the records).
-    pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
+    pub fn budget(&self) -> Result<()> {
         let e = self.problem.memory_estimate(&self.file)?;
         let (key, value, change) = if e.mesh >= e.series {
             let (key, value, change) = self.problem.mesh_key(e.nodes);
@@ -296,6 +298,15 @@ impl Solid2dScenario {
             ),
             &change,
         )?;
+        Ok(())
+    }
+
+    /// Plan and run, reporting progress. The whole run's memory
+    /// ([`Model::memory_estimate`]) is checked against the budget first, naming the key of
+    /// its larger part (`model.element_size` or `model.pml_thickness` for the mesh,
+    /// `model.duration` for the records).
+    pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
+        self.budget()?;
         let mut plan = self.problem.plan(&self.file)?;
         plan.add_stress_receivers(&self.stress_points, &self.problem.layers, &self.file)?;
         let nodes = plan.mesh.n_nodes;
@@ -315,6 +326,15 @@ impl Solid2dScenario {
         s.set("element_size", self.problem.element_size);
         s.set("phase_error_max", self.phase_error_max(output.dt));
         let e = output.energy;
+        if !(e.input.is_finite() && e.solid.is_finite() && e.closure_error().is_finite()) {
+            // (the fields stayed finite, or the time loop would have stopped: their squares
+            // did not)
+            return Err(Error::numerical(
+                output.time.last().copied().unwrap_or(0.0),
+                "the energies overflow double precision (amplitudes or moduli too large)",
+                "solid_2d energy audit",
+            ));
+        }
         s.set("energy_input", e.input);
         s.set("energy_solid", e.solid);
         s.set("energy_cracks", e.cracks);
@@ -520,6 +540,10 @@ impl Model for Solid2dScenario {
 
     fn memory_estimate(&self) -> Result<Option<f64>> {
         self.memory_bytes().map(Some)
+    }
+
+    fn check_budget(&self) -> Result<()> {
+        self.budget()
     }
 
     fn as_any(&self) -> &dyn Any {
@@ -789,13 +813,27 @@ impl Outcome for Solid2dResult {
                 get(&format!("crack_max_slip_{i}"))
             ));
         }
-        // every receiver, velocity then stress, as summary.json names them
-        for name in self.receivers.iter().chain(&self.stress_receivers) {
+        // every receiver, velocity then stress, as summary.json names them (the first
+        // REPORTED of a long line: all are in summary.json)
+        const REPORTED: usize = 16;
+        let all = self.receivers.len() + self.stress_receivers.len();
+        for name in self
+            .receivers
+            .iter()
+            .chain(&self.stress_receivers)
+            .take(REPORTED)
+        {
             lines.push(format!(
                 "{:<23}{:.6e}   A3/A1 {:.6e}",
                 format!("{name} A2/A1"),
                 get(&format!("{name}_A2_over_A1")),
                 get(&format!("{name}_A3_over_A1"))
+            ));
+        }
+        if all > REPORTED {
+            lines.push(format!(
+                "... and {} more receivers (their harmonics in summary.json)",
+                all - REPORTED
             ));
         }
         let code = get("analysis_method");

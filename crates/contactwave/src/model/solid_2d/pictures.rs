@@ -50,18 +50,28 @@ impl Solid2dScenario {
         let depth = self.problem.depth();
         let nx = s.pixels as f64;
         let nz = (nx * depth / width).round().max(1.0);
-        // the kept fields, their pixels, and the pictures (RGB and RGBA for the GIF)
-        let pictures = (nx + FRAME_EXTRA.0) * (nz.max(120.0) + FRAME_EXTRA.1) * 7.0;
-        let bytes = Capture::bytes(steps.len(), len) + frames * (nx * nz * 16.0 + pictures);
+        // the kept fields, their pixels, and the pictures (RGB and RGBA for the GIF), with
+        // the files all held until written: each frame's PNG (at most about 3 bytes a
+        // pixel) and `.vti` (base64 of float64: about 11 bytes a pixel)
+        let pictures = (nx + FRAME_EXTRA.0) * (nz.max(120.0) + FRAME_EXTRA.1) * 10.0;
+        let vti = if s.vtk { 11.0 } else { 0.0 };
+        let bytes = Capture::bytes(steps.len(), len) + frames * (nx * nz * (16.0 + vti) + pictures);
         let change = if s.key == "snapshots.every" {
             "raise `snapshots.every` or lower `snapshots.pixels`"
         } else {
             "give fewer `snapshots.times` or lower `snapshots.pixels`"
         };
+        // (the value as given: `every`, the first frame's time, or the number of `times`)
+        let value = match s.times.first() {
+            Some(every) if s.key == "snapshots.every" => {
+                format!("{every:e} s ({} frames)", steps.len())
+            }
+            _ => format!("{} times", steps.len()),
+        };
         crate::budget::check_or(
             &self.file,
             s.key,
-            format!("{} frames", steps.len()),
+            value,
             bytes,
             &format!(
                 "{} snapshots of {len} values and {} x {} pixels",
@@ -298,37 +308,54 @@ mod files {
 
     /// The receivers' traces for the figures: per receiver its title, axis label, kind
     /// (0 velocity, 1 stress: the spectra are in dB re. the largest of their kind) and
-    /// components (label, values: m/s, or MPa for stresses).
+    /// components (label, values: m/s, or MPa for stresses). At most [`MAX_PANELS`]
+    /// receivers, evenly spread over a longer list (velocity receivers, then stress ones;
+    /// the first and the last included): every trace is in `receivers.csv`.
     #[allow(clippy::type_complexity)]
     fn traces(r: &Solid2dResult) -> Vec<(String, &'static str, usize, Vec<(String, Vec<f64>)>)> {
         let o = &r.output;
-        let velocity = r.receivers.iter().enumerate().map(|(i, name)| {
-            let comps = r.component_names.iter().enumerate();
-            (
-                format!("receiver {name}"),
-                "velocity (m/s)",
-                0,
-                comps
-                    .map(|(c, comp)| (format!("v{comp}"), o.trace(i, c).to_vec()))
-                    .collect(),
-            )
-        });
-        let stress = r.stress_receivers.iter().enumerate().map(|(i, name)| {
-            let comps = r.stress_component_names.iter().enumerate();
-            (
-                format!("stress receiver {name}"),
-                "stress (MPa)",
-                1,
-                comps
-                    .map(|(c, comp)| {
-                        let mpa = o.stress_trace(i, c).iter().map(|x| x * 1e-6).collect();
-                        (format!("s{comp}"), mpa)
-                    })
-                    .collect(),
-            )
-        });
-        velocity.chain(stress).collect()
+        let nv = r.receivers.len();
+        let n = nv + r.stress_receivers.len();
+        let keep: Vec<usize> = if n <= MAX_PANELS {
+            (0..n).collect()
+        } else {
+            (0..MAX_PANELS)
+                .map(|k| (k * (n - 1) + (MAX_PANELS - 1) / 2) / (MAX_PANELS - 1))
+                .collect()
+        };
+        keep.into_iter()
+            .map(|j| {
+                if j < nv {
+                    let comps = r.component_names.iter().enumerate();
+                    (
+                        format!("receiver {}", r.receivers[j]),
+                        "velocity (m/s)",
+                        0,
+                        comps
+                            .map(|(c, comp)| (format!("v{comp}"), o.trace(j, c).to_vec()))
+                            .collect(),
+                    )
+                } else {
+                    let i = j - nv;
+                    let comps = r.stress_component_names.iter().enumerate();
+                    (
+                        format!("stress receiver {}", r.stress_receivers[i]),
+                        "stress (MPa)",
+                        1,
+                        comps
+                            .map(|(c, comp)| {
+                                let mpa = o.stress_trace(i, c).iter().map(|x| x * 1e-6).collect();
+                                (format!("s{comp}"), mpa)
+                            })
+                            .collect(),
+                    )
+                }
+            })
+            .collect()
     }
+
+    /// The most receivers `receivers.svg` and `spectra.svg` draw, one panel each.
+    pub(super) const MAX_PANELS: usize = 16;
 
     /// The crack states of `crack.csv` with their legend labels and colours.
     pub(super) const STATES: [(f64, &str, (u8, u8, u8)); 3] = [

@@ -41,9 +41,25 @@ pub struct PrestressSpec {
 }
 
 impl PrestressSpec {
-    /// An error naming the first component the run's wave type has not (P-SV: `xx`, `zz`,
-    /// `xz`; SH: `xx`, `zz`, `xy`, `yz`), given non-zero: it would be ignored.
+    /// An error naming the first component that is not finite, or that the run's wave type
+    /// has not (P-SV: `xx`, `zz`, `xz`; SH: `xx`, `zz`, `xy`, `yz`) given non-zero: it
+    /// would be ignored.
     pub fn check(&self, antiplane: bool, file: &str) -> Result<()> {
+        let all = [
+            ("xx", self.xx),
+            ("zz", self.zz),
+            ("xz", self.xz),
+            ("xy", self.xy),
+            ("yz", self.yz),
+        ];
+        if let Some((c, v)) = all.into_iter().find(|(_, v)| !v.is_finite()) {
+            return Err(inv(
+                file,
+                format!("model.prestress.{c}"),
+                v,
+                "a finite stress, Pa (tension positive)",
+            ));
+        }
         let sh = [("xz", self.xz)];
         let psv = [("xy", self.xy), ("yz", self.yz)];
         let foreign: &[(&str, f64)] = if antiplane { &sh } else { &psv };

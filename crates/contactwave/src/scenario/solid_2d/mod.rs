@@ -206,6 +206,9 @@ pub struct CrackSpec {
     pub closure: Option<ClosureSpec>,
 }
 
+/// The narrowest transducer aperture, as a fraction of the element size.
+pub const MIN_APERTURE: f64 = 1e-3;
+
 /// `[[source]]`: a transducer (a traction over an aperture of the top or bottom surface),
 /// a point force or a plane wave (total-field/scattered-field), with its time function.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -565,7 +568,15 @@ impl Solid2dScenario {
             sources.push(Source { kind, signal });
         }
         let harmonic = m.harmonic.unwrap_or(DEFAULT_HARMONIC);
-        positive(file, "model.harmonic", harmonic)?;
+        // (the elements must resolve the fundamental itself)
+        if !(harmonic.is_finite() && harmonic >= 1.0) {
+            return Err(inv(
+                file,
+                "model.harmonic",
+                harmonic,
+                "a finite number >= 1 (a multiple of f0: the elements resolve f0 at least)",
+            ));
+        }
         let cs_min = layers
             .iter()
             .map(|l| l.material.s_speed)
@@ -590,6 +601,25 @@ impl Solid2dScenario {
                     .unwrap_or(cs_min / f_max * order as f64 / 16.0)
             }
         };
+        // (the elements follow a transducer's edges: a sliver of an aperture would make
+        // slivers of elements, and of the time step)
+        for (i, src) in sources.iter().enumerate() {
+            if let SourceKind::Traction { x0, x1, .. } = src.kind {
+                if x1 - x0 < MIN_APERTURE * element_size {
+                    return Err(inv(
+                        file,
+                        format!("source.{i}.x1"),
+                        format!("[{x0}, {x1}]"),
+                        &format!(
+                            "an aperture x1 - x0 of at least {:e} of the element size ({:e} \
+                             m); a narrower source is a point force (kind = \"force\")",
+                            MIN_APERTURE,
+                            MIN_APERTURE * element_size
+                        ),
+                    ));
+                }
+            }
+        }
         let depth = bottom;
         if let Some(pre) = &m.prestress {
             pre.check(wave == WaveType::Sh, file)?;
@@ -777,7 +807,7 @@ impl Solid2dScenario {
                 None => return Err(inv(file, "model.backend", name, "`cpu` or `gpu`")),
             },
         };
-        let gate = analysis_gate(&spec.analysis, file, m.duration)?;
+        let gate = analysis_gate(&spec.analysis, file, m.duration, f0)?;
         let snapshots = match &spec.snapshots {
             Some(s) => Some(s.check(file, m.duration, wave)?),
             None => None,
@@ -796,9 +826,10 @@ impl Solid2dScenario {
     }
 }
 
-/// The gate of `[analysis]`, checked: inside `[0, duration]` (s), a taper at most half
-/// its length; `plateau_fit` needs one (its fit window).
-fn analysis_gate(a: &AnalysisSpec, file: &str, duration: f64) -> Result<Option<Gate>> {
+/// The gate of `[analysis]`, checked: inside `[0, duration]` (s), at least one period of
+/// the fundamental `f0` (Hz) long, a taper at most half its length; `plateau_fit` needs
+/// one (its fit window).
+fn analysis_gate(a: &AnalysisSpec, file: &str, duration: f64, f0: f64) -> Result<Option<Gate>> {
     let gate = a.gate.map(|[start, end]| Gate {
         start,
         end,
@@ -822,6 +853,15 @@ fn analysis_gate(a: &AnalysisSpec, file: &str, duration: f64) -> Result<Option<G
                 ))
             }
         }
+        Some(g) if f0 > 0.0 && g.end - g.start < 1.0 / f0 => Err(inv(
+            file,
+            "analysis.gate",
+            format!("[{}, {}]", g.start, g.end),
+            &format!(
+                "a window at least one period of the fundamental long (1 / f0 = {:e} s)",
+                1.0 / f0
+            ),
+        )),
         None if a.method == AnalysisMethod::PlateauFit => Err(inv(
             file,
             "analysis.gate",

@@ -2,7 +2,7 @@
 //! recorded and analysed, checked (names, quantity, component, inside the rectangle).
 
 use super::inv;
-use crate::analysis::record_keys_shared;
+use crate::analysis::HARMONIC_KEYS;
 use crate::error::Result;
 use crate::solver::solid_2d::region::Region;
 use crate::solver::solid_2d::WaveType;
@@ -84,6 +84,8 @@ pub(super) fn check(
     let mut points = Vec::new();
     let mut receivers = Vec::new();
     let mut stress_points = Vec::new();
+    let mut names_taken = std::collections::HashSet::new();
+    let mut keys_taken = std::collections::HashMap::new();
     for (i, r) in spec.iter().enumerate() {
         let key = format!("receiver.{i}");
         if r.name.is_empty()
@@ -156,7 +158,7 @@ pub(super) fn check(
             }
         };
         for (at, name) in line {
-            if receivers.iter().any(|o: &Receiver2d| o.name == name) {
+            if names_taken.contains(&name) {
                 return Err(inv(
                     file,
                     format!("{key}.name"),
@@ -164,10 +166,11 @@ pub(super) fn check(
                     "a name no other receiver has",
                 ));
             }
-            // (`p` and `p_A2_over` would both write `p_A2_over_A1` into the summary)
-            if let Some((other, shared)) = receivers
-                .iter()
-                .find_map(|o| record_keys_shared(&o.name, &name).map(|k| (&o.name, k)))
+            // (`p` and `p_A2_over` would both write `p_A2_over_A1` into the summary; a
+            // map of the keys written so far keeps the check linear in the points)
+            let keys = HARMONIC_KEYS.map(|k| format!("{name}_{k}"));
+            if let Some((shared, other)) =
+                keys.iter().find_map(|k| keys_taken.get(k).map(|o| (k, o)))
             {
                 return Err(inv(
                     file,
@@ -179,9 +182,14 @@ pub(super) fn check(
                     ),
                 ));
             }
+            names_taken.insert(name.clone());
+            for k in keys {
+                keys_taken.insert(k, name.clone());
+            }
             if !region.contains(at) {
                 // (a line's points between its ends are inside when its ends are)
-                let end = if at == r.at { "at" } else { "to" };
+                let same = at.iter().zip(r.at).all(|(a, b)| a.to_bits() == b.to_bits());
+                let end = if same || r.to.is_none() { "at" } else { "to" };
                 return Err(inv(
                     file,
                     format!("{key}.{end}"),

@@ -23,8 +23,8 @@ pub struct MemoryEstimate {
     /// The mesh, its operator and the stepping state (u, v, f and the masses per node; the
     /// map and data per element; the absorbing layers' fields), bytes.
     pub mesh: f64,
-    /// The recorded series (receivers, the cracks' fields, the time axis) and their
-    /// analysis, bytes.
+    /// The recorded series (receivers, the cracks' fields, the time axis), their analysis
+    /// and their files (`receivers.csv`, `crack.csv`), bytes.
     pub series: f64,
 }
 
@@ -199,7 +199,11 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
         let series = 8.0
             * (4.0 * self.receivers.len() as f64 * comps * steps
                 + 6.0 * crack_points * records
-                + steps);
+                + steps)
+            // and the files, rendered whole before the first is written: receivers.csv
+            // (about 24 bytes a value) and crack.csv (about 130 bytes a point and record)
+            + 24.0 * (self.receivers.len() as f64 * comps + 1.0) * steps
+            + 130.0 * crack_points * records;
         Ok(MemoryEstimate {
             nodes,
             steps,

@@ -197,7 +197,9 @@ impl Mesh {
                     "",
                     format!("crack.{ci}.length"),
                     "shorter than one node spacing",
-                    "a crack leaves at least one node to split (two node spacings between welded tips)",
+                    "a crack longer than a millionth of its elements (two node spacings between \
+                     welded tips leave one node to split): a longer crack, or smaller elements \
+                     (model.element_size)",
                 ));
             }
             for k in range {

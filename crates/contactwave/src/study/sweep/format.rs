@@ -327,18 +327,26 @@ impl Sweep {
                     ),
                 );
             }
-            let values = self
-                .axes
-                .iter()
-                .zip(&self.points[i])
-                .map(|(a, v)| format!("{} = {}", a.parameter, fmt_f64(*v)))
-                .collect::<Vec<_>>()
-                .join(", ");
-            e.within(&format!(
-                "in sweep {} at point {i}: {values}",
-                self.file.display()
-            ))
+            e.within(&self.at_point(i))
         })
+    }
+
+    /// Whether point `i`'s model `m` fits the memory budget ([`Model::check_budget`]): the
+    /// error followed by the sweep file, the point index and its values.
+    fn fits(&self, m: &dyn Model, i: usize) -> Result<()> {
+        m.check_budget().map_err(|e| e.within(&self.at_point(i)))
+    }
+
+    /// `in sweep FILE at point i: key = value, ...`.
+    fn at_point(&self, i: usize) -> String {
+        let values = self
+            .axes
+            .iter()
+            .zip(&self.points[i])
+            .map(|(a, v)| format!("{} = {}", a.parameter, fmt_f64(*v)))
+            .collect::<Vec<_>>()
+            .join(", ");
+        format!("in sweep {} at point {i}: {values}", self.file.display())
     }
 
     /// The axis whose key a scenario's parse error (unknown key, wrong type, missing
@@ -375,9 +383,13 @@ impl Sweep {
                 if i > first_bad.load(std::sync::atomic::Ordering::SeqCst) {
                     return Ok(());
                 }
-                self.model(&plan, i).map(drop).inspect_err(|_| {
-                    first_bad.fetch_min(i, std::sync::atomic::Ordering::SeqCst);
-                })
+                // (and fits the memory budget: a point refused only when it runs would
+                // stop the sweep halfway)
+                self.model(&plan, i)
+                    .and_then(|m| self.fits(&*m, i))
+                    .inspect_err(|_| {
+                        first_bad.fetch_min(i, std::sync::atomic::Ordering::SeqCst);
+                    })
             },
             &crate::run::Progress {
                 report: progress,
@@ -388,9 +400,13 @@ impl Sweep {
         crate::interrupt::check()?;
         match first_bad.load(std::sync::atomic::Ordering::SeqCst) {
             usize::MAX => Ok(plan),
-            i => Err(self.model(&plan, i).err().unwrap_or(Error::Internal {
-                message: format!("point {i} failed validation once only"),
-            })),
+            i => Err(self
+                .model(&plan, i)
+                .and_then(|m| self.fits(&*m, i))
+                .err()
+                .unwrap_or(Error::Internal {
+                    message: format!("point {i} failed validation once only"),
+                })),
         }
     }
 
