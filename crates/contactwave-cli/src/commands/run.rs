@@ -67,6 +67,8 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     };
     recording.validate()?;
     let template = model::plan_valid(read_table(path)?, path)?;
+    // a run beyond the memory budget is refused before any warning: its error is the one line
+    template.base()?.check_budget()?;
     // values that are legal but almost surely a unit slip: one line each, the run goes on
     for w in template.base()?.warnings() {
         eprintln!("warning: {w}");
