@@ -48,10 +48,10 @@ def test_dask_crack_length_sweep_gives_the_cli_rows(cli, root, tmp_path):
 def test_a_sweep_beyond_a_workers_memory_is_refused_before_submitting(root):
     distributed = pytest.importorskip("dask.distributed")
     # the quick case on a mesh of 37.5 um elements (order 6): about 1e7 nodes, estimated
-    # without building them
+    # without building them (the mesh, the records and the files they make)
     axes = {"model.element_size": [0.2e-3, 37.5e-6]}
     memory = cw.memory_estimate(root / BASE, axes)
-    assert 0.5e9 < memory[1] < 1e9 and memory[0] < memory[1] / 10
+    assert 0.5e9 < memory[1] < 2e9 and memory[0] < memory[1] / 10
     with distributed.LocalCluster(
         n_workers=1,
         threads_per_worker=2,
