@@ -135,15 +135,6 @@ pub const HARMONIC_KEYS: [&str; 8] = [
     "beta_star",
 ];
 
-/// The first key that two records named `a` and `b` (prefixes `a_` and `b_`) would both
-/// write by [`set_record_harmonics`] (e.g. `p_A2_over_A1`, for `p` and `p_A2_over`); none
-/// where their keys differ.
-pub fn record_keys_shared(a: &str, b: &str) -> Option<String> {
-    let keys = |name: &str| HARMONIC_KEYS.map(|k| format!("{name}_{k}"));
-    let theirs = keys(b);
-    keys(a).into_iter().find(|k| theirs.contains(k))
-}
-
 /// The reflected wave's summary keys: `A1_over_Ainc` ... `A5_over_Ainc`, `Asub_over_Ainc`,
 /// `A2_over_A1`, `beta_star`, the incident burst's own `incident_A*_over_Ainc` (when its
 /// bands are given) and, for a two-tone burst, `Af2_over_Ainc`, `Asum_over_Ainc`,
@@ -255,27 +246,10 @@ mod tests {
         assert!(back["half"].is_f64() && back["negative_zero"].is_f64());
     }
 
-    /// Two records share a key exactly when one name is the other's plus `_A2_over` or
-    /// `_A3_over` (or the same name).
+    /// A record's harmonics are the keys of `HARMONIC_KEYS` after its prefix (what the 2D
+    /// receivers' names are checked against: `tests/solid_2d.rs`, colliding names).
     #[test]
-    fn records_whose_keys_collide_are_found() {
-        assert_eq!(
-            record_keys_shared("p", "p_A2_over").as_deref(),
-            Some("p_A2_over_A1")
-        );
-        assert_eq!(
-            record_keys_shared("q_A3_over", "q").as_deref(),
-            Some("q_A3_over_A1")
-        );
-        assert_eq!(record_keys_shared("top", "top").as_deref(), Some("top_A1"));
-        for (a, b) in [
-            ("top", "top_far"),
-            ("p", "p_A2"),
-            ("p", "p_beta"),
-            ("a_b", "a"),
-        ] {
-            assert_eq!(record_keys_shared(a, b), None, "{a} {b}");
-        }
+    fn records_write_the_harmonic_keys_after_their_prefix() {
         let mut s = Summary::new();
         set_record_harmonics(&mut s, "p_", &[0.0, 2.0, 1.0, 0.5, 0.25, 0.125]);
         let keys: Vec<&str> = s.keys().collect();
