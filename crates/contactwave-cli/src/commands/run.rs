@@ -68,9 +68,10 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     recording.validate()?;
     let template = model::plan_valid(read_table(path)?, path)?;
     // a run beyond the memory budget is refused before any warning: its error is the one line
-    template.base()?.check_budget()?;
+    let base = template.base()?;
+    base.check_budget()?;
     // values that are legal but almost surely a unit slip: one line each, the run goes on
-    for w in template.base()?.warnings() {
+    for w in base.warnings() {
         eprintln!("warning: {w}");
     }
     check_out_dir(out)?;
@@ -86,7 +87,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             b.set_position(done as u64);
         }))),
     };
-    let outcome = template.base()?.run(&control);
+    let outcome = base.run(&control);
     bar.finish_and_clear();
     let outcome = outcome?;
     let wall = t0.elapsed();

@@ -838,9 +838,7 @@ impl Outcome for Solid2dResult {
         }
         let code = get("analysis_method");
         let method = AnalysisMethod::ALL.into_iter().find(|m| m.code() == code);
-        if let Some(m) =
-            method.filter(|_| !self.receivers.is_empty() || !self.stress_receivers.is_empty())
-        {
+        if let Some(m) = method.filter(|_| all > 0) {
             lines.push(format!("analysis method        {}", m.name()));
             if matches!(m, AnalysisMethod::BandPeak | AnalysisMethod::PlateauFit) {
                 // in 2D the linear path from source to receiver shapes the spectrum, so a
