@@ -2,11 +2,23 @@
 //! the columns of `sweep.csv`).
 
 use serde::ser::{Serialize, SerializeMap, Serializer};
+use std::collections::HashMap;
 
 /// Ordered named scalars. Units: see `docs/scenario.md` (outputs).
-#[derive(Debug, Clone, Default, PartialEq)]
+///
+/// Keys are looked up through a hash index, so a run with tens of thousands of keys (a 2D
+/// receiver line of 10 000 points writes eight keys a point) sets them in linear time.
+#[derive(Debug, Clone, Default)]
 pub struct Summary {
     entries: Vec<(String, f64)>,
+    /// Position of each key in `entries`.
+    index: HashMap<String, usize>,
+}
+
+impl PartialEq for Summary {
+    fn eq(&self, other: &Self) -> bool {
+        self.entries == other.entries
+    }
 }
 
 impl Summary {
@@ -16,27 +28,48 @@ impl Summary {
     }
     /// Append or replace a value.
     pub fn set(&mut self, key: &str, value: f64) {
-        if let Some(e) = self.entries.iter_mut().find(|e| e.0 == key) {
-            e.1 = value;
+        if let Some(&i) = self.index.get(key) {
+            self.entries[i].1 = value;
         } else {
+            self.index.insert(key.to_string(), self.entries.len());
             self.entries.push((key.to_string(), value));
         }
     }
     /// Value of a key.
     pub fn get(&self, key: &str) -> Option<f64> {
-        self.entries.iter().find(|e| e.0 == key).map(|e| e.1)
+        self.index.get(key).map(|&i| self.entries[i].1)
     }
     /// Rename `from` to `to` in place (its position kept), its value times `factor`;
-    /// nothing if `from` is absent.
+    /// nothing if `from` is absent. An existing `to` elsewhere is removed (one value a key).
     pub fn rename(&mut self, from: &str, to: &str, factor: f64) {
-        if let Some(e) = self.entries.iter_mut().find(|e| e.0 == from) {
-            e.0 = to.to_string();
-            e.1 *= factor;
+        let Some(&i) = self.index.get(from) else {
+            return;
+        };
+        self.entries[i].1 *= factor;
+        if from == to {
+            return;
+        }
+        self.entries[i].0 = to.to_string();
+        if let Some(&j) = self.index.get(to) {
+            self.entries.remove(j);
+            self.reindex();
+        } else {
+            self.index.remove(from);
+            self.index.insert(to.to_string(), i);
         }
     }
     /// Remove a key, if present.
     pub fn remove(&mut self, key: &str) {
-        self.entries.retain(|e| e.0 != key);
+        if self.index.remove(key).is_some() {
+            self.entries.retain(|e| e.0 != key);
+            self.reindex();
+        }
+    }
+    fn reindex(&mut self) {
+        self.index.clear();
+        for (i, e) in self.entries.iter().enumerate() {
+            self.index.insert(e.0.clone(), i);
+        }
     }
     /// Keys in order.
     pub fn keys(&self) -> impl Iterator<Item = &str> {
@@ -244,6 +277,25 @@ mod tests {
         }
         assert_eq!(back["steps"].as_i64(), Some(15708));
         assert!(back["half"].is_f64() && back["negative_zero"].is_f64());
+    }
+
+    /// Setting, renaming and removing keep one value a key, in order, found by the index.
+    #[test]
+    fn keys_stay_unique_and_ordered() {
+        let mut s = Summary::new();
+        for (i, k) in ["a", "b", "c", "d"].iter().enumerate() {
+            s.set(k, i as f64);
+        }
+        s.set("b", 10.0);
+        s.rename("a", "c", 2.0); // "c" exists: the renamed one, at a's place, stays
+        s.remove("d");
+        s.rename("b", "e", 0.5);
+        let pairs: Vec<(&str, f64)> = s.iter().collect();
+        assert_eq!(pairs, vec![("c", 0.0), ("e", 5.0)]);
+        assert_eq!((s.get("c"), s.get("e")), (Some(0.0), Some(5.0)));
+        assert_eq!((s.get("a"), s.get("b"), s.get("d")), (None, None, None));
+        s.set("a", 1.0);
+        assert_eq!(s.keys().collect::<Vec<_>>(), vec!["c", "e", "a"]);
     }
 
     /// A record's harmonics are the keys of `HARMONIC_KEYS` after its prefix (what the 2D
