@@ -592,7 +592,7 @@ fn convergence_reports_first_order_fd_and_rejects_bad_resolutions() {
     let o = bin()
         .arg("convergence")
         .arg(examples().join("rccm_1.6MPa.toml"))
-        .args(["--spp", "125,250,500,1000", "--xi", "0.2,0.5,0.8", "--out"])
+        .args(["--spp", "62,125,250,500", "--xi", "0.2,0.5,0.8", "--out"])
         .arg(&out)
         .output()
         .unwrap();
@@ -607,9 +607,12 @@ fn convergence_reports_first_order_fd_and_rejects_bad_resolutions() {
         .nth(2)
         .and_then(|v| v.parse().ok())
         .unwrap();
-    // the FD scheme is first order in time where the contact opens and closes in a step
+    // above the comparison's plateau (about 2e-5 relative, the exact solver's own
+    // tolerance: reached near 1000 samples a period) the FD error against the exact
+    // solver falls as dt^2 (measured 2.35: the average interface update, and the backward
+    // one only at switches onto or off a constraint, model.md section 9.2)
     assert!(
-        (0.7..1.3).contains(&order),
+        (1.7..3.0).contains(&order),
         "observed order {order}\n{text}"
     );
     let csv = std::fs::read_to_string(out.join("convergence.csv")).unwrap();

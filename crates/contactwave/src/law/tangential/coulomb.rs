@@ -210,8 +210,12 @@ pub fn return_map<G: TangentialPart + ?Sized>(
         limit
     }) <= 0.0
     {
-        // free: no slider load; the slip follows the gap through the (unloaded) stick spring
-        let r = given_slider(gt, chi, w_compliant, k, 0.0, q0, t_old);
+        // free: no slider load; the slip follows the gap through the (unloaded) stick
+        // spring. Faces that carry nothing (no tangential spring either) take the new
+        // level's stress, as open traction-free faces do in the normal update: the mean
+        // with an earlier stick or slip stress would do work that no branch of the law can
+        let w = if k == 0.0 { 1.0 } else { w_compliant };
+        let r = given_slider(gt, chi, w, k, 0.0, q0, t_old);
         let slip = if kt.is_finite() { r[0] + q0 / kt } else { r[0] };
         return finish(r, 0.0, slip, f64::NAN);
     }

@@ -318,8 +318,10 @@ pub struct CrackRecord {
     pub shear_stress: Vec<f64>,
     /// Adhesion beta.
     pub adhesion: Vec<f64>,
-    /// Contact state: 0 open (normal gap > 0), 1 stick, 2 slip (sliding, or closed
-    /// without friction).
+    /// Contact state: 0 open (the normal gap beyond the law's contact-loss gap `[u]_c`:
+    /// 0 for Signorini, positive for a compliant compression branch, whose faces still
+    /// press at a positive gap from rest), 1 stick, 2 slip (sliding, or closed without
+    /// friction).
     pub state: Vec<f64>,
     /// The largest normal gap of any point at any step (every step, not only the
     /// recorded ones; 0 if it never opens), m.

@@ -355,7 +355,10 @@ impl Records {
                     out.normal_stress.push(st.stress);
                     out.shear_stress.push(st.shear_stress(law));
                     out.adhesion.push(st.beta);
-                    out.state.push(if st.gap > 0.0 {
+                    // open: on the law's traction side, beyond the gap where the
+                    // compression branch lets go (0 for Signorini; a compliant branch
+                    // still presses its faces at a positive gap from rest)
+                    out.state.push(if st.gap > law.critical_gap() {
                         0.0
                     } else if st.shear.state == 0.0 {
                         1.0
