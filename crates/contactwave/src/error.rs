@@ -78,6 +78,26 @@ fn shown_value(value: String) -> String {
 }
 
 impl Error {
+    /// The error with its field `from` named `to` instead (where the value came from
+    /// elsewhere than the key the check knows: a crack's static shear set by the model's
+    /// pre-stress); any other error as it is.
+    pub fn renamed_field(self, from: &str, to: &str) -> Error {
+        match self {
+            Error::Invalid {
+                file,
+                field,
+                value,
+                allowed,
+            } if field == from => Error::Invalid {
+                file,
+                field: to.to_string(),
+                value,
+                allowed,
+            },
+            other => other,
+        }
+    }
+
     /// The error with `ctx` (where it arose: `in sweep s.toml at point 3: ...`) in brackets
     /// at the end of its message; other errors than invalid values and parse errors as
     /// they are.
@@ -139,6 +159,18 @@ impl Error {
             std::path::Path::new(".")
         } else {
             dir
+        };
+        Error::io(dir, std::io::Error::new(kind, message))
+    }
+
+    /// An error creating the output folder `dir`: says so, and when its parent is not
+    /// writable (`/proc/x: cannot create the output folder: No such file or directory`).
+    pub fn create_dir(dir: &std::path::Path, source: std::io::Error) -> Self {
+        let kind = source.kind();
+        let message = if kind == std::io::ErrorKind::PermissionDenied {
+            format!("the output folder is not writable ({source})")
+        } else {
+            format!("cannot create the output folder: {source}")
         };
         Error::io(dir, std::io::Error::new(kind, message))
     }

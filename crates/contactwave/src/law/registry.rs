@@ -95,17 +95,23 @@ pub fn build_tangential(
     }
     let mu = branch.friction();
     if q0 != 0.0 {
-        let limit = mu * normal.static_pressure;
+        // (+ 0.0: no "-0" for a pressure of -0)
+        let limit = mu * normal.static_pressure + 0.0;
         let spring = branch.spring_stiffness(1.0) > 0.0;
         if (mu > 0.0 || !spring) && q0.abs() > limit {
+            let limit = if limit == 0.0 {
+                format!(
+                    "0 Pa (friction coefficient {mu}, static pressure {} Pa)",
+                    normal.static_pressure + 0.0
+                )
+            } else {
+                format!("{limit:e} Pa (friction coefficient times the static pressure)")
+            };
             return Err(Error::invalid(
                 file,
                 format!("{prefix}.static_shear"),
                 q0,
-                format!(
-                    "|q0| must be <= mu p0 = {limit:e} Pa (friction coefficient times the \
-                     static pressure) for the interface to stick at rest"
-                ),
+                format!("|q0| must be <= mu p0 = {limit} for the interface to stick at rest"),
             ));
         }
     }

@@ -194,7 +194,7 @@ fn write_named<'a>(
     files: impl Iterator<Item = (&'a str, &'a [u8])>,
 ) -> Result<Vec<PathBuf>> {
     crate::interrupt::check()?;
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    std::fs::create_dir_all(dir).map_err(|e| Error::create_dir(dir, e))?;
     let mut staged: Vec<(PathBuf, PathBuf)> = Vec::new();
     let mut created: Vec<PathBuf> = Vec::new();
     // (called while a `Writing` guard holds the process's exit back)

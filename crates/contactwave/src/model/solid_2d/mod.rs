@@ -250,9 +250,12 @@ impl Solid2dScenario {
     /// `model.duration` for the records).
     pub fn budget(&self) -> Result<()> {
         let e = self.problem.memory_estimate(&self.file)?;
-        let (key, value, change) = if e.mesh >= e.series {
+        let stress = self.stress_bytes(e.steps);
+        let (key, value, change) = if stress > e.mesh.max(e.series) {
+            self.stress_receiver_key()
+        } else if e.mesh >= e.series {
             let (key, value, change) = self.problem.mesh_key(e.nodes);
-            (key, value, change.to_string())
+            (key.to_string(), value.to_string(), change.to_string())
         } else {
             let t = self.problem.duration;
             let dt = e.stable_time_step.min(self.problem.max_time_step);
@@ -261,23 +264,23 @@ impl Solid2dScenario {
             let by_accuracy = self.problem.max_time_step < e.stable_time_step;
             match (by_accuracy, self.spec.model.time_step) {
                 (true, Some(ts)) => (
-                    "model.time_step",
-                    ts,
+                    "model.time_step".to_string(),
+                    ts.to_string(),
                     "raise `model.time_step` (fewer steps; at most the stable step) or lower \
                      `model.duration`"
                         .to_string(),
                 ),
                 (true, None) => (
-                    "model.duration",
-                    t,
+                    "model.duration".to_string(),
+                    t.to_string(),
                     format!(
                         "lower `model.duration`; the step, {dt:.2e} s, is set by the phase \
                          accuracy at the highest analysed harmonic (`model.harmonic`)"
                     ),
                 ),
                 (false, _) => (
-                    "model.duration",
-                    t,
+                    "model.duration".to_string(),
+                    t.to_string(),
                     format!(
                         "lower `model.duration`; the step, {dt:.2e} s, is set by the smallest \
                          element, which a short crack or layer or a receiver near a mesh \
@@ -289,7 +292,7 @@ impl Solid2dScenario {
         let bytes = self.memory_estimate()?.unwrap_or(0.0);
         crate::budget::check_or(
             &self.file,
-            key,
+            &key,
             value,
             bytes,
             &format!(

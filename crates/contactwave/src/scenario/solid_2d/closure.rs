@@ -90,6 +90,22 @@ impl PrestressSpec {
     }
 }
 
+/// The key the static shear of a crack comes from: the pre-stress component on its line
+/// (`model.prestress.xz`, `.yz` or `.xy`) when `pre` is given, else `{key}.static_shear`.
+pub(super) fn static_shear_key(
+    pre: Option<&PrestressSpec>,
+    horizontal: bool,
+    antiplane: bool,
+    key: &str,
+) -> String {
+    match (pre, horizontal, antiplane) {
+        (None, ..) => format!("{key}.static_shear"),
+        (Some(_), _, false) => "model.prestress.xz".into(),
+        (Some(_), true, true) => "model.prestress.yz".into(),
+        (Some(_), false, true) => "model.prestress.xy".into(),
+    }
+}
+
 /// The crack `c` with its static state from the pre-stress `pre` (when given): an error
 /// where the crack gives its own (`static_pressure`, `static_shear`, a table's pressure or
 /// shear) or where the pre-stress pulls it open.
@@ -281,7 +297,10 @@ impl CrackProfile<SharedLaw> for ClosureProfile {
                 &self.file,
                 format!("{}.closure.gap", self.key),
                 format!("{g0} m at {position} m where p0 = {p0} Pa, q0 = {q0} Pa"),
-                "a gap only where the interpolated pressure and shear are 0",
+                "a gap only where the interpolated pressure and shear are 0 (between two \
+                 positions the table interpolates linearly: a gap that falls to 0 where the \
+                 pressure or the shear rises from 0 overlaps them; add a position where \
+                 both the gap and the pressure are 0)",
             ));
         }
         let c = &self.crack;
@@ -294,7 +313,14 @@ impl CrackProfile<SharedLaw> for ClosureProfile {
             &normal,
             &self.file,
             &self.key,
-        )?;
+        )
+        .map_err(|e| match self.table.shear {
+            Some(_) => e.renamed_field(
+                &format!("{}.static_shear", self.key),
+                &format!("{}.closure.shear", self.key),
+            ),
+            None => e,
+        })?;
         Ok((
             SharedLaw {
                 normal,

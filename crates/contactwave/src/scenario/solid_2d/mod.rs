@@ -337,9 +337,55 @@ impl Solid2dScenario {
         }
     }
 
-    /// The memory a run needs, bytes ([`Solid2d::memory_estimate`] times [`Self::runs`]).
+    /// The memory a run needs, bytes ([`Solid2d::memory_estimate`] and the stress
+    /// receivers' series, [`Self::stress_bytes`], times [`Self::runs`]).
     pub fn memory_bytes(&self) -> Result<f64> {
-        Ok(self.runs() * self.problem.memory_estimate(&self.file)?.total())
+        let e = self.problem.memory_estimate(&self.file)?;
+        Ok(self.runs() * (e.total() + self.stress_bytes(e.steps)))
+    }
+
+    /// The stress receivers' series over `steps` steps, bytes: each component's trace, its
+    /// gated copy and the analysis' transforms (four series, as the velocity receivers' in
+    /// [`Solid2d::memory_estimate`]) and its text in `receivers.csv` (about 24 bytes a
+    /// value).
+    pub fn stress_bytes(&self, steps: f64) -> f64 {
+        let components = if self.problem.wave == WaveType::Sh {
+            2.0
+        } else {
+            3.0
+        };
+        self.stress_points.len() as f64 * components * steps * (4.0 * 8.0 + 24.0)
+    }
+
+    /// The key that sets the stress receivers' number, its value, and the way to fewer:
+    /// the longest stress line's `receiver.<i>.count`, or the first stress point's
+    /// `receiver.<i>.quantity`.
+    pub fn stress_receiver_key(&self) -> (String, String, String) {
+        let stress = self
+            .spec
+            .receivers
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r.quantity == "stress");
+        match stress
+            .clone()
+            .filter(|(_, r)| r.count.is_some())
+            .max_by_key(|(_, r)| r.count)
+        {
+            Some((i, r)) => (
+                format!("receiver.{i}.count"),
+                r.count.unwrap_or(0).to_string(),
+                format!("lower `receiver.{i}.count` (or record velocity there)"),
+            ),
+            None => {
+                let i = stress.map(|(i, _)| i).next().unwrap_or(0);
+                (
+                    format!("receiver.{i}.quantity"),
+                    "stress".to_string(),
+                    "record fewer stresses (`quantity = \"velocity\"`)".to_string(),
+                )
+            }
+        }
     }
 
     /// Does this TOML table describe a 2D scenario?
@@ -721,7 +767,18 @@ impl Solid2dScenario {
                 &normal,
                 file,
                 &key,
-            )?;
+            )
+            .map_err(|e| {
+                e.renamed_field(
+                    &format!("{key}.static_shear"),
+                    &closure::static_shear_key(
+                        m.prestress.as_ref(),
+                        horizontal,
+                        wave == WaveType::Sh,
+                        &key,
+                    ),
+                )
+            })?;
             let profile = match &c.closure {
                 Some(t) => Some(ClosureProfile::new(c, t, length, file, &key)?),
                 None => None,
