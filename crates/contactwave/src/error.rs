@@ -149,28 +149,28 @@ impl Error {
     /// names the user's folder, not the temporary file, and says when the folder is not
     /// writable.
     pub fn write_in(dir: &std::path::Path, source: std::io::Error) -> Self {
-        let kind = source.kind();
-        let message = if kind == std::io::ErrorKind::PermissionDenied {
-            format!("the output folder is not writable ({source})")
-        } else {
-            format!("cannot write into the output folder: {source}")
-        };
-        let dir = if dir.as_os_str().is_empty() {
-            std::path::Path::new(".")
-        } else {
-            dir
-        };
-        Error::io(dir, std::io::Error::new(kind, message))
+        Self::output_folder(dir, source, "cannot write into the output folder")
     }
 
     /// An error creating the output folder `dir`: says so, and when its parent is not
     /// writable (`/proc/x: cannot create the output folder: No such file or directory`).
     pub fn create_dir(dir: &std::path::Path, source: std::io::Error) -> Self {
+        Self::output_folder(dir, source, "cannot create the output folder")
+    }
+
+    /// An I/O error of the output folder `dir` (`.` when empty): `what: source`, or that the
+    /// folder is not writable.
+    fn output_folder(dir: &std::path::Path, source: std::io::Error, what: &str) -> Self {
         let kind = source.kind();
         let message = if kind == std::io::ErrorKind::PermissionDenied {
             format!("the output folder is not writable ({source})")
         } else {
-            format!("cannot create the output folder: {source}")
+            format!("{what}: {source}")
+        };
+        let dir = if dir.as_os_str().is_empty() {
+            std::path::Path::new(".")
+        } else {
+            dir
         };
         Error::io(dir, std::io::Error::new(kind, message))
     }
