@@ -472,6 +472,12 @@ fn solid_2d_slips_are_warned() {
             &[("frequency = 10e6", "frequency = 10.0")],
             "source.0.signal.frequency = 10 Hz",
         ),
+        // (with the default elements, metres wide for 30 Hz: the slip is named, not the
+        // transducer's aperture against those elements)
+        (
+            &[(h, "order = 6"), ("frequency = 10e6", "frequency = 10.0")],
+            "source.0.signal.frequency = 10 Hz",
+        ),
         (
             &[("pml_thickness = 0.4e-3", "pml_thickness = 0.02")],
             "model.pml_thickness = 0.02 m",

@@ -649,18 +649,21 @@ impl Solid2dScenario {
         };
         // (the elements follow a transducer's edges: a sliver of an aperture would make
         // slivers of elements, and of the time step)
+        // (the mesh's columns are no wider than the rectangle: a frequency in the wrong
+        // unit makes elements of metres, which the plausibility warnings name)
+        let column = element_size.min(m.width);
         for (i, src) in sources.iter().enumerate() {
             if let SourceKind::Traction { x0, x1, .. } = src.kind {
-                if x1 - x0 < MIN_APERTURE * element_size {
+                if x1 - x0 < MIN_APERTURE * column {
                     return Err(inv(
                         file,
                         format!("source.{i}.x1"),
                         format!("[{x0}, {x1}]"),
                         &format!(
-                            "an aperture x1 - x0 of at least {:e} of the element size ({:e} \
+                            "an aperture x1 - x0 of at least {:e} of the element size ({:.3e} \
                              m); a narrower source is a point force (kind = \"force\")",
                             MIN_APERTURE,
-                            MIN_APERTURE * element_size
+                            MIN_APERTURE * column
                         ),
                     ));
                 }
