@@ -504,3 +504,56 @@ fn solid_2d_slips_are_warned() {
         "{w:?}"
     );
 }
+
+/// A wrong value inside a law table is named by its own key (`crack.0.tangential.friction`,
+/// not the table), as are an unknown key and an unknown law; a count written as a whole
+/// float (`order = 6.0`, `crack_every = 1e1`) is that count, a fractional one is refused.
+#[test]
+fn law_parameters_are_named_by_their_keys_and_whole_floats_count() {
+    let error = |from: &str, to: &str| -> String {
+        assert!(SOLID_2D.contains(from), "{from}");
+        let text = SOLID_2D.replace(from, to);
+        match model::from_toml_str(&text, "k.toml").and_then(|t| t.base().map(|_| ())) {
+            Err(e) => e.to_string(),
+            Ok(()) => String::new(),
+        }
+    };
+    let crack = "static_pressure = 0.2e6\n";
+    for (law, field) in [
+        (
+            "tangential = { law = \"coulomb\", friction = \"0.3\" }",
+            "crack.0.tangential.friction",
+        ),
+        (
+            "tangential = { law = \"coulomb\", frict = 0.3 }",
+            "crack.0.tangential.frict",
+        ),
+        (
+            "tangential = { law = \"colomb\", friction = 0.3 }",
+            "crack.0.tangential.law",
+        ),
+        (
+            "compression = { law = \"power\", c = \"1e10\", m = 0.5 }",
+            "crack.0.compression.c",
+        ),
+    ] {
+        let e = error(crack, &format!("{crack}{law}\n"));
+        assert!(
+            e.starts_with(&format!("k.toml: field `{field}`")),
+            "{law}: {e}"
+        );
+        assert_eq!(e.lines().count(), 1, "{e}");
+    }
+    assert_eq!(
+        error(
+            "element_size = 0.1e-3",
+            "element_size = 0.1e-3\norder = 6.0\ncrack_every = 1e1"
+        ),
+        ""
+    );
+    let e = error(
+        "element_size = 0.1e-3",
+        "element_size = 0.1e-3\ncrack_every = 2.5",
+    );
+    assert!(e.contains("model.crack_every") && e.contains("2.5"), "{e}");
+}

@@ -54,10 +54,45 @@ macro_rules! law_table {
         }
     ) => {
         $(#[$edoc])*
-        #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+        #[derive(Debug, Clone, PartialEq, serde::Serialize)]
         #[serde(tag = "law", rename_all = "snake_case")]
         pub enum $name {
             $($(#[$doc])* $variant($spec),)*
+        }
+
+        /// `{ law = "name", parameters... }`: the law's name, then its parameters read
+        /// as its file's `Spec`; a parameter's error names its key ([`law_error`]).
+        impl<'de> serde::Deserialize<'de> for $name {
+            fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+                /// The law names (snake case, as serde spells the variants).
+                #[derive(serde::Deserialize)]
+                #[serde(rename_all = "snake_case")]
+                enum Law {
+                    $($variant,)*
+                }
+                let mut table = match <toml::Value as serde::Deserialize>::deserialize(d)? {
+                    toml::Value::Table(t) => t,
+                    other => {
+                        return Err(<D::Error as serde::de::Error>::custom(format!(
+                            "invalid type: {} `{other}`, expected a table naming its law, \
+                             e.g. {{ law = \"rigid\" }}",
+                            other.type_str()
+                        )))
+                    }
+                };
+                let law: Law = match table.remove("law") {
+                    Some(name) => serde_path_to_error::deserialize(name)
+                        .map_err(|e| $crate::law::param::law_error::<D::Error>(e, "law"))?,
+                    None => return Err(<D::Error as serde::de::Error>::missing_field("law")),
+                };
+                let rest = toml::Value::Table(table);
+                Ok(match law {
+                    $(Law::$variant => $name::$variant(
+                        serde_path_to_error::deserialize(rest)
+                            .map_err(|e| $crate::law::param::law_error::<D::Error>(e, ""))?,
+                    ),)*
+                })
+            }
         }
 
         impl $name {
@@ -88,6 +123,28 @@ macro_rules! law_table {
     };
 }
 pub(crate) use law_table;
+
+/// A law table's error at its key `inner` (a parameter's path, or `at` where the path is
+/// empty) as `in `key`: message`: the scenario reader ([`crate::scenario`]'s field errors)
+/// appends the key to the law's own, so that the message names `crack.0.tangential.friction`
+/// and not the table.
+#[doc(hidden)]
+pub fn law_error<E: serde::de::Error>(
+    e: serde_path_to_error::Error<toml::de::Error>,
+    at: &str,
+) -> E {
+    let path = e.path().to_string();
+    let key = if path == "." { at.to_string() } else { path };
+    let message = e.into_inner().to_string();
+    if key.is_empty() {
+        E::custom(message)
+    } else {
+        E::custom(format!("{LAW_KEY_PREFIX}{key}`: {message}"))
+    }
+}
+
+/// How [`law_error`] begins a message that names a key inside a law table.
+pub const LAW_KEY_PREFIX: &str = "in law key `";
 
 /// `v` finite and > 0, else an error naming `file`, `field` and the value.
 pub(crate) fn positive(file: &str, field: &str, v: f64) -> Result<()> {

@@ -70,43 +70,85 @@ pub fn deserialize_scenario<T: serde::de::DeserializeOwned>(
     hint: impl Fn(&str, FieldProblem) -> Option<String>,
 ) -> Result<T> {
     super::units::to_si(&mut table, file)?;
-    let value = toml::Value::Table(table.clone());
-    serde_path_to_error::deserialize::<_, T>(value).map_err(|e| {
-        let path = dotted(e.path());
-        match field_error(e, &table, file, hint, false) {
-            Ok(err) => err,
-            Err(inner) => Error::Parse {
-                file: file.to_string(),
-                message: if path.is_empty() || path == "." {
-                    inner
-                } else {
-                    format!("field `{path}`: {inner}")
-                },
-            },
+    // a count written as a whole float (`order = 6.0`, `crack_every = 1e3`) is that count:
+    // each refused one is made an integer and the table read again (once per such key)
+    let result = loop {
+        let value = toml::Value::Table(table.clone());
+        match serde_path_to_error::deserialize::<_, T>(value) {
+            Err(e) if whole_float_to_integer(&mut table, &e) => continue,
+            other => break other,
         }
+    };
+    result.map_err(|e| match field_error(e, &table, file, hint, false) {
+        Ok(err) => err,
+        Err((path, inner)) => Error::Parse {
+            file: file.to_string(),
+            message: if path.is_empty() {
+                inner
+            } else {
+                format!("field `{path}`: {inner}")
+            },
+        },
     })
 }
 
-/// A deserializer's field path spelled as the scenario keys are everywhere else:
-/// `crack.0.static_pressure` (array indices as dotted parts, not `crack[0]`).
-fn dotted(path: &serde_path_to_error::Path) -> String {
-    let mut out = String::new();
-    for s in path.iter() {
-        let part = match s {
-            serde_path_to_error::Segment::Seq { index } => index.to_string(),
-            serde_path_to_error::Segment::Map { key: k }
-            | serde_path_to_error::Segment::Enum { variant: k } => k.clone(),
-            serde_path_to_error::Segment::Unknown => continue,
-        };
-        if !out.is_empty() {
-            out.push('.');
+/// Where `e` refuses a float for a whole number and the float at its key is whole (and
+/// exactly representable), write it there as an integer; whether it did.
+fn whole_float_to_integer(
+    table: &mut toml::Table,
+    e: &serde_path_to_error::Error<toml::de::Error>,
+) -> bool {
+    let mut message = e.inner().to_string();
+    let mut keys: Vec<String> = Vec::new();
+    for s in e.path().iter() {
+        match s {
+            serde_path_to_error::Segment::Seq { index } => keys.push(index.to_string()),
+            serde_path_to_error::Segment::Map { key } => keys.push(key.clone()),
+            _ => {}
         }
-        out.push_str(&part);
     }
-    if out.is_empty() {
-        ".".into()
-    } else {
-        out
+    // inside a law table: its own key (`law::param::law_error`)
+    while let Some((inner, rest)) = message
+        .strip_prefix(crate::law::param::LAW_KEY_PREFIX)
+        .and_then(|m| m.split_once("`: "))
+    {
+        for part in inner.split('.') {
+            match part.strip_suffix(']').and_then(|p| p.split_once('[')) {
+                Some((name, i)) => keys.extend([name.to_string(), i.to_string()]),
+                None => keys.push(part.to_string()),
+            }
+        }
+        message = rest.to_string();
+    }
+    let integer = ["expected u", "expected i"]
+        .iter()
+        .any(|t| message.contains(t));
+    if !(message.starts_with("invalid type: floating point") && integer) {
+        return false;
+    }
+    let mut cur: Option<&mut toml::Value> = None;
+    for k in &keys {
+        cur = match cur {
+            None => table.get_mut(k),
+            Some(toml::Value::Table(t)) => t.get_mut(k),
+            Some(toml::Value::Array(a)) => k.parse::<usize>().ok().and_then(|i| a.get_mut(i)),
+            Some(_) => None,
+        };
+        if cur.is_none() {
+            return false;
+        }
+    }
+    match cur {
+        Some(v @ toml::Value::Float(_)) => {
+            let x = v.as_float().unwrap_or(f64::NAN);
+            if x.fract() == 0.0 && x.abs() <= 9.007_199_254_740_992e15 {
+                *v = toml::Value::Integer(x as i64);
+                true
+            } else {
+                false
+            }
+        }
+        _ => false,
     }
 }
 
@@ -218,16 +260,37 @@ fn other_spelling(parts: &[&str]) -> Option<&'static str> {
     }
 }
 
-/// Whether two dotted keys set the same value (equal, or one quantity's two spellings:
-/// `crack.0.tangential.mu` and `crack.0.tangential.friction`).
+/// Whether two dotted keys set the same value: equal, or one quantity's two spellings
+/// (`crack.0.tangential.mu` and `crack.0.tangential.friction`), or one with and one
+/// without the index of a one-table array (`source.angle` and `source.0.angle`: where
+/// the array holds several tables the index-free key is refused when it is set), or a
+/// point's coordinate by index or by name (`crack.0.end.0` and `crack.0.end.x`).
 pub fn same_key(a: &str, b: &str) -> bool {
-    if a == b {
-        return true;
+    a == b || canonical_key(a) == canonical_key(b)
+}
+
+/// The parts of the dotted key `key` in one spelling: a table array's index 0 dropped
+/// (an index ends no key: a number array's index does), a point's last index as its
+/// coordinate name (`0` as `x`, `1` as `z`), a friction coefficient as `friction`.
+fn canonical_key(key: &str) -> Vec<&str> {
+    let parts: Vec<&str> = key.split('.').collect();
+    let last = parts.len().saturating_sub(1);
+    let mut out = Vec::with_capacity(parts.len());
+    for (k, &p) in parts.iter().enumerate() {
+        let part = match (k == last, p) {
+            (false, "0") if k > 0 => continue,
+            (true, "0") if k > 0 => "x",
+            (true, "1") if k > 0 => "z",
+            _ => p,
+        };
+        out.push(part);
     }
-    let (pa, pb): (Vec<&str>, Vec<&str>) = (a.split('.').collect(), b.split('.').collect());
-    pa.len() == pb.len()
-        && pa[..pa.len() - 1] == pb[..pb.len() - 1]
-        && other_spelling(&pa) == pb.last().copied()
+    if other_spelling(&parts) == Some("friction") {
+        if let Some(l) = out.last_mut() {
+            *l = "friction";
+        }
+    }
+    out
 }
 
 /// Write the `[set]` table of a sweep or identification file (dotted keys, any TOML value)
@@ -306,7 +369,7 @@ pub fn deserialize_format<T: serde::de::DeserializeOwned>(
 ) -> Result<T> {
     let value = toml::Value::Table(table.clone());
     serde_path_to_error::deserialize::<_, T>(value).map_err(|e| {
-        field_error(e, table, file, |k, p| Some(allowed(k, p)), true).unwrap_or_else(|m| {
+        field_error(e, table, file, |k, p| Some(allowed(k, p)), true).unwrap_or_else(|(_, m)| {
             Error::Parse {
                 file: file.to_string(),
                 message: m,
@@ -317,15 +380,16 @@ pub fn deserialize_format<T: serde::de::DeserializeOwned>(
 
 /// A deserializer's failure as an [`Error::Invalid`] naming `file`, the field
 /// (`axis.1.values`), the value as written (or `(missing)`) and `allowed(key, problem)`;
-/// where `allowed` has nothing to say, serde's message in plain words (`Err`). A wrong
-/// value's message ends with serde's words in brackets when `explain` is set.
+/// where `allowed` has nothing to say, the field (dotted, `""` at the top) and serde's
+/// message in plain words (`Err`). A wrong value's message ends with serde's words in
+/// brackets when `explain` is set.
 fn field_error(
     e: serde_path_to_error::Error<toml::de::Error>,
     table: &toml::Table,
     file: &str,
     allowed: impl Fn(&str, FieldProblem) -> Option<String>,
     explain: bool,
-) -> std::result::Result<Error, String> {
+) -> std::result::Result<Error, (String, String)> {
     let mut path: Vec<String> = Vec::new();
     let mut key: Vec<String> = Vec::new();
     for s in e.path().iter() {
@@ -343,7 +407,31 @@ fn field_error(
             serde_path_to_error::Segment::Unknown => {}
         }
     }
-    let message = e.into_inner().to_string();
+    let mut message = e.into_inner().to_string();
+    // a law table's parameter: its key inside the table (`law::param::law_error`),
+    // `points[2]` as `points.2`
+    while let Some((inner, rest)) = message
+        .strip_prefix(crate::law::param::LAW_KEY_PREFIX)
+        .and_then(|m| m.split_once("`: "))
+    {
+        for part in inner.split('.') {
+            let (name, index) = part
+                .strip_suffix(']')
+                .and_then(|p| p.split_once('['))
+                .unwrap_or((part, ""));
+            key.push(name.to_string());
+            path.push(if index.is_empty() {
+                name.to_string()
+            } else {
+                format!("{name}.{index}")
+            });
+        }
+        message = rest.to_string();
+    }
+    // (toml's own account of the keys, which the path already gives)
+    if let Some(at) = message.find("\nin `") {
+        message.truncate(at);
+    }
     let plain = super::units::plain_serde_message(&message);
     let quoted = |prefix: &str| {
         message
@@ -353,10 +441,11 @@ fn field_error(
     };
     let join = |v: &[String]| v.join(".");
     if let Some(name) = quoted("missing field `") {
+        let table_path = join(&path);
         path.push(name.clone());
         key.push(name);
         let Some(what) = allowed(&join(&key), FieldProblem::Missing) else {
-            return Err(plain);
+            return Err((table_path, plain));
         };
         return Ok(Error::invalid(
             file,
@@ -372,7 +461,7 @@ fn field_error(
         // serde's path ends at the unknown key itself
         key.pop();
         let Some(what) = allowed(&join(&key), FieldProblem::Unknown) else {
-            return Err(plain);
+            return Err((join(&path), plain));
         };
         return Ok(Error::invalid(
             file,
@@ -382,7 +471,7 @@ fn field_error(
         ));
     }
     let Some(what) = allowed(&join(&key), FieldProblem::Wrong) else {
-        return Err(plain);
+        return Err((join(&path), plain));
     };
     Ok(Error::invalid(
         file,
@@ -453,6 +542,17 @@ mod tests {
             "crack.0.traction.mu",
             "crack.0.traction.friction"
         ));
+        // an index-free key and its index 0 (the one table of an array), a point's
+        // coordinate by index or name
+        assert!(same_key("source.angle", "source.0.angle"));
+        assert!(same_key(
+            "crack.tangential.mu",
+            "crack.0.tangential.friction"
+        ));
+        assert!(same_key("crack.0.end.1", "crack.end.z"));
+        assert!(!same_key("source.1.angle", "source.angle"));
+        assert!(!same_key("crack.0.end.x", "crack.0.end.z"));
+        assert!(!same_key("crack.0.length", "crack.0.start.x"));
     }
 
     /// An array of one table takes keys with or without its index; one of several needs
