@@ -287,8 +287,8 @@ pub trait Model: Debug + Send + Sync {
     fn kind(&self) -> &'static str;
     /// File the scenario came from.
     fn file(&self) -> &str;
-    /// Load ratio xi of the incident wave at the (first) interface, 0 without one
-    /// (model.md section 2).
+    /// Load ratio xi of the incident wave at the (first) interface (model.md section 2),
+    /// 0 without an incident wave; NaN for a model that has no one ratio (a 2D run).
     fn load_ratio(&self) -> f64;
     /// Run and return only the summary scalars (what a sweep row needs; no recorded
     /// series or spectra beyond what the summary uses).

@@ -138,6 +138,14 @@ fn harmonic(key: &str) -> Option<(&'static str, &'static str)> {
 }
 
 fn guess_unit(last: &str) -> &'static str {
+    // a source's angle of incidence or delay law, degrees; then the SI unit of a key with
+    // a dimension (what its unit strings convert to)
+    if last == "angle" {
+        return "deg";
+    }
+    if let Some(d) = crate::scenario::units::dimension_of_key(last) {
+        return d.si_unit();
+    }
     let l = last.to_ascii_lowercase();
     if l.contains("pressure") || l.contains("amplitude") || l.contains("modulus") {
         "Pa"
@@ -173,6 +181,9 @@ mod tests {
             "static pressure p0, MPa"
         );
         assert_eq!(axis_label("incident.xi", ""), "load ratio xi");
+        assert_eq!(axis_label("source.0.angle", ""), "source 0 angle, deg");
+        assert_eq!(axis_label("crack.0.length", "m"), "crack 0 length, mm");
+        assert_eq!(axis_label("layer.0.s_speed", ""), "layer 0 s speed, m/s");
         assert_eq!(
             axis_label("mean_contact_stiffness_0", "T"),
             "mean contact stiffness K, interface 0, TPa/m"

@@ -503,8 +503,10 @@ impl Model for Solid2dScenario {
         &self.file
     }
 
+    /// NaN: a finite crack meets the waves the solid carries to it, diffracted and
+    /// converted, not one incident wave of a known amplitude.
     fn load_ratio(&self) -> f64 {
-        0.0
+        f64::NAN
     }
 
     fn summary(&self) -> Result<Summary> {

@@ -488,7 +488,7 @@ fn swept_already(earlier: &str) -> String {
 /// Checks that need every axis: not both `incident.xi` and `incident.amplitude`, not both
 /// a crack's `length` and its `end` (each sets the other), grid size.
 fn check_axes(file: &str, axes: &[Axis]) -> Result<()> {
-    let has = |k: &str| axes.iter().any(|a| a.parameter == k);
+    let has = |k: &str| axes.iter().any(|a| same_key(&a.parameter, k));
     if has("incident.xi") && has("incident.amplitude") {
         return Err(Error::invalid(
             file,
