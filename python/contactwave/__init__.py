@@ -19,6 +19,14 @@ Scenarios are TOML files (docs/scenario.md) or plain dicts with the same keys::
             "interface": {"static_pressure": 0.1e6},
             "incident": {"frequency": 1e6, "cycles": 10, "xi": 0.35}})
 
+A finite crack in 2D (``[model] kind = "solid_2d"``, docs/scenario.md section 2b)::
+
+    r = cw.run("examples/solid_2d/plate_crack_quick.toml")   # Solid2dResult
+    r.receivers.shape                   # (n_receivers x components, n_t), m/s
+    r.cracks[0]["normal_gap"].shape     # (n_nodes, n_records), m
+    r.summary["bottom_A2_over_A1"]
+    cw.sweep("examples/solid_2d/plate_crack_quick.toml", {"crack.0.length": [1e-3, 2e-3]})
+
 Invalid scenarios raise ``ValueError`` with the library's message (file, field, value,
 allowed range); a numerical failure raises :class:`SimulationError`.
 """
@@ -512,7 +520,7 @@ class Solid2dResult:
     receiver and component, in the column order of ``receivers.csv``; per row,
     ``receiver_names`` (the scenario's name), ``receiver_components`` (``"x"``, ``"z"``
     or ``"y"``) and the position ``receiver_x``, ``receiver_z`` (m). ``components``
-    names the run's velocity components (``("x", "z")`` in P-SV runs, ``("y",)`` in SH
+    names the run's velocity components (``["x", "z"]`` in P-SV runs, ``["y"]`` in SH
     runs). ``stresses``: the stress receivers' records, shape ``(n_stress_receivers,
     n_t)`` (Pa, tension positive, dynamic), one row per stress receiver and component;
     per row ``stress_names``, ``stress_components`` (``"xx"``, ``"zz"``, ``"xz"`` or
@@ -687,8 +695,13 @@ def run(scenario: ScenarioLike) -> Union[Result, BarStackResult, "Solid2dResult"
     (as :func:`run_bar_stack`), a 2D scenario (``kind = "solid_2d"``) a
     :class:`Solid2dResult`.
 
-    The GIL is released while the simulation runs. Raises ``ValueError`` for an invalid
-    scenario and :class:`SimulationError` for a numerical failure.
+    Values that are legal but almost surely a unit slip (``frequency = 1`` meant as
+    1 MHz, a width of 40 m meant as mm) give a ``UserWarning`` each, naming the key
+    (:attr:`Scenario.warnings`). The GIL is released while the simulation runs; Ctrl-C
+    stops it (``KeyboardInterrupt``). Raises ``ValueError`` for an invalid scenario (file,
+    field, value, allowed range), also for a 2D grid beyond the memory budget (naming the
+    key to change, e.g. ``model.element_size``), and :class:`SimulationError` for a
+    numerical failure.
     """
     s = _as_scenario(scenario)
     for w in s.warnings:  # legal values that are almost surely a unit slip
@@ -765,6 +778,9 @@ def _base(base: ScenarioLike) -> Tuple[str, str]:
     """(table as JSON, path standing for it) of a sweep's base scenario."""
     if isinstance(base, Mapping):
         return _to_json(base, "<dict>"), "<dict>"
+    # a string with a line break is a scenario's text (as for `run`), never a file name
+    if isinstance(base, str) and "\n" in base:
+        return _core.toml_table_json(base, "<toml>"), "<toml>"
     if isinstance(base, (str, os.PathLike)):
         # the table as written: the sweep validates every point (as the CLI does), so a
         # base that lacks a key every point sets is fine
@@ -931,14 +947,20 @@ def sweep(
 ) -> Any:
     """Run a parameter sweep: the grid of ``axes`` over the ``base`` scenario.
 
-    ``base``: a Scenario, a dict or a scenario file path, half-space or bar stack (the
-    rows of a bar-stack sweep carry its summary keys: ``first_mode_hz``, ``A2_over_A1``,
-    ``min_contact_pressure``, ...; or the reflected-wave keys of an ``[incident]`` run).
-    ``axes``: maps dotted scenario
-    keys to value arrays, e.g. ``{"incident.xi": np.linspace(0.05, 1.2, 47),
-    "interface.traction.stiffness": [1e12, 1e13]}``; several axes form a grid, first axis
-    slowest, exactly like a sweep file's ``[[axis]]`` tables. Every point is validated
-    before anything runs (``ValueError`` naming the field and the point).
+    ``base``: a Scenario, a dict, a scenario file path or its TOML text (a string with a
+    line break), of any kind: half-space, bar stack (the rows carry its summary keys:
+    ``first_mode_hz``, ``A2_over_A1``, ``min_contact_pressure``, ...; or the
+    reflected-wave keys of an ``[incident]`` run) or 2D (``solid_2d``: the rows carry
+    ``<receiver>_A1`` ... ``<receiver>_A2_over_A1``, ``crack_max_gap_<i>``, ``nodes``,
+    ``steps``, ...). ``axes``: maps dotted scenario keys to value arrays, e.g.
+    ``{"incident.xi": np.linspace(0.05, 1.2, 47), "interface.traction.stiffness": [1e12,
+    1e13]}`` or, for a 2D base, ``{"crack.0.length": [1e-3, 2e-3],
+    "crack.0.static_pressure": ["0.5 MPa", "1 MPa"], "crack.0.tangential.friction": [0.1,
+    0.3], "source.0.angle": [0, 20]}`` (the index of an array's only table may be left
+    out: ``crack.length``; ``mu`` is ``friction``; values may be unit strings); several
+    axes form a grid, first axis slowest, exactly like a sweep file's ``[[axis]]``
+    tables. Every point is validated before anything runs (``ValueError`` naming the
+    field and the point; two axes setting one value are refused).
 
     ``executor=None``: all local cores (``threads`` to limit them), in Rust with the GIL
     released; Ctrl-C stops the sweep (``KeyboardInterrupt``); ``progress(done, total)``,

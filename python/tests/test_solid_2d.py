@@ -124,6 +124,28 @@ def test_sweep_keys_may_leave_out_the_only_index_and_name_friction_mu(root):
     assert np.all(np.isfinite(a)) and a[0] != a[1]
 
 
+def test_one_value_swept_under_two_spellings_is_refused(root):
+    """An index-free key and its index 0 (or `mu` and `friction`) set one value: two axes
+    on it would label each row with a value the run did not take."""
+    base = str(root / "examples" / "solid_2d" / "plate_crack_quick.toml")
+    for axes in (
+        {"source.angle": [0.0], "source.0.angle": [15.0]},
+        {"crack.0.length": [1e-3], "crack.length": [2e-3]},
+        {"crack.tangential.mu": [0.1], "crack.0.tangential.friction": [0.2]},
+    ):
+        with pytest.raises(ValueError, match="swept by an earlier axis already"):
+            cw.sweep(base, axes, as_frame=False)
+
+
+def test_a_sweep_base_may_be_given_as_toml_text(root):
+    path = root / "examples" / "solid_2d" / "plate_crack_quick.toml"
+    axes = {"crack.0.length": [1e-3, 2e-3]}
+    by_text = cw.sweep(path.read_text(), axes, as_frame=False)
+    by_path = cw.sweep(str(path), axes, as_frame=False)
+    assert np.array_equal(by_text["bottom_A2_over_A1"], by_path["bottom_A2_over_A1"])
+    assert cw.memory_estimate(path.read_text(), axes).shape == (2,)
+
+
 def test_a_scenario_may_be_given_as_toml_text(root):
     path = root / "examples" / "solid_2d" / "plate_crack_quick.toml"
     text = path.read_text()

@@ -79,7 +79,8 @@ impl PyScenario {
     }
 
     /// Load ratio xi (resolved from the amplitude when the scenario gives `amplitude`;
-    /// for a bar stack, at its first interface; 0 without an incident wave).
+    /// for a bar stack, at its first interface; 0 without an incident wave; NaN for a 2D
+    /// scenario, whose cracks meet diffracted waves, not one incident wave).
     #[getter]
     fn xi(&self) -> f64 {
         self.template.base().map_or(f64::NAN, |m| m.load_ratio())
@@ -121,12 +122,12 @@ impl PyScenario {
     }
 
     fn __repr__(&self) -> String {
-        format!(
-            "Scenario(file={:?}, kind={:?}, xi={:?})",
-            self.template.file(),
-            self.template.kind(),
-            self.xi()
-        )
+        let (file, kind, xi) = (self.template.file(), self.template.kind(), self.xi());
+        if xi.is_nan() {
+            format!("Scenario(file={file:?}, kind={kind:?})")
+        } else {
+            format!("Scenario(file={file:?}, kind={kind:?}, xi={xi:?})")
+        }
     }
 }
 
@@ -300,8 +301,15 @@ fn table_json(path: PathBuf) -> PyResult<String> {
     serde_json::to_string(&table).map_err(|e| PyValueError::new_err(e.to_string()))
 }
 
-/// Is this scenario file (TOML) or dict (JSON text) a bar stack (`[model] kind =
-/// "bar_stack"`)?
+/// The table of a scenario's TOML text (read as the file `file`), as JSON text (a sweep's
+/// base given as text).
+#[pyfunction]
+#[pyo3(signature = (text, file = "<toml>"))]
+fn toml_table_json(text: &str, file: &str) -> PyResult<String> {
+    let table = contactwave::scenario::parse_toml(text, file).map_err(to_py)?;
+    serde_json::to_string(&table).map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
 /// One row per history of equal length: a 2-D array (rows x samples).
 fn rows<'py>(py: Python<'py>, v: &[Vec<f64>]) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
     let n = v.first().map_or(0, Vec::len);
@@ -818,6 +826,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(analyze, m)?)?;
     m.add_function(wrap_pyfunction!(table_json, m)?)?;
+    m.add_function(wrap_pyfunction!(toml_table_json, m)?)?;
     m.add_function(wrap_pyfunction!(bench_simulate, m)?)?;
     m.add_function(wrap_pyfunction!(law_curve, m)?)?;
     m.add_function(wrap_pyfunction!(fit_power_law, m)?)?;
