@@ -352,6 +352,24 @@ fn bad_input_is_an_invalid_error() {
         assert_eq!(field, "parameter.0.bounds", "{msg}");
         assert!(msg.contains(fails), "{msg}");
     }
+    // a data column of a key the scenario lacks, a condition value it refuses: the data
+    // are named (row and key), not the parameter's bounds
+    for (column, values, field) in [
+        ("incident.amplitud", "[1e3, 2e3]", "incident.amplitud"),
+        (
+            "incident.frequency",
+            "[1e6, -1e6]",
+            "row 2 -> incident.frequency",
+        ),
+    ] {
+        let e = load(&format!(
+            "base = \"../rccm_0.82MPa.toml\"\n[data]\n\"{column}\" = {values}\nA2_over_A1 = [0.5, 0.4]\n{GOOD_PARAM}"
+        ))
+        .unwrap_err();
+        let msg = e.to_string();
+        let (_, got, _) = invalid_field(e);
+        assert!(got.contains(field) && !got.contains("parameter"), "{msg}");
+    }
     // a design candidate that makes no valid scenario
     let e = load(&format!(
         "{head}{GOOD_PARAM}\n[design]\nvalues = [1e6, 0.0]\n"

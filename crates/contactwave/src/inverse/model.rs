@@ -177,6 +177,26 @@ impl<'a> Model<'a> {
                 value,
                 allowed,
             ),
+            // a column whose key the scenario format does not have (`incident.amplitud`):
+            // the data's row and key, with the reader's words
+            Error::Parse { message, file } => {
+                let m = &self.spec.measured;
+                match message
+                    .strip_prefix("field `")
+                    .and_then(|r| r.split_once("`: "))
+                    .and_then(|(key, why)| {
+                        let k = m.conditions.iter().position(|c| c == key)?;
+                        Some((key, m.rows[i][k], why))
+                    }) {
+                    Some((key, v, why)) => Error::invalid(
+                        self.data_name(),
+                        format!("row {} -> {key}", i + 1),
+                        v,
+                        format!("a key of the base scenario ({why})"),
+                    ),
+                    None => Error::Parse { message, file },
+                }
+            }
             other => other,
         })
     }

@@ -256,11 +256,16 @@ impl IdentifySpec {
                 )
             })?;
         }
+        // every row of the data at the starting values: a bad column key or value is the
+        // data's (the error names its file, row and key), not the parameters' bounds
+        let start = model.values(&z0);
+        for row in 0..spec.measured.len() {
+            model.scenario(row, &start)?;
+        }
         // every value within a parameter's bounds must make a valid scenario (the others
         // at their starting values): checked at both bounds and at a point inside that is
         // no round number (a key of whole numbers, or a length whose far end leaves the
         // rectangle, is refused here rather than halfway through the search)
-        let start = model.values(&z0);
         for (k, p) in spec.parameters.iter().enumerate() {
             let (lo, hi) = p.scaled_bounds();
             for z in [lo, hi, lo + 0.381_966 * (hi - lo)] {
