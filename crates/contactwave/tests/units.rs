@@ -482,6 +482,32 @@ fn solid_2d_slips_are_warned() {
             &[("pml_thickness = 0.4e-3", "pml_thickness = 0.02")],
             "model.pml_thickness = 0.02 m",
         ),
+        // a layer of thousands of wavelengths, under 10 m
+        (
+            &[("thickness = 1e-3", "thickness = 2.0"), (h, coarse)],
+            "layer.0.thickness = 2 m",
+        ),
+        // stresses beyond small strains, a friction coefficient of 30, a stress receiver
+        // of a traction component on the free top
+        (
+            &[("amplitude = 10e6", "amplitude = 10e9")],
+            "source.0.signal.amplitude = 10000000000 Pa",
+        ),
+        (
+            &[("static_pressure = 0.2e6", "static_pressure = 2e10")],
+            "crack.0.static_pressure = 20000000000 Pa",
+        ),
+        (
+            &[(
+                "static_pressure = 0.2e6",
+                "static_pressure = 0.2e6\ntangential = { law = \"coulomb\", friction = 30.0 }",
+            )],
+            "crack.0.tangential.friction = 30",
+        ),
+        (
+            &[("count = 3", "count = 3\nquantity = \"stress\"")],
+            "receiver.0.at = [0.001, 0] m",
+        ),
     ] {
         let w = warnings(edits);
         assert!(

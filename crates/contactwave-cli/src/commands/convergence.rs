@@ -4,7 +4,9 @@
 //! against the exact solver, then the observed order. With `--out DIR` it also writes
 //! DIR/convergence.csv, DIR/efficiency.csv and DIR/convergence.svg.
 
-use super::{check_out_dir, output_file, progress_bar, read_table, EXIT_OK, STEPS_TEMPLATE};
+use super::{
+    check_out_dir, output_file, progress_bar, read_table, step_reporter, EXIT_OK, STEPS_TEMPLATE,
+};
 use contactwave::output;
 use contactwave::scenario::bar_stack::BarStackScenario;
 use contactwave::scenario::solid_2d::Solid2dScenario;
@@ -84,10 +86,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     }
     let bar = progress_bar(STEPS_TEMPLATE, 0);
     let t0 = Instant::now();
-    let r = run_convergence(&table, path, &spec, &|d, n| {
-        bar.set_length(n as u64);
-        bar.set_position(d as u64);
-    })?;
+    let r = run_convergence(&table, path, &spec, &step_reporter(&bar))?;
     bar.finish_and_clear();
     println!(
         "convergence of A{h}/A_inc over {} load ratios (xi {} to {}), {} solver; thesis eqs. 2.42-2.43",

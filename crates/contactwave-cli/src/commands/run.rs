@@ -3,9 +3,10 @@
 //! A half-space scenario writes summary.json, timeseries.csv, probe.csv, spectrum.csv and
 //! SVG plots into DIR; a bar-stack scenario (thesis chapter 4) writes the files of the
 //! hammer test (FRF and modes) or of its incident wave; a 2D scenario its receivers,
-//! crack fields, plots and snapshots; long runs with a progress bar on a terminal.
+//! crack fields, plots and snapshots; long runs with a progress bar on a terminal (plain
+//! progress lines without one).
 
-use super::{check_out_dir, progress_bar, read_table, EXIT_OK, STEPS_TEMPLATE};
+use super::{check_out_dir, progress_bar, read_table, step_reporter, EXIT_OK, STEPS_TEMPLATE};
 use contactwave::model::{self, RunControl};
 use contactwave::output;
 use contactwave::output::provenance::{process_command_line, Provenance};
@@ -78,14 +79,10 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     // the input files hashed as read (a file edited during the run does not change them)
     let provenance = Provenance::of_scenario(path, process_command_line())?;
     let t0 = Instant::now();
-    // long runs report progress on a terminal
+    // long runs report progress: a bar on a terminal, lines in a log
     let bar = progress_bar(STEPS_TEMPLATE, 0);
-    let b = bar.clone();
     let control = RunControl {
-        progress: Some(StepProgress(Arc::new(move |done: usize, total: usize| {
-            b.set_length(total as u64);
-            b.set_position(done as u64);
-        }))),
+        progress: Some(StepProgress(Arc::new(step_reporter(&bar)))),
     };
     let outcome = base.run(&control);
     bar.finish_and_clear();

@@ -52,10 +52,20 @@ pub const LOWEST_SPEED: f64 = 100.0;
 /// A 2D burst whose S wavelength exceeds this many times the rectangle's larger side is
 /// taken as a frequency in the wrong unit.
 pub const LONGEST_WAVELENGTH: f64 = 10.0;
+/// Strain (a stress over the P-wave modulus rho c_P^2) above which a 2D source's amplitude
+/// or a crack's closure is taken as a unit slip: linear elasticity and small gaps hold
+/// far below it.
+pub const LARGEST_STRAIN: f64 = 1e-2;
+/// Friction coefficient above which it is taken as a slip (solids' dry friction lies
+/// between about 0.05 and 1.5).
+pub const LARGEST_FRICTION: f64 = 2.0;
+/// A 2D rectangle's side over 1 m and over this many S wavelengths at f0 is taken as a
+/// length in the wrong unit (a 2 m plate under a 50 kHz guided wave is 30 wavelengths).
+pub const MOST_WAVELENGTHS: f64 = 1e3;
 /// Node-updates (nodes times steps) of a 2D run above which it is announced with its
-/// estimated length: 1e11, about 15 minutes at 1e8 node-updates/s (the reference case is
-/// 4e9).
-pub const LONG_RUN_UPDATES: f64 = 1e11;
+/// estimated length: 1e10, some two minutes at 1e8 node-updates/s (the reference case is
+/// 4e9; a width in mm read as m gives 1.6e10).
+pub const LONG_RUN_UPDATES: f64 = 1e10;
 
 /// Collects the warnings of one scenario file.
 struct Warnings<'a> {
@@ -234,12 +244,15 @@ impl BarStackScenario {
 
 impl Solid2dScenario {
     /// Values of this 2D scenario that are allowed but almost surely a slip: a layer's
-    /// moduli, density or wave speeds (km/s for m/s), a width or layer thicker than 10 m
-    /// (mm for m), a crack's closure under 1 kPa (MPa for Pa), a source whose S wavelength
-    /// is more than ten times the rectangle (MHz for Hz: a run with no wave in it), and an
-    /// `element_size` (or `time_step`) coarser than the phase-velocity budget at the
-    /// highest analysed harmonic (the harmonics then carry numerical dispersion), a
-    /// velocity receiver on a rigid side (zero velocity), and a run over
+    /// moduli, density or wave speeds (km/s for m/s), a width or layer thicker than 10 m,
+    /// or than 1 m and [`MOST_WAVELENGTHS`] S wavelengths (mm for m), a crack's closure
+    /// under 1 kPa (MPa for Pa), a closure or a source's stress beyond
+    /// [`LARGEST_STRAIN`] of rho c_P^2, a friction coefficient over [`LARGEST_FRICTION`],
+    /// a source whose S wavelength is more than ten times the rectangle (MHz for Hz: a run
+    /// with no wave in it), and an `element_size` (or `time_step`) coarser than the
+    /// phase-velocity budget at the highest analysed harmonic (the harmonics then carry
+    /// numerical dispersion), a velocity receiver on a rigid side (zero velocity), a
+    /// stress receiver of a traction component on a free side (zero), and a run over
     /// [`LONG_RUN_UPDATES`] node-updates (announced with its estimated length). Empty for
     /// every shipped example.
     ///
@@ -297,7 +310,52 @@ impl Solid2dScenario {
                 }
             }
         }
+        let p = &self.problem;
+        // the stiffest and softest P-wave moduli rho c_P^2 of the layers, Pa
+        let modulus = |m: &crate::solver::solid_2d::Elastic| m.density * m.p_speed * m.p_speed;
+        let soft = p
+            .layers
+            .iter()
+            .map(|l| modulus(&l.material))
+            .fold(f64::INFINITY, f64::min);
+        let strained = |w: &mut Warnings, field: String, v: f64, what: &str| {
+            if soft.is_finite() && v.abs() > LARGEST_STRAIN * soft {
+                w.warn(
+                    field,
+                    format!("{v} Pa"),
+                    format!(
+                        "{what} strains the solid by {:.1e} (over {LARGEST_STRAIN:e} of \
+                         rho c_P^2 = {soft:.3e} Pa): beyond linear elasticity and small gaps; \
+                         a value in the wrong unit? (SI units: Pa)",
+                        v.abs() / soft
+                    ),
+                );
+            }
+        };
         for (i, c) in spec.cracks.iter().enumerate() {
+            strained(
+                &mut w,
+                format!("crack.{i}.static_pressure"),
+                c.static_pressure,
+                "a closure that",
+            );
+            let mut tangential = c.tangential.clone();
+            for name in ["friction"] {
+                if let Some(crate::law::param::ParamMut::F64(mu)) = tangential.param_mut(name) {
+                    if *mu > LARGEST_FRICTION {
+                        w.warn(
+                            format!("crack.{i}.tangential.{name}"),
+                            mu.to_string(),
+                            format!(
+                                "a friction coefficient over {LARGEST_FRICTION}: solids' dry \
+                                 friction lies between about 0.05 and 1.5; a percentage? \
+                                 write {}",
+                                *mu / 100.0
+                            ),
+                        );
+                    }
+                }
+            }
             let p0 = c.static_pressure;
             if p0 > 0.0 && p0 < LOWEST_PRESSURE {
                 w.warn(
@@ -310,14 +368,49 @@ impl Solid2dScenario {
                 );
             }
         }
-        let p = &self.problem;
         let cs = p
             .layers
             .iter()
             .map(|l| l.material.s_speed)
             .fold(f64::INFINITY, f64::min);
         let size = p.width.max(p.layers.last().map_or(0.0, |l| l.bottom));
+        // a side of thousands of wavelengths at f0 (and over 1 m): a length in mm read as m
+        // (over LONGEST_SEGMENT it is said above already)
+        if self.f0 > 0.0 && cs.is_finite() {
+            let wavelength = cs / self.f0;
+            let sides = std::iter::once(("model.width".to_string(), spec.model.width)).chain(
+                spec.layers
+                    .iter()
+                    .enumerate()
+                    .map(|(k, l)| (format!("layer.{k}.thickness"), l.thickness)),
+            );
+            for (field, v) in sides {
+                if v > 1.0 && v <= LONGEST_SEGMENT && v > MOST_WAVELENGTHS * wavelength {
+                    w.warn(
+                        field,
+                        format!("{v} m"),
+                        format!(
+                            "{:.0} S wavelengths at f0 ({wavelength:.3e} m): a length in mm? \
+                             write \"{v} mm\" or {} (SI units: m)",
+                            v / wavelength,
+                            v * 1e-3
+                        ),
+                    );
+                }
+            }
+        }
         for (i, src) in spec.sources.iter().enumerate() {
+            // a traction or a plane wave's stress, Pa (a force is in N/m)
+            if src.kind != "force" {
+                if let Some(a) = src.signal.amplitude {
+                    strained(
+                        &mut w,
+                        format!("source.{i}.signal.amplitude"),
+                        a,
+                        "an amplitude that",
+                    );
+                }
+            }
             for (key, f) in [
                 ("frequency", src.signal.frequency),
                 ("frequency2", src.signal.frequency2),
@@ -361,11 +454,46 @@ impl Solid2dScenario {
         // a velocity receiver on a rigid side records zeros (no harmonics to analyse)
         let depth = p.depth();
         for (i, r) in spec.receivers.iter().enumerate() {
+            let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * size;
+            if r.quantity == "stress" {
+                // a traction component on a free side is zero: what it records is the
+                // scheme's error there (the free surface holds in the weak sense)
+                let sh = p.wave == crate::solver::solid_2d::WaveType::Sh;
+                let c = r
+                    .component
+                    .as_deref()
+                    .unwrap_or(if sh { "yz" } else { "zz" });
+                let horizontal = matches!(c, "zz" | "xz" | "yz");
+                let vertical = matches!(c, "xx" | "xz" | "yx");
+                let free_at = |at: [f64; 2]| {
+                    (horizontal
+                        && ((p.top == Side::Free && near(at[1], 0.0))
+                            || (p.bottom == Side::Free && near(at[1], depth))))
+                        || (vertical
+                            && p.sides == Side::Free
+                            && (near(at[0], 0.0) || near(at[0], p.width)))
+                };
+                for (k, at) in std::iter::once(r.at).chain(r.to).enumerate() {
+                    if free_at(at) {
+                        w.warn(
+                            format!("receiver.{i}.{}", if k == 0 { "at" } else { "to" }),
+                            format!("[{}, {}] m", at[0], at[1]),
+                            format!(
+                                "a stress receiver of `{c}` on a free side, where that \
+                                 traction is zero: it records the scheme's error there (the \
+                                 free surface holds in the weak sense), and its harmonics mean \
+                                 nothing; move it inside, record a component along the side \
+                                 (`xx` on the top or bottom, `zz` on a side) or the velocity"
+                            ),
+                        );
+                    }
+                }
+                continue;
+            }
             if r.quantity != "velocity" {
                 continue;
             }
             for (k, at) in std::iter::once(r.at).chain(r.to).enumerate() {
-                let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * size;
                 let rigid = (p.top == Side::Rigid && near(at[1], 0.0))
                     || (p.bottom == Side::Rigid && near(at[1], depth))
                     || (p.sides == Side::Rigid && (near(at[0], 0.0) || near(at[0], p.width)));
