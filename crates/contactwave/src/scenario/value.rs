@@ -92,6 +92,28 @@ pub fn deserialize_scenario<T: serde::de::DeserializeOwned>(
     })
 }
 
+/// The keys inside law tables that `message` begins with (`law::param::law_error`: `in
+/// law key `points[2]`: ...`, nested laws one after the other), each as its name and
+/// array index, taken off the message.
+fn law_keys(message: &mut String) -> Vec<(String, Option<String>)> {
+    let mut keys = Vec::new();
+    while let Some((inner, rest)) = message
+        .strip_prefix(crate::law::param::LAW_KEY_PREFIX)
+        .and_then(|m| m.split_once("`: "))
+    {
+        for part in inner.split('.') {
+            keys.push(
+                match part.strip_suffix(']').and_then(|p| p.split_once('[')) {
+                    Some((name, i)) => (name.to_string(), Some(i.to_string())),
+                    None => (part.to_string(), None),
+                },
+            );
+        }
+        *message = rest.to_string();
+    }
+    keys
+}
+
 /// Where `e` refuses a float for a whole number and the float at its key is whole (and
 /// exactly representable), write it there as an integer; whether it did.
 fn whole_float_to_integer(
@@ -108,17 +130,9 @@ fn whole_float_to_integer(
         }
     }
     // inside a law table: its own key (`law::param::law_error`)
-    while let Some((inner, rest)) = message
-        .strip_prefix(crate::law::param::LAW_KEY_PREFIX)
-        .and_then(|m| m.split_once("`: "))
-    {
-        for part in inner.split('.') {
-            match part.strip_suffix(']').and_then(|p| p.split_once('[')) {
-                Some((name, i)) => keys.extend([name.to_string(), i.to_string()]),
-                None => keys.push(part.to_string()),
-            }
-        }
-        message = rest.to_string();
+    for (name, index) in law_keys(&mut message) {
+        keys.push(name);
+        keys.extend(index);
     }
     let integer = ["expected u", "expected i"]
         .iter()
@@ -410,23 +424,12 @@ fn field_error(
     let mut message = e.into_inner().to_string();
     // a law table's parameter: its key inside the table (`law::param::law_error`),
     // `points[2]` as `points.2`
-    while let Some((inner, rest)) = message
-        .strip_prefix(crate::law::param::LAW_KEY_PREFIX)
-        .and_then(|m| m.split_once("`: "))
-    {
-        for part in inner.split('.') {
-            let (name, index) = part
-                .strip_suffix(']')
-                .and_then(|p| p.split_once('['))
-                .unwrap_or((part, ""));
-            key.push(name.to_string());
-            path.push(if index.is_empty() {
-                name.to_string()
-            } else {
-                format!("{name}.{index}")
-            });
-        }
-        message = rest.to_string();
+    for (name, index) in law_keys(&mut message) {
+        path.push(match &index {
+            Some(i) => format!("{name}.{i}"),
+            None => name.clone(),
+        });
+        key.push(name);
     }
     // (toml's own account of the keys, which the path already gives)
     if let Some(at) = message.find("\nin `") {
