@@ -340,20 +340,17 @@ impl Solid2dScenario {
                 "a closure that",
             );
             let mut tangential = c.tangential.clone();
-            for name in ["friction"] {
-                if let Some(crate::law::param::ParamMut::F64(mu)) = tangential.param_mut(name) {
-                    if *mu > LARGEST_FRICTION {
-                        w.warn(
-                            format!("crack.{i}.tangential.{name}"),
-                            mu.to_string(),
-                            format!(
-                                "a friction coefficient over {LARGEST_FRICTION}: solids' dry \
-                                 friction lies between about 0.05 and 1.5; a percentage? \
-                                 write {}",
-                                *mu / 100.0
-                            ),
-                        );
-                    }
+            if let Some(crate::law::param::ParamMut::F64(mu)) = tangential.param_mut("friction") {
+                if *mu > LARGEST_FRICTION {
+                    w.warn(
+                        format!("crack.{i}.tangential.friction"),
+                        mu.to_string(),
+                        format!(
+                            "a friction coefficient over {LARGEST_FRICTION}: solids' dry \
+                             friction lies between about 0.05 and 1.5; a percentage? write {}",
+                            *mu / 100.0
+                        ),
+                    );
                 }
             }
             let p0 = c.static_pressure;
