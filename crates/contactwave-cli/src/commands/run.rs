@@ -39,7 +39,7 @@ pub struct Args {
     record: Record,
     /// Sampling step of the written series, s (rounded to whole time steps; implies
     /// `--record decimated`).
-    #[arg(long, value_name = "SECONDS")]
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     record_step: Option<f64>,
     /// Also write DIR/result.h5: every table of the run (the recorded series, receivers,
     /// crack fields, spectra) as datasets with `units` and `description` attributes, the

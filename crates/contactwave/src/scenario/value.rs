@@ -43,7 +43,9 @@ fn half_space_hint(key: &str, problem: FieldProblem) -> Option<String> {
     use FieldProblem::{Missing, Wrong};
     Some(match (key, problem) {
         ("medium", Missing) => {
-            "a [medium] table: a material preset, or youngs_modulus, poisson_ratio and density"
+            "a [medium] table: a material preset, or youngs_modulus, poisson_ratio and density \
+             (a half-space scenario; a bar stack or a 2D scenario begins with [model] and its \
+             kind = \"bar_stack\" or \"solid_2d\")"
                 .into()
         }
         ("interface", Missing) => {

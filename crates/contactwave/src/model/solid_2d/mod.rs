@@ -558,8 +558,11 @@ impl Model for Solid2dScenario {
 
 impl Solid2dResult {
     /// `receivers.csv`: `t` (s), each velocity receiver's components `<name>_v<c>` (m/s)
-    /// and each stress receiver's `<name>_s<cc>` (Pa).
+    /// and each stress receiver's `<name>_s<cc>` (Pa); none for a run without receivers.
     fn receivers_csv(&self, rows: Rows) -> Option<OutputFile> {
+        if self.receivers.is_empty() && self.stress_receivers.is_empty() {
+            return None;
+        }
         let o = &self.output;
         let mut header = String::from("t");
         let mut cols: Vec<&[f64]> = vec![&o.time];
