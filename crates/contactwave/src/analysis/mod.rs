@@ -25,6 +25,6 @@ pub use spectrum::{
     cell_velocity, spectral_peak, velocity_bands, with_analyzer, Analyzer, BandAmplitudes, Spectrum,
 };
 pub use summary::{
-    harmonics_near_floor, json_number, set_analysis_keys, set_record_harmonics,
+    harmonics_near_floor, json_number, push_csv_number, set_analysis_keys, set_record_harmonics,
     set_reflected_harmonics, set_shear_harmonics, Summary, HARMONIC_KEYS,
 };

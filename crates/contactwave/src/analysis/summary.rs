@@ -87,12 +87,44 @@ impl Summary {
 /// other finite values as they are; non-finite ones `null`. The same value either way for
 /// any JSON reader.
 pub fn json_number(v: f64) -> serde_json::Value {
+    match whole_number(v) {
+        Some(i) => serde_json::Value::from(i),
+        None => serde_json::Number::from_f64(v)
+            .map_or(serde_json::Value::Null, serde_json::Value::Number),
+    }
+}
+
+/// `v` as an integer when it is a whole number that a double holds exactly (below `2^53`
+/// in magnitude, not `-0`): how `summary.json` and every CSV file write counts, codes and
+/// states.
+fn whole_number(v: f64) -> Option<i64> {
     const EXACT: f64 = 9_007_199_254_740_992.0; // 2^53
     let whole = v.fract() == 0.0 && v.abs() < EXACT && !(v == 0.0 && v.is_sign_negative());
-    if whole {
-        serde_json::Value::from(v as i64)
-    } else {
-        serde_json::Number::from_f64(v).map_or(serde_json::Value::Null, serde_json::Value::Number)
+    whole.then_some(v as i64)
+}
+
+/// Appends `v` to a CSV line the way every table of contactwave writes a number: a whole
+/// number below `2^53` in magnitude as an integer (`3`, `-1000000`: a crack node's state, a
+/// sweep's `nodes`), any other in its shortest round-trip form (`zmij`: parsing the cell
+/// gives the same `f64` back), `NaN`, `inf` and `-inf` as Rust writes them. `buf` is
+/// scratch space, reused across calls.
+///
+/// ```
+/// use contactwave::analysis::push_csv_number;
+/// let (mut line, mut buf) = (String::new(), zmij::Buffer::new());
+/// for v in [2.0, 0.25, -1e6, 1e300, f64::NAN] {
+///     push_csv_number(&mut line, &mut buf, v);
+///     line.push(',');
+/// }
+/// assert_eq!(line, "2,0.25,-1000000,1e+300,NaN,");
+/// ```
+pub fn push_csv_number(line: &mut String, buf: &mut zmij::Buffer, v: f64) {
+    match whole_number(v) {
+        Some(i) => {
+            use std::fmt::Write;
+            let _ = write!(line, "{i}");
+        }
+        None => line.push_str(buf.format(v)),
     }
 }
 

@@ -5,6 +5,7 @@
 //! `record.svg` (the record and its gated part), `spectrum.svg` (with the harmonics
 //! marked) and `fit.svg` (A2 against A1^2 with the fit, for a series).
 
+use crate::analysis::push_csv_number;
 use crate::error::Result;
 use crate::measured::{Analysis, Series, HARMONIC_KEYS};
 use crate::render::{csv_columns, OutputFile};
@@ -202,7 +203,7 @@ pub fn files(a: &Analysis, series: &Series, inputs: &[String]) -> Result<Vec<Out
         csv.push_str(&csv_cell(&r.name));
         for v in record_values(r) {
             csv.push(',');
-            csv.push_str(buf.format(v));
+            push_csv_number(&mut csv, &mut buf, v);
         }
         csv.push('\n');
     }

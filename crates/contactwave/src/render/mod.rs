@@ -10,7 +10,7 @@ pub mod svg;
 #[cfg(feature = "plot")]
 pub mod vtk;
 
-use crate::analysis::Summary;
+use crate::analysis::{push_csv_number, Summary};
 
 /// A rendered output file: its name in the output folder and its contents.
 #[derive(Debug, Clone, PartialEq)]
@@ -42,8 +42,8 @@ pub struct BinaryFile {
 }
 
 /// CSV text from a header and equally long columns (the shortest column sets the length).
-/// Numbers are written in their shortest round-trip form (`zmij`: parsing a cell gives the
-/// same `f64` back), `NaN`, `inf` and `-inf` as Rust writes them.
+/// Numbers are written by [`push_csv_number`]: whole numbers as integers, others in their
+/// shortest round-trip form (parsing a cell gives the same `f64` back).
 pub fn csv_columns(header: &str, columns: &[&[f64]]) -> String {
     let n = columns.iter().map(|c| c.len()).min().unwrap_or(0);
     csv_rows(header, columns, 0..n)
@@ -86,7 +86,7 @@ fn csv_rows(
                             if g > 0 || k > 0 {
                                 line.push(',');
                             }
-                            line.push_str(buf.format(c[i]));
+                            push_csv_number(line, &mut buf, c[i]);
                         }
                     }
                 }

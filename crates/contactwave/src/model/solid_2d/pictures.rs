@@ -200,10 +200,14 @@ mod files {
         let (n, m) = (c.position.len(), c.time.len());
         let (nx, nz) = (600usize, 400usize);
         let mut values = vec![0.0; nx * nz];
-        let (p0, p1) = (
-            c.position.first().copied().unwrap_or(0.0),
-            c.position.last().copied().unwrap_or(1.0),
-        );
+        // tip to tip, as crack_state.svg: a pixel shows its nearest node (the tips are welded)
+        let (p0, p1) = match r.geometry.cracks.get(i) {
+            Some(&[x0, z0, x1, z1]) => (0.0, (x1 - x0).hypot(z1 - z0)),
+            None => (
+                c.position.first().copied().unwrap_or(0.0),
+                c.position.last().copied().unwrap_or(1.0),
+            ),
+        };
         let t1 = c.time.last().copied().unwrap_or(1.0);
         // nearest record and point of each pixel: the map shows the data as recorded
         for iz in 0..nz {

@@ -6,7 +6,7 @@
 //! This module knows rows of numbers, dotted keys and TOML tables, not the `Sweep` type:
 //! the file format builds the hash from its parts and the driver hands each row over.
 
-use crate::analysis::Summary;
+use crate::analysis::{push_csv_number, Summary};
 use crate::error::{Error, Result};
 use sha2::{Digest, Sha256};
 use std::fs::File;
@@ -223,13 +223,14 @@ impl Writer {
         let header = self.header.as_deref().unwrap_or(&[]);
         let n_axes = self.n_axes;
         let mut line = i.to_string();
+        let mut buf = zmij::Buffer::new();
         for v in point {
             line.push(',');
-            line.push_str(&fmt_f64(*v));
+            push_csv_number(&mut line, &mut buf, *v);
         }
         for key in header.iter().skip(1 + n_axes) {
             line.push(',');
-            line.push_str(&fmt_f64(summary.get(key).unwrap_or(f64::NAN)));
+            push_csv_number(&mut line, &mut buf, summary.get(key).unwrap_or(f64::NAN));
         }
         line.push('\n');
         self.csv
