@@ -447,6 +447,24 @@ fn bad_inputs_fail_with_one_line_and_no_output() {
     assert_eq!(stderr(&o).lines().count(), 1);
     assert!(stderr(&o).contains("nope.toml"));
     assert!(!out.exists());
+    // a negative sampling step is a value out of range, not an unknown flag
+    let file = d.join("good.toml");
+    std::fs::write(&file, BASE).unwrap();
+    let out = d.join("out_step");
+    let o = bin()
+        .args([
+            "run",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .args(["--record-step", "-1"])
+        .output()
+        .unwrap();
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("record-step") && err.contains("> 0"), "{err}");
+    assert!(!out.exists());
     let _ = std::fs::remove_dir_all(d);
 }
 

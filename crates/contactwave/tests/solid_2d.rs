@@ -70,6 +70,11 @@ fn a_scenario_runs_closes_its_energy_and_writes_its_files() {
     assert!(files[2]
         .contents
         .starts_with("crack,t,position,normal_gap,"));
+    // the crack index and state are written as integers (0, 1, 2), as in summary.json
+    let row = files[2].contents.lines().nth(1).unwrap();
+    let cells: Vec<&str> = row.split(',').collect();
+    assert_eq!(cells[0], "0", "{row}");
+    assert!(["0", "1", "2"].contains(&cells[8]), "{row}");
     let r = outcome.record();
     let Some(Value::Rows(rec)) = r.get("receivers") else {
         panic!("receivers rows")
@@ -96,6 +101,18 @@ fn a_scenario_runs_closes_its_energy_and_writes_its_files() {
         .flatten()
         .zip(stress.iter().flatten())
         .all(|(&g, &s)| g == 0.0 || s.abs() < 1e-3));
+}
+
+/// A run without receivers writes no empty `receivers.csv` (its crack fields still come).
+#[test]
+fn a_run_without_receivers_writes_no_receivers_file() {
+    let text = SMALL.split("[[receiver]]").next().unwrap();
+    let t = model::from_toml_str(text, "small.toml").unwrap();
+    let outcome = t.base().unwrap().run(&RunControl::default()).unwrap();
+    let files = outcome.files().unwrap();
+    let names: Vec<&str> = files.iter().map(|f| f.name.as_str()).collect();
+    assert!(!names.contains(&"receivers.csv"), "{names:?}");
+    assert_eq!(names[..2], ["summary.json", "crack.csv"]);
 }
 
 /// The crack's extrema in the summary are over every step, not only the recorded ones:
