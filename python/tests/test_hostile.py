@@ -109,11 +109,12 @@ def test_ctrl_c_stops_a_long_bar_stack_run_with_keyboard_interrupt(root, tmp_pat
 
 
 def _failing_identification(tmp_path):
-    """An identification whose bounds reach linear stiffnesses the solver cannot integrate
-    (up to 1e300 Pa/m): some forward runs fail numerically."""
+    """An identification whose bounds reach power-law coefficients the solver cannot integrate
+    (C up to 1e300; a linear stiffness above 1e24 Pa/m is refused up front): some forward
+    runs fail numerically."""
     (tmp_path / "base.toml").write_text(
         '[medium]\nmaterial = "pmma"\n[interface]\nstatic_pressure = 0.1e6\n'
-        'compression = { law = "linear", stiffness = 1e12 }\n'
+        'compression = { law = "power", c = 1e11, m = 0.5 }\n'
         "[incident]\nfrequency = 1e6\ncycles = 5\nxi = 0.5\n"
         "[solver]\nsamples_per_period = 32\n"
     )
@@ -123,7 +124,7 @@ def _failing_identification(tmp_path):
         "data": {"incident.xi": [0.3, 0.5, 0.8], "A2_over_A1": [0.01, 0.02, 0.03]},
         "parameter": [
             {
-                "key": "interface.compression.stiffness",
+                "key": "interface.compression.c",
                 "bounds": [1e10, 1e300],
                 "scale": "log",
                 "initial": 1e11,
@@ -185,13 +186,16 @@ CHEAP = {
 
 
 def test_failed_sweep_points_are_nan_and_all_failed_leaves_only_the_axes():
-    # a linear stiffness of 1e300 Pa/m cannot be integrated (the gap equation fails)
+    # a power law's C of 1e300 cannot be integrated (the gap equation fails; a linear
+    # stiffness that large is refused up front)
+    base = dict(CHEAP, interface={"static_pressure": 0.1e6,
+                                  "compression": {"law": "power", "c": 1e11, "m": 0.5}})
     with pytest.warns(RuntimeWarning, match="1 of 3 sweep points failed"):
-        df = cw.sweep(CHEAP, {"interface.compression.stiffness": [1e12, 1e300, 1e13]}, as_frame=False)
+        df = cw.sweep(base, {"interface.compression.c": [1e11, 1e300, 1e12]}, as_frame=False)
     assert np.isnan(df["xi"][1]) and np.isfinite(df["xi"][[0, 2]]).all()
     with pytest.warns(RuntimeWarning, match="2 of 2 sweep points failed"):
-        df = cw.sweep(CHEAP, {"interface.compression.stiffness": [1e299, 1e300]}, as_frame=False)
-    assert sorted(df) == ["interface.compression.stiffness", "point"]
+        df = cw.sweep(base, {"interface.compression.c": [1e299, 1e300]}, as_frame=False)
+    assert sorted(df) == ["interface.compression.c", "point"]
 
 
 def test_a_sweep_over_one_chunk_matches_the_chunked_executor_run():

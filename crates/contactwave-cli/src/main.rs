@@ -68,8 +68,56 @@ enum Command {
     Identify(identify::Args),
 }
 
+/// The command line parsed; a mistake in it is one line on stderr, exit 2 (clap's own
+/// report spans several lines: its lines before the usage are joined). Every option that
+/// takes a value takes a negative number too (`--f0 -1e6`), so that the command's range
+/// check names the option and what is allowed, instead of clap calling `-1e6` a flag.
+fn parse() -> Result<Cli, ExitCode> {
+    use clap::error::ErrorKind;
+    use clap::{CommandFactory, FromArgMatches};
+    let negative = |a: clap::Arg| {
+        if a.get_action().takes_values() {
+            a.allow_negative_numbers(true)
+        } else {
+            a
+        }
+    };
+    let command = Cli::command().mut_subcommands(|s| s.mut_args(negative));
+    match command
+        .try_get_matches()
+        .and_then(|m| Cli::from_arg_matches(&m))
+    {
+        Ok(cli) => Ok(cli),
+        Err(e) => match e.kind() {
+            ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => e.exit(),
+            _ => {
+                let text = e.render().to_string();
+                let line = text
+                    .lines()
+                    .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more"))
+                    .map(str::trim)
+                    .filter(|l| !l.is_empty())
+                    .map(|l| match l.strip_prefix("tip: ") {
+                        Some(tip) => format!("({tip})"),
+                        None => l.to_string(),
+                    })
+                    .collect::<Vec<_>>()
+                    .join(" ");
+                let line = line.strip_prefix("error: ").unwrap_or(&line);
+                let _ = writeln!(std::io::stderr(), "error: <command line>: {line}");
+                Err(ExitCode::from(EXIT_INVALID_INPUT))
+            }
+        },
+    }
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match parse() {
+        Ok(cli) => cli,
+        Err(code) => return code,
+    };
     commands::install_interrupt_handler();
     // a panic is a bug: one line on stderr (not the default multi-line report), and the
     // command ends with exit code 1 like any failed computation (never 101)

@@ -80,6 +80,21 @@ fn bad_records_are_one_line_errors_with_exit_code_2_and_nothing_written() {
         ),
         // a sampling rate beside a time column would make the time a record
         ("records.csv", vec!["--sample-rate", "50e6"], "sample_rate"),
+        // ... and beside a time column named with --time, too
+        (
+            "records.csv",
+            vec!["--sample-rate", "50e6", "--time", "t"],
+            "sample_rate",
+        ),
+        // a gate shorter than 3 periods of f0
+        (
+            "records.csv",
+            vec!["--f0", "2e6", "--gate", "2e-6,2.5e-6"],
+            "inside the gate",
+        ),
+        // negative numbers reach the range checks (one line, not clap's report)
+        ("records.csv", vec!["--f0", "-2e6"], "--f0"),
+        ("records.csv", vec!["--colour", "red"], "--colour"),
     ] {
         let out = tmpdir("analyze_bad");
         let o = Command::new(env!("CARGO_BIN_EXE_contactwave"))
@@ -96,4 +111,68 @@ fn bad_records_are_one_line_errors_with_exit_code_2_and_nothing_written() {
         assert!(err.contains(word), "{file}: {err}");
         assert!(!out.join("summary.json").exists());
     }
+}
+
+/// An output folder where a result would replace an input (`records.csv` analysed into its
+/// own folder) is refused, and the input is left as it was.
+#[test]
+fn an_output_that_would_replace_an_input_is_refused() {
+    let d = tmpdir("analyze_overwrite");
+    std::fs::create_dir_all(&d).unwrap();
+    let input = d.join("records.csv");
+    std::fs::copy(fixture("records.csv"), &input).unwrap();
+    let before = std::fs::read(&input).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_contactwave"))
+        .arg("analyze")
+        .arg(&input)
+        .arg("--out")
+        .arg(&d)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(
+        err.contains("--out") && err.contains("replace the input"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&input).unwrap(), before);
+    assert!(!d.join("summary.json").exists());
+    std::fs::remove_dir_all(&d).ok();
+}
+
+/// Column headers: a header of numbers (a file without one), an empty name and a name
+/// given twice are one-line errors naming the column.
+#[test]
+fn csv_headers_name_every_column_once() {
+    let d = tmpdir("analyze_headers");
+    std::fs::create_dir_all(&d).unwrap();
+    let rows: String = (0..400)
+        .map(|k| {
+            let t = k as f64 * 1e-8;
+            format!("{t:e},{}\n", (2e6 * std::f64::consts::TAU * t).sin())
+        })
+        .collect();
+    for (name, header, word) in [
+        ("numbers.csv", "", "header line"),
+        ("empty.csv", "t,\n", "column 2"),
+        ("twice.csv", "t,t\n", "named once"),
+    ] {
+        let file = d.join(name);
+        std::fs::write(&file, format!("{header}{rows}")).unwrap();
+        let out = d.join(format!("out_{name}"));
+        let o = Command::new(env!("CARGO_BIN_EXE_contactwave"))
+            .arg("analyze")
+            .arg(&file)
+            .args(["--sample-rate", "1e8", "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{name}: {err}");
+        assert!(err.contains(name) && err.contains(word), "{name}: {err}");
+        assert!(!out.exists(), "{name}");
+    }
+    std::fs::remove_dir_all(&d).ok();
 }

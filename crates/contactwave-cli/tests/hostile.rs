@@ -421,8 +421,9 @@ fn ctrl_c_and_sigterm_stop_run_and_sweep_with_130_and_no_partial_file() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// An identification whose bounds reach stiffnesses the solver cannot integrate (linear
-/// K up to 1e300 Pa/m: the gap equation's Newton iteration fails): the fit goes on, the
+/// An identification whose bounds reach stiffnesses the solver cannot integrate (the power
+/// law's C up to 1e300: from about 1e60 the gap equation's Newton iteration fails; a
+/// linear stiffness that large is refused up front, above 1e24 Pa/m): the fit goes on, the
 /// files are written, and the exit code is 1 with the count and the first failure, or 0
 /// with a warning under --tolerate-failures.
 #[test]
@@ -431,7 +432,7 @@ fn identify_with_failed_forward_runs_exits_1_unless_tolerated() {
     std::fs::write(
         d.join("base.toml"),
         "[medium]\nmaterial = \"pmma\"\n[interface]\nstatic_pressure = 0.1e6\n\
-         compression = { law = \"linear\", stiffness = 1e12 }\n\
+         compression = { law = \"power\", c = 1e11, m = 0.5 }\n\
          [incident]\nfrequency = 1e6\ncycles = 5\nxi = 0.5\n\
          [solver]\nsamples_per_period = 32\n",
     )
@@ -440,7 +441,7 @@ fn identify_with_failed_forward_runs_exits_1_unless_tolerated() {
         d.join("id.toml"),
         "base = \"base.toml\"\nobserved = [\"A2_over_A1\"]\n\
          [data]\n\"incident.xi\" = [0.3, 0.5, 0.8]\nA2_over_A1 = [0.01, 0.02, 0.03]\n\
-         [[parameter]]\nkey = \"interface.compression.stiffness\"\n\
+         [[parameter]]\nkey = \"interface.compression.c\"\n\
          bounds = [1e10, 1e300]\nscale = \"log\"\ninitial = 1e11\n\
          [fit]\nparticles = 4\niterations = 2\nlocal_iterations = 10\n\
          local_starts = 1\nbootstrap = 0\n",

@@ -562,6 +562,16 @@ fn law_parameters_are_named_by_their_keys_and_whole_floats_count() {
             "compression = { law = \"power\", c = \"1e10\", m = 0.5 }",
             "crack.0.compression.c",
         ),
+        // a stiffness beyond 1e24 Pa/m is rigid (and far beyond, below the solver's
+        // precision): refused with the rigid law named
+        (
+            "tangential = { law = \"coulomb\", friction = 0.3, stiffness = 1e120 }",
+            "crack.0.tangential.stiffness",
+        ),
+        (
+            "traction = { law = \"linear\", stiffness = 2e24 }",
+            "crack.0.traction.stiffness",
+        ),
     ] {
         let e = error(crack, &format!("{crack}{law}\n"));
         assert!(

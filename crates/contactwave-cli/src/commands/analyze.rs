@@ -145,6 +145,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     }
     provenance.stamp(&mut out_files);
     check_out_dir(&args.out)?;
+    provenance.check_inputs_kept(&args.out, out_files.iter().map(|f| f.name.as_str()))?;
     write_out(&args.out, "analyze", &out_files)?;
     println!(
         "f0 = {:.6e} Hz{}; method {}; {} record(s)",

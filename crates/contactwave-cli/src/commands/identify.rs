@@ -119,6 +119,7 @@ fn identify(
                 output_file("design.csv", report.to_csv()),
             ];
             provenance.stamp(&mut files);
+            provenance.check_inputs_kept(out, files.iter().map(|f| f.name.as_str()))?;
             write_out(out, "identify", &files)?;
         }
         return Ok(EXIT_OK);
@@ -153,6 +154,7 @@ fn identify(
         result.forward_runs as f64 / result.wall_seconds.max(1e-9)
     );
     if let Some(out) = out {
+        provenance.check_inputs_kept(out, files.iter().map(|f| f.name.as_str()))?;
         write_out(out, "identify", &files)?;
     }
     if result.failed_runs > 0 {

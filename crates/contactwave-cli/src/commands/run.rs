@@ -95,6 +95,8 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     if args.hdf5 {
         binary.push(output::hdf5::run_file(&files, &provenance)?);
     }
+    let names = files.iter().map(|f| f.name.as_str());
+    provenance.check_inputs_kept(out, names.chain(binary.iter().map(|f| f.name.as_str())))?;
     // all or none: an interruption while writing leaves the folder as it was
     output::write_all(out, &files, &binary)?;
     let mut names: Vec<String> = files.iter().map(|f| f.name.clone()).collect();

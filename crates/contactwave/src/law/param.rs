@@ -160,6 +160,28 @@ pub(crate) fn positive(file: &str, field: &str, v: f64) -> Result<()> {
     }
 }
 
+/// The stiffest interface a law takes, Pa/m: it carries 1e12 Pa, beyond any solid's
+/// modulus, at a gap of 1 pm, so a stiffer one is rigid (the `rigid` compression law, a
+/// bonded crack). Far stiffer ones (about 1e119 Pa/m, gaps of 1e-113 m) would lose the gap
+/// equations' precision.
+pub const STIFFEST: f64 = 1e24;
+
+/// A stiffness `v` (Pa/m) at most [`STIFFEST`], else an error naming `file`, `field` and
+/// the value (its sign and finiteness are the caller's checks).
+pub(crate) fn stiffness_at_most(file: &str, field: &str, v: f64) -> Result<()> {
+    if v <= STIFFEST {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            file,
+            field,
+            v,
+            "must be at most 1e24 Pa/m (1e12 Pa at a gap of 1 pm: a stiffer interface is \
+             rigid; use the rigid law)",
+        ))
+    }
+}
+
 /// `v` finite and >= 0, else an error naming `file`, `field` and the value.
 pub(crate) fn non_negative(file: &str, field: &str, v: f64) -> Result<()> {
     if v.is_finite() && v >= 0.0 {

@@ -222,10 +222,10 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
     for r in &series.records {
         let missing = match method {
             AnalysisMethod::PulseInversion if r.inverse.is_none() => {
-                Some("an opposite-polarity record for each record (--inverse)")
+                Some("an opposite-polarity record for each record (--inverse; `inverse` in Python and in an identification's [records])")
             }
             AnalysisMethod::LinearReference if r.linear.is_none() => {
-                Some("a low-amplitude record as the linear reference (--linear)")
+                Some("a low-amplitude record as the linear reference (--linear; `linear` in Python and in an identification's [records])")
             }
             AnalysisMethod::PlateauFit if settings.gate.is_none() => {
                 Some("a gate over the echo's flat top (--gate START,END)")
@@ -291,6 +291,20 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
             format!("at least 3 periods in the record ({periods:.2} here): a longer record or a higher f0"),
         ));
     }
+    if let Some(g) = &settings.gate {
+        let periods = (g.end - g.start) * f0;
+        if periods < 3.0 {
+            return Err(Error::invalid(
+                file,
+                "gate",
+                format!("{:e}, {:e}", g.start, g.end),
+                format!(
+                    "at least 3 periods of f0 = {f0:e} Hz inside the gate ({periods:.2} here): \
+                     a longer gate"
+                ),
+            ));
+        }
+    }
     if 5.0 * f0 > 0.5 / dt {
         return Err(Error::invalid(
             file,
@@ -330,15 +344,17 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
             )
             .unwrap_or_default()
             .harmonic;
-            let mut gated = p.samples.clone();
-            if let Some(g) = gate {
-                g.apply(&mut gated, t0, dt);
-            }
-            // plateau fit over whole periods has no leakage (its floor is the noise's)
+            // plateau fit over whole periods has no leakage (its floor is the noise's);
+            // otherwise the floor is what the method reads at n f0 from the record's
+            // fundamental alone (band-limited before the gate, so that the gate's edges
+            // spread it as they spread the record)
             let leakage = if method == AnalysisMethod::PlateauFit {
                 [0.0; 6]
             } else {
-                let fundamental = band_limited(&gated, dt, 0.5 * f0, 1.5 * f0);
+                let mut fundamental = band_limited(&p.samples, dt, 0.5 * f0, 1.5 * f0);
+                if let Some(g) = gate {
+                    g.apply(&mut fundamental, t0, dt);
+                }
                 method_floor(method, &fundamental, &sig).harmonic
             };
             // a linear reference is scaled onto the record before it is subtracted: its
@@ -531,8 +547,11 @@ fn scale_onto(x: &[f64], l: &[f64], gate: Option<&Gate>, t0: f64, dt: f64) -> f6
     }
 }
 
-/// `x` band-limited to `[f_lo, f_hi)` (Hz): its transform outside the band set to zero
-/// (zero-padded to twice its length, so the band's ringing does not wrap around).
+/// `x` band-limited to `(f_lo, f_hi)` (Hz): its transform weighted by 1 over the middle half
+/// of the band and half-cosine ramps to 0 at its edges, 0 outside (zero-padded to twice its
+/// length, so that the ringing does not wrap around). The smooth edges keep the ringing of
+/// the record's own ends short (a brick-wall band would ring at its edge frequency, near
+/// `2 f0` for the band around `f0`, across the whole record).
 fn band_limited(x: &[f64], dt: f64, f_lo: f64, f_hi: f64) -> Vec<f64> {
     let n = x.len();
     let m = (2 * n).next_power_of_two();
@@ -546,11 +565,18 @@ fn band_limited(x: &[f64], dt: f64, f_lo: f64, f_hi: f64) -> Vec<f64> {
         return vec![0.0; n];
     }
     let df = 1.0 / (m as f64 * dt);
+    let (mid, half) = (0.5 * (f_lo + f_hi), 0.5 * (f_hi - f_lo));
     for (k, c) in spec.iter_mut().enumerate() {
-        let f = k as f64 * df;
-        if f < f_lo || f >= f_hi {
-            *c = Default::default();
-        }
+        // distance from the band's centre, in half-widths: flat below 1/2, ramp to 1
+        let r = (k as f64 * df - mid).abs() / half;
+        let w = if r <= 0.5 {
+            1.0
+        } else if r < 1.0 {
+            0.5 * (1.0 + (std::f64::consts::TAU * (r - 0.5)).cos())
+        } else {
+            0.0
+        };
+        *c *= w;
     }
     let mut out = inv.make_output_vec();
     if inv.process(&mut spec, &mut out).is_err() {

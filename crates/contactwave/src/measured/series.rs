@@ -114,6 +114,17 @@ pub fn read_records(path: &Path, layout: &Layout) -> Result<Records> {
         let base = a.name.rsplit('/').next().unwrap_or("").to_ascii_lowercase();
         TIME_NAMES.contains(&base.as_str())
     };
+    if let (Some(t), Some(fs)) = (&layout.time, layout.sample_rate) {
+        return Err(Error::invalid(
+            &shown,
+            "sample_rate",
+            format!("{fs} Hz"),
+            format!(
+                "only for a file without a time column: `{t}` is named as the time (give \
+                 one of the two)"
+            ),
+        ));
+    }
     if layout.time.is_none() {
         let named: Vec<&str> = arrays
             .iter()
@@ -304,6 +315,21 @@ fn uniform_step(file: &str, name: &str, t: &[f64], n: usize) -> Result<(f64, f64
             name,
             format!("{} .. {}", t[0], t[n - 1]),
             "increasing time stamps, s",
+        ));
+    }
+    // a missing, repeated or misplaced sample first shows as one step unlike the others
+    // (the grid's drift would only show it farther on, where the drift is largest)
+    if let Some(k) = (1..n).find(|&k| ((t[k] - t[k - 1]) / dt - 1.0).abs() > 0.5) {
+        return Err(Error::invalid(
+            file,
+            name,
+            format!("{} at sample {k}", t[k]),
+            format!(
+                "a uniform time base: the step from sample {} is {:e} s, the mean step {dt:e} s \
+                 (a missing or repeated sample?); resample the record onto a uniform grid",
+                k - 1,
+                t[k] - t[k - 1]
+            ),
         ));
     }
     for (k, &tk) in t.iter().enumerate() {

@@ -124,10 +124,45 @@ impl<R: BufRead> CsvReader<R> {
             if !r.advance()? {
                 return Err(r.error(1, None, "(empty)", "a header line naming the columns"));
             }
-            r.header = Some((0..r.cells).map(|c| r.cell(c).to_string()).collect());
+            let names: Vec<String> = (0..r.cells).map(|c| r.cell(c).trim().to_string()).collect();
+            r.check_header(&names)?;
+            r.header = Some(names);
             r.first = false;
         }
         Ok(r)
+    }
+
+    /// A required header names every column once, and is not a row of numbers (a file
+    /// without a header would lose its first row to it).
+    fn check_header(&self, names: &[String]) -> Result<(), CsvError> {
+        if names.iter().all(|n| n.parse::<f64>().is_ok()) {
+            return Err(self.error(
+                1,
+                None,
+                names.join(","),
+                "a header line naming the columns (this line holds numbers only: add one, \
+                 e.g. t,v)",
+            ));
+        }
+        for (c, name) in names.iter().enumerate() {
+            if name.is_empty() {
+                return Err(self.error(
+                    1,
+                    Some(format!("column {}", c + 1)),
+                    "(empty)",
+                    "a name for every column of the header line",
+                ));
+            }
+            if names[..c].contains(name) {
+                return Err(self.error(
+                    1,
+                    Some(name.clone()),
+                    format!("column {} named again", c + 1),
+                    "each column named once",
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The column names (empty for a file without a header).
@@ -384,5 +419,17 @@ mod tests {
         r.next_row(&[0, 1], &mut buf).unwrap();
         let e = r.next_row(&[0, 1], &mut buf).unwrap_err();
         assert_eq!(e.column.as_deref(), Some("column 2"));
+    }
+
+    #[test]
+    fn a_required_header_names_every_column_once() {
+        let open = |text: &str| CsvReader::from_text(text, "h.csv", Header::Required).err();
+        assert!(open("t,v\n0,1\n").is_none());
+        let e = open("0,1\n1,2\n").unwrap().to_string();
+        assert!(e.contains("h.csv") && e.contains("header line"), "{e}");
+        let e = open("t,\n0,1\n").unwrap().to_string();
+        assert!(e.contains("column 2") && e.contains("(empty)"), "{e}");
+        let e = open("t,v,v\n0,1,2\n").unwrap().to_string();
+        assert!(e.contains("column v") && e.contains("named once"), "{e}");
     }
 }

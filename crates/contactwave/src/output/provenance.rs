@@ -245,6 +245,40 @@ impl Provenance {
         Ok(())
     }
 
+    /// Refuse to write the output files `names` into the folder `out` where one of them
+    /// would replace a file this command read (`contactwave analyze out/records.csv --out
+    /// out`): the error names the output folder and the input, and nothing is written.
+    pub fn check_inputs_kept<'a>(
+        &self,
+        out: &Path,
+        names: impl IntoIterator<Item = &'a str>,
+    ) -> Result<()> {
+        let inputs: Vec<(PathBuf, &str)> = (self.input.iter())
+            .chain(self.data_files.iter().map(|d| &d.path))
+            .filter_map(|p| Some((std::fs::canonicalize(p).ok()?, p.as_str())))
+            .collect();
+        if inputs.is_empty() || !out.is_dir() {
+            return Ok(());
+        }
+        for name in names {
+            let Ok(target) = std::fs::canonicalize(out.join(name)) else {
+                continue; // not there yet: nothing replaced
+            };
+            if let Some((_, shown)) = inputs.iter().find(|(p, _)| *p == target) {
+                return Err(Error::invalid(
+                    "<command line>",
+                    "--out",
+                    out.display(),
+                    format!(
+                        "a folder where no output replaces an input: its {name} would \
+                         replace the input {shown} (choose another --out)"
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Record the waveform files of a scenario table whose file lies in `dir`
     /// ([`scenario_data_files`]).
     pub fn add_scenario_files(&mut self, table: &toml::Table, dir: &Path) -> Result<()> {

@@ -57,7 +57,7 @@ impl Recording {
     pub fn validate(&self) -> Result<()> {
         match self.step {
             Some(s) if !(s.is_finite() && s > 0.0) => Err(Error::invalid(
-                "<arguments>",
+                "<command line>",
                 "record-step",
                 s,
                 "must be a finite number of seconds > 0",

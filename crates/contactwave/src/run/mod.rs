@@ -85,7 +85,7 @@ pub fn check_threads(n: usize) -> Result<()> {
         Ok(())
     } else {
         Err(Error::invalid(
-            "<arguments>",
+            "<command line>",
             "threads",
             n,
             format!("must be an integer in [1, {MAX_THREADS}] (default: one per core)"),

@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::law::param::LawSpec;
-use crate::law::param::{positive, ParamMut};
+use crate::law::param::{positive, stiffness_at_most, ParamMut};
 use crate::law::CompressionBranch;
 
 /// Linear compression branch.
@@ -48,6 +48,7 @@ impl LawSpec for Spec {
     type Branch = dyn CompressionBranch;
     fn build(&self, p0: f64, file: &str, prefix: &str) -> Result<Box<dyn CompressionBranch>> {
         positive(file, &format!("{prefix}.stiffness"), self.stiffness)?;
+        stiffness_at_most(file, &format!("{prefix}.stiffness"), self.stiffness)?;
         Ok(Box::new(Linear {
             static_pressure: p0,
             stiffness: self.stiffness,

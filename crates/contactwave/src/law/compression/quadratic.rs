@@ -6,7 +6,7 @@
 use crate::error::Error;
 use crate::error::Result;
 use crate::law::param::LawSpec;
-use crate::law::param::{positive, ParamMut};
+use crate::law::param::{positive, stiffness_at_most, ParamMut};
 use crate::law::CompressionBranch;
 
 /// Quadratic compression branch.
@@ -79,6 +79,7 @@ impl LawSpec for Spec {
     fn build(&self, p0: f64, file: &str, prefix: &str) -> Result<Box<dyn CompressionBranch>> {
         let (k0, k1) = (self.k0, self.k1);
         positive(file, &format!("{prefix}.k0"), k0)?;
+        stiffness_at_most(file, &format!("{prefix}.k0"), k0)?;
         if !k1.is_finite() {
             return Err(Error::invalid(
                 file,

@@ -6,7 +6,7 @@ use super::curve::{StiffnessCurve, StiffnessPressure};
 use crate::error::Error;
 use crate::error::Result;
 use crate::law::param::LawSpec;
-use crate::law::param::{non_negative, positive};
+use crate::law::param::{non_negative, positive, stiffness_at_most};
 use crate::law::CompressionBranch;
 use crate::numeric::pchip::Pchip;
 
@@ -71,6 +71,7 @@ impl LawSpec for Spec {
         }
         for (i, k) in stiffness.iter().enumerate() {
             positive(file, &format!("{}.{i}", key("stiffness")), *k)?;
+            stiffness_at_most(file, &format!("{}.{i}", key("stiffness")), *k)?;
         }
         let t = TableStiffness::new(pressure, stiffness)
             .ok_or_else(|| Error::invalid(file, key("pressure"), "table", "invalid table"))?;

@@ -11,7 +11,7 @@
 
 use crate::error::Result;
 use crate::law::param::LawSpec;
-use crate::law::param::{non_negative, positive, ParamMut};
+use crate::law::param::{non_negative, positive, stiffness_at_most, ParamMut};
 use crate::law::scheme::InterfaceScheme;
 use crate::law::{TangentialBranch, TangentialPart};
 
@@ -54,6 +54,7 @@ impl LawSpec for Spec {
         non_negative(file, &format!("{prefix}.friction"), self.friction)?;
         if let Some(k) = self.stiffness {
             positive(file, &format!("{prefix}.stiffness"), k)?;
+            stiffness_at_most(file, &format!("{prefix}.stiffness"), k)?;
         }
         Ok(Box::new(Coulomb {
             friction: self.friction,

@@ -4,7 +4,7 @@
 
 use crate::error::Result;
 use crate::law::param::LawSpec;
-use crate::law::param::{positive, ParamMut};
+use crate::law::param::{positive, stiffness_at_most, ParamMut};
 use crate::law::TangentialBranch;
 
 /// Linear tangential branch.
@@ -35,6 +35,7 @@ impl LawSpec for Spec {
     type Branch = dyn TangentialBranch;
     fn build(&self, _p0: f64, file: &str, prefix: &str) -> Result<Box<dyn TangentialBranch>> {
         positive(file, &format!("{prefix}.stiffness"), self.stiffness)?;
+        stiffness_at_most(file, &format!("{prefix}.stiffness"), self.stiffness)?;
         Ok(Box::new(Linear {
             stiffness: self.stiffness,
         }))

@@ -8,7 +8,7 @@
 
 use crate::error::Result;
 use crate::law::param::LawSpec;
-use crate::law::param::{non_negative, ParamMut};
+use crate::law::param::{non_negative, stiffness_at_most, ParamMut};
 use crate::law::TangentialBranch;
 
 /// Tangential RCCM branch.
@@ -53,6 +53,7 @@ impl LawSpec for Spec {
     type Branch = dyn TangentialBranch;
     fn build(&self, _p0: f64, file: &str, prefix: &str) -> Result<Box<dyn TangentialBranch>> {
         non_negative(file, &format!("{prefix}.stiffness"), self.stiffness)?;
+        stiffness_at_most(file, &format!("{prefix}.stiffness"), self.stiffness)?;
         non_negative(file, &format!("{prefix}.friction"), self.friction)?;
         Ok(Box::new(Rccm {
             stiffness: self.stiffness,

@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::law::param::LawSpec;
-use crate::law::param::{positive, ParamMut};
+use crate::law::param::{positive, stiffness_at_most, ParamMut};
 use crate::law::TractionBranch;
 
 /// Linear traction branch.
@@ -43,6 +43,7 @@ impl LawSpec for Spec {
     type Branch = dyn TractionBranch;
     fn build(&self, _p0: f64, file: &str, prefix: &str) -> Result<Box<dyn TractionBranch>> {
         positive(file, &format!("{prefix}.stiffness"), self.stiffness)?;
+        stiffness_at_most(file, &format!("{prefix}.stiffness"), self.stiffness)?;
         Ok(Box::new(Linear {
             stiffness: self.stiffness,
         }))

@@ -10,7 +10,7 @@
 
 use crate::error::Result;
 use crate::law::param::LawSpec;
-use crate::law::param::{non_negative, positive, ParamMut};
+use crate::law::param::{non_negative, positive, stiffness_at_most, ParamMut};
 use crate::law::TractionBranch;
 
 /// RCCM traction branch.
@@ -135,6 +135,7 @@ impl LawSpec for Spec {
     fn build(&self, _p0: f64, file: &str, prefix: &str) -> Result<Box<dyn TractionBranch>> {
         let key = |k: &str| format!("{prefix}.{k}");
         positive(file, &key("stiffness"), self.stiffness)?;
+        stiffness_at_most(file, &key("stiffness"), self.stiffness)?;
         non_negative(file, &key("energy"), self.energy)?;
         non_negative(file, &key("viscosity"), self.viscosity)?;
         Ok(Box::new(Rccm {
