@@ -176,3 +176,33 @@ fn csv_headers_name_every_column_once() {
     }
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// A time column written in microseconds reads as a 1 Hz fundamental: the analysis runs and
+/// warns that the time stamps are read in s.
+#[test]
+fn a_time_column_in_microseconds_is_warned_about() {
+    let d = tmpdir("analyze_units");
+    std::fs::create_dir_all(&d).unwrap();
+    let rows: String = (0..2000)
+        .map(|k| {
+            let t_us = k as f64 * 0.01;
+            format!("{t_us},{}\n", (std::f64::consts::TAU * t_us).sin())
+        })
+        .collect();
+    let file = d.join("us.csv");
+    std::fs::write(&file, format!("t,v\n{rows}")).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_contactwave"))
+        .arg("analyze")
+        .arg(&file)
+        .arg("--out")
+        .arg(d.join("out"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("below the audio range") && err.contains("in s"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&d).ok();
+}

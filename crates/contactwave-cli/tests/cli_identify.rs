@@ -110,6 +110,14 @@ fn bad_identification_inputs_fail_with_one_line_and_no_output() {
             CN_PARAM.replace("1e17", "1e12").replace("1e12\n", "1e10\n"),
             "parameter.0.bounds",
         ),
+        // a stiffness beyond 1e24 Pa/m inside the bounds: refused when they are read (it
+        // once let the fit run into stiffnesses the solver integrates wrongly, for minutes)
+        (
+            "bounds beyond the stiffest interface",
+            good_rows.into(),
+            CN_PARAM.replace("1e17", "1e300"),
+            "at most 1e24 Pa/m",
+        ),
     ];
     for (name, data, params, needle) in cases {
         let d = tmpdir("identify-bad");
@@ -126,5 +134,57 @@ fn bad_identification_inputs_fail_with_one_line_and_no_output() {
             "{name}: no file named: {err}"
         );
         assert!(!out.exists(), "{name}: output folder created");
+    }
+}
+
+/// Options of one mode given to the other are refused, not ignored: `--noise` and `--seed`
+/// without `--synthesize`, `--out` with it; a log-scale parameter synthesized at a value
+/// <= 0 is named as the --synthesize value.
+#[test]
+fn misplaced_options_and_impossible_synthetic_values_are_refused() {
+    let d = tmpdir("identify-misplaced");
+    let spec = write_identify(
+        &d,
+        "incident.xi,A2_over_A1\n0.1,0.5\n0.2,0.4\n0.3,0.3\n",
+        CN_PARAM,
+    );
+    let spec = spec.to_str().unwrap();
+    let out = d.join("out");
+    let out = out.to_str().unwrap();
+    for (args, needle) in [
+        (vec![spec, "--out", out, "--noise", "0.1"], "--noise"),
+        (vec![spec, "--out", out, "--seed", "3"], "--seed"),
+        (
+            vec![
+                spec,
+                "--out",
+                out,
+                "--synthesize",
+                "interface.traction.stiffness=2e13",
+            ],
+            "--out",
+        ),
+        (
+            vec![
+                spec,
+                "--synthesize",
+                "interface.traction.stiffness=2e13",
+                "--noise",
+                "-1",
+            ],
+            "--noise",
+        ),
+        (
+            vec![spec, "--synthesize", "interface.traction.stiffness=-2e13"],
+            "scale is log",
+        ),
+    ] {
+        let o = bin().arg("identify").args(&args).output().unwrap();
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(o.stdout.is_empty(), "{args:?}");
+        assert!(!d.join("out").exists(), "{args:?}");
     }
 }

@@ -169,9 +169,18 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         );
     }
     if let Some(f) = analysis.fit {
+        // two records fix a line exactly: no degrees of freedom left for an interval
+        let interval = if f.slope_interval.0.is_finite() && f.slope_interval.1.is_finite() {
+            format!(
+                "95%: {:.4e} .. {:.4e}",
+                f.slope_interval.0, f.slope_interval.1
+            )
+        } else {
+            "no 95% interval from fewer than 3 records".to_string()
+        };
         println!(
-            "A2 = slope A1^2 + intercept over {} records: slope = {:.4e} (95%: {:.4e} .. {:.4e}), R^2 = {:.5}",
-            f.count, f.slope, f.slope_interval.0, f.slope_interval.1, f.r_squared
+            "A2 = slope A1^2 + intercept over {} records: slope = {:.4e} ({interval}), R^2 = {:.5}",
+            f.count, f.slope, f.r_squared
         );
     }
     for w in files::warnings(&analysis) {

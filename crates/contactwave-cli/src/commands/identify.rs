@@ -37,12 +37,12 @@ pub struct Args {
     /// plus white noise of noise times each record's peak.
     #[arg(long, value_name = "KEY=VALUE")]
     synthesize: Vec<String>,
-    /// Relative noise of --synthesize.
-    #[arg(long, default_value_t = 0.01)]
-    noise: f64,
-    /// Seed of the --synthesize noise.
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
+    /// Relative noise of --synthesize, 0 to 1 [default: 0.01].
+    #[arg(long)]
+    noise: Option<f64>,
+    /// Seed of the --synthesize noise [default: 1].
+    #[arg(long)]
+    seed: Option<u64>,
     /// Exit 0 even when forward runs fail (the fit gives their parameter points a
     /// prohibitive cost and goes on); without it an identification with failed forward
     /// runs exits 1 after writing its files.
@@ -51,6 +51,37 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
+    // options of one mode given to the other would be ignored without a word
+    let misplaced = if args.synthesize.is_empty() {
+        (args.noise.map(|v| ("--noise", v.to_string())))
+            .or(args.seed.map(|v| ("--seed", v.to_string())))
+            .map(|(k, v)| (k, v, "only with --synthesize, whose data it makes"))
+    } else {
+        (args
+            .out
+            .as_ref()
+            .map(|o| ("--out", o.display().to_string())))
+        .map(|(k, v)| {
+            (
+                k,
+                v,
+                "not with --synthesize, which prints its data on stdout (redirect them to a file)",
+            )
+        })
+    };
+    if let Some((key, value, allowed)) = misplaced {
+        return Err(Error::invalid("<command line>", key, value, allowed));
+    }
+    let noise = args.noise.unwrap_or(0.01);
+    if !(0.0..=1.0).contains(&noise) {
+        return Err(Error::invalid(
+            "<command line>",
+            "--noise",
+            noise,
+            "a relative noise from 0 to 1",
+        ));
+    }
+    let seed = args.seed.unwrap_or(1);
     if args.synthesize.is_empty() {
         identify(
             &args.spec,
@@ -59,7 +90,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             args.tolerate_failures,
         )
     } else {
-        synthesize_data(&args.spec, &args.synthesize, args.noise, args.seed)
+        synthesize_data(&args.spec, &args.synthesize, noise, seed)
     }
 }
 

@@ -108,13 +108,22 @@ pub(super) fn truth_coordinates(
     noise: f64,
 ) -> Result<Vec<f64>> {
     let file = spec.file.display().to_string();
-    for (k, _) in truth {
-        if !spec.parameters.iter().any(|p| &p.key == k) {
+    for (k, v) in truth {
+        let Some(p) = spec.parameters.iter().find(|p| &p.key == k) else {
             return Err(Error::invalid(
                 &file,
                 "synthesize",
                 k,
                 "a key of one of the file's [[parameter]] tables",
+            ));
+        };
+        // a value the parameter's scale cannot hold (a log scale's value <= 0)
+        if !p.to_scaled(*v).is_finite() {
+            return Err(Error::invalid(
+                "--synthesize",
+                k,
+                v,
+                "a value > 0: the parameter's scale is log",
             ));
         }
     }

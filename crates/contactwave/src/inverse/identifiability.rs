@@ -193,17 +193,35 @@ pub fn analyse(
             if flat_low && flat_high {
                 "not identifiable from these data (the curve does not depend on it)".to_string()
             } else if flat_low {
-                format!(
-                    "not identifiable from these data: only an upper limit (the curve does \
-                     not change between the lower bound {:.4e} and the estimate {value:.4e})",
-                    par.lower
-                )
+                let at_bound = (value - par.lower).abs() <= 1e-6 * par.lower.abs();
+                if at_bound {
+                    format!(
+                        "not identifiable from these data: only an upper limit (the best fit \
+                         lies at the lower bound {:.4e}: the curve is flat towards it)",
+                        par.lower
+                    )
+                } else {
+                    format!(
+                        "not identifiable from these data: only an upper limit (the curve does \
+                         not change between the lower bound {:.4e} and the estimate {value:.4e})",
+                        par.lower
+                    )
+                }
             } else if flat_high {
-                format!(
-                    "not identifiable from these data: only a lower limit (the curve does \
-                     not change between the estimate {value:.4e} and the upper bound {:.4e})",
-                    par.upper
-                )
+                let at_bound = (value - par.upper).abs() <= 1e-6 * par.upper.abs();
+                if at_bound {
+                    format!(
+                        "not identifiable from these data: only a lower limit (the best fit \
+                         lies at the upper bound {:.4e}: the curve is flat towards it)",
+                        par.upper
+                    )
+                } else {
+                    format!(
+                        "not identifiable from these data: only a lower limit (the curve does \
+                         not change between the estimate {value:.4e} and the upper bound {:.4e})",
+                        par.upper
+                    )
+                }
             } else if !finite {
                 "not identifiable from these data (zero sensitivity along a combination of \
                  parameters: correlated with another parameter)"

@@ -407,7 +407,22 @@ impl RecordsSpec {
             gate: self.model_gate,
             ..self.settings
         };
-        let a = measured::analyze(&series, &settings, model.file())?;
+        // the gate is the identification file's `records.model_gate` (or its `gate`):
+        // an error about it names that file and key, not the base scenario's
+        let a = measured::analyze(&series, &settings, model.file()).map_err(|e| match e {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+                ..
+            } if field == "gate" => Error::Invalid {
+                file: self.file.clone(),
+                field: "records.model_gate (or records.gate), on the forward signal".into(),
+                value,
+                allowed,
+            },
+            e => e,
+        })?;
         let mut s = Summary::new();
         for key in measured::HARMONIC_KEYS {
             s.set(key, a.records[0].value(key));

@@ -9,6 +9,7 @@ use crate::analysis::push_csv_number;
 use crate::error::Result;
 use crate::measured::{Analysis, Series, HARMONIC_KEYS};
 use crate::render::{csv_columns, OutputFile};
+use crate::scenario::{HIGHEST_FREQUENCY, LOWEST_FREQUENCY};
 use serde_json::{json, Map, Value};
 
 fn num(v: f64) -> Value {
@@ -66,7 +67,25 @@ pub fn warnings(a: &Analysis) -> Vec<String> {
             a.f0, a.peak
         )
     });
-    f0.into_iter()
+    // a time base in other units than s puts f0 far outside ultrasonics
+    let units = if a.f0 < LOWEST_FREQUENCY {
+        Some(format!(
+            "f0 = {:e} Hz with a time step of {:e} s: below the audio range; are the time \
+             stamps in us or ms? they are read in s (or give --sample-rate in Hz)",
+            a.f0, a.dt
+        ))
+    } else if a.f0 > HIGHEST_FREQUENCY {
+        Some(format!(
+            "f0 = {:e} Hz with a time step of {:e} s: above 10 GHz; is --sample-rate in Hz \
+             and are the time stamps in s?",
+            a.f0, a.dt
+        ))
+    } else {
+        None
+    };
+    units
+        .into_iter()
+        .chain(f0)
         .chain(a.records
         .iter()
         .filter(|r| !r.near_floor.is_empty())

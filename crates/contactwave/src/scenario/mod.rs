@@ -16,7 +16,7 @@ pub(crate) use value::whole_numbers;
 
 pub use cache::{BuildCache, Columns};
 pub use oblique::ObliqueSetup;
-pub use plausible::Warning;
+pub use plausible::{Warning, HIGHEST_FREQUENCY, LOWEST_FREQUENCY};
 pub use value::{
     apply_set, deserialize_format, parse_toml, read_base, read_table, same_key, set_dotted,
     table_to_spec, FieldProblem,

@@ -36,6 +36,9 @@ impl fmt::Display for Warning {
 /// Lowest frequency of a tone burst into a half-space taken at face value, Hz (the bottom
 /// of the audio range; the thesis' lowest is 5 kHz).
 pub const LOWEST_FREQUENCY: f64 = 20.0;
+/// Highest fundamental of a measured record taken at face value, Hz (10 GHz, beyond
+/// acoustic microscopy: a record whose time stamps are not in seconds).
+pub const HIGHEST_FREQUENCY: f64 = 1e10;
 /// Lowest static pressure taken at face value, Pa (1 kPa).
 pub const LOWEST_PRESSURE: f64 = 1e3;
 /// Lowest elastic modulus of a solid taken at face value, Pa (1 MPa).
