@@ -192,36 +192,21 @@ pub fn analyse(
             intervals.push(None);
             if flat_low && flat_high {
                 "not identifiable from these data (the curve does not depend on it)".to_string()
-            } else if flat_low {
-                let at_bound = (value - par.lower).abs() <= 1e-6 * par.lower.abs();
-                if at_bound {
-                    format!(
-                        "not identifiable from these data: only an upper limit (the best fit \
-                         lies at the lower bound {:.4e}: the curve is flat towards it)",
-                        par.lower
-                    )
+            } else if flat_low || flat_high {
+                // the curve is flat between one bound and the estimate
+                let (limit, bound_name, bound) = if flat_low {
+                    ("an upper", "lower", par.lower)
                 } else {
-                    format!(
-                        "not identifiable from these data: only an upper limit (the curve does \
-                         not change between the lower bound {:.4e} and the estimate {value:.4e})",
-                        par.lower
-                    )
-                }
-            } else if flat_high {
-                let at_bound = (value - par.upper).abs() <= 1e-6 * par.upper.abs();
-                if at_bound {
-                    format!(
-                        "not identifiable from these data: only a lower limit (the best fit \
-                         lies at the upper bound {:.4e}: the curve is flat towards it)",
-                        par.upper
-                    )
+                    ("a lower", "upper", par.upper)
+                };
+                let flat = if (value - bound).abs() <= 1e-6 * bound.abs() {
+                    format!("the best fit lies at the {bound_name} bound {bound:.4e}: the curve is flat towards it")
+                } else if flat_low {
+                    format!("the curve does not change between the lower bound {bound:.4e} and the estimate {value:.4e}")
                 } else {
-                    format!(
-                        "not identifiable from these data: only a lower limit (the curve does \
-                         not change between the estimate {value:.4e} and the upper bound {:.4e})",
-                        par.upper
-                    )
-                }
+                    format!("the curve does not change between the estimate {value:.4e} and the upper bound {bound:.4e}")
+                };
+                format!("not identifiable from these data: only {limit} limit ({flat})")
             } else if !finite {
                 "not identifiable from these data (zero sensitivity along a combination of \
                  parameters: correlated with another parameter)"
