@@ -13,6 +13,22 @@ fn fixture(name: &str) -> PathBuf {
         .join(name)
 }
 
+/// `contactwave analyze FILE EXTRA... --out OUT`: its exit code and stderr.
+fn analyze(file: &Path, extra: &[&str], out: &Path) -> (Option<i32>, String) {
+    let o = Command::new(env!("CARGO_BIN_EXE_contactwave"))
+        .arg("analyze")
+        .arg(file)
+        .args(extra)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    (
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
 #[test]
 fn analyze_writes_its_files_with_provenance() {
     let out = tmpdir("analyze");
@@ -97,16 +113,8 @@ fn bad_records_are_one_line_errors_with_exit_code_2_and_nothing_written() {
         ("records.csv", vec!["--colour", "red"], "--colour"),
     ] {
         let out = tmpdir("analyze_bad");
-        let o = Command::new(env!("CARGO_BIN_EXE_contactwave"))
-            .arg("analyze")
-            .arg(fixture(file))
-            .args(&extra)
-            .arg("--out")
-            .arg(&out)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(2), "{file}: {err}");
+        let (code, err) = analyze(&fixture(file), &extra, &out);
+        assert_eq!(code, Some(2), "{file}: {err}");
         assert_eq!(err.trim().lines().count(), 1, "{err}");
         assert!(err.contains(word), "{file}: {err}");
         assert!(!out.join("summary.json").exists());
@@ -122,15 +130,8 @@ fn an_output_that_would_replace_an_input_is_refused() {
     let input = d.join("records.csv");
     std::fs::copy(fixture("records.csv"), &input).unwrap();
     let before = std::fs::read(&input).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_contactwave"))
-        .arg("analyze")
-        .arg(&input)
-        .arg("--out")
-        .arg(&d)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
+    let (code, err) = analyze(&input, &[], &d);
+    assert_eq!(code, Some(2), "{err}");
     assert_eq!(err.trim().lines().count(), 1, "{err}");
     assert!(
         err.contains("--out") && err.contains("replace the input"),
@@ -161,15 +162,8 @@ fn csv_headers_name_every_column_once() {
         let file = d.join(name);
         std::fs::write(&file, format!("{header}{rows}")).unwrap();
         let out = d.join(format!("out_{name}"));
-        let o = Command::new(env!("CARGO_BIN_EXE_contactwave"))
-            .arg("analyze")
-            .arg(&file)
-            .args(["--sample-rate", "1e8", "--out"])
-            .arg(&out)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+        let (code, err) = analyze(&file, &["--sample-rate", "1e8"], &out);
+        assert_eq!(code, Some(2), "{name}: {err}");
         assert_eq!(err.trim().lines().count(), 1, "{name}: {err}");
         assert!(err.contains(name) && err.contains(word), "{name}: {err}");
         assert!(!out.exists(), "{name}");
@@ -191,15 +185,8 @@ fn a_time_column_in_microseconds_is_warned_about() {
         .collect();
     let file = d.join("us.csv");
     std::fs::write(&file, format!("t,v\n{rows}")).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_contactwave"))
-        .arg("analyze")
-        .arg(&file)
-        .arg("--out")
-        .arg(d.join("out"))
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(0), "{err}");
+    let (code, err) = analyze(&file, &[], &d.join("out"));
+    assert_eq!(code, Some(0), "{err}");
     assert!(
         err.contains("below the audio range") && err.contains("in s"),
         "{err}"
