@@ -3,7 +3,7 @@
 fresh clone of the repository, and fail if one of them fails: the docs cannot drift from
 the CLI. Python standard library only.
 
-    python3 scripts/doc_commands.py [--list] [--cli target/release/contactwave]
+    python3 scripts/doc_commands.py [--list] [--cli target/release/contactwave] [--ran FILE]
 
 Commands run in file order, each file in its own fresh `git clone` of HEAD (so that a
 command may use the files an earlier one of the same page wrote, as a reader following
@@ -12,10 +12,23 @@ the page would), with `contactwave` on PATH being the release binary (`cargo run
 A command is expected to exit 0. Commands that are not the CLI's (builds, benches, pip,
 Python scripts, the test script) and commands with placeholders (`$K`, files a reader is
 meant to write) are listed as skipped with their reason (`--list` shows the plan only).
+
+`contactwave bench` runs at its smallest size (one repetition of each case, 0.1 us of the
+2D case): the check is that the command works, not its timings (docs/performance.md).
+
+--ran FILE (written by `scripts/reference_outputs.py check --keep DIR --ran FILE`): a
+command that the reference check already ran with the same arguments (apart from `--out`
+and `--threads`: outputs are bit-identical for any thread count,
+crates/contactwave-cli/tests/all/determinism.rs), at this commit of a clean work tree and
+with this binary, and that exited 0 there, is not run again: its output folder is copied
+from DIR into the clone (later commands of the page may read it) and it counts as run.
 """
 
 import argparse
 import glob
+import hashlib
+import json
+import shlex
 import os
 import re
 import shutil
@@ -75,10 +88,103 @@ def plan(line):
     return "skip", "not a contactwave command"
 
 
+#: Options of `contactwave bench` set to their smallest useful value.
+BENCH_SMALLEST = {"--runs": "1", "--points": "2", "--tribobrake-runs": "1",
+                  "--solid-2d-us": "0.1"}
+
+
+def smallest_bench(what):
+    """`contactwave bench ...` with every size option at its smallest (BENCH_SMALLEST)."""
+    words = shlex.split(what)
+    if words[:2] != ["contactwave", "bench"]:
+        return what
+    out, i = [], 0
+    while i < len(words):
+        w = words[i]
+        key = w.split("=", 1)[0]
+        if key in BENCH_SMALLEST:
+            i += 1 if "=" in w else 2
+            continue
+        out.append(w)
+        i += 1
+    for k, v in BENCH_SMALLEST.items():
+        out += [k, v]
+    return shlex.join(out)
+
+
+def normalized(argv):
+    """(argv without `--out X` and `--threads N`, the --out value or None)."""
+    key, out, i = [], None, 0
+    while i < len(argv):
+        w = argv[i]
+        name = w.split("=", 1)[0]
+        if name in ("--out", "--threads"):
+            value = w.split("=", 1)[1] if "=" in w else (argv[i + 1] if i + 1 < len(argv)
+                                                          else None)
+            if name == "--out":
+                out = value
+            i += 1 if "=" in w else 2
+            continue
+        key.append(w)
+        i += 1
+    return tuple(key), out
+
+
+def sha256_file(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def load_reuse(path, cli):
+    """{normalized argv: (reference --out folder, seconds)} of the commands that the
+    reference check ran and that may stand for the docs' (see --ran), or {} with a note."""
+    try:
+        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, ValueError) as e:
+        print(f"note: {path} not read ({e}): every command runs")
+        return {}
+    head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True,
+                          text=True).stdout.strip()
+    if doc.get("commit") != head or not doc.get("clean"):
+        print(f"note: {path} is of commit {doc.get('commit')} (clean: {doc.get('clean')}), "
+              f"HEAD is {head}: every command runs")
+        return {}
+    if doc.get("binary_sha256") != sha256_file(cli):
+        print(f"note: {path} was made with another binary than {cli}: every command runs")
+        return {}
+    reuse = {}
+    for c in doc.get("commands", []):
+        if c.get("exit") == 0:
+            key, out = normalized(c["argv"])
+            reuse[key] = (out, c.get("seconds", 0.0))
+    return reuse
+
+
+def reusable(what, reuse):
+    """(reference --out folder or None, the doc's --out or None, seconds) if `what` was run
+    by the reference check, else None. Shell syntax (redirections, pipes) never is."""
+    if not reuse or any(ch in what for ch in "<>|;&$`"):
+        return None
+    words = shlex.split(what)[1:]
+    key, out = normalized(words)
+    if key not in reuse:
+        return None
+    ref_out, seconds = reuse[key]
+    if (ref_out is None) != (out is None):
+        return None
+    return ref_out, out, seconds
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--list", action="store_true", help="show the plan only")
     ap.add_argument("--cli", default=str(ROOT / "target/release/contactwave"))
+    ap.add_argument("--ran", metavar="FILE",
+                    help="the commands the reference check ran (scripts/reference_outputs.py "
+                         "--ran): the same ones are not run again")
     args = ap.parse_args()
     files = ["README.md"] + sorted(
         os.path.relpath(p, ROOT) for p in glob.glob(str(ROOT / "docs/*.md"))
@@ -86,7 +192,8 @@ def main():
     cli = Path(args.cli).resolve()
     if not args.list and not cli.is_file():
         sys.exit(f"error: {cli} not found: cargo build --release -p contactwave-cli")
-    failures, ran, skipped = [], 0, 0
+    failures, ran, skipped, reused = [], 0, 0, 0
+    reuse = load_reuse(args.ran, cli) if args.ran and not args.list else {}
     with tempfile.TemporaryDirectory(prefix="contactwave-docs-") as tmp:
         bindir = Path(tmp) / "bin"
         bindir.mkdir()
@@ -107,8 +214,18 @@ def main():
                     skipped += 1
                     print(f"skip  {f}: {line}  ({what})")
                     continue
+                what = smallest_bench(what)
                 if args.list:
                     print(f"run   {f}: {what}")
+                    continue
+                hit = reusable(what, reuse)
+                if hit is not None:
+                    ref_out, out, seconds = hit
+                    if ref_out is not None:
+                        shutil.copytree(ref_out, clone / out, dirs_exist_ok=True)
+                    ran += 1
+                    reused += 1
+                    print(f"ok    {f}: {what}  [run by the reference check, {seconds:.1f} s]")
                     continue
                 t0 = time.time()
                 r = subprocess.run(
@@ -124,7 +241,8 @@ def main():
                 shutil.rmtree(clone, ignore_errors=True)
     if args.list:
         return
-    print(f"{ran} commands run, {skipped} skipped, {len(failures)} failed")
+    print(f"{ran} commands run ({reused} of them by the reference check), {skipped} "
+          f"skipped, {len(failures)} failed")
     for f, what, err in failures:
         print(f"error: {f}: `{what}`: {' '.join(err)}")
     sys.exit(1 if failures else 0)

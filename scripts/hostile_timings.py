@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Time to refusal of the hostile CLI cases (issue 12; the same cases as
-crates/contactwave-cli/tests/hostile.rs): runs each against the release CLI with
+crates/contactwave-cli/tests/all/hostile.rs): runs each against the release CLI with
 CONTACTWAVE_MEMORY_BUDGET=2G and prints a markdown table (case, exit code, first line of
 stderr, wall time) for docs/hardening.md.
 

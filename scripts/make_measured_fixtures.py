@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Write the record files read by crates/contactwave/tests/measured.rs (committed under
+"""Write the record files read by crates/contactwave/tests/all/measured.rs (committed under
 crates/contactwave/tests/data/measured/): the same three records (a drive-amplitude series)
 in every format `contactwave analyze` reads, and the variants it must refuse.
 

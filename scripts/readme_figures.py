@@ -6,7 +6,7 @@ they cannot drift from the report: each is copied byte for byte from the figures
     python3 scripts/readme_figures.py [--check] [--bin target/release/contactwave]
 
 --check compares instead of copying and exits 1 naming every figure that differs (the Rust
-test `readme_figures_are_what_reproduce_draws` in crates/contactwave/tests/reproduce.rs makes
+test `readme_figures_are_what_reproduce_draws` in crates/contactwave/tests/all/reproduce.rs makes
 the same check in `cargo test`). Build the CLI first: cargo build --release -p contactwave-cli
 """
 

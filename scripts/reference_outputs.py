@@ -2,7 +2,7 @@
 """Reference-output check: every value that the `contactwave` CLI writes stays what it was.
 
     python3 scripts/reference_outputs.py record|check [--bin PATH] [--ref FILE] [--keep DIR]
-                                                      [--all]
+                                                      [--ran FILE] [--all]
 
 `record` runs the commands below into a temporary folder (or --keep DIR), stores every output
 file's values (tests/reference/outputs.json and tests/reference/values/, see below) and
@@ -14,16 +14,17 @@ a file); exit code 1 on any failure. Standard library only; run from anywhere (c
 in the repository root, so input paths written into outputs, such as summary.json's
 "scenario", are relative).
 
-Commands (commands() below; 2 to 3 minutes on 2 cores, most of it `identify`):
+Commands (commands() below; about 6 minutes on 2 cores, most of it reproduce, validate and
+the 2D identification):
   reproduce all; run, law and sweep on every file of examples/shear/; run on every
   scenario of examples/*.toml (files with a top-level `base =`
-  or an `[[axis]]` table are sweeps); sweep --threads 2 on every sweep of examples/;
+  or an `[[axis]]` table are sweeps) and of examples/solid_2d/; sweep --threads 2 on every
+  sweep of examples/ and on examples/sweeps/*_quick.toml;
   sweep --shard 1/2 and 2/2 of examples/stiffness_xi_grid.toml, then merge; law on every
   half-space scenario of examples/ and examples/thesis/ (law refuses bar stacks);
   convergence examples/rccm_1.6MPa.toml;
   identify on every examples/identify/*.toml except tribobrake_power_law.toml (about 2 400
-  bar-stack forward runs, several minutes: skipped) and crack_closure_friction.toml (636 2D
-  forward runs: tests/identify_2d.rs, slow tier), identify --design and
+  bar-stack forward runs, several minutes: skipped), identify --design and
   identify --synthesize (seeded) of rccm_undamaged.toml; fit power-law (text and --json,
   both stiffness columns of examples/thesis/table2_contact_stiffness.csv, the copy of
   ../shared/data/table2_contact_stiffness.csv, and its default columns); validate.
@@ -205,6 +206,16 @@ def commands():
                          ["run", rel(p), "--out", f"{{OUT}}/run/oblique_{p.stem}"], "txt"))
     for p in scenarios:
         cmds.append((f"run_{p.stem}", ["run", rel(p), "--out", f"{{OUT}}/run/{p.stem}"], "txt"))
+    # finite cracks in 2D (examples/solid_2d, every example at its own resolution: the
+    # reference case plate_crack.toml is about 20 s on 2 cores) and the quick crack-length
+    # sweep of examples/sweeps (crack_length.toml itself is the minutes-long study)
+    for p in sorted((ex / "solid_2d").glob("*.toml")):
+        cmds.append((f"run_solid_2d_{p.stem}",
+                     ["run", rel(p), "--out", f"{{OUT}}/run/solid_2d_{p.stem}"], "txt"))
+    for p in sorted((ex / "sweeps").glob("*_quick.toml")):
+        cmds.append((f"sweep_{p.stem}",
+                     ["sweep", rel(p), "--out", f"{{OUT}}/sweep/{p.stem}", "--threads", "2"],
+                     "txt"))
     for p in sweeps:
         cmds.append((f"sweep_{p.stem}",
                      ["sweep", rel(p), "--out", f"{{OUT}}/sweep/{p.stem}", "--threads", "2"],
@@ -244,9 +255,9 @@ def commands():
     return cmds
 
 
-# tribobrake_power_law: about 2 400 bar-stack forward runs; crack_closure_friction: 636 2D
-# forward runs of two solves each (crates/contactwave/tests/identify_2d.rs runs it, slow tier)
-IDENTIFY_SKIPPED = {"tribobrake_power_law", "crack_closure_friction"}
+# tribobrake_power_law: about 2 400 bar-stack forward runs (its recovery is asserted by
+# crates/contactwave/tests/all/identify.rs, slow tier, on fewer starts)
+IDENTIFY_SKIPPED = {"tribobrake_power_law"}
 
 
 
@@ -365,8 +376,9 @@ def read_output(rel, data):
 # ---------------------------------------------------------------------------------------
 # Running
 # ---------------------------------------------------------------------------------------
-def run_all(binary, out):
-    """Runs every command into `out`; returns {relative path: values}."""
+def run_all(binary, out, ran=None):
+    """Runs every command into `out`; returns {relative path: values}. `ran`, a list:
+    each command's argv (output folder substituted), exit code and seconds are appended."""
     files = {}
     out_str = str(out)
     timings = []
@@ -375,6 +387,9 @@ def run_all(binary, out):
         t0 = time.monotonic()
         proc = subprocess.run(args, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
         timings.append((time.monotonic() - t0, name))
+        if ran is not None:
+            ran.append({"name": name, "argv": args[1:], "exit": proc.returncode,
+                        "seconds": round(timings[-1][0], 3)})
         stdout = proc.stdout.decode("utf-8", errors="replace").replace(out_str, "<OUT>")
         if proc.returncode != 0:
             err = proc.stderr.decode("utf-8", errors="replace").strip().splitlines()[-5:]
@@ -784,6 +799,37 @@ def report(ref_files, now_files, limit, verb):
     return passed, failed, changed
 
 
+def git_state():
+    """(commit, clean): HEAD's commit and whether the work tree (tracked and untracked,
+    not ignored files) equals it; (None, False) outside a git checkout."""
+    try:
+        commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, check=True,
+                                capture_output=True, text=True).stdout.strip()
+        status = subprocess.run(["git", "status", "--porcelain"], cwd=ROOT, check=True,
+                                capture_output=True, text=True).stdout
+    except (OSError, subprocess.CalledProcessError):
+        return None, False
+    return commit, status.strip() == ""
+
+
+def sha256_file(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def write_ran(path, binary, out, ran):
+    """The list of commands run into `out` (see --ran), with what makes it reusable: the
+    commit of a clean work tree and the binary's sha256."""
+    commit, clean = git_state()
+    doc = {"commit": commit, "clean": clean, "binary_sha256": sha256_file(binary),
+           "out": str(out), "commands": ran}
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("mode", choices=["record", "check"])
@@ -796,6 +842,11 @@ def main():
                     help="write the outputs into DIR (emptied first) and keep them")
     ap.add_argument("--all", action="store_true",
                     help="check: list every differing value, not the first 20 per file")
+    ap.add_argument("--ran", metavar="FILE",
+                    help="with --keep: write the commands run (argv, exit code, seconds), "
+                         "the commit and the binary's sha256 to FILE (JSON), so that "
+                         "scripts/doc_commands.py --ran FILE and the browser test reuse "
+                         "the outputs in DIR instead of running the same commands again")
     args = ap.parse_args()
 
     binary = str(Path(args.bin).resolve())
@@ -807,13 +858,20 @@ def main():
         ref_path = (Path.cwd() / ref_path).resolve()
     if args.mode == "check" and not ref_path.exists():
         sys.exit(f"no reference file {ref_path}: run `{sys.argv[0]} record` first")
+    if args.ran and not args.keep:
+        sys.exit("--ran needs --keep DIR (the outputs that a reuse copies)")
     t0 = time.monotonic()
     if args.keep:
         out = Path(args.keep).resolve()
         if out.exists():
             shutil.rmtree(out)
         out.mkdir(parents=True)
-        files = run_all(binary, out)
+        ran = []
+        if args.ran:
+            Path(args.ran).unlink(missing_ok=True)  # a stale list never describes DIR
+        files = run_all(binary, out, ran)
+        if args.ran:
+            write_ran(Path(args.ran), binary, out, ran)
     else:
         with tempfile.TemporaryDirectory(prefix="contactwave-ref-") as tmp:
             files = run_all(binary, Path(tmp))

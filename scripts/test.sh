@@ -1,19 +1,22 @@
 #!/usr/bin/env bash
 # The one command that runs every test of the workspace on a fresh machine (what CI runs):
 #   ./scripts/test.sh
-# Steps: formatting, lints (warnings are errors; also for the library without its default
-# features, which must not depend on plotters or argmin), the whole test suite in release
-# mode (the physics tests are heavy; doc tests of the library included, run once), the
-# tests marked slow (`#[ignore = "slow: full tier"]`), every output of the release CLI
-# against tests/reference/ (values within 1e-9), and the Python package's tests. Exits
-# non-zero at the first failing step.
+# Steps: formatting; lints (warnings are errors; the library also without its default
+# features, which must not depend on plotters or argmin); every Rust test in release mode
+# with cargo-nextest (one process a test, the tests marked slow included, a per-test
+# timeout: .config/nextest.toml) and the library's doc tests (one merged binary, edition
+# 2024); every output of the release CLI against tests/reference/ (values within 1e-9),
+# kept in target/ci-out; the commands of the docs (reusing what the reference check ran);
+# the Python package (maturin, reusing the release build of the library), its pytest suite
+# (per-test timeout) and notebooks. Chromium and the Python packages install in the
+# background while Rust compiles. Every step prints its elapsed seconds, and the script
+# ends with a table of the steps and the slowest Rust tests. Exits non-zero at the first
+# failing step.
 #
 # The quick tier, for the edit loop:
 #   ./scripts/test.sh --quick
-# formatting, both lints, the dependency check, and `cargo test --workspace --release`
-# (unit, integration, physics, property and doc tests, the determinism test) without the
-# tests marked slow; no reference outputs, no Python, no browser. About 1 minute on 2 cores
-# once built (56 s measured; 2.4 min when a test file was edited): README.md.
+# formatting, both lints, the dependency check, and the Rust tests and doc tests without
+# the tests marked slow; no reference outputs, no Python, no browser.
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -28,32 +31,155 @@ case "${1:-}" in
         ;;
 esac
 
+TARGET=${CARGO_TARGET_DIR:-target}
+LOGS=$TARGET/ci-logs
+mkdir -p "$LOGS"
+
+# ---------------------------------------------------------------------------------------
+# Steps and their times
+# ---------------------------------------------------------------------------------------
+STEP_NAMES=()
+STEP_SECS=()
+CUR=""
+CUR_T0=0
+T_START=$(date +%s.%N)
+
+elapsed_since() { # seconds since $1 (date +%s.%N), one decimal
+    awk -v a="$1" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }'
+}
+
+end_step() {
+    if [ -n "$CUR" ]; then
+        local s
+        s=$(elapsed_since "$CUR_T0")
+        STEP_NAMES+=("$CUR")
+        STEP_SECS+=("$s")
+        printf '<== %s: %s s\n' "$CUR" "$s"
+        CUR=""
+    fi
+}
+
 step() {
+    end_step
+    CUR="$1"
+    CUR_T0=$(date +%s.%N)
     printf '\n==> %s\n' "$*"
 }
 
+slowest_tests() { # the slowest Rust tests, from nextest's JUnit file
+    local junit=$TARGET/nextest/ci/junit.xml
+    [ -f "$junit" ] || return 0
+    python3 - "$junit" <<'EOF' || true
+import sys
+import xml.etree.ElementTree as ET
+cases = []
+for tc in ET.parse(sys.argv[1]).getroot().iter("testcase"):
+    t = float(tc.get("time") or 0)
+    cases.append((t, f"{tc.get('classname')} {tc.get('name')}"))
+cases.sort(reverse=True)
+total = sum(t for t, _ in cases)
+print(f"\nslowest Rust tests ({len(cases)} tests, {total:.0f} s of test time in all):")
+for t, name in cases[:15]:
+    print(f"  {t:7.1f} s  {name}")
+EOF
+}
+
+summary() {
+    local rc=$1
+    if [ -n "$CUR" ]; then
+        [ "$rc" -ne 0 ] && CUR="$CUR (FAILED)"
+        end_step
+    fi
+    printf '\n%-78s %8s\n' "step" "seconds"
+    local i
+    for i in "${!STEP_NAMES[@]}"; do
+        printf '%-78.78s %8s\n' "${STEP_NAMES[$i]}" "${STEP_SECS[$i]}"
+    done
+    printf '%-78s %8s\n' "total" "$(elapsed_since "$T_START")"
+    [ "$QUICK" -eq 1 ] || slowest_tests
+}
+trap 'summary $?' EXIT
+
 # ---------------------------------------------------------------------------------------
-# Toolchain components
+# Network in the background (full tier): Chromium (Debian's package, for the report's
+# browser test) and the Python packages (into .venv), while Rust compiles
+# ---------------------------------------------------------------------------------------
+PYTHON=${PYTHON:-python3}
+VPY=.venv/bin/python
+# maturin: builds the wheel; playwright: drives the system Chromium for the report test
+# (no browser download); xarray, h5py: Result.to_xarray() and the HDF5 result files
+# (python/tests/test_frames.py); matplotlib, tqdm: the .plot() helpers and sweep progress
+# bars (test_plot.py, test_progress.py); nbclient, nbformat, ipykernel: the notebooks
+# (scripts/run_notebooks.py); pytest-timeout: a hanging Python test fails with its name
+PY_DEPS=(maturin numpy pandas xarray h5py "dask[distributed]" pytest pytest-timeout
+    playwright matplotlib tqdm nbclient nbformat ipykernel)
+
+install_chromium() {
+    if command -v chromium >/dev/null 2>&1; then
+        echo "chromium already installed: $(command -v chromium)"
+        return 0
+    fi
+    local sudo=""
+    [ "$(id -u)" -ne 0 ] && sudo=sudo
+    $sudo apt-get update
+    $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y chromium
+}
+
+install_python() {
+    if [ ! -x "$VPY" ] || ! "$VPY" -m pip --version >/dev/null 2>&1; then
+        rm -rf .venv
+        if ! "$PYTHON" -m venv .venv; then
+            # python3-venv (ensurepip) missing: virtualenv, installed for the user if needed
+            rm -rf .venv
+            if ! "$PYTHON" -m virtualenv --version >/dev/null 2>&1; then
+                "$PYTHON" -m pip install --user virtualenv ||
+                    "$PYTHON" -m pip install --user --break-system-packages virtualenv
+            fi
+            "$PYTHON" -m virtualenv .venv
+        fi
+    fi
+    "$VPY" -m pip install --upgrade pip
+    "$VPY" -m pip install "${PY_DEPS[@]}"
+}
+
+wait_background() { # name pid log
+    if ! wait "$2"; then
+        echo "error: $1 failed; the end of $3:" >&2
+        tail -n 40 "$3" >&2
+        exit 1
+    fi
+    echo "$1: done ($3)"
+}
+
+if [ "$QUICK" -eq 0 ]; then
+    step "start in the background: chromium (apt) and the Python packages (pip, .venv)"
+    install_chromium >"$LOGS/chromium.log" 2>&1 &
+    CHROMIUM_PID=$!
+    install_python >"$LOGS/python.log" 2>&1 &
+    PYTHON_PID=$!
+    echo "logs: $LOGS/chromium.log, $LOGS/python.log"
+fi
+
+# ---------------------------------------------------------------------------------------
+# Rust
 # ---------------------------------------------------------------------------------------
 if command -v rustup >/dev/null 2>&1; then
     step "rustup component add rustfmt clippy"
     rustup component add rustfmt clippy
 fi
 
-# ---------------------------------------------------------------------------------------
-# Rust
-# ---------------------------------------------------------------------------------------
 step "cargo fmt --all -- --check"
 cargo fmt --all -- --check
 
-step "cargo clippy --all-targets -- -D warnings"
-cargo clippy --all-targets -- -D warnings
+step "cargo clippy --workspace --all-targets -- -D warnings"
+cargo clippy --workspace --all-targets -- -D warnings
 
 # The library without its optional parts (features plot, identify, reproduce, hdf5): the
 # solvers alone must build, lint clean and pull in neither plotters nor argmin (hdf5-pure,
-# pure Rust, stays: measured records are read from HDF5 and MAT v7.3 files).
-step "cargo clippy -p contactwave --no-default-features --all-targets -- -D warnings"
-cargo clippy -p contactwave --no-default-features --all-targets -- -D warnings
+# pure Rust, stays: measured records are read from HDF5 and MAT v7.3 files). The library
+# target is what the feature gating decides; its tests are built with every feature.
+step "cargo clippy -p contactwave --no-default-features --lib -- -D warnings"
+cargo clippy -p contactwave --no-default-features --lib -- -D warnings
 
 step "cargo tree -p contactwave --no-default-features -e normal (no plotters, no argmin)"
 if cargo tree -p contactwave --no-default-features -e normal | grep -E 'plotters|argmin'; then
@@ -61,93 +187,82 @@ if cargo tree -p contactwave --no-default-features -e normal | grep -E 'plotters
     exit 1
 fi
 
-# Unit, integration, physics, property and doc tests (the library's doc tests run here,
-# once); the tests marked `#[ignore = "slow: full tier"]` (more than about 20 s each on
-# 2 cores: the identifications) only in the full tier.
+# cargo-nextest (on the CI machines; `cargo install cargo-nextest --locked` elsewhere);
+# without it, cargo test runs the same tests (no per-test timeout, no timings table).
+# The Python extension crate has no Rust tests (it needs libpython to link one).
+RUST_TEST_ARGS=(--workspace --exclude contactwave-py --release)
+if cargo nextest --version >/dev/null 2>&1; then
+    if [ "$QUICK" -eq 1 ]; then
+        step "cargo nextest run --workspace --release (quick tier: without the slow tests)"
+        cargo nextest run "${RUST_TEST_ARGS[@]}"
+    else
+        step "cargo nextest run --workspace --release --profile ci --run-ignored all"
+        cargo nextest run "${RUST_TEST_ARGS[@]}" --profile ci --run-ignored all
+    fi
+else
+    echo "note: cargo-nextest not found: cargo test instead (no per-test timeout)"
+    if [ "$QUICK" -eq 1 ]; then
+        step "cargo test --workspace --release --tests (quick tier: without the slow tests)"
+        cargo test "${RUST_TEST_ARGS[@]}" --tests
+    else
+        step "cargo test --workspace --release --tests -- --include-ignored"
+        cargo test "${RUST_TEST_ARGS[@]}" --tests -- --include-ignored
+    fi
+fi
+
+# The library's doc tests: edition 2024 compiles them into one binary. The same package
+# selection as the tests, so the same features: the library the tests built serves.
+step "cargo test --workspace --exclude contactwave-py --release --doc"
+cargo test "${RUST_TEST_ARGS[@]}" --doc
+
 if [ "$QUICK" -eq 1 ]; then
-    step "cargo test --workspace --release (quick tier: without the slow tests)"
-    cargo test --workspace --release
     step "quick tier passed (the full tier: ./scripts/test.sh)"
     exit 0
 fi
 
-step "cargo test --workspace --release -- --include-ignored (with the slow tests)"
-cargo test --workspace --release -- --include-ignored
-
-# ---------------------------------------------------------------------------------------
-# Python: the `contactwave` package (crates/contactwave-py + python/), built with maturin
-# into a virtual environment at .venv (ignored by git), then its pytest suite
-# (python/tests: API against the CLI's files, Dask LocalCluster, shards and merge, and
-# report.html of `contactwave reproduce all` in headless Chromium: screenshot of the first
-# screen kept at target/report-screenshot.png; test_plots_browser.py: a run's spectrum, a
-# 22-curve sweep, frf.svg and shear_loop.svg as PNG under target/screenshots/), then the
-# notebooks of examples/notebooks/ (scripts/run_notebooks.py).
-# ---------------------------------------------------------------------------------------
-PYTHON=${PYTHON:-python3}
-# playwright: drives the system Chromium for the report test (no browser download)
-# xarray, h5py: Result.to_xarray() and the HDF5 result files (python/tests/test_frames.py)
-# matplotlib, tqdm: the .plot() helpers and sweep progress bars (test_plot.py,
-# test_progress.py); nbclient, nbformat, ipykernel: the notebooks (scripts/run_notebooks.py)
-PY_DEPS=(maturin numpy pandas xarray h5py "dask[distributed]" pytest playwright
-    matplotlib tqdm nbclient nbformat ipykernel)
-
-# Headless Chromium for python/tests/test_report_browser.py (report.html renders, no
-# console error, no request leaves the file); Debian's package, installed if missing.
-step "chromium (Debian package) for the report browser test"
-if ! command -v chromium >/dev/null 2>&1; then
-    SUDO=""
-    if [ "$(id -u)" -ne 0 ]; then
-        SUDO=sudo
-    fi
-    $SUDO apt-get update
-    $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y chromium
-fi
-echo "chromium: $(command -v chromium)"
-export CONTACTWAVE_REQUIRE_BROWSER=1
-
-step "python virtual environment (.venv)"
-if [ ! -x .venv/bin/python ] || ! .venv/bin/python -m pip --version >/dev/null 2>&1; then
-    rm -rf .venv
-    if ! "$PYTHON" -m venv .venv; then
-        # python3-venv (ensurepip) missing: try virtualenv, installed for the user if needed
-        rm -rf .venv
-        if ! "$PYTHON" -m virtualenv --version >/dev/null 2>&1; then
-            "$PYTHON" -m pip install --user virtualenv ||
-                "$PYTHON" -m pip install --user --break-system-packages virtualenv
-        fi
-        "$PYTHON" -m virtualenv .venv
-    fi
-fi
-VPY=.venv/bin/python
-
-step "pip install ${PY_DEPS[*]}"
-"$VPY" -m pip install --upgrade pip
-"$VPY" -m pip install "${PY_DEPS[@]}"
-
-step "cargo build --release -p contactwave-cli (the CLI the Python tests compare with)"
+# The CLI the reference check, the doc commands and the Python tests use: the test build
+# made it (target/release/contactwave); this is a no-op unless it is missing.
+step "cargo build --release -p contactwave-cli (already built by the tests)"
 cargo build --release -p contactwave-cli
 
 # Every output of the CLI (reproduce, run, sweep, merge, law, convergence, identify, fit,
-# validate) against the values recorded in tests/reference/ (within 1e-9 relative; about
-# three minutes on 2 cores); re-record only for an intended change, with every changed
-# value listed and explained: tests/reference/README.md
-step "reference outputs of the CLI (scripts/reference_outputs.py check)"
-"$VPY" scripts/reference_outputs.py check
+# validate) against the values recorded in tests/reference/ (within 1e-9 relative); the
+# outputs are kept in target/ci-out for the doc commands and the browser test, and the
+# commands run are listed in target/ci-out.json. Re-record only for an intended change,
+# with every changed value listed and explained: tests/reference/README.md
+CI_OUT=$TARGET/ci-out
+step "reference outputs of the CLI (scripts/reference_outputs.py check --keep $CI_OUT)"
+"$PYTHON" scripts/reference_outputs.py check --keep "$CI_OUT" --ran "$CI_OUT.json"
 
-# Every contactwave command of README.md and docs/*.md, in a fresh clone (3 to 5 minutes)
-step "commands of the docs (scripts/doc_commands.py)"
-"$VPY" scripts/doc_commands.py
+# Every contactwave command of README.md and docs/*.md, in a fresh clone; those the
+# reference check ran at this commit are not run again
+step "commands of the docs (scripts/doc_commands.py --ran $CI_OUT.json)"
+"$PYTHON" scripts/doc_commands.py --ran "$CI_OUT.json"
 
+step "wait for the background installs (chromium, Python packages)"
+wait_background "chromium" "$CHROMIUM_PID" "$LOGS/chromium.log"
+wait_background "Python packages" "$PYTHON_PID" "$LOGS/python.log"
+echo "chromium: $(command -v chromium)"
+export CONTACTWAVE_REQUIRE_BROWSER=1
+
+# maturin builds crates/contactwave-py with the release profile into the same target
+# folder: the library and its dependencies are the ones the tests built (same features).
 step "pip install . (maturin: the contactwave wheel, abi3, Python >= 3.9)"
-rm -f python/contactwave/_core*.so  # a stale `maturin develop` build would shadow the wheel
-"$VPY" -m pip install --no-build-isolation --force-reinstall --no-deps .
+rm -f python/contactwave/_core*.so # a stale `maturin develop` build would shadow the wheel
+"$VPY" -m pip install --no-build-isolation --force-reinstall --no-deps . 2>&1 |
+    tee "$LOGS/wheel.log"
 "$VPY" -c "import contactwave, sys; print('contactwave', contactwave.__version__, 'on Python', sys.version.split()[0])"
 
-step "python -m pytest python/tests"
-"$VPY" -m pytest -p no:cacheprovider -q python/tests
+# python/tests: API against the CLI's files, Dask LocalCluster, shards and merge, and the
+# report.html of the reference check's `reproduce all --quick` in headless Chromium
+# (screenshot kept at target/report-screenshot.png; test_plots_browser.py: a run's
+# spectrum, a 22-curve sweep, frf.svg and shear_loop.svg as PNG under target/screenshots/)
+step "python -m pytest python/tests (timeout 300 s a test)"
+CONTACTWAVE_REPORT_DIR="$PWD/$CI_OUT/reproduce" \
+    "$VPY" -m pytest -p no:cacheprovider -q --timeout 300 --durations 10 python/tests
 
 # examples/notebooks/*.ipynb executed with nbclient in a kernel of .venv's Python (any
-# failing cell fails; the notebooks are stored without outputs; about 10 s)
+# failing cell fails; the notebooks are stored without outputs)
 step "notebooks (scripts/run_notebooks.py)"
 "$VPY" scripts/run_notebooks.py
 

@@ -51,8 +51,8 @@ fn main() {
         .filter(|c| c.len() == 40 && c.chars().all(|ch| ch.is_ascii_hexdigit()))
         .unwrap_or_default();
     let mut dirty = String::new();
-    if !commit.is_empty() {
-        if let Some(s) = git(
+    if !commit.is_empty()
+        && let Some(s) = git(
             &dir,
             &[
                 "--no-optional-locks",
@@ -60,9 +60,9 @@ fn main() {
                 "--porcelain",
                 "--untracked-files=no",
             ],
-        ) {
-            dirty = if s.is_empty() { "0" } else { "1" }.to_string();
-        }
+        )
+    {
+        dirty = if s.is_empty() { "0" } else { "1" }.to_string();
     }
     println!("cargo:rustc-env=CONTACTWAVE_GIT_COMMIT={commit}");
     println!("cargo:rustc-env=CONTACTWAVE_GIT_DIRTY={dirty}");

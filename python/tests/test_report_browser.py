@@ -8,6 +8,11 @@ driven by Playwright through `executable_path`; no browser download) and checks 
 - the page logs no console error and raises no page error;
 - no request leaves the file: the only request is `report.html` itself (`file://`).
 
+The report is the one the reference check wrote when CONTACTWAVE_REPORT_DIR names its folder
+(scripts/test.sh: target/ci-out/reproduce, `reproduce all --quick` run by
+scripts/reference_outputs.py at this commit, with this binary); otherwise the test runs
+`reproduce all --quick` itself.
+
 A screenshot of the first screen is kept as a test artefact at
 `<target>/report-screenshot.png` (CARGO_TARGET_DIR or `<repo>/target`).
 
@@ -58,8 +63,13 @@ def test_report_renders_in_chromium(cli, tmp_path):
     except ImportError:
         _require_or_skip("playwright not installed (pip install playwright)")
 
-    out = tmp_path / "reproduce"
-    run_cli(cli, "reproduce", "all", "--quick", "--out", out)
+    given = os.environ.get("CONTACTWAVE_REPORT_DIR")
+    if given:
+        out = Path(given)
+        assert (out / "report.html").is_file(), f"CONTACTWAVE_REPORT_DIR={given}: no report.html"
+    else:
+        out = tmp_path / "reproduce"
+        run_cli(cli, "reproduce", "all", "--quick", "--out", out)
     report = out / "report.html"
     assert report.is_file()
     svgs = sorted((out / "figures").glob("*.svg"))

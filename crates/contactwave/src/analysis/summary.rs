@@ -331,7 +331,7 @@ mod tests {
     }
 
     /// A record's harmonics are the keys of `HARMONIC_KEYS` after its prefix (what the 2D
-    /// receivers' names are checked against: `tests/solid_2d.rs`, colliding names).
+    /// receivers' names are checked against: `tests/all/solid_2d.rs`, colliding names).
     #[test]
     fn records_write_the_harmonic_keys_after_their_prefix() {
         let mut s = Summary::new();

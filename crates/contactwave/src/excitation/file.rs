@@ -59,17 +59,17 @@ impl FileWaveform {
                     )
                     .into());
             }
-            if let Some(&last) = t.last() {
-                if !(a > last) {
-                    return Err(rdr
-                        .error(
-                            line,
-                            Some(rdr.column_name(0)),
-                            a,
-                            "times must be strictly increasing",
-                        )
-                        .into());
-                }
+            if let Some(&last) = t.last()
+                && !(a > last)
+            {
+                return Err(rdr
+                    .error(
+                        line,
+                        Some(rdr.column_name(0)),
+                        a,
+                        "times must be strictly increasing",
+                    )
+                    .into());
             }
             t.push(a);
             s.push(b);

@@ -281,11 +281,11 @@ pub fn estimate(model: &Model, progress: &(dyn Fn(&str) + Sync)) -> Result<Estim
                 .run(),
         )?;
         let st = res.state();
-        if let Some(best) = st.get_best_param() {
-            if st.get_best_cost() < global_cost {
-                global_z = best.position.clone();
-                global_cost = st.get_best_cost();
-            }
+        if let Some(best) = st.get_best_param()
+            && st.get_best_cost() < global_cost
+        {
+            global_z = best.position.clone();
+            global_cost = st.get_best_cost();
         }
         if let Some(pop) = st.get_population() {
             starts.extend(pop.iter().map(|p| (p.position.clone(), p.cost)));

@@ -200,11 +200,17 @@ pub fn analyse(
                     ("a lower", "upper", par.upper)
                 };
                 let flat = if (value - bound).abs() <= 1e-6 * bound.abs() {
-                    format!("the best fit lies at the {bound_name} bound {bound:.4e}: the curve is flat towards it")
+                    format!(
+                        "the best fit lies at the {bound_name} bound {bound:.4e}: the curve is flat towards it"
+                    )
                 } else if flat_low {
-                    format!("the curve does not change between the lower bound {bound:.4e} and the estimate {value:.4e}")
+                    format!(
+                        "the curve does not change between the lower bound {bound:.4e} and the estimate {value:.4e}"
+                    )
                 } else {
-                    format!("the curve does not change between the estimate {value:.4e} and the upper bound {bound:.4e}")
+                    format!(
+                        "the curve does not change between the estimate {value:.4e} and the upper bound {bound:.4e}"
+                    )
                 };
                 format!("not identifiable from these data: only {limit} limit ({flat})")
             } else if !finite {

@@ -189,7 +189,7 @@ impl IdentifySpec {
                         "missing"
                     },
                     "either data (a reduced curve) or [records] (raw waveforms), not both",
-                ))
+                ));
             }
         };
         let parameters = parse_parameters(f.parameter, &file, &base_table)?;
@@ -561,7 +561,7 @@ fn parse_parameters(
                         f("bounds"),
                         shown,
                         allowed("parameter.bounds", FieldProblem::Wrong),
-                    ))
+                    ));
                 }
             },
             _ => {
@@ -570,7 +570,7 @@ fn parse_parameters(
                     f("bounds"),
                     shown,
                     allowed("parameter.bounds", FieldProblem::Wrong),
-                ))
+                ));
             }
         };
         if scale == Scale::Log && !(bounds.0 > 0.0) {
@@ -583,15 +583,15 @@ fn parse_parameters(
         }
         let range = format!("within the bounds [{:e}, {:e}]", bounds.0, bounds.1);
         let base_value = get_dotted(base, &key);
-        if let Some(b) = base_value {
-            if !(b >= bounds.0 && b <= bounds.1) {
-                return Err(Error::invalid(
-                    file,
-                    f("bounds"),
-                    shown,
-                    format!("must contain the base scenario's value {key} = {b:e}"),
-                ));
-            }
+        if let Some(b) = base_value
+            && !(b >= bounds.0 && b <= bounds.1)
+        {
+            return Err(Error::invalid(
+                file,
+                f("bounds"),
+                shown,
+                format!("must contain the base scenario's value {key} = {b:e}"),
+            ));
         }
         let initial = match &t.initial {
             Some(v) => match quantity(v, &key) {
@@ -670,7 +670,7 @@ impl DesignFile {
                         "required: {}",
                         allowed("design.values", FieldProblem::Missing)
                     ),
-                ))
+                ));
             }
         };
         let values = nums(name, values, &key)?;
@@ -759,7 +759,7 @@ fn parse_data(
                 "data",
                 show(other),
                 allowed("data", FieldProblem::Wrong),
-            ))
+            ));
         }
     };
     let observed_filter: Option<&[String]> = match observed {
@@ -769,7 +769,7 @@ fn parse_data(
                 "observed",
                 "[]",
                 allowed("observed", FieldProblem::Wrong),
-            ))
+            ));
         }
         other => other,
     };
@@ -826,15 +826,15 @@ fn parse_data(
         ));
     }
     for h in &header {
-        if let Some(name) = h.strip_prefix("sigma_") {
-            if !header.iter().any(|x| x == name) {
-                return Err(Error::invalid(
-                    &data_name,
-                    "header",
-                    h,
-                    "sigma_<name> needs an observed column <name>",
-                ));
-            }
+        if let Some(name) = h.strip_prefix("sigma_")
+            && !header.iter().any(|x| x == name)
+        {
+            return Err(Error::invalid(
+                &data_name,
+                "header",
+                h,
+                "sigma_<name> needs an observed column <name>",
+            ));
         }
     }
     for (i, row) in rows.iter().enumerate() {

@@ -145,7 +145,7 @@ impl RecordsFile {
                     other,
                     "a list of the condition's values, one per record, or the name of an \
                      array of the first record file",
-                ))
+                ));
             }
         };
         let method = match self.method.as_deref() {
@@ -168,15 +168,15 @@ impl RecordsFile {
             Some(g) => Some(gate_of(g, file, &field("model_gate"))?),
             None => gate,
         };
-        if let Some(f0) = self.f0 {
-            if !(f0.is_finite() && f0 > 0.0) {
-                return Err(Error::invalid(
-                    file,
-                    field("f0"),
-                    f0,
-                    "a frequency > 0 (Hz)",
-                ));
-            }
+        if let Some(f0) = self.f0
+            && !(f0.is_finite() && f0 > 0.0)
+        {
+            return Err(Error::invalid(
+                file,
+                field("f0"),
+                f0,
+                "a frequency > 0 (Hz)",
+            ));
         }
         let band_pass = self
             .band_pass
@@ -237,7 +237,7 @@ fn observed_keys(observed: Option<&[String]>, file: &str) -> Result<Vec<String>>
                 "observed",
                 "[]",
                 "a non-empty list of observed keys",
-            ))
+            ));
         }
         Some(k) => k.to_vec(),
     };

@@ -185,15 +185,15 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
         }
         let companions = [("inverse", &r.inverse), ("linear", &r.linear)];
         for (what, c) in companions {
-            if let Some(c) = c {
-                if c.len() != r.samples.len() {
-                    return Err(Error::invalid(
-                        file,
-                        format!("{}.{what}", r.name),
-                        format!("{} samples", c.len()),
-                        format!("as many samples as the record ({})", r.samples.len()),
-                    ));
-                }
+            if let Some(c) = c
+                && c.len() != r.samples.len()
+            {
+                return Err(Error::invalid(
+                    file,
+                    format!("{}.{what}", r.name),
+                    format!("{} samples", c.len()),
+                    format!("as many samples as the record ({})", r.samples.len()),
+                ));
             }
         }
         if r.samples.iter().any(|v| !v.is_finite()) {
@@ -221,12 +221,12 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
     let method = settings.method;
     for r in &series.records {
         let missing = match method {
-            AnalysisMethod::PulseInversion if r.inverse.is_none() => {
-                Some("an opposite-polarity record for each record (--inverse; `inverse` in Python and in an identification's [records])")
-            }
-            AnalysisMethod::LinearReference if r.linear.is_none() => {
-                Some("a low-amplitude record as the linear reference (--linear; `linear` in Python and in an identification's [records])")
-            }
+            AnalysisMethod::PulseInversion if r.inverse.is_none() => Some(
+                "an opposite-polarity record for each record (--inverse; `inverse` in Python and in an identification's [records])",
+            ),
+            AnalysisMethod::LinearReference if r.linear.is_none() => Some(
+                "a low-amplitude record as the linear reference (--linear; `linear` in Python and in an identification's [records])",
+            ),
             AnalysisMethod::PlateauFit if settings.gate.is_none() => {
                 Some("a gate over the echo's flat top (--gate START,END)")
             }
@@ -288,7 +288,9 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
             file,
             "f0",
             f0,
-            format!("at least 3 periods in the record ({periods:.2} here): a longer record or a higher f0"),
+            format!(
+                "at least 3 periods in the record ({periods:.2} here): a longer record or a higher f0"
+            ),
         ));
     }
     if let Some(g) = &settings.gate {
@@ -310,7 +312,10 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
             file,
             "f0",
             f0,
-            format!("5 f0 below the Nyquist frequency {:e} Hz (the record is sampled too slowly for A5)", 0.5 / dt),
+            format!(
+                "5 f0 below the Nyquist frequency {:e} Hz (the record is sampled too slowly for A5)",
+                0.5 / dt
+            ),
         ));
     }
     let plateau = plateau_window(settings.gate.as_ref(), f0, t0, duration);

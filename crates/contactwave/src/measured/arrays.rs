@@ -118,7 +118,7 @@ impl Format {
                     "file",
                     &shown,
                     "a record file ending in .csv, .txt, .npy, .npz, .mat, .h5, .hdf5 or .hdf",
-                ))
+                ));
             }
         })
     }
@@ -282,7 +282,7 @@ fn npy_array<R: std::io::Read>(
                 name,
                 ts.to_string(),
                 "real data (complex records are not analysed: pass the real part)",
-            ))
+            ));
         }
         _ => {
             return Err(Error::invalid(
@@ -290,7 +290,7 @@ fn npy_array<R: std::io::Read>(
                 name,
                 ts.to_string(),
                 "an array of real numbers: float64, float32, or integers of 8 to 64 bits",
-            ))
+            ));
         }
     };
     let data = if fortran && shape.len() == 2 {
@@ -328,7 +328,7 @@ fn mat_v5_array(file: &str, a: &matfile::Array) -> Result<NamedArray> {
         )
     };
     macro_rules! real {
-        ($re:expr, $im:expr) => {{
+        ($re:expr_2021, $im:expr_2021) => {{
             if $im.is_some() {
                 return Err(complex());
             }
@@ -401,7 +401,7 @@ fn read_hdf5(path: &Path, names: &[String], matlab: bool) -> Result<Vec<NamedArr
                     name,
                     "complex",
                     "real data (complex records are not analysed: save real(x))",
-                ))
+                ));
             }
             other => {
                 if names.is_empty() {
@@ -415,30 +415,28 @@ fn read_hdf5(path: &Path, names: &[String], matlab: bool) -> Result<Vec<NamedArr
                 ));
             }
         }
-        if matlab {
-            if let Ok(attrs) = ds.attrs() {
-                let class = match attrs.get("MATLAB_class") {
-                    Some(
-                        hdf5_pure::AttrValue::String(c) | hdf5_pure::AttrValue::AsciiString(c),
-                    ) => Some(c.trim_end_matches('\0').to_string()),
-                    _ => None,
-                };
-                if let Some(class) = class {
-                    let numeric = [
-                        "double", "single", "int8", "uint8", "int16", "uint16", "int32", "uint32",
-                        "int64", "uint64",
-                    ];
-                    if !numeric.contains(&class.as_str()) {
-                        if names.is_empty() {
-                            continue;
-                        }
-                        return Err(Error::invalid(
-                            &shown,
-                            name,
-                            format!("MATLAB class {class}"),
-                            "a numeric MATLAB array (double, single or integers)",
-                        ));
+        if matlab && let Ok(attrs) = ds.attrs() {
+            let class = match attrs.get("MATLAB_class") {
+                Some(hdf5_pure::AttrValue::String(c) | hdf5_pure::AttrValue::AsciiString(c)) => {
+                    Some(c.trim_end_matches('\0').to_string())
+                }
+                _ => None,
+            };
+            if let Some(class) = class {
+                let numeric = [
+                    "double", "single", "int8", "uint8", "int16", "uint16", "int32", "uint32",
+                    "int64", "uint64",
+                ];
+                if !numeric.contains(&class.as_str()) {
+                    if names.is_empty() {
+                        continue;
                     }
+                    return Err(Error::invalid(
+                        &shown,
+                        name,
+                        format!("MATLAB class {class}"),
+                        "a numeric MATLAB array (double, single or integers)",
+                    ));
                 }
             }
         }

@@ -130,7 +130,7 @@ pub fn load(sources: &Sources) -> Result<Series> {
                     "linear",
                     format!("{k} records"),
                     format!("one low-amplitude record for all, or one per record ({count})"),
-                ))
+                ));
             }
         }
     }

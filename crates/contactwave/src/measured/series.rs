@@ -97,10 +97,10 @@ pub struct Series {
 pub fn read_records(path: &Path, layout: &Layout) -> Result<Records> {
     let shown = path.display().to_string();
     let mut names = layout.records.clone();
-    if let Some(t) = &layout.time {
-        if !names.is_empty() {
-            names.push(t.clone());
-        }
+    if let Some(t) = &layout.time
+        && !names.is_empty()
+    {
+        names.push(t.clone());
     }
     let (format, arrays) = read_arrays(path, &names)?;
     let find = |name: &str| {
@@ -269,7 +269,7 @@ pub fn read_records(path: &Path, layout: &Layout) -> Result<Records> {
                     "a time column or array (named t, time or time_s, or given with --time), or the sampling rate (--sample-rate HZ); the file has {}",
                     listing(&arrays)
                 ),
-            ))
+            ));
         }
     };
     Ok(Records {

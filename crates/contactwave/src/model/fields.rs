@@ -52,7 +52,7 @@ pub trait Fields {
 
 /// `match` arms from field names to slots: `fields!(self, path; f64: a, b; opt: c)`.
 macro_rules! leaf {
-    ($path:expr; $($kind:ident $name:literal => $field:expr),* $(,)?) => {
+    ($path:expr_2021; $($kind:ident $name:literal => $field:expr_2021),* $(,)?) => {
         match $path {
             $([$name] => Some(Slot::$kind($field)),)*
             _ => None,

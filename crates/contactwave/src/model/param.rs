@@ -127,7 +127,7 @@ impl<S: Fields + Clone> ParamTable<S> {
                         v,
                         "is not a number of this scenario (another parameter changed its \
                          kind of law)",
-                    ))
+                    ));
                 }
             }
         }

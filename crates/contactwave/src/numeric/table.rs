@@ -276,7 +276,7 @@ impl<R: BufRead> CsvReader<R> {
                         None,
                         format!("{} cells", self.cells),
                         format!("{} cells, as the header", h.len()),
-                    ))
+                    ));
                 }
                 _ if self.cells < need => {
                     return Err(self.error(
@@ -284,7 +284,7 @@ impl<R: BufRead> CsvReader<R> {
                         None,
                         format!("{} cells", self.cells),
                         format!("at least {need} cells"),
-                    ))
+                    ));
                 }
                 _ => {}
             }

@@ -32,14 +32,14 @@ pub const SWEEP_FILE: &str = "sweep.h5";
 pub fn column_units(table: &str, column: &str) -> &'static str {
     let c = column.to_ascii_lowercase();
     // the receivers' `<name>_v<x|z|y>` and `<name>_s<xx|zz|xz|yx|yz>`
-    if let Some((_, comp)) = c.rsplit_once('_') {
-        if table == "receivers" {
-            if comp.len() == 2 && comp.starts_with('v') {
-                return "m/s";
-            }
-            if comp.len() == 3 && comp.starts_with('s') {
-                return "Pa";
-            }
+    if let Some((_, comp)) = c.rsplit_once('_')
+        && table == "receivers"
+    {
+        if comp.len() == 2 && comp.starts_with('v') {
+            return "m/s";
+        }
+        if comp.len() == 3 && comp.starts_with('s') {
+            return "Pa";
         }
     }
     if c == "t" || c == "time" || c.ends_with("_time") {

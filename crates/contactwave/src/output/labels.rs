@@ -11,16 +11,16 @@ pub fn quantity(key: &str) -> (String, &'static str) {
         return (name.to_string(), unit);
     }
     // per-crack summary keys of 2D runs: `crack_max_gap_0` -> largest opening, crack 0
-    if let Some((base, i)) = key.strip_prefix("crack_").and_then(|k| k.rsplit_once('_')) {
-        if let Ok(i) = i.parse::<usize>() {
-            let (name, unit) = match base {
-                "max_gap" => ("largest opening".to_string(), "m"),
-                "max_slip" => ("largest slip".to_string(), "m"),
-                "min_adhesion" => ("least adhesion beta".to_string(), ""),
-                other => (other.replace('_', " "), guess_unit(other)),
-            };
-            return (format!("{name}, crack {i}"), unit);
-        }
+    if let Some((base, i)) = key.strip_prefix("crack_").and_then(|k| k.rsplit_once('_'))
+        && let Ok(i) = i.parse::<usize>()
+    {
+        let (name, unit) = match base {
+            "max_gap" => ("largest opening".to_string(), "m"),
+            "max_slip" => ("largest slip".to_string(), "m"),
+            "min_adhesion" => ("least adhesion beta".to_string(), ""),
+            other => (other.replace('_', " "), guess_unit(other)),
+        };
+        return (format!("{name}, crack {i}"), unit);
     }
     // per-receiver harmonic keys of 2D runs and measured records: `top_A2_over_A1` ->
     // A2 / A1 at top
@@ -43,11 +43,11 @@ pub fn quantity(key: &str) -> (String, &'static str) {
     }
     // per-interface summary keys: `mean_contact_stiffness_0` -> interface 0 (numbered from
     // 0, as the keys `_0`, `_1` and `interface.0` are)
-    if let Some((base, i)) = key.rsplit_once('_') {
-        if let Ok(i) = i.parse::<usize>() {
-            let (name, unit) = quantity(base);
-            return (format!("{name}, interface {i}"), unit);
-        }
+    if let Some((base, i)) = key.rsplit_once('_')
+        && let Ok(i) = i.parse::<usize>()
+    {
+        let (name, unit) = quantity(base);
+        return (format!("{name}, interface {i}"), unit);
     }
     let last = key.rsplit('.').next().unwrap_or(key);
     // indices stay as the key writes them (0-based: `segment.0.mass` -> segment 0 mass)

@@ -131,7 +131,7 @@ pub enum Rows {
 impl Rows {
     /// The indices kept of `t.len()` rows at times `t` (s), in order (none for
     /// [`Rows::None`]).
-    pub fn pick(self, t: &[f64]) -> impl ExactSizeIterator<Item = usize> {
+    pub fn pick(self, t: &[f64]) -> impl ExactSizeIterator<Item = usize> + use<> {
         let n = t.len();
         let k = match self {
             Rows::None | Rows::All => 1,

@@ -271,7 +271,11 @@ pub(crate) fn dash(i: usize) -> Option<(u32, u32)> {
 /// step needs between 0.01 and 10^4, else one power of ten, a multiple of 3, on every tick
 /// (`940e9`, `12.5e-6`; the axis label names the unit). On a log10 axis (`log`) the tick
 /// at `v` is labelled with `10^v` ([`eng`]: `1e12`, `10e12`, `100e12`).
-pub(crate) fn tick_label(r: &std::ops::Range<f64>, n: usize, log: bool) -> impl Fn(&f64) -> String {
+pub(crate) fn tick_label(
+    r: &std::ops::Range<f64>,
+    n: usize,
+    log: bool,
+) -> impl Fn(&f64) -> String + use<> {
     let span = (r.end - r.start).abs();
     let m = r.start.abs().max(r.end.abs());
     let (k, p) = if m.is_finite() && (m >= 1e4 || (m > 0.0 && m < 1e-2)) {

@@ -82,7 +82,7 @@ fn table2() -> Result<(Vec<f64>, Vec<f64>)> {
                     "row",
                     line,
                     "pressure_pa,stiffness_al_al_pa_per_m,...",
-                ))
+                ));
             }
         }
     }

@@ -183,22 +183,21 @@ impl Figure {
     /// `Figures 78 and 80: ...`.
     pub fn title_and_thesis(&self) -> (String, Option<String>) {
         let t = self.title.trim();
-        if let Some(rest) = t.strip_suffix(')') {
-            if let Some(i) = rest.rfind(" (thesis ") {
-                return (rest[..i].to_string(), Some(rest[i + 9..].to_string()));
-            }
+        if let Some(rest) = t.strip_suffix(')')
+            && let Some(i) = rest.rfind(" (thesis ")
+        {
+            return (rest[..i].to_string(), Some(rest[i + 9..].to_string()));
         }
-        if t.starts_with("Figure") {
-            if let Some((refs, rest)) = t.split_once(": ") {
-                if refs.chars().any(|c| c.is_ascii_digit()) {
-                    let mut c = rest.chars();
-                    let title = match c.next() {
-                        Some(f) => f.to_uppercase().chain(c).collect(),
-                        None => String::new(),
-                    };
-                    return (title, Some(refs.to_string()));
-                }
-            }
+        if t.starts_with("Figure")
+            && let Some((refs, rest)) = t.split_once(": ")
+            && refs.chars().any(|c| c.is_ascii_digit())
+        {
+            let mut c = rest.chars();
+            let title = match c.next() {
+                Some(f) => f.to_uppercase().chain(c).collect(),
+                None => String::new(),
+            };
+            return (title, Some(refs.to_string()));
         }
         (t.to_string(), None)
     }

@@ -144,8 +144,18 @@ pub(super) fn run(ctx: &Ctx, figures: &mut Vec<Figure>, findings: &mut Vec<Findi
         ),
         vec![
             panel("(a) reflected P wave", xl, "A2/A1", curves),
-            panel("(b) log scale; 45 degrees without slip", xl, "log10(A2/A1)", log_curves),
-            panel("(c) slip and contact loss", xl, "fraction of the burst", mech),
+            panel(
+                "(b) log scale; 45 degrees without slip",
+                xl,
+                "log10(A2/A1)",
+                log_curves,
+            ),
+            panel(
+                "(c) slip and contact loss",
+                xl,
+                "fraction of the burst",
+                mech,
+            ),
         ],
     );
     fig = fig.compare(format!(

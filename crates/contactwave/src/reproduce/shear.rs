@@ -282,7 +282,7 @@ fn harmonics(s: &Setup, rect: &[RectRun], hann: &[(Summary, f64)], out: &mut Col
     let mut err_tr = 0.0f64;
     let mut err_re = 0.0f64;
     let mut band_diff = 0.0f64;
-    for (i, &x) in r.iter().enumerate().filter(|(_, &x)| x < 0.999) {
+    for (i, &x) in r.iter().enumerate().filter(|&(_, &x)| x < 0.999) {
         let (c_tr, c_re) = closed_a3_over_a1(&closed(x, s.z));
         err_tr = err_tr.max((tr[i] / c_tr - 1.0).abs());
         err_re = err_re.max((re[i] / c_re - 1.0).abs());
@@ -537,7 +537,7 @@ fn dissipation(s: &Setup, rect: &[RectRun], hann: &[(Summary, f64)], out: &mut C
         })
         .collect();
     let mut err = 0.0f64;
-    for (i, &x) in r.iter().enumerate().filter(|(_, &x)| x < 0.999) {
+    for (i, &x) in r.iter().enumerate().filter(|&(_, &x)| x < 0.999) {
         err = err.max((per[i] / closed(x, s.z).dissipation_per_cycle() - 1.0).abs());
     }
     let above = r

@@ -219,15 +219,15 @@ impl Scenario {
                 "must lie in [16, 100000]",
             ));
         }
-        if let Some(tp) = spec.solver.tail_periods {
-            if !(tp.is_finite() && tp > 0.0 && tp <= 1e5) {
-                return Err(Error::invalid(
-                    file,
-                    "solver.tail_periods",
-                    tp,
-                    "must lie in (0, 1e5]",
-                ));
-            }
+        if let Some(tp) = spec.solver.tail_periods
+            && !(tp.is_finite() && tp > 0.0 && tp <= 1e5)
+        {
+            return Err(Error::invalid(
+                file,
+                "solver.tail_periods",
+                tp,
+                "must lie in (0, 1e5]",
+            ));
         }
         let z1 = medium.impedance();
         let z2 = counterpart.map(|m| m.impedance()).unwrap_or(f64::INFINITY);
@@ -446,7 +446,7 @@ pub(crate) fn material_of(
                     "(missing)",
                     "give a preset `material` or both `youngs_modulus` (Pa) and `density` \
                      (kg/m^3)",
-                ))
+                ));
             }
         },
     };
@@ -499,22 +499,22 @@ pub(crate) fn material_of(
 pub(crate) fn check_derived(m: &Material, file: &str, prefix: &str) -> Result<()> {
     let (c, z) = (m.wave_speed(), m.impedance());
     let ok = |c: f64, z: f64| c.is_finite() && c > 0.0 && z.is_finite() && z > 0.0;
-    if let (Some(ct), Some(zt)) = (m.shear_wave_speed(), m.shear_impedance()) {
-        if !ok(ct, zt) {
-            return Err(Error::invalid(
-                file,
-                format!("{prefix}.shear_modulus, {prefix}.density"),
-                format!(
-                    "{:e} Pa, {:e} kg/m^3",
-                    m.shear_modulus.unwrap_or(0.0),
-                    m.density
-                ),
-                format!(
-                    "give a finite shear wave speed sqrt(G/rho) and impedance (here {ct:e} \
+    if let (Some(ct), Some(zt)) = (m.shear_wave_speed(), m.shear_impedance())
+        && !ok(ct, zt)
+    {
+        return Err(Error::invalid(
+            file,
+            format!("{prefix}.shear_modulus, {prefix}.density"),
+            format!(
+                "{:e} Pa, {:e} kg/m^3",
+                m.shear_modulus.unwrap_or(0.0),
+                m.density
+            ),
+            format!(
+                "give a finite shear wave speed sqrt(G/rho) and impedance (here {ct:e} \
                      m/s, {zt:e} Pa s/m)"
-                ),
-            ));
-        }
+            ),
+        ));
     }
     if ok(c, z) {
         return Ok(());
@@ -649,7 +649,7 @@ pub(crate) fn build_wave(
                 key("xi"),
                 inc.xi.unwrap_or_default(),
                 "give either `amplitude` or `xi`, not both",
-            ))
+            ));
         }
         (Some(a), None) => {
             if !(a.is_finite() && a > 0.0 && a <= spec::MAX_AMPLITUDE) {

@@ -65,15 +65,15 @@ pub(super) fn requested(spec: &ScenarioSpec, file: &str) -> Result<Option<Reques
                  (a P wave) or [shear_incident] (an SV wave), not both",
             ));
         }
-        if wave == WaveType::P {
-            if let Some(x) = spec.incident.xi {
-                return Err(Error::invalid(
-                    file,
-                    "incident.xi",
-                    x,
-                    "at oblique incidence give the wave's `amplitude` (Pa), not xi",
-                ));
-            }
+        if wave == WaveType::P
+            && let Some(x) = spec.incident.xi
+        {
+            return Err(Error::invalid(
+                file,
+                "incident.xi",
+                x,
+                "at oblique incidence give the wave's `amplitude` (Pa), not xi",
+            ));
         }
         if spec.solver.method != Method::Exact {
             return Err(Error::invalid(

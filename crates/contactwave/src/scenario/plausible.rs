@@ -343,18 +343,18 @@ impl Solid2dScenario {
                 "a closure that",
             );
             let mut tangential = c.tangential.clone();
-            if let Some(crate::law::param::ParamMut::F64(mu)) = tangential.param_mut("friction") {
-                if *mu > LARGEST_FRICTION {
-                    w.warn(
-                        format!("crack.{i}.tangential.friction"),
-                        mu.to_string(),
-                        format!(
-                            "a friction coefficient over {LARGEST_FRICTION}: solids' dry \
+            if let Some(crate::law::param::ParamMut::F64(mu)) = tangential.param_mut("friction")
+                && *mu > LARGEST_FRICTION
+            {
+                w.warn(
+                    format!("crack.{i}.tangential.friction"),
+                    mu.to_string(),
+                    format!(
+                        "a friction coefficient over {LARGEST_FRICTION}: solids' dry \
                              friction lies between about 0.05 and 1.5; a percentage? write {}",
-                            *mu / 100.0
-                        ),
-                    );
-                }
+                        *mu / 100.0
+                    ),
+                );
             }
             let p0 = c.static_pressure;
             if p0 > 0.0 && p0 < LOWEST_PRESSURE {
@@ -401,15 +401,15 @@ impl Solid2dScenario {
         }
         for (i, src) in spec.sources.iter().enumerate() {
             // a traction or a plane wave's stress, Pa (a force is in N/m)
-            if src.kind != "force" {
-                if let Some(a) = src.signal.amplitude {
-                    strained(
-                        &mut w,
-                        format!("source.{i}.signal.amplitude"),
-                        a,
-                        "an amplitude that",
-                    );
-                }
+            if src.kind != "force"
+                && let Some(a) = src.signal.amplitude
+            {
+                strained(
+                    &mut w,
+                    format!("source.{i}.signal.amplitude"),
+                    a,
+                    "an amplitude that",
+                );
             }
             for (key, f) in [
                 ("frequency", src.signal.frequency),

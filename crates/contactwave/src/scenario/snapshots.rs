@@ -69,7 +69,7 @@ impl SnapshotsSpec {
                     "every",
                     "given with `times`".into(),
                     "either `times` or `every`",
-                )
+                );
             }
             (Some(t), None) => {
                 if t.is_empty() || t.len() > MAX_FRAMES {
@@ -133,7 +133,7 @@ impl SnapshotsSpec {
                     } else {
                         "magnitude, vx or vz"
                     },
-                )
+                );
             }
         };
         let pixels = self.pixels.unwrap_or(DEFAULT_PIXELS);
@@ -144,10 +144,10 @@ impl SnapshotsSpec {
                 &format!("{} to {}", PIXELS.start(), PIXELS.end()),
             );
         }
-        if let Some(s) = self.scale {
-            if !(s.is_finite() && s > 0.0) {
-                return bad("scale", s.to_string(), "a speed > 0, m/s");
-            }
+        if let Some(s) = self.scale
+            && !(s.is_finite() && s > 0.0)
+        {
+            return bad("scale", s.to_string(), "a speed > 0, m/s");
         }
         Ok(Snapshots {
             times,

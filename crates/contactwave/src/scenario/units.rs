@@ -175,12 +175,11 @@ impl Dimension {
             if unit == sym {
                 return Some(f);
             }
-            if prefixable {
-                if let Some(head) = unit.strip_suffix(sym) {
-                    if let Some(&(_, e)) = PREFIXES.iter().find(|(p, _)| *p == head) {
-                        return Some(f * 10f64.powi(e));
-                    }
-                }
+            if prefixable
+                && let Some(head) = unit.strip_suffix(sym)
+                && let Some(&(_, e)) = PREFIXES.iter().find(|(p, _)| *p == head)
+            {
+                return Some(f * 10f64.powi(e));
             }
         }
         None
@@ -220,7 +219,7 @@ pub fn dimension_of_key(key: &str) -> Option<Dimension> {
             return CompressionSpec::unit(last)
                 .or_else(|| TractionSpec::unit(last))
                 .or_else(|| TangentialSpec::unit(last))
-                .and_then(Dimension::of_si_unit)
+                .and_then(Dimension::of_si_unit);
         }
     })
 }

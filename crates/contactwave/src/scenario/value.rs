@@ -235,7 +235,7 @@ pub fn set_dotted(table: &mut toml::Table, key: &str, value: toml::Value) -> Res
                                 len - 1
                             ),
                         },
-                    ))
+                    ));
                 }
             }
         }
@@ -247,7 +247,7 @@ pub fn set_dotted(table: &mut toml::Table, key: &str, value: toml::Value) -> Res
                     "parameter",
                     key,
                     format!("`{p}` is not a table in the base scenario"),
-                ))
+                ));
             }
         };
     }
@@ -301,10 +301,10 @@ fn canonical_key(key: &str) -> Vec<&str> {
         };
         out.push(part);
     }
-    if other_spelling(&parts) == Some("friction") {
-        if let Some(l) = out.last_mut() {
-            *l = "friction";
-        }
+    if other_spelling(&parts) == Some("friction")
+        && let Some(l) = out.last_mut()
+    {
+        *l = "friction";
     }
     out
 }

@@ -207,12 +207,11 @@ pub fn step<const N: usize, S: System<N>>(
         });
     }
     let m = sys.mass();
-    if only_first(active) {
-        if let Some(a) = sys.affine(y) {
-            if let Some(s) = affine_step(sys, t, y, h, m[0], a) {
-                return Some(s);
-            }
-        }
+    if only_first(active)
+        && let Some(a) = sys.affine(y)
+        && let Some(s) = affine_step(sys, t, y, h, m[0], a)
+    {
+        return Some(s);
     }
     let f0 = sys.rhs(t, y);
     let analytic = sys.jacobian(t, y);

@@ -229,7 +229,9 @@ pub fn bilinear() -> Result<[ValidationCase; 2]> {
 pub fn linear_spring() -> Result<ValidationCase> {
     let (kc, f, amp) = (3e11, 5e3, 0.01e6);
     let s = Scenario::from_toml_str(
-        &format!("[medium]\nmaterial = \"pmma\"\nyoungs_modulus = 5e9\n[interface]\nstatic_pressure = 0.14e6\ncompression = {{ law = \"linear\", stiffness = {kc:?} }}\n[incident]\nfrequency = {f:?}\ncycles = 30\namplitude = {amp:?}\nwindow = \"rectangular\"\n[solver]\ntail_periods = 1\n"),
+        &format!(
+            "[medium]\nmaterial = \"pmma\"\nyoungs_modulus = 5e9\n[interface]\nstatic_pressure = 0.14e6\ncompression = {{ law = \"linear\", stiffness = {kc:?} }}\n[incident]\nfrequency = {f:?}\ncycles = 30\namplitude = {amp:?}\nwindow = \"rectangular\"\n[solver]\ntail_periods = 1\n"
+        ),
         "<validation: linear spring>",
     )?;
     let r = simulate(&s)?;

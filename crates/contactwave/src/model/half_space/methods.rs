@@ -104,10 +104,10 @@ pub fn inverted(scenario: &Scenario) -> Scenario {
     let mut s = scenario.clone();
     s.incident = Arc::new(Scaled::negated(scenario.incident.clone()));
     // at oblique incidence the wave's tangential traction is inverted with it
-    if scenario.oblique.is_some() {
-        if let Some(sh) = &mut s.shear {
-            sh.incident = Arc::new(Scaled::negated(sh.incident.clone()));
-        }
+    if scenario.oblique.is_some()
+        && let Some(sh) = &mut s.shear
+    {
+        sh.incident = Arc::new(Scaled::negated(sh.incident.clone()));
     }
     s
 }

@@ -585,7 +585,7 @@ mod tests {
     use image::AnimationDecoder;
 
     /// A 2 x 1 mm plate with a clapping 0.6 mm crack under a 10 MHz burst (as
-    /// tests/solid_2d.rs), with `extra` appended.
+    /// tests/all/solid_2d.rs), with `extra` appended.
     fn small(extra: &str) -> String {
         format!(
             r#"

@@ -97,7 +97,7 @@ pub(super) fn findings(setup: &Setup, d: &Damage, floor: f64) -> Vec<Finding> {
             "damaged interface: the modified PL dominates at high xi",
             Some(mpl_d15 > rig_d15),
         )
-.with_floor(AMPLITUDE_FLOOR),
+        .with_floor(AMPLITUDE_FLOOR),
         finding(
             "ch5_damaged_rigid_over_mpl_a2_at_xi_0_1",
             rig_d01,

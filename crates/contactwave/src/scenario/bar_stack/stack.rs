@@ -171,7 +171,7 @@ pub(super) fn build_interface_laws(
                     format!("interface.{j}.between"),
                     format!("[\"{a}\", \"{b}\"]"),
                     "must name two consecutive segments in order (or the last segment and \"obstacle\")",
-                ))
+                ));
             }
         };
         if laws[ia].is_some() {
@@ -227,7 +227,7 @@ impl InterfaceLaws {
                         "interface",
                         format!("{} / {}", segments[k].name, segments[k + 1].name),
                         "every pair of consecutive segments needs an [[interface]]",
-                    ))
+                    ));
                 }
             }
         }
@@ -356,7 +356,7 @@ fn end_condition(
                     key,
                     s,
                     "an obstacle end needs an [[interface]] with between = [last segment, \"obstacle\"]",
-                ))
+                ));
             }
         },
         _ => {
@@ -369,7 +369,7 @@ fn end_condition(
                 } else {
                     "free, fixed or transparent"
                 },
-            ))
+            ));
         }
     })
 }

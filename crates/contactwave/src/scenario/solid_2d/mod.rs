@@ -520,7 +520,12 @@ impl Solid2dScenario {
                         "normal" => true,
                         "shear" => false,
                         v => {
-                            return Err(inv(file, format!("{key}.component"), v, "normal or shear"))
+                            return Err(inv(
+                                file,
+                                format!("{key}.component"),
+                                v,
+                                "normal or shear",
+                            ));
                         }
                     };
                     if normal && wave == WaveType::Sh {
@@ -585,7 +590,7 @@ impl Solid2dScenario {
                                 format!("{key}.wave"),
                                 s.wave.as_deref().unwrap_or("P"),
                                 "P or SV in a P-SV run, SH in an SH run",
-                            ))
+                            ));
                         }
                     };
                     let z = s.z.ok_or_else(|| {
@@ -608,7 +613,7 @@ impl Solid2dScenario {
                         format!("{key}.kind"),
                         v,
                         "transducer, force or plane_wave",
-                    ))
+                    ));
                 }
             };
             sources.push(Source { kind, signal });
@@ -653,20 +658,20 @@ impl Solid2dScenario {
         // unit makes elements of metres, which the plausibility warnings name)
         let column = element_size.min(m.width);
         for (i, src) in sources.iter().enumerate() {
-            if let SourceKind::Traction { x0, x1, .. } = src.kind {
-                if x1 - x0 < MIN_APERTURE * column {
-                    return Err(inv(
-                        file,
-                        format!("source.{i}.x1"),
-                        format!("[{x0}, {x1}]"),
-                        &format!(
-                            "an aperture x1 - x0 of at least {:e} of the element size ({:.3e} \
+            if let SourceKind::Traction { x0, x1, .. } = src.kind
+                && x1 - x0 < MIN_APERTURE * column
+            {
+                return Err(inv(
+                    file,
+                    format!("source.{i}.x1"),
+                    format!("[{x0}, {x1}]"),
+                    &format!(
+                        "an aperture x1 - x0 of at least {:e} of the element size ({:.3e} \
                              m); a narrower source is a point force (kind = \"force\")",
-                            MIN_APERTURE,
-                            MIN_APERTURE * column
-                        ),
-                    ));
-                }
+                        MIN_APERTURE,
+                        MIN_APERTURE * column
+                    ),
+                ));
             }
         }
         let depth = bottom;
@@ -693,7 +698,7 @@ impl Solid2dScenario {
                         format!("{key}.full_width"),
                         true,
                         "full_width = true or an `end` / `length`, not both",
-                    ))
+                    ));
                 }
                 (Some(_), Some(l), false) => {
                     return Err(inv(
@@ -701,7 +706,7 @@ impl Solid2dScenario {
                         format!("{key}.length"),
                         l,
                         "give `end` or `length`, not both",
-                    ))
+                    ));
                 }
                 (Some(e), None, false) => e,
                 (None, Some(l), false) => {
@@ -718,7 +723,7 @@ impl Solid2dScenario {
                         format!("{key}.end"),
                         "missing",
                         "the crack's end [x, z] or its length, m (or full_width = true)",
-                    ))
+                    ));
                 }
             };
             if end == c.start {
@@ -824,7 +829,7 @@ impl Solid2dScenario {
                         "model.crack_every",
                         0,
                         "a whole number >= 1 (steps)",
-                    ))
+                    ));
                 }
                 n => n,
             },
@@ -861,7 +866,7 @@ impl Solid2dScenario {
                         "model.backend",
                         name,
                         "`cpu` (this build has no GPU backend: build with `--features gpu`)",
-                    ))
+                    ));
                 }
                 Some(b) => b,
                 None => return Err(inv(file, "model.backend", name, "`cpu` or `gpu`")),

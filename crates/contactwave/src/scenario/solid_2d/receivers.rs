@@ -110,7 +110,7 @@ pub(super) fn check(
                     format!("{key}.quantity"),
                     v,
                     "velocity or stress",
-                ))
+                ));
             }
         };
         let names = component_names(stress, wave);
@@ -138,7 +138,7 @@ pub(super) fn check(
                 })
                 .collect(),
             (Some(_), Some(n)) => {
-                return Err(inv(file, format!("{key}.count"), n, "2 to 10000 points"))
+                return Err(inv(file, format!("{key}.count"), n, "2 to 10000 points"));
             }
             (Some(_), None) => {
                 return Err(inv(
@@ -146,7 +146,7 @@ pub(super) fn check(
                     format!("{key}.count"),
                     "missing",
                     "the points of the line from `at` to `to`, >= 2",
-                ))
+                ));
             }
             (None, Some(_)) => {
                 return Err(inv(
@@ -154,7 +154,7 @@ pub(super) fn check(
                     format!("{key}.to"),
                     "missing",
                     "the line's last point [x, z], m (with `count`)",
-                ))
+                ));
             }
         };
         for (at, name) in line {

@@ -129,10 +129,10 @@ impl GapRun<'_> {
             y[0] = stages[2];
             self.ode.remember(tb, g[2]);
             k += 1;
-            if k.is_multiple_of(4096) {
-                if let Err(e) = crate::interrupt::check() {
-                    break Err(e);
-                }
+            if k.is_multiple_of(4096)
+                && let Err(e) = crate::interrupt::check()
+            {
+                break Err(e);
             }
             self.record(out, acc, tb, *y);
             if !next_quiet {

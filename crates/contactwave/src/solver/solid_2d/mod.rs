@@ -527,14 +527,14 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             }
         }
         for (i, s) in self.sources.iter().enumerate() {
-            if let SourceKind::Force { at, .. } = s.kind {
-                if !region.contains(at) {
-                    return bad(
-                        &format!("source.{i}.at"),
-                        format!("{at:?}"),
-                        &region.describe(),
-                    );
-                }
+            if let SourceKind::Force { at, .. } = s.kind
+                && !region.contains(at)
+            {
+                return bad(
+                    &format!("source.{i}.at"),
+                    format!("{at:?}"),
+                    &region.describe(),
+                );
             }
         }
         for (i, l) in self.layers.iter().enumerate() {

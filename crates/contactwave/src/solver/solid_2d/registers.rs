@@ -9,7 +9,7 @@
 /// A module `$name` of the element forces on `$lanes` lanes of vector type `$v` under
 /// target feature `$feature`, with its intrinsics.
 macro_rules! element_forces {
-    ($name:ident, $feature:literal, $v:ty, $lanes:expr,
+    ($name:ident, $feature:literal, $v:ty, $lanes:expr_2021,
      $add:ident, $sub:ident, $mul:ident, $set1:ident, $loadu:ident, $storeu:ident) => {
         #[cfg(target_arch = "x86_64")]
         pub(super) mod $name {

@@ -153,7 +153,7 @@ pub(super) fn parse_sweep_csv(text: &str, path: &Path) -> Result<SweepTable> {
             return Ok(SweepTable {
                 header: vec![],
                 rows: vec![],
-            })
+            });
         }
     };
     let mut rows = Vec::new();
@@ -173,7 +173,7 @@ pub(super) fn parse_sweep_csv(text: &str, path: &Path) -> Result<SweepTable> {
                         k + 2,
                         header.len()
                     ),
-                })
+                });
             }
         }
     }

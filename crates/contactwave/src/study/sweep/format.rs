@@ -583,10 +583,10 @@ fn sweep_allowed(key: &str, problem: FieldProblem) -> String {
         "" => {
             return "a sweep file has `base` (the base scenario file), an optional `[set]` \
                     table of fixed overrides and `[[axis]]` tables"
-                .into()
+                .into();
         }
         "axis" if problem == FieldProblem::Unknown => {
-            return "an axis has `parameter` and one of `values`, `linspace`, `logspace`".into()
+            return "an axis has `parameter` and one of `values`, `linspace`, `logspace`".into();
         }
         "base" => "the path of the base scenario file, relative to the sweep file",
         "set" => "a table of dotted scenario keys and values",
@@ -655,7 +655,7 @@ impl AxisFile {
                             field,
                             x,
                             "every value must be a finite number",
-                        ))
+                        ));
                     }
                     Err(why) => return Err(Error::invalid(file, field, x, why)),
                 }
@@ -704,7 +704,7 @@ impl AxisFile {
                                 "must be {what}: finite numbers{range} and n an integer in \
                                  [1, {MAX_AXIS_POINTS}]"
                             ),
-                        ))
+                        ));
                     }
                 },
                 _ => {
@@ -713,7 +713,7 @@ impl AxisFile {
                         field,
                         raw(),
                         format!("must be {what} with n an integer >= 1"),
-                    ))
+                    ));
                 }
             }
         };
@@ -834,16 +834,47 @@ mod tests {
     fn bad_axes_are_errors_naming_file_and_field() {
         let b = "base = \"base.toml\"\n";
         let cases = [
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.1, 0.2]\n"), "axis.0.linspace"),
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.1, 0.2, 0]\n"), "axis.0.linspace"),
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nlogspace = [0.1, 0.2, 2.5]\n"), "axis.0.logspace"),
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = []\n"), "axis.0.values"),
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1, nan]\n"), "axis.0.values"),
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\nlinspace = [0.1, 0.2, 2]\n"), "axis.0"),
-            (format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\n[[axis]]\nparameter = \"incident.cycles\"\nvalue = [3]\n"), "axis.1.value"),
+            (
+                format!("{b}[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.1, 0.2]\n"),
+                "axis.0.linspace",
+            ),
+            (
+                format!("{b}[[axis]]\nparameter = \"incident.xi\"\nlinspace = [0.1, 0.2, 0]\n"),
+                "axis.0.linspace",
+            ),
+            (
+                format!("{b}[[axis]]\nparameter = \"incident.xi\"\nlogspace = [0.1, 0.2, 2.5]\n"),
+                "axis.0.logspace",
+            ),
+            (
+                format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = []\n"),
+                "axis.0.values",
+            ),
+            (
+                format!("{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1, nan]\n"),
+                "axis.0.values",
+            ),
+            (
+                format!(
+                    "{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\nlinspace = [0.1, 0.2, 2]\n"
+                ),
+                "axis.0",
+            ),
+            (
+                format!(
+                    "{b}[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\n[[axis]]\nparameter = \"incident.cycles\"\nvalue = [3]\n"
+                ),
+                "axis.1.value",
+            ),
             (format!("{b}[[axis]]\nvalues = [0.1]\n"), "axis.0.parameter"),
-            (format!("{b}foo = 1\n[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\n"), "foo"),
-            ("[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\n".to_string(), "base"),
+            (
+                format!("{b}foo = 1\n[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\n"),
+                "foo",
+            ),
+            (
+                "[[axis]]\nparameter = \"incident.xi\"\nvalues = [0.1]\n".to_string(),
+                "base",
+            ),
             (b.to_string(), "axis"),
         ];
         for (k, (body, field)) in cases.iter().enumerate() {

@@ -202,7 +202,7 @@ pub fn merge_sweep_csvs(
                          file with --sweep, or rerun the shard",
                         shard_path(path).display()
                     ),
-                ))
+                ));
             }
             (Some(f), Some((n, from))) if f.points != *n => {
                 return Err(invalid(
@@ -210,7 +210,7 @@ pub fn merge_sweep_csvs(
                     "points",
                     f.points,
                     format!("{from} has {n} points: the shards come from different sweeps"),
-                ))
+                ));
             }
             (Some(f), None) => {
                 grid = Some((f.points, path.display().to_string()));
@@ -228,7 +228,7 @@ pub fn merge_sweep_csvs(
                             "{} is a shard of {n}: the shards were cut differently",
                             p0.display()
                         ),
-                    ))
+                    ));
                 }
                 None => count = Some((f.shard.count, path.as_path())),
                 _ => {}
@@ -240,20 +240,20 @@ pub fn merge_sweep_csvs(
         let h = h.trim().to_string();
         match &hash {
             None => {
-                if let Some(sw) = sweep {
-                    if sw.hash != h {
-                        return Err(invalid(
-                            path,
-                            "hash",
-                            &h,
-                            format!(
-                                "the shard was written by a different sweep (base scenario, \
+                if let Some(sw) = sweep
+                    && sw.hash != h
+                {
+                    return Err(invalid(
+                        path,
+                        "hash",
+                        &h,
+                        format!(
+                            "the shard was written by a different sweep (base scenario, \
                                  axes or contactwave version) than {} (hash {})",
-                                sw.file.display(),
-                                sw.hash
-                            ),
-                        ));
-                    }
+                            sw.file.display(),
+                            sw.hash
+                        ),
+                    ));
                 }
                 hash = Some((h, path.clone()));
             }
@@ -267,7 +267,7 @@ pub fn merge_sweep_csvs(
                          sweeps",
                         p0.display()
                     ),
-                ))
+                ));
             }
             Some(_) => {}
         }
@@ -298,7 +298,7 @@ pub fn merge_sweep_csvs(
                         "the header differs from that of {}: `{head}` vs `{h0}`",
                         p0.display()
                     ),
-                })
+                });
             }
             Some(_) => {}
         }
@@ -343,10 +343,10 @@ pub fn merge_sweep_csvs(
         let ep = errors_path(path);
         if let Ok(t) = std::fs::read_to_string(&ep) {
             for line in t.lines().skip(1) {
-                if let Some((p, msg)) = line.split_once(',') {
-                    if let Ok(p) = p.trim().parse::<usize>() {
-                        failed.insert(p, format!("{}: {}", ep.display(), msg.trim_matches('"')));
-                    }
+                if let Some((p, msg)) = line.split_once(',')
+                    && let Ok(p) = p.trim().parse::<usize>()
+                {
+                    failed.insert(p, format!("{}: {}", ep.display(), msg.trim_matches('"')));
                 }
             }
         }

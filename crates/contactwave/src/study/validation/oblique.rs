@@ -237,9 +237,19 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
                 }
             }
             let (name, tol) = if deg == 0.0 {
-                (format!("oblique solver at 0 deg = normal-incidence solver ({key}): max difference / peak"), 1e-12)
+                (
+                    format!(
+                        "oblique solver at 0 deg = normal-incidence solver ({key}): max difference / peak"
+                    ),
+                    1e-12,
+                )
             } else {
-                (format!("oblique solver at 1e-3 deg (coupled path) vs normal incidence ({key}): max difference / peak"), 1e-4)
+                (
+                    format!(
+                        "oblique solver at 1e-3 deg (coupled path) vs normal incidence ({key}): max difference / peak"
+                    ),
+                    1e-4,
+                )
             };
             v.push(ValidationCase::new(name, 0.0, err, tol));
         }

@@ -3,8 +3,7 @@
 //! `sweep --threads 1` and `2`) and when run twice in a row. The reference outputs
 //! (`scripts/reference_outputs.py`) compare values within 1e-9; this test holds the bytes.
 
-mod common;
-use common::{examples, tmpdir};
+use crate::common::{examples, tmpdir};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;

@@ -3,8 +3,7 @@
 //! command line, the date); `--hdf5` writes result.h5 / sweep.h5 that read back with
 //! their units and the provenance as root attributes.
 
-mod common;
-use common::{examples, tmpdir};
+use crate::common::{examples, tmpdir};
 use sha2::{Digest, Sha256};
 use std::path::Path;
 use std::process::Command;

@@ -1,7 +1,6 @@
 //! Property tests over random valid scenarios (issue 2, item 9): no panic, finite
 //! outputs, beta in [0, 1] and non-increasing, Signorini with rigid compression.
 
-mod common;
 use contactwave::{scenario::Scenario, simulate};
 use proptest::prelude::*;
 
@@ -88,7 +87,7 @@ proptest! {
         // coarse sampling (64 per period) and very stiff branches: a sanity bound only (a
         // damaging RCCM branch of C_N = 2e15 Pa/m at 229 kHz closes to 1.7e-3 at this
         // sampling: the regression file keeps it); the 1e-6 closure at default resolution is
-        // asserted in tests/validation.rs
+        // asserted in tests/all/validation.rs
         prop_assert!(r.summary.get("energy_closure_error").unwrap() < 1e-2, "closure\n{}", text);
     }
 }

@@ -4,11 +4,10 @@
 //! partial file, and quickly: no abort ("memory allocation failed", exit 134), no hang.
 //!
 //! The memory budget is fixed (`CONTACTWAVE_MEMORY_BUDGET=2G`) so that the refusals do not
-//! depend on the machine. `cargo test --release -p contactwave-cli --test hostile --
+//! depend on the machine. `cargo test --release -p contactwave-cli --test all -- hostile::
 //! --nocapture` prints each case's time to refusal.
 
-mod common;
-use common::{examples, tmpdir};
+use crate::common::{examples, tmpdir};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};

@@ -149,7 +149,7 @@ fn rigid_stick_clipping_fd_matches_exact() {
     assert!(err < step_change, "{err:e}");
     assert!(diff < step_change, "{diff:e}");
     // harmonics of the reflected and transmitted velocities (the exact solver's match the
-    // clipped sine's Fourier series: tests/shear.rs)
+    // clipped sine's Fourier series: tests/all/shear.rs)
     let h_fd = harmonics(&out.shear, f);
     let h_ex = harmonics(&ex.shear, f);
     for i in 0..4 {

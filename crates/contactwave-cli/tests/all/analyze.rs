@@ -2,8 +2,7 @@
 //! command line: its files with provenance, and one-line errors with exit code 2 that
 //! write nothing.
 
-mod common;
-use common::tmpdir;
+use crate::common::tmpdir;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

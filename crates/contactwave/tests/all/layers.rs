@@ -260,7 +260,7 @@ fn every_top_level_module_has_a_layer() {
         if let Some(top) = m.first() {
             assert!(
                 layer(top).is_some(),
-                "module `{top}` has no layer in tests/layers.rs"
+                "module `{top}` has no layer in tests/all/layers.rs"
             );
         }
     }
@@ -274,10 +274,10 @@ fn imports_go_downwards_only() {
         let (Some(a), Some(b)) = (from.first(), to.first()) else {
             continue;
         };
-        if let (Some(la), Some(lb)) = (layer(a), layer(b)) {
-            if lb > la {
-                bad.push(format!("{} -> {}", from.join("::"), to.join("::")));
-            }
+        if let (Some(la), Some(lb)) = (layer(a), layer(b))
+            && lb > la
+        {
+            bad.push(format!("{} -> {}", from.join("::"), to.join("::")));
         }
     }
     assert!(
@@ -308,10 +308,10 @@ fn no_import_cycles_between_sibling_modules() {
         };
         let mut g: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
         for (a, b) in &edges {
-            if let (Some(x), Some(y)) = (child_of(a), child_of(b)) {
-                if x != y {
-                    g.entry(x).or_default().insert(y);
-                }
+            if let (Some(x), Some(y)) = (child_of(a), child_of(b))
+                && x != y
+            {
+                g.entry(x).or_default().insert(y);
             }
         }
         // depth-first search for a back edge

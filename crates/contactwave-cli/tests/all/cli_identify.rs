@@ -1,8 +1,7 @@
 //! End-to-end tests of `contactwave identify`: its report and design files, and one-line
 //! errors with exit code 2 and no output on bad identification inputs (split from cli.rs).
 
-mod common;
-use common::{bin, cli, examples, stderr, tmpdir};
+use crate::common::{bin, cli, examples, stderr, tmpdir};
 use std::path::{Path, PathBuf};
 
 /// An identification file in `d` on the chapter-3 example, with a quick fit.

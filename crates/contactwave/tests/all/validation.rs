@@ -1,8 +1,7 @@
 //! Validation of the exact half-space solver against analytical solutions, limits and
 //! published findings (issue 2, item 8; thesis chapters 3 and 5; model.md sections 4, 7).
 
-mod common;
-use common::*;
+use crate::common::*;
 use contactwave::analytic::Bilinear;
 use contactwave::material::Material;
 
@@ -259,8 +258,14 @@ fn rccm_damage_threshold_and_monotone_beta() {
 fn rccm_stiffness_limits() {
     let inc = "cycles = 15\nxi = 0.35";
     let uni = run(&pmma("static_pressure = 0.1e6", inc));
-    let soft = run(&pmma("static_pressure = 0.1e6\ntraction = { law = \"rccm\", stiffness = 1e2, energy = 0.1, viscosity = 1e-8 }", inc));
-    let stiff = run(&pmma("static_pressure = 0.1e6\ntraction = { law = \"rccm\", stiffness = 1e18, energy = 1e9, viscosity = 1e-8 }", inc));
+    let soft = run(&pmma(
+        "static_pressure = 0.1e6\ntraction = { law = \"rccm\", stiffness = 1e2, energy = 0.1, viscosity = 1e-8 }",
+        inc,
+    ));
+    let stiff = run(&pmma(
+        "static_pressure = 0.1e6\ntraction = { law = \"rccm\", stiffness = 1e18, energy = 1e9, viscosity = 1e-8 }",
+        inc,
+    ));
     let bonded = run(&pmma(
         "static_pressure = 0.1e6\ntraction = { law = \"bonded\" }",
         inc,
@@ -283,7 +288,10 @@ fn rccm_stiffness_limits() {
 fn rccm_after_peel_off_equals_unilateral() {
     // w = 0: total decohesion at the first opening
     let inc = "cycles = 15\namplitude = 8.2e6";
-    let rc = run(&pmma("static_pressure = 0.082e6\ntraction = { law = \"rccm\", stiffness = 2e13, energy = 0.0, viscosity = 0 }", inc));
+    let rc = run(&pmma(
+        "static_pressure = 0.082e6\ntraction = { law = \"rccm\", stiffness = 2e13, energy = 0.0, viscosity = 0 }",
+        inc,
+    ));
     let uni = run(&pmma("static_pressure = 0.082e6", inc));
     assert_eq!(get(&rc, "beta_end"), 0.0);
     let (a, b) = (&rc.interface, &uni.interface);
@@ -373,7 +381,12 @@ fn energy_audit() {
         }
     }
     for b in ["0", "1e-8"] {
-        let r = run(&pmma(&format!("static_pressure = 0.082e6\ntraction = {{ law = \"rccm\", stiffness = 2e13, energy = 0.1, viscosity = {b} }}"), "cycles = 15\namplitude = 1.6e6"));
+        let r = run(&pmma(
+            &format!(
+                "static_pressure = 0.082e6\ntraction = {{ law = \"rccm\", stiffness = 2e13, energy = 0.1, viscosity = {b} }}"
+            ),
+            "cycles = 15\namplitude = 1.6e6",
+        ));
         assert!(
             get(&r, "energy_closure_error") < 1e-6,
             "b {b}: {:e}",
@@ -397,9 +410,20 @@ fn energy_audit() {
 fn default_resolution_is_converged() {
     let cases = [
         pmma("static_pressure = 0.1e6", "cycles = 15\nxi = 0.35"),
-        pmma(&format!("static_pressure = 0.082e6\n{RCCM}"), "cycles = 15\namplitude = 1.6e6"),
-        pmma(&format!("static_pressure = 0.14e6\ncompression = {{ law = \"power\", c = 1.81e10, m = 0.35 }}\n{RCCM}"), "cycles = 15\nxi = 0.5"),
-        pmma("static_pressure = 0.14e6\ncompression = { law = \"linear\", stiffness = 3e11 }\ntraction = { law = \"linear\", stiffness = 1e10 }", "cycles = 15\nxi = 0.5"),
+        pmma(
+            &format!("static_pressure = 0.082e6\n{RCCM}"),
+            "cycles = 15\namplitude = 1.6e6",
+        ),
+        pmma(
+            &format!(
+                "static_pressure = 0.14e6\ncompression = {{ law = \"power\", c = 1.81e10, m = 0.35 }}\n{RCCM}"
+            ),
+            "cycles = 15\nxi = 0.5",
+        ),
+        pmma(
+            "static_pressure = 0.14e6\ncompression = { law = \"linear\", stiffness = 3e11 }\ntraction = { law = \"linear\", stiffness = 1e10 }",
+            "cycles = 15\nxi = 0.5",
+        ),
     ];
     for c in cases {
         let a = run(&c);

@@ -228,7 +228,7 @@ fn a_compliant_crack_is_open_only_beyond_its_contact_loss_gap() {
         };
         // the faces move apart under compression (a positive gap, still closed)
         assert!(cells().any(|((&g, &s), &st)| g > 0.0 && s < -1e3 && st != 0.0));
-        let open = cells().filter(|(_, &st)| st == 0.0).count();
+        let open = cells().filter(|&(_, &st)| st == 0.0).count();
         assert_eq!(open > 0, opens, "{amplitude}: {open} open cells");
         for ((&g, &s), &st) in cells() {
             if st == 0.0 {

@@ -69,6 +69,7 @@ fn the_example_records_are_what_its_synthesize_command_makes() {
 }
 
 #[test]
+#[ignore = "slow: full tier"]
 fn c_n_is_recovered_from_raw_records_within_five_percent() {
     let spec = IdentifySpec::load(&example()).unwrap();
     // the records' analysis: large drives open the interface (A2/A1 ~ 0.9), the two
@@ -185,7 +186,7 @@ fn bad_records_tables_are_one_line_errors() {
 
 #[test]
 fn the_2d_receivers_are_waveforms_with_twins() {
-    // a small clapping crack (tests/solid_2d.rs): each receiver component is a waveform
+    // a small clapping crack (tests/all/solid_2d.rs): each receiver component is a waveform
     // equal to its row of the run's arrays, and pulse inversion's twin is the run with the
     // source negated (at a closed, linear crack it is exactly the opposite signal)
     let text = r#"

@@ -1,8 +1,7 @@
 //! The finite-difference bar-stack solver (issue 3): Courant-1 exactness and
 //! cross-validation against the exact half-space solver.
 
-mod common;
-use common::*;
+use crate::common::*;
 use contactwave::excitation::{ToneBurst, Window};
 use contactwave::material::Material;
 use contactwave::solver::bar_stack::{BarStack, End, FdRun, Segment};

@@ -45,9 +45,15 @@ fn the_example_data_are_what_its_synthesize_command_makes() {
 
 #[test]
 #[ignore = "slow: full tier"]
-// 636 forward runs: 200 s of one core (15 min on the loaded 2-core machine)
+// The example's search made lighter (a swarm of 3 for 2 iterations, 12 Nelder-Mead
+// iterations, against 4, 3 and 24): the assertion is recovery, and the example's own
+// search runs once per CI run, in the reference outputs (`identify` of the example,
+// its estimate and intervals within 1e-9)
 fn closure_pressure_and_friction_recovered_from_2d_receiver_harmonics() {
-    let spec = IdentifySpec::load(&example()).unwrap();
+    let mut spec = IdentifySpec::load(&example()).unwrap();
+    spec.fit.particles = 3;
+    spec.fit.iterations = 2;
+    spec.fit.local_iterations = 12;
     let r = identify(&spec, &|_| {}).unwrap();
     eprintln!(
         "{:?}, {} forward runs in {:.1} s",
