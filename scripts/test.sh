@@ -187,6 +187,11 @@ if cargo tree -p contactwave --no-default-features -e normal | grep -E 'plotters
     exit 1
 fi
 
+# One release build of the library for the tests, the CLI, the doc tests and the wheel:
+# their dependency features must agree (crates/contactwave-py/Cargo.toml aligns them)
+step "the same dependency features for the tests and the wheel (scripts/feature_sets.py)"
+"$PYTHON" scripts/feature_sets.py
+
 # cargo-nextest (on the CI machines; `cargo install cargo-nextest --locked` elsewhere);
 # without it, cargo test runs the same tests (no per-test timeout, no timings table).
 # The Python extension crate has no Rust tests (it needs libpython to link one).
