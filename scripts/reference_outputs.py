@@ -805,7 +805,11 @@ def git_state():
     try:
         commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, check=True,
                                 capture_output=True, text=True).stdout.strip()
-        status = subprocess.run(["git", "status", "--porcelain"], cwd=ROOT, check=True,
+        # --no-optional-locks: a status that rewrote the index would make the library's
+        # build script (which watches the index) run again, and the wheel's build then
+        # compile the library again
+        status = subprocess.run(["git", "--no-optional-locks", "status", "--porcelain"],
+                                cwd=ROOT, check=True,
                                 capture_output=True, text=True).stdout
     except (OSError, subprocess.CalledProcessError):
         return None, False

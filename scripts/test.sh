@@ -226,9 +226,13 @@ if [ "$QUICK" -eq 1 ]; then
 fi
 
 # The CLI the reference check, the doc commands and the Python tests use: the test build
-# made it (target/release/contactwave); this is a no-op unless it is missing.
-step "cargo build --release -p contactwave-cli (already built by the tests)"
-cargo build --release -p contactwave-cli
+# made it (target/release/contactwave, for the CLI's integration tests). A separate
+# `cargo build -p contactwave-cli` would resolve other dependency features (no
+# dev-dependencies) and compile the library again.
+if [ ! -x "$TARGET/release/contactwave" ]; then
+    echo "error: $TARGET/release/contactwave was not built by the tests" >&2
+    exit 1
+fi
 
 # Every output of the CLI (reproduce, run, sweep, merge, law, convergence, identify, fit,
 # validate) against the values recorded in tests/reference/ (within 1e-9 relative); the

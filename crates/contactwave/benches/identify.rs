@@ -1,4 +1,4 @@
-//! Criterion benchmark of the identification (docs/performance.md, issue 13).
+//! Criterion benchmark of the identification (docs/performance.md section 2).
 //!
 //! - `identify/rccm_damaged`: `examples/identify/rccm_damaged.toml` as
 //!   `contactwave identify` runs it, files excluded: three parameters of a damaged RCCM
