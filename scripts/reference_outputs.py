@@ -10,7 +10,9 @@ prints every value that changed against the references it replaces (file, column
 key, old, new, relative change): the list a re-recording commit must explain. `check` runs
 the same commands and compares: one line per differing value (the first 20 per file; --all:
 every one), then `N passed, M failed` (N, M = numbers of files; a command's stdout counts as
-a file); exit code 1 on any failure. Standard library only; run from anywhere (commands run
+a file); exit code 1 on any failure. Both also assert FINDINGS below on the outputs (physics
+that a value-for-value comparison cannot tell, e.g. that the 2D identification recovers the
+values its data were made with); `record` stores nothing when one fails. Standard library only; run from anywhere (commands run
 in the repository root, so input paths written into outputs, such as summary.json's
 "scenario", are relative).
 
@@ -259,6 +261,59 @@ def commands():
 # crates/contactwave/tests/all/identify.rs, slow tier, on fewer starts)
 IDENTIFY_SKIPPED = {"tribobrake_power_law"}
 
+
+
+# ---------------------------------------------------------------------------------------
+# Findings: physics asserted on the outputs themselves (record refuses to store outputs
+# that break one, so a re-recording cannot accept a lost result)
+# ---------------------------------------------------------------------------------------
+def recovered(path, truth, width):
+    """An identification.json's check: each parameter identified, its estimate within 5 %
+    of the truth, its 95 % interval holding the estimate and the truth and narrower than
+    `width` times the truth."""
+    def check(out):
+        d = json.loads((out / path).read_text(encoding="utf-8"))
+        problems = []
+        for key, true in truth.items():
+            est = d["estimates"][key]
+            lo, hi = d["intervals"][key]
+            if not d["identified"][key]:
+                problems.append(f"{key} not identified: {d['verdicts'][key]}")
+            if abs(est / true - 1.0) >= 0.05:
+                problems.append(f"{key} = {est:.6g}, true {true:.6g} (more than 5 % off)")
+            if lo is None or hi is None or not (lo < est < hi and lo < true < hi):
+                problems.append(f"{key}: 95 % CI [{lo}, {hi}] misses the estimate {est:.6g} "
+                                f"or the truth {true:.6g}")
+            elif hi - lo >= width * true:
+                problems.append(f"{key}: 95 % CI [{lo:.6g}, {hi:.6g}] wider than "
+                                f"{width} x {true:.6g}")
+        return problems
+    return check
+
+
+FINDINGS = [
+    # examples/identify/crack_closure_friction.toml: the 2D model as the forward model, data
+    # synthesised at p0 = 1.5 MPa, mu = 0.4 with 2 % noise (its header and docs/identify.md
+    # section 7; the data are what its --synthesize command makes: tests/all/identify_2d.rs)
+    ("identify/crack_closure_friction/identification.json: p0 and mu recovered",
+     recovered("identify/crack_closure_friction/identification.json",
+               {"crack.0.static_pressure": 1.5e6, "crack.0.tangential.friction": 0.4}, 0.15)),
+]
+
+
+def check_findings(out):
+    """Prints each finding that fails; returns the number failed."""
+    failed = 0
+    for what, check in FINDINGS:
+        try:
+            problems = check(out)
+        except (OSError, KeyError, ValueError, TypeError) as e:
+            problems = [f"cannot be read: {e!r}"]
+        for pr in problems:
+            print(f"finding failed: {what}: {pr}")
+        failed += bool(problems)
+    print(f"findings: {len(FINDINGS) - failed} passed, {failed} failed")
+    return failed
 
 
 # ---------------------------------------------------------------------------------------
@@ -874,11 +929,17 @@ def main():
         if args.ran:
             Path(args.ran).unlink(missing_ok=True)  # a stale list never describes DIR
         files = run_all(binary, out, ran)
-        if args.ran:
+        findings_failed = check_findings(out)
+        if args.ran and not findings_failed:
             write_ran(Path(args.ran), binary, out, ran)
     else:
         with tempfile.TemporaryDirectory(prefix="contactwave-ref-") as tmp:
             files = run_all(binary, Path(tmp))
+            findings_failed = check_findings(Path(tmp))
+    if args.mode == "record" and findings_failed:
+        print("error: not recorded: outputs that break a finding (FINDINGS) are no reference",
+              file=sys.stderr)
+        return 1
     if args.mode == "record":
         old_format = None
         if ref_path.exists():
@@ -899,7 +960,7 @@ def main():
                                None if args.all else 20, "in the reference")
     print(f"{passed} passed, {failed} failed")
     print(f"reference check took {time.monotonic() - t0:.0f} s", file=sys.stderr)
-    return 0 if failed == 0 else 1
+    return 0 if failed == 0 and findings_failed == 0 else 1
 
 
 if __name__ == "__main__":

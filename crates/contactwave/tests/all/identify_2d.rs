@@ -1,12 +1,14 @@
-//! Identification with the 2D model as the forward model (issue 27):
-//! examples/identify/crack_closure_friction.toml recovers a finite crack's closure pressure
-//! p0 and friction coefficient mu from synthesised receiver harmonics (A2/A1, A3/A1 at two
-//! receivers over six drive amplitudes, 2% noise), and its data CSV is what its documented
-//! `--synthesize` command makes.
+//! Identification with the 2D model as the forward model:
+//! examples/identify/crack_closure_friction.toml's data CSV is what its documented
+//! `--synthesize` command makes (synthesised receiver harmonics, A2/A1 and A3/A1 at two
+//! receivers over six drive amplitudes, 2% noise). That the example recovers the crack's
+//! closure pressure p0 and friction coefficient mu (estimates within 5 %, narrow 95 %
+//! intervals holding the truth) is asserted on its `identify` run in the reference outputs
+//! (scripts/reference_outputs.py, FINDINGS): the 636 forward runs happen once per CI run.
 
 #![cfg(feature = "identify")]
 
-use contactwave::inverse::{identify, synthesize, IdentifySpec};
+use contactwave::inverse::{synthesize, IdentifySpec};
 use std::path::{Path, PathBuf};
 
 const P0: &str = "crack.0.static_pressure";
@@ -41,43 +43,6 @@ fn the_example_data_are_what_its_synthesize_command_makes() {
     assert_eq!(a2.key, "bottom_A2_over_A1");
     assert!(a2.values.windows(2).all(|w| w[0] < w[1]), "{:?}", a2.values);
     assert!(a2.values[0] < 1e-3 && a2.values[5] > 0.1, "{:?}", a2.values);
-}
-
-#[test]
-#[ignore = "slow: full tier"]
-// The example's search made lighter (a swarm of 3 for 2 iterations, 12 Nelder-Mead
-// iterations, against 4, 3 and 24): the assertion is recovery, and the example's own
-// search runs once per CI run, in the reference outputs (`identify` of the example,
-// its estimate and intervals within 1e-9)
-fn closure_pressure_and_friction_recovered_from_2d_receiver_harmonics() {
-    let mut spec = IdentifySpec::load(&example()).unwrap();
-    spec.fit.particles = 3;
-    spec.fit.iterations = 2;
-    spec.fit.local_iterations = 12;
-    let r = identify(&spec, &|_| {}).unwrap();
-    eprintln!(
-        "{:?}, {} forward runs in {:.1} s",
-        r.verdict_lines(),
-        r.forward_runs,
-        r.wall_seconds
-    );
-    for (key, truth) in [(P0, TRUE_P0), (MU, TRUE_MU)] {
-        let est = r.estimate_of(key).unwrap();
-        assert!(r.identified(key), "{key}: {:?}", r.verdict_lines());
-        let (a, b) = r.interval_of(key).unwrap();
-        // the interval holds the estimate and the truth, and is narrow: the drive's
-        // amplitude is known, so the onset of clapping fixes p0, and the slip before it mu
-        assert!(a < est && est < b, "{key} = {est}, 95% CI [{a}, {b}]");
-        assert!(
-            a < truth && truth < b,
-            "{key}: 95% CI [{a}, {b}] misses {truth}"
-        );
-        assert!(b - a < 0.15 * truth, "{key}: 95% CI [{a}, {b}]");
-        assert!(
-            (est / truth - 1.0).abs() < 0.05,
-            "{key} = {est}, true {truth}"
-        );
-    }
 }
 
 /// On a 2D base an experiment design without a key varies the first source's frequency
