@@ -39,7 +39,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "scripts"))
-from reference_outputs import sha256_file  # noqa: E402  (the hash --ran records)
+from reference_outputs import git_state, sha256_file  # noqa: E402  (what --ran records)
 
 #: Prefixes that mean "the contactwave binary".
 CLI_PREFIXES = (
@@ -139,8 +139,7 @@ def load_reuse(path, cli):
     except (OSError, ValueError) as e:
         print(f"note: {path} not read ({e}): every command runs")
         return {}
-    head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True,
-                          text=True).stdout.strip()
+    head, _ = git_state()
     if doc.get("commit") != head or not doc.get("clean"):
         print(f"note: {path} is of commit {doc.get('commit')} (clean: {doc.get('clean')}), "
               f"HEAD is {head}: every command runs")
