@@ -1,7 +1,7 @@
 //! `contactwave analyze RECORDS... --out DIR`: measured waveforms through the simulator's
 //! own harmonic analysis (docs/scenario.md section 9, model.md section 16).
 
-use super::{check_out_dir, write_out, EXIT_OK};
+use super::{check_out, write_out, EXIT_OK};
 use contactwave::analysis::{AnalysisMethod, Gate};
 use contactwave::measured::{self, Amplitudes, Layout, Settings, Sources};
 use contactwave::output::analyze as files;
@@ -19,9 +19,12 @@ pub struct Args {
     /// amplitude).
     #[arg(required = true, value_name = "RECORDS")]
     records: Vec<PathBuf>,
-    /// Output folder (created if needed; files in it are replaced).
+    /// Output folder (created if needed; this command's earlier files in it are replaced,
+    /// another run's results are kept unless --overwrite).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
+    #[command(flatten)]
+    overwrite: super::Overwrite,
     /// Fundamental, Hz (default: detected, the largest record's spectral peak).
     #[arg(long, value_name = "HZ")]
     f0: Option<f64>,
@@ -144,9 +147,11 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         provenance.add_data_file(p)?;
     }
     provenance.stamp(&mut out_files);
-    check_out_dir(&args.out)?;
+    let inputs: Vec<&std::path::Path> = args.records.iter().map(|p| p.as_path()).collect();
+    let source = super::source("analyze", &inputs);
+    check_out(&args.out, &source, args.overwrite)?;
     provenance.check_inputs_kept(&args.out, out_files.iter().map(|f| f.name.as_str()))?;
-    write_out(&args.out, "analyze", &out_files)?;
+    write_out(&args.out, "analyze", &source, args.overwrite, &out_files)?;
     println!(
         "f0 = {:.6e} Hz{}; method {}; {} record(s)",
         analysis.f0,

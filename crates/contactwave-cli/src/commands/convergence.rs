@@ -5,7 +5,7 @@
 //! DIR/convergence.csv, DIR/efficiency.csv and DIR/convergence.svg.
 
 use super::{
-    check_out_dir, output_file, progress_bar, read_table, step_reporter, EXIT_OK, STEPS_TEMPLATE,
+    check_out, output_file, progress_bar, read_table, step_reporter, EXIT_OK, STEPS_TEMPLATE,
 };
 use contactwave::output;
 use contactwave::scenario::bar_stack::BarStackScenario;
@@ -47,6 +47,8 @@ pub struct Args {
     /// Also write convergence.csv, efficiency.csv and convergence.svg into DIR.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    #[command(flatten)]
+    overwrite: super::Overwrite,
 }
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
@@ -81,8 +83,9 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     if let Some(v) = args.xi {
         spec.xi = v;
     }
+    let source = super::source("convergence", &[path]);
     if let Some(o) = out {
-        check_out_dir(o)?;
+        check_out(o, &source, args.overwrite)?;
     }
     let bar = progress_bar(STEPS_TEMPLATE, 0);
     let t0 = Instant::now();
@@ -124,8 +127,9 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             output_file("efficiency.csv", r.curves_csv()),
             output_file("convergence.svg", svg),
         ];
+        super::check_names(o, files.iter().map(|f| f.name.as_str()), args.overwrite)?;
         output::write_files(o, &files)?;
-        super::claim_files(o, "convergence", &files)?;
+        super::claim_files(o, "convergence", &source, &files)?;
         println!("wrote 3 files to {}", o.display());
     }
     println!("wall time {:.2} s", t0.elapsed().as_secs_f64());

@@ -10,7 +10,7 @@
 //!
 //! Everything is validated before the output folder is touched.
 
-use super::{check_out_dir, output_file, write_out, EXIT_FAILED, EXIT_OK};
+use super::{check_out, output_file, write_out, Overwrite, EXIT_FAILED, EXIT_OK};
 use contactwave::inverse::{self, synthesize, IdentifySpec, Model};
 use contactwave::Error;
 use std::io::IsTerminal;
@@ -25,9 +25,12 @@ use std::path::{Path, PathBuf};
 pub struct Args {
     /// Identification file (TOML).
     spec: PathBuf,
-    /// Output folder (created if needed).
+    /// Output folder (created if needed; another run's results in it are kept unless
+    /// --overwrite).
     #[arg(long, value_name = "DIR", required_unless_present_any = ["design", "synthesize"])]
     out: Option<PathBuf>,
+    #[command(flatten)]
+    overwrite: super::Overwrite,
     /// Rank the candidate experiments of the file's [design] table.
     #[arg(long)]
     design: bool,
@@ -88,6 +91,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             args.out.as_deref(),
             args.design,
             args.tolerate_failures,
+            args.overwrite,
         )
     } else {
         synthesize_data(&args.spec, &args.synthesize, noise, seed)
@@ -102,10 +106,12 @@ fn identify(
     out: Option<&Path>,
     design: bool,
     tolerate: bool,
+    overwrite: Overwrite,
 ) -> contactwave::Result<u8> {
     let spec = IdentifySpec::load(path)?;
+    let source = super::source("identify", &[path]);
     if let Some(out) = out {
-        check_out_dir(out)?;
+        check_out(out, &source, overwrite)?;
     }
     let provenance = identification_provenance(path, &spec)?;
     // on a terminal: a spinner with the elapsed time and the current stage, each finished
@@ -151,7 +157,7 @@ fn identify(
             ];
             provenance.stamp(&mut files);
             provenance.check_inputs_kept(out, files.iter().map(|f| f.name.as_str()))?;
-            write_out(out, "identify", &files)?;
+            write_out(out, "identify", &source, overwrite, &files)?;
         }
         return Ok(EXIT_OK);
     }
@@ -186,7 +192,7 @@ fn identify(
     );
     if let Some(out) = out {
         provenance.check_inputs_kept(out, files.iter().map(|f| f.name.as_str()))?;
-        write_out(out, "identify", &files)?;
+        write_out(out, "identify", &source, overwrite, &files)?;
     }
     if result.failed_runs > 0 {
         let what = if tolerate { "warning" } else { "error" };

@@ -7,7 +7,7 @@
 //! (`[model] kind = "solid_2d"`), per crack (`law_curve_0.csv`, `law_tangential_0.csv`,
 //! ...), each law at the crack's static pressure (its closure table's values aside).
 
-use super::{check_out_dir, EXIT_OK};
+use super::{check_out, EXIT_OK};
 use contactwave::output;
 use contactwave::scenario::bar_stack::BarStackScenario;
 use contactwave::scenario::read_table;
@@ -23,13 +23,18 @@ use std::path::{Path, PathBuf};
 pub struct Args {
     /// Scenario file (TOML).
     scenario: PathBuf,
-    /// Output folder (created if needed).
+    /// Output folder (created if needed; another run's results in it are kept unless
+    /// --overwrite).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
+    #[command(flatten)]
+    overwrite: super::Overwrite,
 }
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
     let table = read_table(&args.scenario)?;
+    let source = super::source("law", &[&args.scenario]);
+    let check_out_dir = |out: &Path| check_out(out, &source, args.overwrite);
     let files = if BarStackScenario::is_bar_stack(&table) {
         let s = BarStackScenario::from_table(table, &args.scenario)?;
         check_out_dir(&args.out)?;
@@ -77,7 +82,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         let tangential = scenario.shear.as_ref().map(|s| &*s.tangential);
         output::law_files_with(&scenario.law, tangential)?
     };
-    super::write_out(&args.out, "law", &files)?;
+    super::write_out(&args.out, "law", &source, args.overwrite, &files)?;
     Ok(EXIT_OK)
 }
 

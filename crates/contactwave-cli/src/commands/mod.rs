@@ -38,15 +38,50 @@ pub const EXIT_INTERRUPTED: u8 = 130;
 /// the command stops silently, as `cat` does (128 + SIGPIPE).
 pub const EXIT_OUTPUT_CLOSED: u8 = 141;
 
-/// Refuse an output path that exists and is not a folder (before any work is done).
-pub fn check_out_dir(out: &Path) -> contactwave::Result<()> {
+/// `--overwrite`, shared by the commands that write an output folder.
+#[derive(clap::Args, Debug, Clone, Copy, Default)]
+pub struct Overwrite {
+    /// Replace another run's results in the output folder (without it a folder holding the
+    /// results of another command or input, or files contactwave did not write under the
+    /// names this run writes, is refused before any work; the same run re-run into its own
+    /// folder replaces its files)
+    #[arg(long)]
+    pub overwrite: bool,
+}
+
+/// The run a command's output folder belongs to, as its manifest records it: the command
+/// and its input (`run /abs/plate.toml`; the input canonicalized where it exists).
+pub fn source(command: &str, inputs: &[&Path]) -> String {
+    let mut s = command.to_string();
+    for p in inputs {
+        let p = std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
+        s.push(' ');
+        s.push_str(&p.display().to_string());
+    }
+    s
+}
+
+/// Refuse, before any work, an output path that exists and is not a folder, or a folder
+/// holding another run's results (unless `overwrite`: [`output::manifest::check_owner`]).
+pub fn check_out(out: &Path, source: &str, overwrite: Overwrite) -> contactwave::Result<()> {
     if out.exists() && !out.is_dir() {
         return Err(Error::io(
             out,
             std::io::Error::other("exists and is not a directory"),
         ));
     }
-    Ok(())
+    output::manifest::check_owner(out, source, overwrite.overwrite)
+}
+
+/// Refuse, before writing, to replace a file of `out` no contactwave command wrote
+/// ([`output::manifest::check_collisions`]).
+pub fn check_names<'a>(
+    out: &Path,
+    names: impl IntoIterator<Item = &'a str>,
+    overwrite: Overwrite,
+) -> contactwave::Result<()> {
+    let names: Vec<String> = names.into_iter().map(str::to_string).collect();
+    output::manifest::check_collisions(out, &names, overwrite.overwrite)
 }
 
 /// Read and parse a scenario file into its TOML table (not yet checked as a scenario).
@@ -70,25 +105,43 @@ pub fn write_and_list(out: &Path, files: &[OutputFile]) -> contactwave::Result<(
     Ok(())
 }
 
-/// Write `files` into the output folder `out` of `command` ([`write_and_list`]) and record
-/// them in the folder's manifest ([`claim_out`]).
-pub fn write_out(out: &Path, command: &str, files: &[OutputFile]) -> contactwave::Result<()> {
+/// Write `files` into the output folder `out` of `command` run on `source` ([`source`])
+/// ([`write_and_list`], refused where it would replace a file no contactwave command
+/// wrote: [`check_names`]) and record them in the folder's manifest ([`claim_out`]).
+pub fn write_out(
+    out: &Path,
+    command: &str,
+    source: &str,
+    overwrite: Overwrite,
+    files: &[OutputFile],
+) -> contactwave::Result<()> {
+    check_names(out, files.iter().map(|f| f.name.as_str()), overwrite)?;
     write_and_list(out, files)?;
-    claim_files(out, command, files)
+    claim_files(out, command, source, files)
 }
 
 /// [`claim_out`] for the `files` of `command` written into `out`.
-pub fn claim_files(out: &Path, command: &str, files: &[OutputFile]) -> contactwave::Result<()> {
+pub fn claim_files(
+    out: &Path,
+    command: &str,
+    source: &str,
+    files: &[OutputFile],
+) -> contactwave::Result<()> {
     let names: Vec<String> = files.iter().map(|f| f.name.clone()).collect();
-    claim_out(out, command, &names)
+    claim_out(out, command, source, &names)
 }
 
 /// Record that `command` wrote `files` (relative to `out`) into its output folder `out`
 /// (the manifest `.contactwave-manifest.json`): the files an earlier contactwave command
 /// wrote there and this one did not are removed (a note on stderr names them), files no
 /// contactwave command wrote are left untouched and named in a warning.
-pub fn claim_out(out: &Path, command: &str, files: &[String]) -> contactwave::Result<()> {
-    let c = output::manifest::claim(out, command, files)?;
+pub fn claim_out(
+    out: &Path,
+    command: &str,
+    source: &str,
+    files: &[String],
+) -> contactwave::Result<()> {
+    let c = output::manifest::claim(out, command, source, files)?;
     let list = |paths: &[std::path::PathBuf]| {
         let mut s = paths
             .iter()

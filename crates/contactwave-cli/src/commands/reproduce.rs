@@ -5,18 +5,21 @@
 //! DIR/findings.json and DIR/figures/<id>.svg + <id>.csv. Prints each chapter's figure
 //! and simulation counts and its findings.
 
-use super::{check_out_dir, progress_bar, EXIT_OK};
+use super::{check_out, progress_bar, EXIT_OK};
 use contactwave::output::provenance::{process_command_line, Provenance};
 use contactwave::reproduce::{run_chapter_at, write_report_with, Chapter};
 use std::path::PathBuf;
 use std::time::Instant;
 
-/// Reproduce the studies of thesis chapters 3, 4 and 5 and the shear chapter beyond the
-/// thesis from embedded scenarios (no input file): DIR/report.html (self-contained, inline SVG), DIR/findings.json and
+/// Reproduce the studies of thesis chapters 3, 4 and 5 and, beyond the thesis, of shear
+/// waves (`shear`) and finite cracks in 2D (`finite_crack`) from embedded scenarios (no
+/// input file): DIR/report.html (self-contained, inline SVG), DIR/findings.json and
 /// DIR/figures/<id>.svg + <id>.csv.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Which studies.
+    /// Which studies: `chapter3`, `chapter4`, `chapter5` (the thesis' chapters), `shear`
+    /// (shear waves and tangential contact), `finite_crack` (finite cracks in 2D: the
+    /// longest; `--quick` for its coarser resolution) or `all`.
     #[arg(default_value = "all",
           value_parser = ["chapter3", "chapter4", "chapter5", "shear", "finite_crack", "all"])]
     which: String,
@@ -24,15 +27,20 @@ pub struct Args {
     /// (`finite_crack`; the one CI runs); the others run alike.
     #[arg(long)]
     quick: bool,
-    /// Output folder (created if needed; files in it are replaced).
+    /// Output folder (created if needed; this command's earlier files in it are replaced,
+    /// another run's results are kept unless --overwrite).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
+    #[command(flatten)]
+    overwrite: super::Overwrite,
 }
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
     let out = args.out.as_path();
     let chapters = Chapter::parse_list(&args.which)?;
-    check_out_dir(out)?;
+    // the studies chosen name the run (--quick or not: the same studies, replaced)
+    let source = format!("reproduce {}", args.which);
+    check_out(out, &source, args.overwrite)?;
     let t0 = Instant::now();
     let bar = progress_bar("{msg:<28} {bar:30} {pos}/{len} runs  {elapsed_precise}", 0);
     let current = std::sync::Mutex::new(String::new());
@@ -72,7 +80,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             rel.to_string_lossy().replace('\\', "/")
         })
         .collect();
-    super::claim_out(out, "reproduce", &names)?;
+    super::claim_out(out, "reproduce", &source, &names)?;
     for r in &results {
         println!(
             "{}: {} figures, {} simulations, {:.1} s",

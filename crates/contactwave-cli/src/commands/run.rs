@@ -6,7 +6,7 @@
 //! crack fields, plots and snapshots; long runs with a progress bar on a terminal (plain
 //! progress lines without one).
 
-use super::{check_out_dir, progress_bar, read_table, step_reporter, EXIT_OK, STEPS_TEMPLATE};
+use super::{check_out, progress_bar, read_table, step_reporter, EXIT_OK, STEPS_TEMPLATE};
 use contactwave::model::{self, RunControl};
 use contactwave::output;
 use contactwave::output::provenance::{process_command_line, Provenance};
@@ -27,9 +27,12 @@ use std::time::Instant;
 pub struct Args {
     /// Scenario file (TOML; see docs/scenario.md).
     scenario: PathBuf,
-    /// Output folder (created if needed; files in it are replaced).
+    /// Output folder (created if needed; this run's earlier files in it are replaced,
+    /// another run's results are kept unless --overwrite).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
+    #[command(flatten)]
+    overwrite: super::Overwrite,
     /// Recorded series written (timeseries.csv, probe.csv, probes.csv, waves.csv,
     /// receivers.csv):
     /// `decimated` keeps at most 20000 rows per file (every k-th time sample), `full`
@@ -75,7 +78,8 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     for w in base.warnings() {
         eprintln!("warning: {w}");
     }
-    check_out_dir(out)?;
+    let source = super::source("run", &[path]);
+    check_out(out, &source, args.overwrite)?;
     // the input files hashed as read (a file edited during the run does not change them)
     let provenance = Provenance::of_scenario(path, process_command_line())?;
     let t0 = Instant::now();
@@ -96,12 +100,14 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         binary.push(output::hdf5::run_file(&files, &provenance)?);
     }
     let names = files.iter().map(|f| f.name.as_str());
-    provenance.check_inputs_kept(out, names.chain(binary.iter().map(|f| f.name.as_str())))?;
+    let names = names.chain(binary.iter().map(|f| f.name.as_str()));
+    provenance.check_inputs_kept(out, names.clone())?;
+    super::check_names(out, names, args.overwrite)?;
     // all or none: an interruption while writing leaves the folder as it was
     output::write_all(out, &files, &binary)?;
     let mut names: Vec<String> = files.iter().map(|f| f.name.clone()).collect();
     names.extend(binary.iter().map(|f| f.name.clone()));
-    super::claim_out(out, "run", &names)?;
+    super::claim_out(out, "run", &source, &names)?;
     println!("scenario               {}", path.display());
     for line in outcome.report() {
         println!("{line}");

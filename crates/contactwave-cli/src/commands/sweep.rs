@@ -10,7 +10,7 @@
 //! once.
 
 use super::{
-    cancel_on_ctrl_c, check_out_dir, claim_out, output_file, progress_bar, EXIT_FAILED,
+    cancel_on_ctrl_c, check_names, check_out, claim_out, output_file, progress_bar, EXIT_FAILED,
     EXIT_INTERRUPTED, EXIT_OK,
 };
 use contactwave::output;
@@ -26,9 +26,12 @@ use std::path::PathBuf;
 pub struct Args {
     /// Sweep file (TOML: `base = "scenario.toml"` and `[[axis]]` tables).
     sweep: PathBuf,
-    /// Output folder (created if needed).
+    /// Output folder (created if needed; another run's results in it are kept unless
+    /// --overwrite).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
+    #[command(flatten)]
+    overwrite: super::Overwrite,
     /// Keep the rows of an existing sweep.csv of the same sweep and compute only the
     /// missing points (refused if the sweep, its base scenario or the version changed).
     #[arg(long)]
@@ -67,7 +70,13 @@ const SWEEP_FILES: [&str; 7] = [
 pub fn run(args: Args) -> contactwave::Result<u8> {
     let out = args.out.as_path();
     let sweep = Sweep::load(&args.sweep)?;
-    check_out_dir(out)?;
+    let source = super::source("sweep", &[&args.sweep]);
+    check_out(out, &source, args.overwrite)?;
+    // a sweep.csv (or another of the sweep's files) contactwave did not write is not
+    // replaced (--resume reads it, and refuses one of another sweep)
+    if !args.resume {
+        check_names(out, SWEEP_FILES, args.overwrite)?;
+    }
     // every point validated before the folder or any file is created (progress on a
     // terminal: a large grid takes seconds)
     let setup = progress_bar(
@@ -130,7 +139,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             .filter(|n| out.join(n).is_file() && (args.hdf5 || **n != output::hdf5::SWEEP_FILE))
             .map(|n| n.to_string())
             .collect();
-        claim_out(out, "sweep", &names)
+        claim_out(out, "sweep", &source, &names)
     };
     match study::run_sweep_shard(&sweep, shard, &csv, &opts, &progress, cancel) {
         Ok(report) => {

@@ -780,8 +780,10 @@ fn merge_refuses_a_truncated_or_lone_shard_naming_the_missing_points() {
 }
 
 /// Issue 24: the Tribobrake run then a half-space run into the same folder left the bar
-/// stack's frf.csv/frf.svg beside the new summary.json. The second run removes what the
-/// first wrote (its manifest) and leaves a file of the user's alone, naming it.
+/// stack's frf.csv/frf.svg beside the new summary.json. Issue 56 item 7: a run into a folder
+/// holding another run's results is refused (exit 2, one line, nothing touched) unless
+/// `--overwrite`; then it removes what the first wrote (its manifest) and leaves a file of
+/// the user's alone, naming it. The same run re-run into its own folder replaces its files.
 #[test]
 fn a_reused_output_folder_holds_one_runs_files_only() {
     let d = tmpdir("reused-out");
@@ -790,7 +792,29 @@ fn a_reused_output_folder_holds_one_runs_files_only() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(out.join("frf.csv").is_file() && out.join("frf.svg").is_file());
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    // the same scenario again: its own folder
+    let o = cli("run", examples().join("tribobrake.toml"), &out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let before = std::fs::read(out.join("frf.csv")).unwrap();
+    // another scenario: refused, nothing touched
     let o = cli("run", examples().join("rccm_0.82MPa.toml"), &out);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("--out") && err.contains("tribobrake.toml") && err.contains("--overwrite"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(out.join("frf.csv")).unwrap(), before);
+    assert!(!out.join("probe.csv").exists());
+    let o = bin()
+        .arg("run")
+        .arg(examples().join("rccm_0.82MPa.toml"))
+        .arg("--out")
+        .arg(&out)
+        .arg("--overwrite")
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(out.join("summary.json").is_file() && out.join("probe.csv").is_file());
     assert!(!out.join("frf.csv").exists() && !out.join("frf.svg").exists());
@@ -812,9 +836,10 @@ fn a_reused_output_folder_holds_one_runs_files_only() {
         manifest.contains("\"summary.json\"") && !manifest.contains("frf"),
         "{manifest}"
     );
-    // a sweep into the same folder, resumed: its files stay, the run's go
+    // a sweep into the same folder (told to overwrite), resumed: its files stay, the
+    // run's go
     let s = write_sweep(&d, "parameter = \"incident.xi\"\nvalues = [0.3, 0.6]");
-    for extra in [None, Some("--resume")] {
+    for extra in [Some("--overwrite"), Some("--resume")] {
         let o = bin()
             .arg("sweep")
             .arg(&s)
@@ -892,4 +917,23 @@ fn oblique_run_headlines_the_outgoing_waves() {
     let normal = summary["reflected_normal_A1_over_Ainc"].as_f64().unwrap();
     assert!(rp < 1.0 && (rp - normal).abs() > 0.02, "{rp} vs {normal}");
     assert_eq!(summary["amplitude"].as_f64(), Some(1e6));
+}
+
+/// Issue 56 item 7: a file of the user's under a name a run writes (a `summary.json` of
+/// their own, no manifest) is not replaced without `--overwrite`.
+#[test]
+fn a_users_file_under_a_run_files_name_is_kept() {
+    let d = tmpdir("users-file");
+    let out = d.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("summary.json"), "mine").unwrap();
+    let o = cli("run", examples().join("rccm_0.82MPa.toml"), &out);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("summary.json"), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(out.join("summary.json")).unwrap(),
+        "mine"
+    );
+    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 1);
+    let _ = std::fs::remove_dir_all(d);
 }

@@ -5,8 +5,14 @@
 //! beside a half-space `summary.json`). Files contactwave did not write (not in the
 //! manifest) are never touched; [`claim`] names them so that the caller can warn.
 //!
+//! The manifest also names the run that wrote the files (`source`: the command and its
+//! input, e.g. `run /abs/path/scenario.toml`): [`check_owner`] refuses, before any work, to
+//! run into a folder that holds another run's results unless told to overwrite them, and
+//! [`check_collisions`] refuses to write over a file no contactwave command wrote; the same
+//! run re-run into its own folder replaces its files.
+//!
 //! ```json
-//! {"command": "run", "files": ["summary.json", "timeseries.csv", ...]}
+//! {"command": "run", "source": "run /data/plate.toml", "files": ["summary.json", ...]}
 //! ```
 
 use crate::error::{Error, Result};
@@ -49,12 +55,74 @@ pub fn read(dir: &Path) -> Vec<String> {
         .unwrap_or_default()
 }
 
+/// The run that wrote `dir`'s files: the manifest's `source` (its `command` for a manifest
+/// written before sources were recorded) and its number of files; `None` without a
+/// manifest, or with one that names no file.
+pub fn owner(dir: &Path) -> Option<(String, usize)> {
+    let v = std::fs::read_to_string(dir.join(MANIFEST))
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())?;
+    let files = read(dir).len();
+    let source = v
+        .get("source")
+        .or_else(|| v.get("command"))
+        .and_then(|s| s.as_str())
+        .unwrap_or("an unknown command")
+        .to_string();
+    (files > 0).then_some((source, files))
+}
+
+/// Refuse to run `source` (the command and its input, as [`claim`] records it) into `dir`
+/// when `dir` holds the results of another run (a manifest with another source), unless
+/// `overwrite`: they would be replaced or removed.
+pub fn check_owner(dir: &Path, source: &str, overwrite: bool) -> Result<()> {
+    match owner(dir) {
+        Some((other, files)) if !overwrite && other != source => Err(Error::invalid(
+            "<command line>",
+            "--out",
+            dir.display(),
+            format!(
+                "holds the results of `{other}` ({files} files): a new or empty folder, or \
+                 --overwrite to replace them"
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Refuse to write `files` (relative to `dir`) where a file of that name exists that no
+/// contactwave command wrote (not in the manifest), unless `overwrite`.
+pub fn check_collisions(dir: &Path, files: &[String], overwrite: bool) -> Result<()> {
+    if overwrite {
+        return Ok(());
+    }
+    let ours: BTreeSet<String> = read(dir).into_iter().collect();
+    let clash: Vec<&String> = files
+        .iter()
+        .filter(|f| !ours.contains(*f) && inside(dir, f).is_some_and(|p| p.exists()))
+        .collect();
+    match clash.first() {
+        Some(first) => Err(Error::invalid(
+            "<command line>",
+            "--out",
+            dir.display(),
+            format!(
+                "holds {} file(s) contactwave did not write under the names this run writes \
+                 ({first}): another folder, or --overwrite to replace them",
+                clash.len()
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// Record that `command` wrote `files` (paths relative to `dir`, `/`-separated) into
 /// `dir`: remove the files of the previous manifest that are not among `files` (and the
 /// subfolders they leave empty), write the new manifest, and return what was removed and
 /// the entries contactwave did not write (top-level entries of `dir` and entries of the
 /// subfolders written into, other than `files` and the manifest).
-pub fn claim(dir: &Path, command: &str, files: &[String]) -> Result<Claimed> {
+/// `source` names the run (the command and its input) for [`check_owner`].
+pub fn claim(dir: &Path, command: &str, source: &str, files: &[String]) -> Result<Claimed> {
     let now: BTreeSet<&str> = files.iter().map(String::as_str).collect();
     let mut removed = Vec::new();
     for old in read(dir) {
@@ -77,7 +145,7 @@ pub fn claim(dir: &Path, command: &str, files: &[String]) -> Result<Claimed> {
             }
         }
     }
-    let json = serde_json::json!({ "command": command, "files": files });
+    let json = serde_json::json!({ "command": command, "source": source, "files": files });
     let path = dir.join(MANIFEST);
     std::fs::write(&path, format!("{json}\n")).map_err(|e| Error::write_in(dir, e))?;
     // folders written into: the top and every parent of a file
@@ -125,18 +193,48 @@ mod tests {
         let first: Vec<String> = ["frf.csv", "summary.json", "figures/a.svg"]
             .map(String::from)
             .to_vec();
-        let c = claim(&d, "run", &first).unwrap();
+        let c = claim(&d, "run", "run a.toml", &first).unwrap();
         assert!(c.removed.is_empty());
         assert_eq!(c.foreign, vec![d.join("notes.txt")]);
         assert_eq!(read(&d), first);
-        let c = claim(&d, "run", &["summary.json".to_string()]).unwrap();
+        let c = claim(&d, "run", "run a.toml", &["summary.json".to_string()]).unwrap();
         assert_eq!(c.removed, vec![d.join("frf.csv"), d.join("figures/a.svg")]);
         assert!(!d.join("frf.csv").exists() && !d.join("figures").exists());
         assert!(d.join("summary.json").exists() && d.join("notes.txt").exists());
         assert_eq!(c.foreign, vec![d.join("notes.txt")]);
         // a manifest entry outside the folder is never removed
         std::fs::write(d.join(MANIFEST), r#"{"files": ["../x", "/etc/passwd"]}"#).unwrap();
-        assert!(claim(&d, "run", &[]).unwrap().removed.is_empty());
+        assert!(claim(&d, "run", "run a.toml", &[])
+            .unwrap()
+            .removed
+            .is_empty());
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn another_runs_results_are_kept_unless_overwritten() {
+        let d = std::env::temp_dir().join(format!("contactwave-owner-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        // an empty folder and a folder without a manifest are free
+        check_owner(&d, "run /a.toml", false).unwrap();
+        std::fs::write(d.join("mine.csv"), "x").unwrap();
+        check_owner(&d, "run /a.toml", false).unwrap();
+        // a file of the user's under a name the run writes is not replaced
+        let names = ["mine.csv".to_string(), "summary.json".to_string()];
+        let e = check_collisions(&d, &names, false).unwrap_err().to_string();
+        assert!(e.contains("mine.csv") && e.contains("--overwrite"), "{e}");
+        check_collisions(&d, &names, true).unwrap();
+        std::fs::write(d.join("summary.json"), "x").unwrap();
+        claim(&d, "run", "run /a.toml", &names[1..]).unwrap();
+        // the same run again may replace its own files; another one may not
+        check_owner(&d, "run /a.toml", false).unwrap();
+        check_collisions(&d, &names[1..], false).unwrap();
+        let e = check_owner(&d, "run /b.toml", false)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("run /a.toml") && e.contains("1 files"), "{e}");
+        check_owner(&d, "run /b.toml", true).unwrap();
         let _ = std::fs::remove_dir_all(&d);
     }
 }
