@@ -91,6 +91,7 @@ def analyze(
     keep_dc: bool = False,
     time: Optional[str] = None,
     datasets: Optional[Sequence[str]] = None,
+    full_scale: Optional[float] = None,
 ) -> Analysis:
     """Measured records through the simulator's own harmonic analysis (the CLI's
     ``contactwave analyze``; docs/model.md section 16).
@@ -102,13 +103,19 @@ def analyze(
     ``datasets`` / ``time`` name their arrays. ``f0`` (Hz, default detected), ``gate``
     ``(start, end[, taper])`` in s, ``method`` (``band_peak``, ``pulse_inversion`` with
     ``inverse``, ``linear_reference`` with ``linear``, ``plateau_fit`` with a gate),
-    ``amplitudes`` (one per record, or the name of an array of the first file).
+    ``amplitudes`` (one per record, or the name of an array of the first file),
+    ``full_scale`` (the digitiser's full scale in the records' unit: samples at it are
+    clipped; default: clipping detected as flat runs at a record's extremes). A clipped
+    record has ``clipped_samples > 0`` and ``harmonics_reliable == 0`` and warns. An array
+    whose first column increases in uniform steps (a time axis) is refused.
     Invalid input raises ``ValueError`` naming the file, field and allowed values."""
     opts: Dict[str, Any] = {"method": method, "keep_dc": bool(keep_dc), "t0": float(t0)}
     if f0 is not None:
         opts["f0"] = float(f0)
     if gate is not None:
         opts["gate"] = [float(g) for g in gate]
+    if full_scale is not None:
+        opts["full_scale"] = float(full_scale)
     if amplitudes is not None:
         opts["amplitudes"] = amplitudes if isinstance(amplitudes, str) else [float(a) for a in np.ravel(amplitudes)]
 
@@ -128,6 +135,14 @@ def analyze(
             return [np.ascontiguousarray(a)]
         if a.ndim == 2:
             cols = a if a.shape[0] < a.shape[1] else a.T
+            first = cols[0]
+            steps = np.diff(first)
+            if len(cols) > 1 and first.size >= 16 and np.all(steps > 0) and np.ptp(steps) <= 0.25 * steps.mean():
+                raise ValueError(
+                    "records: column 0 increases in uniform steps from "
+                    f"{first[0]:g} to {first[-1]:g}: a time axis, not a record; pass the "
+                    "records alone with dt (or sample_rate), or the file, whose time column is read"
+                )
             return [np.ascontiguousarray(c) for c in cols]
         raise ValueError(f"records: an array of {a.ndim} dimensions; one record, or samples x records")
 

@@ -96,3 +96,27 @@ def test_to_pandas():
     a = cw.analyze([burst(1.0), burst(0.5, seed=3)], dt=DT, gate=(12e-6, 28e-6))
     df = a.to_pandas()
     assert isinstance(df, pd.DataFrame) and len(df) == 2 and "A2_over_A1" in df.columns
+
+
+def test_a_clipped_record_is_marked_and_warns():
+    """Issue 56 item 1: a record clipped at 60 % of its peak (an overranged scope)."""
+    x = burst(dc=0.0)
+    peak = np.max(np.abs(x))
+    with pytest.warns(Warning, match="clipped"):
+        a = cw.analyze(np.clip(x, -0.6 * peak, 0.6 * peak), dt=DT)
+    r = a.records[0]
+    assert r["clipped_samples"] > 50 and r["harmonics_reliable"] == 0
+    assert abs(r["clip_high"] - 0.6 * peak) < 1e-12
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", cw.HarmonicFloorWarning)
+        clean = cw.analyze(x, dt=DT, gate=(12e-6, 28e-6, 1e-6))
+    assert clean.records[0]["clipped_samples"] == 0
+    with pytest.warns(Warning, match="clipped"):
+        cw.analyze(x, dt=DT, full_scale=0.9 * peak)
+
+
+def test_a_time_column_is_not_a_record():
+    """Issue 56 item 3: an array of [t, x] columns."""
+    t = np.arange(N) * DT
+    with pytest.raises(ValueError, match="time axis"):
+        cw.analyze(np.column_stack([t, burst()]), dt=DT)

@@ -79,6 +79,7 @@ pub fn analyze<'py>(
         gate,
         method,
         keep_dc: o.get("keep_dc").and_then(|v| v.as_bool()).unwrap_or(false),
+        full_scale: num("full_scale"),
     };
     let (dt, t0) = (num("dt").unwrap_or(f64::NAN), num("t0").unwrap_or(0.0));
     let layout = Layout {

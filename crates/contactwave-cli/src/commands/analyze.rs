@@ -59,6 +59,10 @@ pub struct Args {
     /// Keep the records' mean (default: removed as a DC offset).
     #[arg(long)]
     keep_dc: bool,
+    /// The digitiser's full scale, in the records' unit: samples at +-V are clipped
+    /// (default: clipping detected as flat runs at a record's extremes).
+    #[arg(long, value_name = "V")]
+    full_scale: Option<f64>,
 }
 
 /// `--method`.
@@ -130,6 +134,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         gate,
         method,
         keep_dc: args.keep_dc,
+        full_scale: args.full_scale,
     };
     let first = args.records[0].display().to_string();
     let analysis = measured::analyze(&series, &settings, &first)?;
@@ -165,28 +170,34 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     );
     for r in &analysis.records {
         println!(
-            "{:<16} A1 = {:.4e}  A2/A1 = {:.4e}  A3/A1 = {:.4e}  beta* = {:.4e}",
+            "{:<16} A1 = {:.4e}  {}  {}  beta* = {:.4e}{}",
             r.name,
             r.harmonics[1],
-            r.a2_over_a1(),
-            r.a3_over_a1(),
-            r.beta_star()
+            files::ratio_with_floor(r, 2),
+            files::ratio_with_floor(r, 3),
+            r.beta_star(),
+            if r.clipped.is_some() {
+                "  CLIPPED: harmonics unreliable"
+            } else {
+                ""
+            }
         );
     }
     if let Some(f) = analysis.fit {
-        // two records fix a line exactly: no degrees of freedom left for an interval
-        let interval = if f.slope_interval.0.is_finite() && f.slope_interval.1.is_finite() {
-            format!(
-                "95%: {:.4e} .. {:.4e}",
-                f.slope_interval.0, f.slope_interval.1
-            )
+        if f.count < 3 {
+            // two records fix a line exactly: no R^2, no interval
+            println!(
+                "A2 = slope A1^2 + intercept through {} records: slope = {:.4e} (a line through \
+                 two points: no fit statistics; 3 records or more for R^2 and a 95% interval)",
+                f.count, f.slope
+            );
         } else {
-            "no 95% interval from fewer than 3 records".to_string()
-        };
-        println!(
-            "A2 = slope A1^2 + intercept over {} records: slope = {:.4e} ({interval}), R^2 = {:.5}",
-            f.count, f.slope, f.r_squared
-        );
+            println!(
+                "A2 = slope A1^2 + intercept over {} records: slope = {:.4e} (95%: {:.4e} .. \
+                 {:.4e}), R^2 = {:.5}",
+                f.count, f.slope, f.slope_interval.0, f.slope_interval.1, f.r_squared
+            );
+        }
     }
     for w in files::warnings(&analysis) {
         eprintln!("warning: {w}");

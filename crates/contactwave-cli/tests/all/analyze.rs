@@ -192,3 +192,171 @@ fn a_time_column_in_microseconds_is_warned_about() {
     );
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// A tone burst at 1 MHz sampled at 50 MHz: `cycles` Hann-windowed cycles from `start`
+/// (s) in a 40 us record, with a second harmonic `r2` times the fundamental, a seeded
+/// noise of `noise` (fraction of the peak) and clipped at `clip` times the peak; as a CSV
+/// of `t,echo` in `dir`.
+fn burst_csv(dir: &Path, name: &str, start: f64, r2: f64, noise: f64, clip: f64) -> PathBuf {
+    use std::f64::consts::PI;
+    let (f0, dt, n, cycles) = (1e6, 2e-8, 2000, 10.0);
+    let len = cycles / f0;
+    let mut state = 12345u64;
+    let mut rand = || {
+        // xorshift: uniform in [-1, 1)
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    };
+    let mut text = String::from("t,echo\n");
+    for k in 0..n {
+        let t = k as f64 * dt;
+        let u = t - start;
+        let w = if (0.0..len).contains(&u) {
+            (PI * u / len).sin().powi(2)
+        } else {
+            0.0
+        };
+        let s = w * ((2.0 * PI * f0 * u).sin() - r2 * w * (4.0 * PI * f0 * u).cos());
+        let v = (s + noise * rand()).clamp(-clip, clip);
+        text.push_str(&format!("{t:e},{v:e}\n"));
+    }
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn stdout_of(file: &Path, extra: &[&str], out: &Path) -> (bool, String, String) {
+    let o = Command::new(env!("CARGO_BIN_EXE_contactwave"))
+        .arg("analyze")
+        .arg(file)
+        .args(extra)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    (
+        o.status.success(),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+fn summary(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+/// Issue 56 item 1: a burst clipped at 60 % of its peak (A3/A1 0.18 from the clipping)
+/// is flagged: the samples and the level, `harmonics_reliable = 0` in summary.json, a
+/// warning and the mark in the pictures; the same burst unclipped is not flagged; a full
+/// scale given flags the samples at it.
+#[test]
+fn a_clipped_record_is_flagged() {
+    let d = tmpdir("analyze-clipped");
+    let clipped = burst_csv(&d, "clipped.csv", 5e-6, 0.0, 0.0, 0.6);
+    let out = d.join("out");
+    let (ok, stdout, stderr) = stdout_of(&clipped, &[], &out);
+    assert!(ok, "{stderr}");
+    let s = summary(&out);
+    let r = &s["records"][0];
+    assert!(r["A3_over_A1"].as_f64().unwrap() > 0.1, "{r}");
+    let n = r["clipped_samples"].as_u64().unwrap();
+    assert!(n > 50, "{r}");
+    assert!((r["clip_high"].as_f64().unwrap() - 0.6).abs() < 1e-9, "{r}");
+    assert!((r["clip_low"].as_f64().unwrap() + 0.6).abs() < 1e-9, "{r}");
+    assert_eq!(r["harmonics_reliable"], 0.0);
+    assert!(
+        stderr.contains(&format!("clipped: {n} samples")),
+        "{stderr}"
+    );
+    assert!(stdout.contains("CLIPPED"), "{stdout}");
+    let svg = std::fs::read_to_string(out.join("record.svg")).unwrap();
+    assert!(svg.contains("CLIPPED"));
+    assert!(s["warnings"].to_string().contains("clipped"));
+    // unclipped, and unclipped but quantised to 8 bits: not flagged
+    let clean = burst_csv(&d, "clean.csv", 5e-6, 0.0, 0.0, 2.0);
+    let out2 = d.join("out2");
+    let (ok, _, stderr) = stdout_of(&clean, &[], &out2);
+    assert!(ok && !stderr.contains("clipped"), "{stderr}");
+    assert_eq!(summary(&out2)["records"][0]["clipped_samples"], 0);
+    let text = std::fs::read_to_string(&clean).unwrap();
+    let mut q = String::from("t,echo\n");
+    for line in text.lines().skip(1) {
+        let (t, v) = line.split_once(',').unwrap();
+        let v: f64 = v.parse().unwrap();
+        q.push_str(&format!("{t},{}\n", (v * 127.0).round() / 127.0));
+    }
+    let quantised = d.join("quantised.csv");
+    std::fs::write(&quantised, q).unwrap();
+    let out3 = d.join("out3");
+    let (ok, _, stderr) = stdout_of(&quantised, &[], &out3);
+    assert!(ok && !stderr.contains("clipped"), "{stderr}");
+    // a full scale of 0.9 given: the crests above it are at the scope's full scale
+    let (ok, _, stderr) = stdout_of(&clean, &["--full-scale", "0.9"], &out2);
+    assert!(ok && stderr.contains("clipped"), "{stderr}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+/// Issue 56 item 2: without a gate, the noise floor comes from the quiet part before the
+/// arrival and every ratio is printed with its floor; a record without one says the noise
+/// floor is unknown.
+#[test]
+fn every_ratio_has_its_floor() {
+    let d = tmpdir("analyze-floor");
+    let late = burst_csv(&d, "late.csv", 10e-6, 0.02, 1e-3, 10.0);
+    let out = d.join("out");
+    let (ok, stdout, stderr) = stdout_of(&late, &[], &out);
+    assert!(ok, "{stderr}");
+    let s = summary(&out);
+    let r = &s["records"][0];
+    let noise = r["A2_noise_floor"].as_f64().unwrap();
+    assert!(noise > 0.0, "{r}");
+    let w = r["noise_window"].as_array().unwrap();
+    assert!(w[1].as_f64().unwrap() < 10e-6, "{r}");
+    let ratio = r["A2_over_A1"].as_f64().unwrap();
+    assert!((ratio - 0.02).abs() < 0.005, "{r}");
+    assert!(
+        stdout.contains("A2/A1 = ") && stdout.contains("(floor "),
+        "{stdout}"
+    );
+    assert!(!stdout.contains("noise unknown"), "{stdout}");
+    // the burst from the first sample: no quiet part, no gate
+    let early = burst_csv(&d, "early.csv", 0.0, 0.02, 1e-3, 10.0);
+    let out2 = d.join("out2");
+    let (ok, stdout, stderr) = stdout_of(&early, &[], &out2);
+    assert!(ok, "{stderr}");
+    assert!(stdout.contains("noise unknown"), "{stdout}");
+    assert!(stderr.contains("noise floor is unknown"), "{stderr}");
+    assert!(summary(&out2)["records"][0]["noise_window"].is_null());
+    std::fs::remove_dir_all(&d).ok();
+}
+
+/// Issue 56 item 3: two records fit a line exactly: a slope, no R^2 and no interval.
+#[test]
+fn two_records_give_no_fit_statistics() {
+    let d = tmpdir("analyze-two");
+    let a = burst_csv(&d, "a.csv", 10e-6, 0.01, 1e-4, 10.0);
+    let b = burst_csv(&d, "b.csv", 10e-6, 0.02, 1e-4, 10.0);
+    let out = d.join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_contactwave"))
+        .arg("analyze")
+        .args([&a, &b])
+        .args(["--amplitudes", "1,2", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        stdout.contains("no fit statistics") && !stdout.contains("R^2 ="),
+        "{stdout}"
+    );
+    let s = summary(&out);
+    assert!(
+        s["fit"]["r_squared"].is_null() && s["fit"]["slope"].is_number(),
+        "{}",
+        s["fit"]
+    );
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -358,6 +358,25 @@ pub fn plateau_fit(record: &[f64], s: &Signal) -> BandAmplitudes {
     out
 }
 
+/// How to read a harmonic `name` (`"A2"`) of amplitude `value` against its analysis floor
+/// `floor` (the same unit): `None` from 10 floors up (or without a floor); within a factor
+/// 3 of it an upper bound (the floor could be all of it), from 3 to 10 floors a value
+/// uncertain by about the floor over the value.
+pub fn floor_reading(name: &str, value: f64, floor: f64) -> Option<String> {
+    if !(floor > 0.0) || !(value < 10.0 * floor) {
+        return None;
+    }
+    let q = value / floor;
+    Some(if q < 3.0 {
+        format!("{name} at {q:.2} times its floor: read it as an upper bound (the floor could be all of it)")
+    } else {
+        format!(
+            "{name} at {q:.1} times its floor: uncertain by about {:.0} % (the floor over the value)",
+            100.0 / q
+        )
+    })
+}
+
 /// Harmonics `n` in 2..=5 whose amplitude is within a factor 10 of its floor (a floor of 0
 /// or NaN never flags).
 pub fn near_floor(a: &BandAmplitudes, floor: &BandAmplitudes) -> Vec<usize> {
@@ -369,6 +388,22 @@ pub fn near_floor(a: &BandAmplitudes, floor: &BandAmplitudes) -> Vec<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 56 item 2: a harmonic at 7.5 floors is a value with a 13 % uncertainty, not
+    /// an upper bound; at 1.5 floors it is one.
+    #[test]
+    fn a_harmonic_near_its_floor_is_read_by_how_near() {
+        let w = floor_reading("A2", 7.5e-3, 1e-3).unwrap();
+        assert!(
+            w.contains("7.5 times") && w.contains("13 %") && !w.contains("upper"),
+            "{w}"
+        );
+        let w = floor_reading("A3", 1.5e-3, 1e-3).unwrap();
+        assert!(w.contains("upper bound"), "{w}");
+        assert!(floor_reading("A2", 1e-2, 1e-3).is_none());
+        assert!(floor_reading("A2", 1e-9, 0.0).is_none());
+        assert!(floor_reading("A2", 1e-9, f64::NAN).is_none());
+    }
 
     /// Displacement whose cell-averaged velocity is `v` (integrated exactly per cell).
     fn record(v: impl Fn(f64) -> f64, dt: f64, n: usize) -> Vec<f64> {

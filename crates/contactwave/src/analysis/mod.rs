@@ -20,7 +20,7 @@ mod spectrum;
 mod summary;
 
 pub use gate::Gate;
-pub use methods::{AnalysisMethod, Quantity};
+pub use methods::{floor_reading, AnalysisMethod, Quantity};
 pub use spectrum::{
     cell_velocity, spectral_peak, velocity_bands, with_analyzer, Analyzer, BandAmplitudes, Spectrum,
 };

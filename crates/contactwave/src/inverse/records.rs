@@ -46,6 +46,8 @@ pub(super) struct RecordsFile {
     keep_dc: Option<bool>,
     inverse: Option<Vec<String>>,
     linear: Option<String>,
+    full_scale: Option<f64>,
+    allow_clipped: Option<bool>,
 }
 
 /// `band_pass = { centre, q }` as written.
@@ -75,6 +77,9 @@ pub struct RecordsSpec {
     pub analysis: Option<measured::Analysis>,
     /// The identification file (for errors).
     pub file: String,
+    /// Identify from clipped records too (`allow_clipped = true`; refused by default: their
+    /// harmonics are the clipping's).
+    pub allow_clipped: bool,
 }
 
 /// The data rows of a `[records]` table: the condition's value per record (`rows[i][0]`)
@@ -90,7 +95,7 @@ pub struct Rows {
 /// What `[records]` allows (for errors).
 pub(super) const ALLOWED: &str = "a [records] table has files, condition, values, waveform, \
     method, gate, model_gate, f0, band_pass, datasets, time, sample_rate, keep_dc, inverse, \
-    linear";
+    linear, full_scale, allow_clipped";
 
 fn gate_of(v: &[f64], file: &str, field: &str) -> Result<Gate> {
     Gate::from_values(v).ok_or_else(|| {
@@ -203,7 +208,9 @@ impl RecordsFile {
                 gate,
                 method,
                 keep_dc: self.keep_dc.unwrap_or(false),
+                full_scale: self.full_scale,
             },
+            allow_clipped: self.allow_clipped.unwrap_or(false),
             model_gate,
             band_pass,
             analysis: None,
@@ -288,6 +295,26 @@ impl RecordsSpec {
         })?;
         let first = self.sources.records[0].display().to_string();
         let analysis = measured::analyze(&series, &self.settings, &first)?;
+        if !self.allow_clipped
+            && let Some((r, c)) = analysis
+                .records
+                .iter()
+                .find_map(|r| r.clipped.map(|c| (r, c)))
+        {
+            return Err(Error::invalid(
+                file,
+                "records.files",
+                format!(
+                    "{}: {} clipped samples ({})",
+                    r.name,
+                    c.samples,
+                    measured::clip_levels(&c)
+                ),
+                "records within the digitiser's range (the harmonics of a clipped record are \
+                 the clipping's): re-record them, or allow_clipped = true in [records] to \
+                 identify from them anyway",
+            ));
+        }
         let mut rows = Vec::new();
         for (r, rec) in analysis.records.iter().zip(&series.records) {
             let v = rec.amplitude.ok_or_else(|| {

@@ -14,8 +14,12 @@
 //!    the record's fundamental alone: the record band-limited to `[f0/2, 3 f0/2)`; none
 //!    for the plateau fit, exact over whole periods) and
 //!    the noise (the band-peak amplitudes of the samples outside the gate, placed in the
-//!    gate: what noise alone gives), with a warning when a harmonic is within a factor 10
-//!    of its floor.
+//!    gate: what noise alone gives; without a gate, the samples of the record's quiet part
+//!    before the arrival, [`quiet_part`], or none: the noise floor unknown), with a
+//!    warning when a harmonic is within a factor 10 of its floor;
+//! 5. clipping ([`clipping`]): samples in flat runs at the record's extremes (an
+//!    overranged scope), or at the full scale given: the harmonics are the clipping's, and
+//!    are marked unreliable.
 
 use super::series::{Measured, Series};
 use crate::analysis::methods::{gated_bands, method_floor, Quantity, Signal};
@@ -35,6 +39,21 @@ pub struct Settings {
     pub method: AnalysisMethod,
     /// Keep the records' mean (default: removed, a DC offset).
     pub keep_dc: bool,
+    /// The digitiser's full scale, in the records' unit: a sample at `±full_scale` is
+    /// clipped (default: clipping detected as flat runs at a record's extremes).
+    pub full_scale: Option<f64>,
+}
+
+/// The clipped samples of a record (an overranged scope): flat runs at its extremes, or
+/// samples at the full scale given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Clipping {
+    /// Samples clipped (inside the gate).
+    pub samples: usize,
+    /// The level clipped at below, in the record's unit as read (NaN: none below).
+    pub low: f64,
+    /// The level clipped at above (NaN: none above).
+    pub high: f64,
 }
 
 /// The per-record values of an analysis by name ([`RecordAnalysis::value`]): the
@@ -60,6 +79,11 @@ pub struct RecordAnalysis {
     pub dc: f64,
     /// The factor the linear reference was scaled by (linear reference only).
     pub linear_scale: Option<f64>,
+    /// The record's clipping, if any: its harmonics are then the clipping's.
+    pub clipped: Option<Clipping>,
+    /// The samples the noise floor was measured on, s (`[start, end)`: outside the gate,
+    /// or the quiet part before the arrival); `None`: the noise floor is unknown.
+    pub noise_window: Option<(f64, f64)>,
 }
 
 impl RecordAnalysis {
@@ -111,10 +135,11 @@ pub struct SeriesFit {
     pub slope: f64,
     /// Intercept, the records' unit.
     pub intercept: f64,
-    /// Coefficient of determination.
+    /// Coefficient of determination (NaN for 2 records: a line through two points says
+    /// nothing of the fit).
     pub r_squared: f64,
     /// 95% interval of the slope (Student t, `count - 2` degrees of freedom; NaN for 2
-    /// records).
+    /// records, which a line passes through exactly: no fit statistics).
     pub slope_interval: (f64, f64),
     /// 95% interval of the intercept.
     pub intercept_interval: (f64, f64),
@@ -134,6 +159,8 @@ pub struct Analysis {
     pub method: AnalysisMethod,
     /// Gate.
     pub gate: Option<Gate>,
+    /// The digitiser's full scale given, in the records' unit.
+    pub full_scale: Option<f64>,
     /// The window of `plateau_fit`, s (whole periods of f0 inside the gate's flat part).
     pub plateau: (f64, f64),
     /// Time step, s.
@@ -217,6 +244,16 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
                 ),
             ));
         }
+    }
+    if let Some(fs) = settings.full_scale
+        && !(fs > 0.0 && fs.is_finite())
+    {
+        return Err(Error::invalid(
+            file,
+            "full_scale",
+            fs,
+            "the digitiser's full scale, > 0 in the records' unit",
+        ));
     }
     let method = settings.method;
     for r in &series.records {
@@ -364,9 +401,10 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
             };
             // a linear reference is scaled onto the record before it is subtracted: its
             // noise, scaled alike, adds to the record's
-            let mut noise = noise_floor(&p.samples, gate, &sig);
+            let window = noise_window(&p.samples, gate, &sig);
+            let mut noise = noise_floor(&p.samples, window, gate, &sig);
             if let Some(l) = &linear {
-                let reference = noise_floor(l, gate, &sig);
+                let reference = noise_floor(l, window, gate, &sig);
                 for (a, b) in noise.iter_mut().zip(reference) {
                     *a = a.hypot(b);
                 }
@@ -380,6 +418,8 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
                 near_floor: Vec::new(),
                 dc: p.dc,
                 linear_scale,
+                clipped: clipping(&r.samples, gate, &sig, settings.full_scale),
+                noise_window: window.map(|(a, b)| (t0 + a as f64 * dt, t0 + b as f64 * dt)),
             };
             a.near_floor = (2..=5)
                 .filter(|&k| {
@@ -406,6 +446,7 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
         peak,
         method,
         gate: settings.gate,
+        full_scale: settings.full_scale,
         plateau,
         dt,
         t0,
@@ -594,34 +635,160 @@ fn band_limited(x: &[f64], dt: f64, f_lo: f64, f_hi: f64) -> Vec<f64> {
     out
 }
 
-/// The band-peak amplitudes of noise alone: the samples outside the gate (the longer
-/// side of it), repeated to fill the gate and placed in it (NaN without a gate, or with
-/// fewer than a quarter of the gate's samples outside it).
-fn noise_floor(x: &[f64], gate: Option<&Gate>, s: &Signal) -> [f64; 6] {
-    let nan = [f64::NAN; 6];
-    let Some(g) = gate else {
-        return nan;
-    };
+/// The samples `[a, b)` of `x` that hold noise alone: with a gate, the longer side of the
+/// record outside it (at least a quarter of the gate's samples); without one, the quiet
+/// part before the arrival ([`quiet_part`]). `None`: none to measure the noise on.
+fn noise_window(x: &[f64], gate: Option<&Gate>, s: &Signal) -> Option<(usize, usize)> {
     let n = x.len();
-    let idx = |t: f64| (((t - s.t0) / s.dt).round().max(0.0) as usize).min(n);
-    let (a, b) = (idx(g.start), idx(g.end));
-    let before = &x[..a];
-    let after = &x[b.min(n)..];
-    let noise = if before.len() >= after.len() {
-        before
-    } else {
-        after
-    };
-    let len = b.saturating_sub(a);
-    if noise.is_empty() || len == 0 || 4 * noise.len() < len {
-        return nan;
+    match gate {
+        Some(g) => {
+            let idx = |t: f64| (((t - s.t0) / s.dt).round().max(0.0) as usize).min(n);
+            let (a, b) = (idx(g.start), idx(g.end));
+            let (before, after) = (a, n - b.min(n));
+            let (w, len) = if before >= after {
+                ((0, a), before)
+            } else {
+                ((b.min(n), n), after)
+            };
+            let gated = b.saturating_sub(a);
+            (len > 0 && gated > 0 && 4 * len >= gated).then_some(w)
+        }
+        None => quiet_part(x, s.f0, s.dt).map(|b| (0, b)),
     }
+}
+
+/// The end (exclusive sample index) of a record's quiet part before the arrival: the
+/// arrival is the first sample where the largest magnitude over the past period of `f0`
+/// reaches a tenth of the record's peak, and the quiet part ends two periods before it
+/// (the rise of a burst below a tenth of its peak kept out). `None` when that leaves fewer
+/// than two periods or 16 samples: the noise cannot be measured without a gate.
+pub fn quiet_part(x: &[f64], f0: f64, dt: f64) -> Option<usize> {
+    let peak = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let period = (1.0 / (f0 * dt)).round().max(1.0) as usize;
+    if !(peak > 0.0) {
+        return None;
+    }
+    let arrival = x.iter().position(|v| v.abs() >= 0.1 * peak)?;
+    let end = arrival.checked_sub(2 * period)?;
+    (end >= 2 * period && end >= 16).then_some(end)
+}
+
+/// The band-peak amplitudes of noise alone: the samples `window` of `x`
+/// ([`noise_window`]) repeated to fill the gate (the whole record without one) and placed
+/// in it (NaN without a window).
+fn noise_floor(
+    x: &[f64],
+    window: Option<(usize, usize)>,
+    gate: Option<&Gate>,
+    s: &Signal,
+) -> [f64; 6] {
+    let Some((wa, wb)) = window else {
+        return [f64::NAN; 6];
+    };
+    let noise = &x[wa..wb];
+    let n = x.len();
+    let (a, b) = match gate {
+        Some(g) => {
+            let idx = |t: f64| (((t - s.t0) / s.dt).round().max(0.0) as usize).min(n);
+            (idx(g.start), idx(g.end))
+        }
+        None => (0, n),
+    };
     let mut rec = vec![0.0; n];
     for (k, v) in rec[a..b].iter_mut().enumerate() {
         *v = noise[k % noise.len()];
     }
-    g.apply(&mut rec, s.t0, s.dt);
+    if let Some(g) = gate {
+        g.apply(&mut rec, s.t0, s.dt);
+    }
     with_analyzer(|an| an.point_bands(&rec, s.dt, s.f0, None)).harmonic
+}
+
+/// The levels of a clipping as text (`at -0.6 and 0.6`, `at 0.6`), in the record's unit.
+pub fn clip_levels(c: &Clipping) -> String {
+    let v: Vec<String> = [c.low, c.high]
+        .iter()
+        .filter(|v| v.is_finite())
+        .map(|v| {
+            if (1e-3..1e4).contains(&v.abs()) {
+                format!("{v}")
+            } else {
+                format!("{v:e}")
+            }
+        })
+        .collect();
+    format!("at {}", v.join(" and "))
+}
+
+/// The clipping of record `x` (as read, its mean kept) inside the gate: the samples at
+/// `±full_scale` when it is given; otherwise the samples in runs at the record's maximum
+/// (or minimum) longer than an unclipped crest stays there. A crest of amplitude `A`
+/// sampled `P` times a period stays within one quantisation step `q` of its top for about
+/// `P sqrt(2 q / A) / pi` samples (`q` the smallest step between the record's distinct
+/// values): a run of 3 samples or more, and more than twice that, is a clip.
+pub fn clipping(
+    x: &[f64],
+    gate: Option<&Gate>,
+    s: &Signal,
+    full_scale: Option<f64>,
+) -> Option<Clipping> {
+    let inside = |k: usize| gate.is_none_or(|g| g.weight(s.t0 + k as f64 * s.dt) > 0.0);
+    let (lo, hi) = x
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| {
+            (l.min(v), h.max(v))
+        });
+    let range = hi - lo;
+    if !(range > 0.0) {
+        return None;
+    }
+    let (mut samples, mut low, mut high) = (0usize, f64::NAN, f64::NAN);
+    if let Some(fs) = full_scale {
+        let at = fs * (1.0 - 1e-9);
+        for (k, &v) in x.iter().enumerate() {
+            if inside(k) && v.abs() >= at {
+                samples += 1;
+                if v > 0.0 {
+                    high = fs;
+                } else {
+                    low = -fs;
+                }
+            }
+        }
+    } else {
+        // the quantisation step: the smallest gap between distinct values
+        let mut sorted: Vec<f64> = x.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        let q = sorted
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .filter(|d| *d > 1e-12 * range)
+            .fold(f64::INFINITY, f64::min)
+            .min(range);
+        let period = 1.0 / (s.f0 * s.dt);
+        let natural = period * (2.0 * q / (0.5 * range)).sqrt() / std::f64::consts::PI;
+        let longest = (2.0 * natural).max(2.0);
+        let tol = 1e-12 * range;
+        for (level, slot) in [(hi, &mut high), (lo, &mut low)] {
+            let mut run = 0usize;
+            let flush = |run: usize, slot: &mut f64, samples: &mut usize| {
+                if run as f64 > longest {
+                    *samples += run;
+                    *slot = level;
+                }
+            };
+            for (k, &v) in x.iter().enumerate() {
+                if inside(k) && (v - level).abs() <= tol {
+                    run += 1;
+                } else {
+                    flush(run, slot, &mut samples);
+                    run = 0;
+                }
+            }
+            flush(run, slot, &mut samples);
+        }
+    }
+    (samples > 0).then_some(Clipping { samples, low, high })
 }
 
 /// The fit of A2 against A1^2 over the records (`None` for fewer than two).
@@ -650,7 +817,14 @@ fn fit_series(records: &[RecordAnalysis]) -> Option<SeriesFit> {
         .iter()
         .map(|p| (p.1 - intercept - slope * p.0).powi(2))
         .sum();
-    let r_squared = if syy > 0.0 { 1.0 - sse / syy } else { 1.0 };
+    // two points fix a line: R^2 = 1 and no interval say nothing of the fit
+    let r_squared = if m < 3 {
+        f64::NAN
+    } else if syy > 0.0 {
+        1.0 - sse / syy
+    } else {
+        1.0
+    };
     let nan = (f64::NAN, f64::NAN);
     let (slope_interval, intercept_interval) = if m > 2 {
         let dof = m - 2;

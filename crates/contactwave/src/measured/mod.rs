@@ -29,7 +29,9 @@ mod load;
 mod series;
 mod transducer;
 
-pub use analyze::{analyze, Analysis, RecordAnalysis, SeriesFit, Settings, HARMONIC_KEYS};
+pub use analyze::{
+    analyze, clip_levels, Analysis, Clipping, RecordAnalysis, SeriesFit, Settings, HARMONIC_KEYS,
+};
 pub use arrays::{read_arrays, Format, NamedArray};
 pub use load::{load, Amplitudes, Sources};
 pub use series::{read_records, Layout, Measured, Records, Series, Trace};

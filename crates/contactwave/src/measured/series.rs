@@ -217,6 +217,34 @@ pub fn read_records(path: &Path, layout: &Layout) -> Result<Records> {
             traces.push(Trace { name, samples });
         }
     }
+    // a first column that increases in uniform steps is a time axis, not a record (an
+    // `.npy` saved as `[t, x]` columns, a CSV whose time column has another name): it is
+    // the time base when the file has none, refused beside a sampling rate
+    let mut axis: Option<Trace> = None;
+    if time.is_none()
+        && layout.records.is_empty()
+        && traces.len() > 1
+        && is_time_axis(&traces[0].samples)
+    {
+        let t = traces.remove(0);
+        if let Some(fs) = layout.sample_rate {
+            return Err(Error::invalid(
+                &shown,
+                &t.name,
+                format!(
+                    "{:e} .. {:e} in uniform steps",
+                    t.samples[0],
+                    t.samples[t.samples.len() - 1]
+                ),
+                format!(
+                    "a record, not a time axis: it increases in uniform steps (the time, s?); \
+                     leave out --sample-rate {fs} to take it as the time base, or choose the \
+                     records with --datasets"
+                ),
+            ));
+        }
+        axis = Some(t);
+    }
     if traces.is_empty() {
         return Err(Error::invalid(
             &shown,
@@ -254,6 +282,11 @@ pub fn read_records(path: &Path, layout: &Layout) -> Result<Records> {
     }
     let (dt, t0) = match (time, layout.sample_rate) {
         (Some(t), _) => uniform_step(&shown, &t.name, &t.data, n)?,
+        (None, None) if axis.is_some() => {
+            let t = axis.as_ref().map_or(&[][..], |t| &t.samples[..]);
+            let name = axis.as_ref().map_or("", |t| t.name.as_str());
+            uniform_step(&shown, name, t, n)?
+        }
         (None, Some(fs)) => {
             if !(fs > 0.0) || !fs.is_finite() {
                 return Err(Error::invalid(&shown, "sample_rate", fs, "must be > 0 Hz"));
@@ -278,6 +311,21 @@ pub fn read_records(path: &Path, layout: &Layout) -> Result<Records> {
         t0,
         traces,
     })
+}
+
+/// Whether `v` (at least 16 values) increases in uniform steps (within
+/// [`TIME_TOLERANCE`] of a step): a time axis. No record of a wave does.
+fn is_time_axis(v: &[f64]) -> bool {
+    let n = v.len();
+    if n < 16 || v.iter().any(|x| !x.is_finite()) {
+        return false;
+    }
+    let dt = (v[n - 1] - v[0]) / (n - 1) as f64;
+    dt > 0.0
+        && v.iter()
+            .enumerate()
+            .all(|(k, &x)| ((x - v[0]) / dt - k as f64).abs() <= TIME_TOLERANCE)
+        && v.windows(2).all(|w| w[1] > w[0])
 }
 
 fn listing(arrays: &[NamedArray]) -> String {
@@ -422,5 +470,52 @@ mod tests {
         assert_eq!(r.traces.len(), 1);
         assert!((r.dt - 1e-8).abs() < 1e-20);
         std::fs::remove_file(&path).ok();
+    }
+
+    /// Issue 56 item 3: an `.npy` of `[t, x]` columns had its time column analysed as
+    /// record 0. A first column in uniform steps is the time base, refused beside a
+    /// sampling rate; a record that merely rises is not taken for one.
+    #[test]
+    fn a_uniformly_stepped_first_column_is_the_time_axis() {
+        let path = std::env::temp_dir().join(format!("cw-axis-{}.npy", std::process::id()));
+        let n = 200;
+        let mut data = Vec::new();
+        for k in 0..n {
+            let t = 1e-6 + k as f64 * 2e-8;
+            data.extend([t, (2.0 * std::f64::consts::PI * 1e6 * t).sin()]);
+        }
+        use npyz::WriterBuilder;
+        let mut w = npyz::WriteOptions::new()
+            .default_dtype()
+            .shape(&[n as u64, 2])
+            .writer(std::fs::File::create(&path).unwrap())
+            .begin_nd()
+            .unwrap();
+        w.extend(data.iter().copied()).unwrap();
+        w.finish().unwrap();
+        let r = read_records(&path, &Layout::default()).unwrap();
+        assert_eq!(
+            r.traces.len(),
+            1,
+            "{:?}",
+            r.traces.iter().map(|t| &t.name).collect::<Vec<_>>()
+        );
+        assert!((r.dt - 2e-8).abs() < 1e-20 && (r.t0 - 1e-6).abs() < 1e-18);
+        assert!(r.traces[0].samples[0].abs() < 1.0);
+        let rate = Layout {
+            sample_rate: Some(50e6),
+            ..Layout::default()
+        };
+        let e = read_records(&path, &rate).unwrap_err().to_string();
+        assert!(
+            e.contains("time axis") && e.contains("--sample-rate"),
+            "{e}"
+        );
+        std::fs::remove_file(&path).ok();
+        // a rising record (not uniform steps) is a record
+        let ramp: Vec<f64> = (0..64).map(|k| (k as f64).powi(2)).collect();
+        assert!(!is_time_axis(&ramp));
+        let line: Vec<f64> = (0..64).map(|k| 3.0 + 0.5 * k as f64).collect();
+        assert!(is_time_axis(&line));
     }
 }

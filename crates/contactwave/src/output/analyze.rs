@@ -22,12 +22,24 @@ fn num(v: f64) -> Value {
 
 /// The keys of one record in `summary.json` (and the columns of `records.csv`): `A1` ...
 /// `A5`, `A2_over_A1`, `A3_over_A1`, `beta_star`, `A2_floor` ... `A5_floor`,
-/// `A2_noise_floor` ..., `A2_leakage_floor` ..., `harmonic_floor_warning`, `dc_offset`.
+/// `A2_noise_floor` ..., `A2_leakage_floor` ..., `harmonic_floor_warning`, then
+/// `clipped_samples` (0: not clipped), `clip_low`, `clip_high` (the levels, the record's
+/// unit; empty where not clipped) and `harmonics_reliable` (0 for a clipped record);
+/// `summary.json` adds `dc_offset` and `noise_window`.
 pub fn record_keys() -> impl Iterator<Item = &'static str> {
     std::iter::once("amplitude")
         .chain(HARMONIC_KEYS)
         .chain(FLOOR_KEYS)
+        .chain(CLIP_KEYS)
 }
+
+/// The clipping's keys of [`record_keys`].
+const CLIP_KEYS: [&str; 4] = [
+    "clipped_samples",
+    "clip_low",
+    "clip_high",
+    "harmonics_reliable",
+];
 
 /// The floors' keys of [`record_keys`] (and the warning flag).
 const FLOOR_KEYS: [&str; 13] = [
@@ -53,7 +65,28 @@ fn record_values(r: &crate::measured::RecordAnalysis) -> Vec<f64> {
     v.extend_from_slice(&r.noise[2..6]);
     v.extend_from_slice(&r.leakage[2..6]);
     v.push(if r.near_floor.is_empty() { 0.0 } else { 1.0 });
+    match r.clipped {
+        Some(c) => v.extend([c.samples as f64, c.low, c.high, 0.0]),
+        None => v.extend([0.0, f64::NAN, f64::NAN, 1.0]),
+    }
     v
+}
+
+/// One record's ratio `A{n}/A1` with its floor as a bound, as printed:
+/// `A2/A1 = 2.3600e-2 (floor 3.0e-3)`, `(floor 1.2e-5, noise unknown)` where only the
+/// method's leakage is known.
+pub fn ratio_with_floor(r: &crate::measured::RecordAnalysis, n: usize) -> String {
+    let a1 = r.harmonics[1];
+    let floor = r.floor(n) / a1;
+    let unknown = if r.noise_window.is_none() {
+        ", noise unknown"
+    } else {
+        ""
+    };
+    format!(
+        "A{n}/A1 = {:.4e} (floor {floor:.1e}{unknown})",
+        r.harmonics[n] / a1
+    )
 }
 
 /// One line per record with a harmonic near its floor, and one where a given f0 is more
@@ -86,17 +119,55 @@ pub fn warnings(a: &Analysis) -> Vec<String> {
     units
         .into_iter()
         .chain(f0)
-        .chain(a.records
-        .iter()
-        .filter(|r| !r.near_floor.is_empty())
-        .map(|r| {
-            let h: Vec<String> = r.near_floor.iter().map(|n| format!("A{n}")).collect();
-            format!(
-                "{}: {} within a factor 10 of the analysis floor (noise or the method's leakage): read them as upper bounds",
-                r.name,
-                h.join(", ")
-            )
+        .chain(a.records.iter().filter_map(|r| {
+            r.clipped.map(|c| {
+                format!(
+                    "{}: clipped: {} samples {} (flat at the record's extremes{}): its harmonics \
+                     are the clipping's, not the specimen's (harmonics_reliable = 0); re-record \
+                     it within the digitiser's range",
+                    r.name,
+                    c.samples,
+                    crate::measured::clip_levels(&c),
+                    if a.full_scale.is_some() {
+                        ", or at the full scale given"
+                    } else {
+                        ""
+                    }
+                )
+            })
         }))
+        .chain(
+            a.records
+                .iter()
+                .filter(|r| !r.near_floor.is_empty())
+                .map(|r| {
+                    let h: Vec<String> = r
+                        .near_floor
+                        .iter()
+                        .filter_map(|&n| {
+                            crate::analysis::floor_reading(
+                                &format!("A{n}"),
+                                r.harmonics[n],
+                                r.floor(n),
+                            )
+                        })
+                        .collect();
+                    format!(
+                        "{}: {} (the analysis floor: noise or the method's leakage)",
+                        r.name,
+                        h.join("; ")
+                    )
+                }),
+        )
+        .chain(
+            // without a gate and a quiet part before the arrival, the noise is not measured
+            a.records.iter().any(|r| r.noise_window.is_none()).then(|| {
+                "the noise floor is unknown (no samples outside the gate, or no quiet part \
+                     before the arrival without one): the floors are the method's leakage \
+                     only; a --gate around the echo with noise outside it measures it"
+                    .to_string()
+            }),
+        )
         .collect()
 }
 
@@ -111,7 +182,17 @@ pub fn summary(a: &Analysis, inputs: &[String]) -> Value {
             for (k, v) in record_keys().zip(record_values(r)) {
                 m.insert(k.into(), num(v));
             }
+            // a count, written as an integer
+            m.insert(
+                "clipped_samples".into(),
+                json!(r.clipped.map_or(0, |c| c.samples)),
+            );
             m.insert("dc_offset".into(), num(r.dc));
+            m.insert(
+                "noise_window".into(),
+                r.noise_window
+                    .map_or(Value::Null, |(s, e)| json!([num(s), num(e)])),
+            );
             if let Some(k) = r.linear_scale {
                 m.insert("linear_reference_scale".into(), num(k));
             }
@@ -139,6 +220,7 @@ pub fn summary(a: &Analysis, inputs: &[String]) -> Value {
         "f0_detected": a.f0_detected,
         "method": a.method.name(),
         "analysis_method": a.method.code(),
+        "full_scale": a.full_scale.map(num),
         "gate": a.gate.map(|g| json!({"start": num(g.start), "end": num(g.end), "taper": num(g.taper)})),
         "plateau": [num(a.plateau.0), num(a.plateau.1)],
         "dt": num(a.dt),
@@ -237,6 +319,21 @@ pub fn files(a: &Analysis, series: &Series, inputs: &[String]) -> Result<Vec<Out
     Ok(out)
 }
 
+/// The pictures' mark of a clipped record (empty otherwise).
+#[cfg(feature = "plot")]
+fn clip_note(a: &Analysis, i: usize) -> String {
+    a.records
+        .get(i)
+        .and_then(|r| r.clipped)
+        .map_or(String::new(), |c| {
+            format!(
+                " - CLIPPED ({} samples {}): harmonics unreliable",
+                c.samples,
+                crate::measured::clip_levels(&c)
+            )
+        })
+}
+
 fn csv_cell(s: &str) -> String {
     if s.contains([',', '"', '\n']) {
         format!("\"{}\"", s.replace('"', "\"\""))
@@ -262,7 +359,10 @@ fn plots(a: &Analysis, pic: &Picture) -> Result<Vec<OutputFile>> {
             "record.svg",
             900,
             &[Panel {
-                title: format!("record {name}: as read (mean removed) and gated"),
+                title: format!(
+                    "record {name}: as read (mean removed) and gated{}",
+                    clip_note(a, pic.record)
+                ),
                 xlabel: "t (µs)".into(),
                 ylabel: "record (its unit)".into(),
                 series: vec![
@@ -287,9 +387,10 @@ fn plots(a: &Analysis, pic: &Picture) -> Result<Vec<OutputFile>> {
             900,
             &[Panel {
                 title: format!(
-                    "spectrum of the gated record {name} (f0 = {:.4} MHz{}; markers at n f0)",
+                    "spectrum of the gated record {name} (f0 = {:.4} MHz{}; markers at n f0){}",
                     a.f0 * 1e-6,
-                    if a.f0_detected { ", detected" } else { "" }
+                    if a.f0_detected { ", detected" } else { "" },
+                    clip_note(a, pic.record)
                 ),
                 xlabel: "f (MHz)".into(),
                 ylabel: "magnitude (dB re peak)".into(),
@@ -312,10 +413,17 @@ fn plots(a: &Analysis, pic: &Picture) -> Result<Vec<OutputFile>> {
                 "fit.svg",
                 900,
                 &[Panel {
-                    title: format!(
-                        "A2 against A1^2: slope {:.4e} (95% {:.3e} .. {:.3e}), R^2 = {:.4}",
-                        f.slope, f.slope_interval.0, f.slope_interval.1, f.r_squared
-                    ),
+                    title: if f.count < 3 {
+                        format!(
+                            "A2 against A1^2: slope {:.4e} (a line through two points: no fit statistics)",
+                            f.slope
+                        )
+                    } else {
+                        format!(
+                            "A2 against A1^2: slope {:.4e} (95% {:.3e} .. {:.3e}), R^2 = {:.4}",
+                            f.slope, f.slope_interval.0, f.slope_interval.1, f.r_squared
+                        )
+                    },
                     xlabel: "A1^2 (unit^2)".into(),
                     ylabel: "A2 (unit)".into(),
                     series: vec![pts, Curve::new("least-squares fit", &line_x, &line_y)],

@@ -265,3 +265,53 @@ at = [1e-3, 1e-3]
     };
     assert_eq!(hs.waveform("reflected_velocity").unwrap().samples, v);
 }
+
+/// Issue 56 item 1: an identification from raw records refuses a clipped record (its
+/// harmonics are the clipping's), naming it, the samples and the level, unless
+/// `allow_clipped = true`; the example's own records are not taken for clipped ones.
+#[test]
+fn clipped_records_are_refused_unless_allowed() {
+    let committed = std::fs::read_to_string(example().with_extension("csv")).unwrap();
+    let cols = columns(&committed);
+    // record_8 (the largest drive) clipped at 60 % of its peak, as an overranged scope
+    let peak = cols[8].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let level = 0.6 * peak;
+    let mut text =
+        String::from("t,record_1,record_2,record_3,record_4,record_5,record_6,record_7,record_8\n");
+    for k in 0..cols[0].len() {
+        let row: Vec<String> = (0..9)
+            .map(|c| {
+                let v = cols[c][k];
+                let v = if c == 8 { v.clamp(-level, level) } else { v };
+                format!("{v:e}")
+            })
+            .collect();
+        text.push_str(&row.join(","));
+        text.push('\n');
+    }
+    let path = variant("clipped", |t| t, Some(&text));
+    let err = IdentifySpec::load(&path).unwrap_err().to_string();
+    assert!(
+        err.contains("record_8") && err.contains("clipped") && err.contains("allow_clipped"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    std::fs::remove_dir_all(path.parent().unwrap().parent().unwrap()).ok();
+    let path = variant(
+        "clipped-allowed",
+        |t| {
+            t.replace(
+                "method = \"band_peak\"",
+                "method = \"band_peak\"\nallow_clipped = true",
+            )
+        },
+        Some(&text),
+    );
+    IdentifySpec::load(&path).unwrap();
+    std::fs::remove_dir_all(path.parent().unwrap().parent().unwrap()).ok();
+    // the example's records, unclipped
+    let path = variant("unclipped", |t| t, None);
+    let spec = IdentifySpec::load(&path).unwrap();
+    std::fs::remove_dir_all(path.parent().unwrap().parent().unwrap()).ok();
+    drop(spec);
+}

@@ -178,6 +178,7 @@ fn errors(method: AnalysisMethod) -> [f64; 6] {
         gate: Some(gate(flat)),
         method,
         keep_dc: false,
+        full_scale: None,
     };
     let a = analyze(&series, &settings, "synthetic").unwrap();
     assert!(
@@ -234,6 +235,7 @@ fn analyze_one(m: Measured, f0: f64, method: AnalysisMethod) -> contactwave::mea
         gate: Some(gate(false)),
         method,
         keep_dc: false,
+        full_scale: None,
     };
     analyze(&series, &s, "one").unwrap()
 }
@@ -295,6 +297,7 @@ fn the_leakage_floor_sees_the_gates_edges() {
             }),
             method: AnalysisMethod::BandPeak,
             keep_dc: false,
+            full_scale: None,
         };
         analyze(&series, &s, "tone.csv").unwrap().records.remove(0)
     };
