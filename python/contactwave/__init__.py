@@ -529,7 +529,8 @@ class Solid2dResult:
     (m along it, ``(n_nodes,)``), the nodes' coordinates ``x``, ``z`` (m, ``(n_nodes,)``),
     ``time`` (s, ``(n_records,)``) and ``normal_gap``,
     ``tangential_gap`` (m), ``normal_stress``, ``shear_stress`` (Pa, tension positive,
-    ``-p0`` at rest), ``adhesion`` and ``state`` (0 open, 1 stick, 2 slip) of shape
+    ``-p0`` at rest), ``adhesion`` and ``state`` (0 open, 1 stick, 2 slip, or closed on a
+    frictionless crack) of shape
     ``(n_nodes, n_records)``. ``dt`` (s);
     ``summary``: the numbers of ``summary.json`` (the CLI's file adds ``scenario`` and
     ``provenance``; here ``scenario`` is the :class:`Scenario` run, ``None`` for a raw
@@ -621,8 +622,9 @@ class Solid2dResult:
         (stress_receiver, stress_component, time; Pa), ``snapshot`` (snapshot_time, z,
         x; m/s) and per crack ``crack<k>_normal_gap`` ... on (``crack<k>_position`` m,
         ``crack<k>_time`` s); coordinates ``time`` (s), ``x``, ``z`` (m, the snapshot
-        pixel centres), all with ``attrs["units"]``. Needs xarray (the ``xarray``
-        extra)."""
+        pixel centres), all with ``attrs["units"]``; a part the run does not have (no
+        velocity or stress receivers, no ``[snapshots]``) is left out, with no empty
+        dimension. Needs xarray (the ``xarray`` extra)."""
         from ._frames import solid_2d_xarray
 
         return solid_2d_xarray(self)

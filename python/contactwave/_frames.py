@@ -149,11 +149,12 @@ def bar_stack_xarray(r: Any) -> Any:
     u = BAR_STACK_UNITS
     data = {k: ("time", getattr(r, k), {"units": u[k]})
             for k in ("force", "displacement", "acceleration")}
-    for k in ("gap", "pressure", "beta", "stiffness"):
-        data[k] = (("interface", "time"), np.asarray(getattr(r, k)), {"units": u[k]})
+    coords = {"time": ("time", r.t, {"units": "s"})}
     n = np.asarray(r.gap).shape[0]
-    coords = {"time": ("time", r.t, {"units": "s"}),
-              "interface": ("interface", np.arange(n), {"units": "1"})}
+    if n:  # (a stack without interfaces has no interface dimension, not an empty one)
+        for k in ("gap", "pressure", "beta", "stiffness"):
+            data[k] = (("interface", "time"), np.asarray(getattr(r, k)), {"units": u[k]})
+        coords["interface"] = ("interface", np.arange(n), {"units": "1"})
     return xr.Dataset(data, coords=coords, attrs=_numbers(r.summary))
 
 
@@ -174,35 +175,39 @@ def solid_2d_pandas(r: Any) -> Any:
 
 def solid_2d_xarray(r: Any) -> Any:
     xr = require("xarray", "xarray", "Solid2dResult.to_xarray()")
-    # the rows (one per point and component, point-major) as point x component x time
-    points = unique(r.receiver_names)
-    comps = list(r.components)
-    spoints = unique(r.stress_names)
-    scomps = unique(r.stress_components)
+    # the rows (one per point and component, point-major) as point x component x time;
+    # a part the run does not have (no velocity or stress receivers, no [snapshots], a
+    # crack without records) is left out with its dimensions, not given as empty ones
     nt = len(r.t)
-    data = {
-        "velocity": (("receiver", "component", "time"),
-                     r.receivers.reshape(len(points), len(comps), nt), {"units": "m/s"}),
-        "stress": (("stress_receiver", "stress_component", "time"),
-                   r.stresses.reshape(len(spoints), len(scomps), nt), {"units": "Pa"}),
-        "snapshot": (("snapshot_time", "z", "x"), r.snapshots,
-                     {"units": "m/s", "field": r.snapshot_field}),
-    }
-    coords = {
-        "time": ("time", r.t, {"units": "s"}),
+    data: Dict[str, Any] = {}
+    coords: Dict[str, Any] = {"time": ("time", r.t, {"units": "s"})}
+    points = unique(r.receiver_names)
+    if points:
+        comps = list(r.components)
+        data["velocity"] = (("receiver", "component", "time"),
+                            r.receivers.reshape(len(points), len(comps), nt), {"units": "m/s"})
         # labels: no unit (CF's "1" for a dimensionless quantity would mislead)
-        "receiver": ("receiver", points, {"units": "", "long_name": "receiver name"}),
-        "component": ("component", comps,
-                      {"units": "", "long_name": "velocity component (axis)"}),
-        "stress_receiver": ("stress_receiver", spoints,
-                            {"units": "", "long_name": "stress receiver name"}),
-        "stress_component": ("stress_component", scomps,
-                             {"units": "", "long_name": "stress component (axes)"}),
-        "snapshot_time": ("snapshot_time", r.snapshot_times, {"units": "s"}),
-        "z": ("z", r.snapshot_z, {"units": "m"}),
-        "x": ("x", r.snapshot_x, {"units": "m"}),
-    }
+        coords["receiver"] = ("receiver", points, {"units": "", "long_name": "receiver name"})
+        coords["component"] = ("component", comps,
+                               {"units": "", "long_name": "velocity component (axis)"})
+    spoints = unique(r.stress_names)
+    if spoints:
+        scomps = unique(r.stress_components)
+        data["stress"] = (("stress_receiver", "stress_component", "time"),
+                          r.stresses.reshape(len(spoints), len(scomps), nt), {"units": "Pa"})
+        coords["stress_receiver"] = ("stress_receiver", spoints,
+                                     {"units": "", "long_name": "stress receiver name"})
+        coords["stress_component"] = ("stress_component", scomps,
+                                      {"units": "", "long_name": "stress component (axes)"})
+    if len(r.snapshot_times):
+        data["snapshot"] = (("snapshot_time", "z", "x"), r.snapshots,
+                            {"units": "m/s", "field": r.snapshot_field})
+        coords["snapshot_time"] = ("snapshot_time", r.snapshot_times, {"units": "s"})
+        coords["z"] = ("z", r.snapshot_z, {"units": "m"})
+        coords["x"] = ("x", r.snapshot_x, {"units": "m"})
     for k, c in enumerate(r.cracks):
+        if not (len(c["position"]) and len(c["time"])):
+            continue
         p = f"crack{k}_"
         coords[p + "position"] = (p + "position", c["position"], {"units": "m"})
         coords[p + "time"] = (p + "time", c["time"], {"units": "s"})

@@ -3,8 +3,12 @@
 matplotlib is optional (the ``plot`` extra) and imported only when a plot is drawn; a
 missing matplotlib raises ``ImportError`` naming the extra. Every helper draws one panel
 into ``ax`` (a new figure when ``None``) and returns that Axes. The lines hold the result's
-own arrays in SI units (s, Hz, m/s, Pa, ...); the tick labels carry SI prefixes
-(``matplotlib.ticker.EngFormatter``: ``5 µ`` on an axis labelled ``time t (s)``).
+own arrays in SI units (s, Hz, m/s, Pa, ...); the tick labels carry SI prefixes with the
+unit (``matplotlib.ticker.EngFormatter``: ``5 µs`` on an axis labelled ``time t (s)``,
+``300 mm/s`` on one in m/s). A spectrum's log axis spans its bins above 0 Hz (the DC bin,
+near zero once the mean is removed, would stretch it over decades of nothing) and its
+harmonic markers sit at n f0 of the scenario's fundamental in Hz (a unit string such as
+``"1 MHz"`` read as the library reads it).
 """
 
 from __future__ import annotations
@@ -32,11 +36,26 @@ def _axes(ax: Any, what: str) -> Any:
     return ax
 
 
-def _eng(axis: Any) -> None:
-    """SI prefixes on the tick labels of ``axis`` (``ax.xaxis`` / ``ax.yaxis``)."""
+def _eng(axis: Any, unit: str) -> None:
+    """SI prefixes and the ``unit`` on the tick labels of ``axis`` (``ax.xaxis`` /
+    ``ax.yaxis``): ``300 mm/s``, ``5 µs``, ``2 MHz`` (a prefix alone, ``300 m`` on an axis
+    in m/s, reads as metres)."""
     from matplotlib.ticker import EngFormatter
 
-    axis.set_major_formatter(EngFormatter(sep=" "))
+    axis.set_major_formatter(EngFormatter(unit=unit, sep=" "))
+
+
+def _log_limits(ax: Any, frequency: Any, *magnitudes: Any) -> None:
+    """The log y axis of a spectrum over the positive values of its bins above 0 Hz (the
+    DC bin left out: after the mean is removed it holds rounding, decades below the
+    rest), with a tenth of a decade of room."""
+    f = np.asarray(frequency, dtype=np.float64)
+    keep = f > 0
+    values = np.concatenate([np.asarray(m, dtype=np.float64)[keep] for m in magnitudes])
+    values = values[np.isfinite(values) & (values > 0)]
+    if values.size:
+        lo, hi = float(values.min()), float(values.max())
+        ax.set_ylim(lo / 10**0.1, hi * 10**0.1)
 
 
 def label(key: str) -> str:
@@ -74,22 +93,37 @@ def _harmonic_markers(ax: Any, f0: float) -> None:
         )
 
 
+def _hz(key: str, value: Any) -> float:
+    """A frequency of a scenario's table in Hz: a number, or a unit string (``"1 MHz"``)
+    converted as the library converts it; NaN for anything else."""
+    if isinstance(value, bool):
+        return math.nan
+    if isinstance(value, (int, float)):
+        return float(value)
+    if isinstance(value, str):
+        try:
+            return float(_core.si_value(key, value))
+        except ValueError:
+            return math.nan
+    return math.nan
+
+
 def _scenario_f0(scenario: Any) -> float:
     """The fundamental (Hz) of a scenario: ``incident.frequency`` (half space),
-    ``source.frequency`` (2D); NaN when it has none."""
+    ``source.0.signal.frequency`` (2D), numbers or unit strings; NaN when it has none."""
     try:
         table = json.loads(scenario.to_json())
     except Exception:  # noqa: BLE001 - a result without its scenario: no markers
         return math.nan
     incident = table.get("incident", {})
-    if isinstance(incident, Mapping) and isinstance(incident.get("frequency"), (int, float)):
-        return float(incident["frequency"])
+    if isinstance(incident, Mapping) and "frequency" in incident:
+        return _hz("incident.frequency", incident["frequency"])
     # 2D: the first source's signal
     sources = table.get("source", [])
     if isinstance(sources, list) and sources and isinstance(sources[0], Mapping):
         signal = sources[0].get("signal", {})
-        if isinstance(signal, Mapping) and isinstance(signal.get("frequency"), (int, float)):
-            return float(signal["frequency"])
+        if isinstance(signal, Mapping) and "frequency" in signal:
+            return _hz("source.0.signal.frequency", signal["frequency"])
     return math.nan
 
 
@@ -113,31 +147,32 @@ def half_space(r: Any, kind: str, ax: Any) -> Any:
             ax.plot(r.t, y, label=name, linewidth=1.0)
         ax.set_ylabel("stress at the interface (Pa)")
         ax.set_title("interface stresses (tension positive)")
-        _eng(ax.yaxis)
+        _eng(ax.yaxis, "Pa")
     elif kind == "probe":
         ax.plot(r.probe_t, r.probe_incident_velocity, label="incident", linewidth=1.0)
         ax.plot(r.probe_t, r.probe_reflected_velocity, label="reflected", linewidth=1.0)
         ax.set_ylabel("particle velocity (m/s)")
         ax.set_title(f"probe at x = {r.probe_x:.4g} m")
-        _eng(ax.yaxis)
+        _eng(ax.yaxis, "m/s")
     elif kind == "gap":
         ax.plot(r.t, r.gap, label="gap", linewidth=1.0)
         ax.set_ylabel("gap [u] (m)")
         ax.set_title("interface gap (opening positive)")
-        _eng(ax.yaxis)
+        _eng(ax.yaxis, "m")
     else:
         s = r.spectrum()
         ax.semilogy(s.frequency, s.incident, label="incident", linewidth=1.0)
         ax.semilogy(s.frequency, s.reflected, label="reflected", linewidth=1.0)
+        _log_limits(ax, s.frequency, s.incident, s.reflected)
         _harmonic_markers(ax, _scenario_f0(r.scenario))
         ax.set_xlabel("frequency f (Hz)")
         ax.set_ylabel("velocity spectrum |V(f)| (m/s s)")
         ax.set_title(f"spectra ({r.analysis_method}: A2/A1 = {r.summary.get('A2_over_A1', math.nan):.4g})")
-        _eng(ax.xaxis)
+        _eng(ax.xaxis, "Hz")
         ax.legend()
         return ax
     ax.set_xlabel("time t (s)")
-    _eng(ax.xaxis)
+    _eng(ax.xaxis, "s")
     ax.legend()
     return ax
 
@@ -197,14 +232,15 @@ def solid_2d(r: Any, kind: str, ax: Any, receivers: Any, component: Any) -> Any:
         ax.set_xlabel("time t (s)")
         ax.set_ylabel(f"{quantity} ({unit})")
         ax.set_title("receivers")
-        _eng(ax.xaxis)
-        _eng(ax.yaxis)
+        _eng(ax.xaxis, "s")
+        _eng(ax.yaxis, unit)
         ax.legend()
         return ax
     # the library's spectrum of each record (the analysis of `contactwave analyze`)
     f0 = _scenario_f0(getattr(r, "scenario", None))
     from .measured import analyze
 
+    spectra = []
     for name in names:
         for c in comps:
             with warnings.catch_warnings():
@@ -212,12 +248,17 @@ def solid_2d(r: Any, kind: str, ax: Any, receivers: Any, component: Any) -> Any:
                 a = analyze(record(name, c), dt=float(r.t[1] - r.t[0]), t0=float(r.t[0]),
                             f0=f0 if math.isfinite(f0) else None)
             ax.semilogy(a.frequency, a.magnitude, label=f"{name} {symbol}{c}", linewidth=1.0)
-            f0 = a.f0
+            spectra.append(a)
+    if spectra:
+        _log_limits(ax, spectra[0].frequency, *(a.magnitude for a in spectra))
+        if not math.isfinite(f0):
+            # no fundamental in the scenario (a signal from a file): the one detected
+            f0 = spectra[-1].f0
     _harmonic_markers(ax, f0)
     ax.set_xlabel("frequency f (Hz)")
     ax.set_ylabel(f"{quantity} spectrum ({unit} s)")
     ax.set_title("receiver spectra")
-    _eng(ax.xaxis)
+    _eng(ax.xaxis, "Hz")
     ax.legend()
     return ax
 
@@ -251,16 +292,19 @@ def bar_stack(r: Any, kind: str, ax: Any) -> Any:
             for name, y in r.waves.items():
                 ax.plot(r.t, y, label=name, linewidth=1.0)
             ax.set_ylabel("displacement (m)")
+            unit = "m"
         else:
             ax.plot(r.t, r.force, label="force", linewidth=1.0)
             ax.set_ylabel("force at node 0 (N)")
+            unit = "N"
     else:
         for i, g in enumerate(np.asarray(r.gap)):
             ax.plot(r.t, g, label=f"interface {i}", linewidth=1.0)
         ax.set_ylabel("gap (m)")
+        unit = "m"
     ax.set_xlabel("time t (s)")
-    _eng(ax.xaxis)
-    _eng(ax.yaxis)
+    _eng(ax.xaxis, "s")
+    _eng(ax.yaxis, unit)
     ax.legend()
     return ax
 
@@ -287,14 +331,15 @@ def analysis(a: Any, kind: str, ax: Any) -> Any:
         ax.set_xlabel("time t (s)")
         ax.set_ylabel("record (its unit)")
         ax.set_title(f"record {name}: as read and gated")
-        _eng(ax.xaxis)
+        _eng(ax.xaxis, "s")
     elif kind == "spectrum":
         ax.semilogy(a.frequency, a.magnitude, label=f"gated {name}", linewidth=1.0)
+        _log_limits(ax, a.frequency, a.magnitude)
         _harmonic_markers(ax, a.f0)
         ax.set_xlabel("frequency f (Hz)")
         ax.set_ylabel("spectrum |X(f)| (unit s)")
         ax.set_title(f"f0 = {a.f0:.6g} Hz{' (detected)' if a.f0_detected else ''}, {a.method}")
-        _eng(ax.xaxis)
+        _eng(ax.xaxis, "Hz")
     elif kind == "harmonics":
         rec = a.records[a.record]
         n = np.arange(1, 6, dtype=np.float64)

@@ -118,3 +118,28 @@ def test_bar_stack_to_pandas_and_xarray(root):
     assert ds["gap"].dims == ("interface", "time") and ds["gap"].attrs["units"] == "m"
     assert ds.sizes["interface"] == n and ds["time"].attrs["units"] == "s"
     assert np.array_equal(ds["stiffness"].to_numpy(), r.stiffness)
+
+
+def test_solid_2d_to_xarray_leaves_out_what_the_run_does_not_have():
+    # issue 56 item 10: no empty dimensions or variables (no [snapshots], no stress
+    # receivers, no velocity receivers)
+    def empty(ds):
+        return sorted([d for d, n in ds.sizes.items() if n == 0]
+                      + [k for k, v in ds.variables.items() if v.size == 0])
+
+    ds = cw.run(SMALL).to_xarray()
+    assert empty(ds) == []
+    assert "velocity" in ds and "crack0_state" in ds
+    for name in ("stress", "snapshot", "stress_receiver", "snapshot_time", "x", "z"):
+        assert name not in ds.variables and name not in ds.sizes, name
+    stress = {"name": "s", "at": [0.5e-3, 0.25e-3], "quantity": "stress"}
+    r = cw.run({**SMALL, "receiver": [stress]})
+    ds = r.to_xarray()
+    assert empty(ds) == []
+    assert "velocity" not in ds and "receiver" not in ds.sizes
+    assert np.array_equal(ds["stress"].sel(stress_receiver="s", stress_component="zz")
+                          .to_numpy(), r.stress("s", "zz"))
+    # with snapshots the frames are there, on their coordinates
+    d = {**SMALL, "snapshots": {"times": [0.3e-6], "pixels": 40}}
+    ds = cw.run(d).to_xarray()
+    assert empty(ds) == [] and ds["snapshot"].shape == (1, 20, 40)

@@ -329,3 +329,76 @@ def test_the_analysis_picture_is_the_cli_spectrum(cli, root, tmp_path):
     np.testing.assert_allclose(a.frequency, spec[:, 0], rtol=1e-15)
     np.testing.assert_allclose(a.magnitude, spec[:, 1], rtol=1e-15)
     assert len(a.t) == len(a.raw) == len(a.gated) > 0
+
+
+# issue 56 item 10: what a spectrum plot and its axes tell a researcher
+
+
+def test_harmonic_markers_come_from_the_scenarios_f0_in_si():
+    # a frequency written as a unit string is the scenario's f0 (not the detected one)
+    half = {**CHEAP, "incident": {**CHEAP["incident"], "frequency": "1 MHz"}}
+    ax = cw.run(half).plot("spectrum")
+    xs = [m.get_xdata()[0] for m in markers(ax, "harmonic_")]
+    assert xs == pytest.approx([1e6, 2e6, 3e6, 4e6, 5e6], rel=1e-12)
+    source = dict(SMALL_2D["source"][0])
+    source["signal"] = {**source["signal"], "frequency": "10 MHz"}
+    r = cw.run({**SMALL_2D, "source": [source]})
+    ax = r.plot("spectrum", receivers="under", component="z")
+    xs = [m.get_xdata()[0] for m in markers(ax, "harmonic_")]
+    assert xs == pytest.approx([1e7, 2e7, 3e7, 4e7, 5e7], rel=1e-12)
+
+
+def _above_dc(frequency, *magnitudes):
+    """The smallest and largest positive magnitude of the bins above 0 Hz."""
+    keep = np.asarray(frequency) > 0
+    v = np.concatenate([np.asarray(m)[keep] for m in magnitudes])
+    v = v[np.isfinite(v) & (v > 0)]
+    return v.min(), v.max()
+
+
+def test_the_spectrum_log_axis_spans_the_bins_above_the_dc_bin():
+    r = cw.run(CHEAP)
+    f, inc, refl = r.spectrum()
+    ax = r.plot("spectrum")
+    lo, hi = _above_dc(f, inc, refl)
+    bottom, top = ax.get_ylim()
+    assert bottom == pytest.approx(lo / 10**0.1, rel=1e-9)
+    assert top == pytest.approx(hi * 10**0.1, rel=1e-9)
+    r2 = cw.run(SMALL_2D)
+    ax = r2.plot("spectrum", receivers="under", component="z")
+    a = cw.analyze(r2.velocity("under", "z"), dt=r2.t[1] - r2.t[0], t0=r2.t[0], f0=10e6)
+    assert a.frequency[0] == 0.0
+    lo, hi = _above_dc(a.frequency, a.magnitude)
+    assert ax.get_ylim()[0] == pytest.approx(lo / 10**0.1, rel=1e-9)
+    # the DC bin, rounding once the mean is removed, lies below the axis
+    assert a.magnitude[0] < ax.get_ylim()[0]
+    records = np.stack([burst(1.0, 0), burst(0.5, 1)], axis=1)
+    m = cw.analyze(records, dt=DT, f0=F0)
+    ax = m.plot("spectrum")
+    lo, hi = _above_dc(m.frequency, m.magnitude)
+    assert ax.get_ylim() == pytest.approx((lo / 10**0.1, hi * 10**0.1), rel=1e-9)
+
+
+def test_tick_labels_carry_the_axis_unit_with_its_prefix():
+    def tick(axis, value):
+        return axis.get_major_formatter()(value, 0)
+
+    r = cw.run(CHEAP)
+    ax = r.plot("probe")
+    # an axis in m/s: "300 mm/s", not "300 m" (metres)
+    assert tick(ax.yaxis, 0.3) == "300 mm/s"
+    assert tick(ax.xaxis, 5e-6) == "5 µs"
+    assert tick(r.plot().yaxis, 2e6) == "2 MPa"
+    assert tick(r.plot("gap").yaxis, 2e-8) == "20 nm"
+    assert tick(r.plot("spectrum").xaxis, 2e6) == "2 MHz"
+    # the labels drawn carry the unit too
+    fig = ax.figure
+    fig.canvas.draw()
+    drawn = [t.get_text() for t in ax.get_yticklabels() if t.get_text()]
+    assert drawn and all(t.endswith("m/s") for t in drawn), drawn
+    r2 = cw.run({**SMALL_2D, "receiver": [{"name": "s", "at": [0.5e-3, 0.25e-3],
+                                           "quantity": "stress"}]})
+    ax = r2.plot()
+    assert tick(ax.yaxis, 3e6) == "3 MPa" and tick(ax.xaxis, 2e-7) == "200 ns"
+    ax = cw.run(SMALL_2D).plot()
+    assert tick(ax.yaxis, 0.3) == "300 mm/s"

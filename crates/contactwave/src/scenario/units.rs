@@ -192,7 +192,10 @@ pub fn dimension_of_key(key: &str) -> Option<Dimension> {
     let last = key.rsplit('.').next().unwrap_or(key);
     Some(match last {
         "frequency" | "frequency2" | "first_mode_min" | "first_mode_max" => Dimension::Frequency,
-        "delay" | "duration" | "time_step" | "times" | "gate" | "taper" => Dimension::Time,
+        // (`every`: `[snapshots] every`, the interval between frames)
+        "delay" | "duration" | "time_step" | "times" | "every" | "gate" | "taper" => {
+            Dimension::Time
+        }
         "x" | "length" | "cell_size" | "width" | "thickness" | "element_size" | "pml_thickness"
         | "start" | "end" | "at" | "to" | "z" | "x0" | "x1" | "position" | "gap" => {
             Dimension::Length

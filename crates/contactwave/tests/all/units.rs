@@ -437,6 +437,47 @@ fn solid_2d_geometry_takes_unit_strings() {
     assert!(e.contains("model.width") && e.contains("a length"), "{e}");
 }
 
+/// `[snapshots]` takes unit strings in `every` as in `times` (docs/scenario.md: every key
+/// with a unit does): the same frames as the SI numbers.
+#[test]
+fn solid_2d_snapshot_times_take_unit_strings() {
+    use contactwave::scenario::solid_2d::{Solid2dScenario, Solid2dSpec};
+    use contactwave::scenario::BuildCache;
+    let times = |snapshots: &str| -> Vec<f64> {
+        let text = format!("{SOLID_2D}\n[snapshots]\n{snapshots}\n");
+        let table: toml::Table = toml::from_str(&text).unwrap();
+        let spec = Solid2dSpec::from_table(table, "u.toml").unwrap_or_else(|e| panic!("{e}"));
+        let s = Solid2dScenario::from_spec(spec, "u.toml", Path::new("."), &BuildCache::new())
+            .unwrap_or_else(|e| panic!("{e}"));
+        s.snapshots.unwrap().times
+    };
+    let close = |a: &[f64], b: &[f64]| {
+        a.len() == b.len()
+            && a.iter()
+                .zip(b)
+                .all(|(x, y)| (x - y).abs() <= 1e-12 * y.abs())
+    };
+    let every = times("every = 0.2e-6");
+    assert_eq!(every.len(), 3, "{every:?}");
+    for text in [
+        "every = \"0.2 us\"",
+        "every = \"200 ns\"",
+        "every = \"0.2 µs\"",
+    ] {
+        let t = times(text);
+        assert!(close(&t, &every), "{text}: {t:?} against {every:?}");
+    }
+    let listed = times("times = [0.2e-6, 0.4e-6]");
+    let t = times("times = [\"0.2 us\", \"400 ns\"]");
+    assert!(close(&t, &listed), "{t:?} against {listed:?}");
+    // a unit of another dimension is an error naming the key
+    let text = format!("{SOLID_2D}\n[snapshots]\nevery = \"0.2 mm\"\n");
+    let e = Solid2dSpec::from_table(toml::from_str(&text).unwrap(), "u.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("snapshots.every") && e.contains("a time"), "{e}");
+}
+
 /// The 2D model's plausibility warnings (model.md section 15, `Solid2dScenario::warnings`):
 /// a speed in km/s, a width in mm, a closure in MPa, a frequency in MHz, absorbing layers
 /// tens of wavelengths thick, each one line naming its key; an element size too coarse for

@@ -16,6 +16,18 @@ use crate::solver::solid_2d::Plan;
 /// Margins and colour bar around a frame's field, px (an upper bound, for the budget).
 const FRAME_EXTRA: (f64, f64) = (180.0, 120.0);
 
+/// The least height of a frame's field, px (the colour bar's height, which is the
+/// field's): a thin plate's few pixel rows are each drawn several pixels tall.
+pub const MIN_FIELD_HEIGHT: usize = 120;
+
+/// How many pixels tall each of a frame's `nz` pixel rows is drawn: 1, or for a field
+/// lower than [`MIN_FIELD_HEIGHT`] the least whole number that makes it that tall (the
+/// depth drawn stretched by as much; the raster, the VTK files and Python's arrays keep
+/// square pixels).
+pub fn row_height(nz: usize) -> usize {
+    MIN_FIELD_HEIGHT.div_ceil(nz.max(1))
+}
+
 /// The snapshots of a run: the frames on their pixel grid and how they are drawn.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Snapshots2d {
@@ -53,7 +65,8 @@ impl Solid2dScenario {
         // the kept fields, their pixels, and the pictures (RGB and RGBA for the GIF), with
         // the files all held until written: each frame's PNG (at most about 3 bytes a
         // pixel) and `.vti` (base64 of float64: about 11 bytes a pixel)
-        let pictures = (nx + FRAME_EXTRA.0) * (nz.max(120.0) + FRAME_EXTRA.1) * 10.0;
+        let drawn = nz * row_height(nz as usize) as f64;
+        let pictures = (nx + FRAME_EXTRA.0) * (drawn + FRAME_EXTRA.1) * 10.0;
         let vti = if s.vtk { 11.0 } else { 0.0 };
         let bytes = Capture::bytes(steps.len(), len) + frames * (nx * nz * (16.0 + vti) + pictures);
         let change = if s.key == "snapshots.every" {
@@ -138,15 +151,34 @@ mod files {
         }
     }
 
-    /// The picture of frame `k`: the field in mm, the cracks, receivers and transducers.
+    /// The picture of frame `k`: the field in mm, the cracks, receivers and transducers;
+    /// a thin plate's rows drawn [`row_height`] pixels tall, said in the title.
     fn frame(r: &Solid2dResult, s: &Snapshots2d, k: usize) -> image::RgbImage {
         let mm = 1e3;
         let (nx, nz) = (s.raster.x.len(), s.raster.z.len());
         let (width, depth) = (r.geometry.width, r.geometry.depth);
+        let rows = row_height(nz);
+        let field = s.raster.frame(k);
+        let stretched: Vec<f64>;
+        let (values, title) = if rows > 1 {
+            stretched = field
+                .chunks_exact(nx.max(1))
+                .flat_map(|row| std::iter::repeat_n(row, rows).flatten().copied())
+                .collect();
+            (
+                stretched.as_slice(),
+                format!(
+                    "t = {:.2} \u{b5}s (depth stretched {rows}x)",
+                    s.times[k] * 1e6
+                ),
+            )
+        } else {
+            (field, format!("t = {:.2} \u{b5}s", s.times[k] * 1e6))
+        };
         let h = Heatmap {
             nx,
-            nz,
-            values: s.raster.frame(k),
+            nz: nz * rows,
+            values,
             x_range: (0.0, width * mm),
             y_range: (0.0, depth * mm),
             scale: if s.signed {
@@ -155,7 +187,7 @@ mod files {
                 (0.0, s.scale)
             },
             diverging: s.signed,
-            title: format!("t = {:.2} \u{b5}s", s.times[k] * 1e6),
+            title,
             xlabel: "x (mm)".into(),
             ylabel: "z (mm)".into(),
             bar_label: field_label(s),
@@ -184,8 +216,9 @@ mod files {
         picture::heatmap(&h)
     }
 
-    /// The crack's normal gap (nm; `state` false) or its contact state (0 open, 1 stick,
-    /// 2 slip; `state` true) along it (mm) against time (us, downwards).
+    /// The crack's normal gap (nm; `state` false) or its contact state (open, stick, slip;
+    /// open or closed on a frictionless crack; `state` true) along it (mm) against time
+    /// (us, downwards).
     fn crack_map(r: &Solid2dResult, i: usize, state: bool) -> image::RgbImage {
         let c = &r.output.cracks[i];
         // an antiplane crack never opens: its map is the jump of u_y across it (signed)
@@ -227,8 +260,15 @@ mod files {
                 values[iz * nx + ix] = field.get(k * n + j).copied().unwrap_or(0.0) * unit;
             }
         }
+        let classes = states(r, i);
+        if state {
+            // the picture's classes are drawn by their index: a state's value -> its row
+            for v in &mut values {
+                *v = classes.iter().position(|c| c.0 == *v).unwrap_or(0) as f64;
+            }
+        }
         let top = if state {
-            2.0
+            (classes.len() - 1) as f64
         } else {
             values.iter().fold(0.0f64, |a, &b| a.max(b.abs()))
         };
@@ -243,7 +283,7 @@ mod files {
         let signed = antiplane && !state;
         // the states in the colours of crack_state.svg, named as in its legend
         let classes = if state {
-            (STATES.iter())
+            (classes.iter())
                 .map(|(_, name, (r, g, b))| {
                     (
                         name.split(' ').next().unwrap_or(name).to_string(),
@@ -365,8 +405,22 @@ mod files {
     pub(super) const STATES: [(f64, &str, (u8, u8, u8)); 3] = [
         (0.0, "open", (214, 39, 40)),
         (1.0, "stick", (31, 119, 180)),
-        (2.0, "slip (or closed without friction)", (255, 187, 60)),
+        (2.0, "slip", (255, 187, 60)),
     ];
+
+    /// The states of a frictionless crack: open, or closed (its state 2, which a crack
+    /// with friction records for slip; it never sticks).
+    pub(super) const FRICTIONLESS_STATES: [(f64, &str, (u8, u8, u8)); 2] =
+        [STATES[0], (2.0, "closed (frictionless)", (150, 150, 150))];
+
+    /// The state classes of crack `i` of `r`.
+    fn states(r: &Solid2dResult, i: usize) -> &'static [(f64, &'static str, (u8, u8, u8))] {
+        if r.geometry.frictionless.get(i).copied().unwrap_or(false) {
+            &FRICTIONLESS_STATES
+        } else {
+            &STATES
+        }
+    }
 
     /// `receivers.svg` and `spectra.svg` (every velocity and stress receiver, one panel
     /// each), `crack_state.svg` (each crack's state along it against time), and the VTK
@@ -463,7 +517,7 @@ mod files {
                 positions: &mm,
                 times: &us,
                 states: &c.state,
-                classes: &STATES,
+                classes: states(r, i),
             };
             out.push(OutputFile::new(
                 &name,
@@ -534,6 +588,9 @@ pub struct Geometry {
     pub depth: f64,
     /// Cracks `[x0, z0, x1, z1]`.
     pub cracks: Vec<[f64; 4]>,
+    /// Whether each crack is frictionless (friction coefficient 0): its closed points
+    /// slide freely, never stick, and the state maps name them `closed`, not `slip`.
+    pub frictionless: Vec<bool>,
     /// Depths of the boundaries between layers, m.
     pub layer_boundaries: Vec<f64>,
     /// Velocity receivers `[x, z]`.
@@ -562,6 +619,11 @@ impl Geometry {
                         [c.start[0], c.start[1], c.end[0], c.end[1]]
                     }
                 })
+                .collect(),
+            frictionless: p
+                .cracks
+                .iter()
+                .map(|c| c.law.tangential.branch.friction() == 0.0)
                 .collect(),
             layer_boundaries: p
                 .layers
@@ -722,10 +784,10 @@ at = [1e-3, 1e-3]
                 "crack_state.png"
             ]
         );
-        // the field's 100 x 50 px, margins of 176 x 88 px around it (colour bar at least
-        // 120 px high)
+        // the field's 100 x 50 px, each row drawn 3 px tall (at least 120 px: 150), margins
+        // of 176 x 88 px around it
         let png = image::load_from_memory(&bin[1].bytes).unwrap();
-        assert_eq!((png.width(), png.height()), (100 + 176, 120 + 88));
+        assert_eq!((png.width(), png.height()), (100 + 176, 150 + 88));
         // the state map draws only the three states' colours (no blend of a continuous
         // scale), and a clapping crack shows at least two of them
         let state = image::load_from_memory(&bin[5].bytes).unwrap().to_rgb8();
@@ -748,7 +810,7 @@ at = [1e-3, 1e-3]
             .collect_frames()
             .unwrap();
         assert_eq!(gif.len(), 3);
-        assert_eq!(gif[0].buffer().dimensions(), (276, 208));
+        assert_eq!(gif[0].buffer().dimensions(), (276, 238));
         // the VTK frame parses back with the raster's values (rows from the bottom up)
         let vti = fw
             .iter()
@@ -791,6 +853,136 @@ at = [1e-3, 1e-3]
             panic!("snapshot_z")
         };
         assert!((z[0] - 1e-5).abs() < 1e-18);
+    }
+
+    /// A frictionless crack (no tangential law) never sticks: its state maps name its
+    /// closed points `closed`, in a colour of their own, not `slip`; a crack with friction
+    /// keeps open, stick and slip.
+    #[test]
+    fn a_frictionless_crack_is_closed_not_slipping() {
+        let coulomb = "tangential = { law = \"coulomb\", friction = 0.3 }";
+        assert!(small("").contains(coulomb));
+        let legend = |label: &str| format!("\n{label}\n</text>");
+        for friction in [false, true] {
+            let text = if friction {
+                small("")
+            } else {
+                small("").replace(coulomb, "")
+            };
+            let out = run(&text);
+            let r = out
+                .as_any()
+                .downcast_ref::<crate::model::solid_2d::Solid2dResult>()
+                .unwrap();
+            assert_eq!(r.geometry.frictionless, [!friction]);
+            let files = out.files().unwrap();
+            let svg = &files
+                .iter()
+                .find(|f| f.name == "crack_state.svg")
+                .unwrap()
+                .contents;
+            let named = |label: &str| svg.contains(&legend(label));
+            assert!(named("open"), "{svg}");
+            assert_eq!(named("closed (frictionless)"), !friction, "{friction}");
+            assert_eq!(named("slip") && named("stick"), friction, "{friction}");
+            let want = if friction {
+                &super::files::STATES[..]
+            } else {
+                &super::files::FRICTIONLESS_STATES[..]
+            };
+            let colours: Vec<[u8; 3]> = want.iter().map(|(_, _, (r, g, b))| [*r, *g, *b]).collect();
+            let bin = out.binary_files().unwrap();
+            let png = bin.iter().find(|f| f.name == "crack_state.png").unwrap();
+            let state = image::load_from_memory(&png.bytes).unwrap().to_rgb8();
+            let mut seen = std::collections::BTreeSet::new();
+            for y in 40..40 + 400 {
+                for x in 64..64 + 600 {
+                    let c = state.get_pixel(x, y).0;
+                    assert!(colours.contains(&c), "{friction}: {c:?} at ({x}, {y})");
+                    seen.insert(c);
+                }
+            }
+            // the crack under 0.2 MPa is shut at rest: stuck with friction, closed without
+            assert!(seen.contains(&colours[1]), "{friction}: {seen:?}");
+        }
+    }
+
+    /// A thin plate's frames: its few pixel rows each drawn several pixels tall, so that
+    /// the field is [`super::MIN_FIELD_HEIGHT`] px tall, and the colour bar as tall as the
+    /// field (not taller); the raster itself keeps square pixels.
+    #[test]
+    fn a_thin_plate_frame_has_a_readable_field_and_a_bar_of_its_height() {
+        // 4 mm x 0.2 mm, 200 px across: 10 rows of 20 um, each drawn 12 px tall
+        let text = r#"
+[model]
+kind = "solid_2d"
+width = 4e-3
+duration = 0.3e-6
+element_size = 0.1e-3
+
+[[layer]]
+thickness = 0.2e-3
+material = "aluminium"
+
+[[crack]]
+start = [1.7e-3, 0.1e-3]
+end = [2.3e-3, 0.1e-3]
+static_pressure = 0.2e6
+
+[[source]]
+x0 = 1.6e-3
+x1 = 2.4e-3
+signal = { frequency = 10e6, cycles = 2, amplitude = 10e6, window = "hann" }
+
+[snapshots]
+times = [0.3e-6]
+pixels = 200
+vtk = false
+gif = false
+"#;
+        let out = run(text);
+        let r = out
+            .as_any()
+            .downcast_ref::<crate::model::solid_2d::Solid2dResult>()
+            .unwrap();
+        let s = r.snapshots.as_ref().unwrap();
+        assert_eq!((s.raster.x.len(), s.raster.z.len()), (200, 10));
+        assert_eq!(super::row_height(10), 12);
+        let bin = out.binary_files().unwrap();
+        let png = bin
+            .iter()
+            .find(|f| f.name == "snapshots/frame_0000.png")
+            .unwrap();
+        let img = image::load_from_memory(&png.bytes).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (200 + 176, 120 + 88));
+        // the rows (not white, not the black frame) of a column of the field, away from
+        // the crack and the transducer, and of the colour bar, between the title and the
+        // tick labels: the same 120, from the top margin down
+        let coloured = |x: u32| -> Vec<u32> {
+            (35..170)
+                .filter(|&y| {
+                    let c = img.get_pixel(x, y).0;
+                    c != [255, 255, 255] && c != [0, 0, 0]
+                })
+                .collect()
+        };
+        let field = coloured(64 + 25);
+        let bar = coloured(64 + 200 + 16 + 8);
+        let rows: Vec<u32> = (40..40 + 120).collect();
+        assert_eq!(field, rows);
+        // (the bar's black outline takes its last row)
+        assert_eq!(bar, rows[..119]);
+        // each raster row is 12 identical pixel rows
+        for iz in 0..10 {
+            let first = img.get_pixel(64 + 25, 40 + 12 * iz).0;
+            for j in 1..12 {
+                assert_eq!(
+                    img.get_pixel(64 + 25, 40 + 12 * iz + j).0,
+                    first,
+                    "{iz} {j}"
+                );
+            }
+        }
     }
 
     /// A stress receiver has its panel in `receivers.svg` and `spectra.svg`, in MPa and

@@ -2,7 +2,7 @@
 //! of three P wavelengths under the plane P burst, p0 = 0.3 MPa, 1 MPa) run once more with
 //! `[snapshots]` (model.md section 15.11): two frames (the burst on the crack; the
 //! reflected burst on its way up with the tips' diffracted waves behind it), the GIF of
-//! every frame, and the crack's open/stick/slip state along its length in time, embedded in
+//! every frame, and the crack's open/closed state along its length in time, embedded in
 //! the report beside the receiver's record.
 
 use super::super::{fmt_value, panel, Figure, Picture};
@@ -135,8 +135,9 @@ pub(super) fn run(ctx: &Ctx, res: Resolution, figures: &mut Vec<Figure>) -> Resu
              above the injection line only the scattered field. Frame 1: the burst on the \
              crack, which opens on its tensile half-cycles. Frame 2: the reflected burst on \
              its way up, the waves diffracted by the tips spreading behind it. The GIF: every \
-             frame, one per half period. The crack's state map: open (gap > 0), stick and \
-             slip along it (horizontal) against time (downwards). Resolution: {}.",
+             frame, one per half period. The crack's state map: open (gap > 0) or closed (a \
+             frictionless crack never sticks) along it (horizontal) against time \
+             (downwards). Resolution: {}.",
             fmt_value(lambda_mm),
             fmt_value((z(Plane::Z_C) - z(Plane::Z_L)) * 1e3),
             res.name()
@@ -178,7 +179,8 @@ pub(super) fn run(ctx: &Ctx, res: Resolution, figures: &mut Vec<Figure>) -> Resu
         Picture {
             name: "finite_crack_wavefield_crack_state.png".into(),
             bytes: p.state,
-            caption: "The crack's state along its length in time: open, stick, slip.".into(),
+            caption: "The crack's state along its length in time: open or closed (frictionless)."
+                .into(),
         },
     ];
     fig = fig.compare(format!(
