@@ -9,10 +9,94 @@
 //! (dynamic, tension positive) acts as the force `+B (S_N n + S_T t)` on face 1 and its
 //! opposite on face 2, so that `U = U~ - chi S` with `chi = dt^2 B (1/M1 + 1/M2)`: the
 //! equation of the 1D schemes, solved exactly at the new level by the law (no penalty).
+//!
+//! Time levels of what a point records ([`PointFields`]): the gaps, the adhesion and a
+//! compliant branch's stress (`sigma(U^{n+1})`, a spring's, an elastic stick's) belong to
+//! the new level `t_{n+1}` of the update that finds them. A constraint's reaction (the
+//! normal stress closed on a rigid compression branch or bonded on a rigid traction branch,
+//! a rigid-stick slider's stress in stick and in slip, whose limit is `mu N` of the normal
+//! stress applied over the same step) is the force of the central-difference step that
+//! starts at level n: it enforces the constraint at `t_{n+1}` but belongs to `t_n`, where
+//! it acts in `M (u^{n+1} - 2 u^n + u^{n-1}) / dt^2 = f^n - K u^n + B S^n`. So the fields of
+//! level n are complete only after the update n -> n + 1: it keeps them in
+//! [`CrackNodes::fields`], each stress at its own level.
 
 use crate::error::Result;
 use crate::law::contact::{update_point, InterfaceScheme, PointState, StepContext, Trial};
-use crate::law::{NormalPart, TangentialPart};
+use crate::law::{CompressionBranch, NormalPart, TangentialBranch, TangentialPart, TractionBranch};
+
+/// One point's recorded fields at one time level (a row of `crack.csv`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PointFields {
+    /// Normal gap `U_N`, m.
+    pub normal_gap: f64,
+    /// Tangential gap `U_T`, m.
+    pub tangential_gap: f64,
+    /// Normal contact stress sigma (tension positive, `-p0` at rest), Pa.
+    pub normal_stress: f64,
+    /// Contact shear stress tau (`q0` at rest), Pa.
+    pub shear_stress: f64,
+    /// Adhesion beta.
+    pub adhesion: f64,
+    /// Contact state: 0 open (the normal gap beyond the law's contact-loss gap), 1 stick,
+    /// 2 slip (sliding, or closed without friction), the slider's of the step whose shear
+    /// stress is recorded.
+    pub state: f64,
+}
+
+impl PointFields {
+    /// The fields of a point at rest in `state` (Pa, m): its static stresses.
+    pub fn at_rest<L: NormalPart + TangentialPart>(law: &L, state: &PointState) -> Self {
+        Self::of_level(law, state, state, [0.0; 2])
+    }
+
+    /// The fields of level n of a point from its state `old` of level n, its state `new`
+    /// of level n + 1 and the dynamic stresses `applied` (`[S_N, S_T]`, Pa) of the update
+    /// between them: a stress of `old` that is a constraint's reaction belongs to level
+    /// n - 1, and the reaction of level n is the update's `applied` (whatever the update
+    /// found: a point that opens over the step has the open law's stress there, none for
+    /// traction-free faces); every other field is `old`'s own.
+    fn of_level<L: NormalPart + TangentialPart>(
+        law: &L,
+        old: &PointState,
+        new: &PointState,
+        applied: [f64; 2],
+    ) -> Self {
+        let uc = law.critical_gap();
+        let normal_reaction = (old.gap <= uc && law.compression().is_rigid())
+            || (old.gap >= uc && law.traction().is_rigid());
+        // a rigid-stick slider under load (NaN: free, no slider stress: the law's own)
+        let shear_reaction =
+            law.branch().stick_stiffness().is_infinite() && !old.shear.state.is_nan();
+        let normal_stress = if normal_reaction {
+            applied[0] - law.static_pressure()
+        } else {
+            old.stress
+        };
+        let (shear_stress, slider) = if shear_reaction {
+            (applied[1] + law.static_shear(), new.shear.state)
+        } else {
+            (old.shear_stress(law), old.shear.state)
+        };
+        PointFields {
+            normal_gap: old.gap,
+            tangential_gap: old.shear.gap,
+            normal_stress,
+            shear_stress,
+            adhesion: old.beta,
+            // open: on the law's traction side, beyond the gap where the compression
+            // branch lets go (0 for Signorini; a compliant branch still presses its faces
+            // at a positive gap from rest)
+            state: if old.gap > uc {
+                0.0
+            } else if slider == 0.0 {
+                1.0
+            } else {
+                2.0
+            },
+        }
+    }
+}
 
 /// One crack's split nodes and their state.
 #[derive(Debug, Clone)]
@@ -43,6 +127,10 @@ pub struct CrackNodes<L> {
     pub gaps: Vec<[[f64; 2]; 2]>,
     /// The dynamic stresses applied over the last step, `[S_N, S_T]`, Pa.
     pub applied: Vec<[f64; 2]>,
+    /// The fields of each point at the level the last update started from (`t_n` of the
+    /// update n -> n + 1, s), each stress at its own level (the module's top comment):
+    /// what the recorder writes.
+    pub fields: Vec<PointFields>,
     /// Energy taken by the crack so far, `sum B S (U^{n+1} - U^{n-1}) / 2`, J/m.
     pub work: f64,
     /// Its tangential part, the shear tractions' `sum B S_T (U_T^{n+1} - U_T^{n-1}) / 2`,
@@ -89,7 +177,9 @@ impl<L: NormalPart + TangentialPart> CrackNodes<L> {
             };
             let law = &self.law[k];
             let st = &mut self.state[k];
+            let old = *st;
             let [sn, stt] = update_point(law, Some(law), &trial, ctx, st)?;
+            self.fields[k] = PointFields::of_level(law, &old, st, [sn, stt]);
             let (k1, k2) = self.kick[k];
             let mut kick = |i: usize, dv: f64| {
                 v[i] += dv;

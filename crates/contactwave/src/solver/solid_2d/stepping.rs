@@ -221,8 +221,8 @@ impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
 }
 
 /// What a 2D run keeps: the receivers' velocities at every half level and the cracks'
-/// fields every `crack_every` steps (and at the last), room reserved up front (the budget
-/// was checked when the plan was built): recording allocates nothing.
+/// fields every `crack_every` levels (and at the last complete one), room reserved up
+/// front (the budget was checked when the plan was built): recording allocates nothing.
 pub(super) struct Records {
     /// Times of the receiver samples, s.
     time: Vec<f64>,
@@ -236,6 +236,9 @@ pub(super) struct Records {
     cracks: Vec<CrackRecord>,
     /// Steps taken so far.
     steps: usize,
+    /// Time of the level the last step started from, s: the level whose crack fields the
+    /// step completed.
+    level_time: f64,
     /// Whether the level at rest has gone by (it is not recorded).
     started: bool,
     pub(super) n_t: usize,
@@ -276,6 +279,7 @@ impl Records {
                 })
                 .collect(),
             steps: 0,
+            level_time: 0.0,
             started: false,
             n_t,
             crack_every: plan.crack_every,
@@ -331,8 +335,12 @@ impl Records {
         Some(n)
     }
 
-    /// The cracks' fields of level `t` (s) after sample `n`, every `crack_every` samples
-    /// and at the last; their extrema at every sample.
+    /// After sample `n`, the step from level n to level n + 1 (at `t`, s): the cracks'
+    /// fields of level n, which that step completed (a constraint's reaction of level n
+    /// is the force of the step that starts there, [`super::crack`]), at the levels 1,
+    /// 1 + `crack_every`, 1 + 2 `crack_every`, ... and at the last complete one, N - 1 of a
+    /// run of N steps (level 0, at rest, only in a run of one step); the extrema of the
+    /// gaps and the adhesion over the levels 1 to N, at every sample.
     pub(super) fn crack_fields<L: NormalPart + TangentialPart>(
         &mut self,
         t: f64,
@@ -346,25 +354,18 @@ impl Records {
                 out.least_adhesion = out.least_adhesion.min(st.beta);
             }
         }
-        if n.is_multiple_of(self.crack_every) || n + 1 == self.n_t {
+        let level_time = std::mem::replace(&mut self.level_time, t);
+        let regular = n >= 1 && (n - 1).is_multiple_of(self.crack_every);
+        if regular || n + 1 == self.n_t {
             for (cr, out) in cracks.iter().zip(&mut self.cracks) {
-                out.time.push(t);
-                for (st, law) in cr.state.iter().zip(&cr.law) {
-                    out.normal_gap.push(st.gap);
-                    out.tangential_gap.push(st.shear.gap);
-                    out.normal_stress.push(st.stress);
-                    out.shear_stress.push(st.shear_stress(law));
-                    out.adhesion.push(st.beta);
-                    // open: on the law's traction side, beyond the gap where the
-                    // compression branch lets go (0 for Signorini; a compliant branch
-                    // still presses its faces at a positive gap from rest)
-                    out.state.push(if st.gap > law.critical_gap() {
-                        0.0
-                    } else if st.shear.state == 0.0 {
-                        1.0
-                    } else {
-                        2.0
-                    });
+                out.time.push(level_time);
+                for f in &cr.fields {
+                    out.normal_gap.push(f.normal_gap);
+                    out.tangential_gap.push(f.tangential_gap);
+                    out.normal_stress.push(f.normal_stress);
+                    out.shear_stress.push(f.shear_stress);
+                    out.adhesion.push(f.adhesion);
+                    out.state.push(f.state);
                 }
             }
         }
