@@ -31,9 +31,12 @@ Units are SI throughout: Pa (stress, p0, amplitude), m (gap, probe position), s,
 kg/m^3, Pa/m (interface stiffness), J/m^2 (decohesion energy). Stress is tension-positive;
 p0 is a compression.
 
-Memory: every command refuses work beyond the memory budget before allocating it
-(CONTACTWAVE_MEMORY_BUDGET, bytes with an optional k/M/G/T suffix; default half the
-available memory).
+Memory: every command refuses work beyond the memory budget, or beyond the machine's
+memory whatever the budget, before allocating it (CONTACTWAVE_MEMORY_BUDGET, bytes with an
+optional k/M/G/T suffix; default half the available memory).
+
+Progress: a bar on a terminal; in a log, a line at each tenth with the time left once a
+command has run 10 s (CONTACTWAVE_PROGRESS_AFTER, seconds).
 
 Exit codes: 0 success, 1 failed computation (validation case outside tolerance, failed
 sweep points or numerical failure of a simulation), 2 invalid input, I/O error or beyond

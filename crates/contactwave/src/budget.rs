@@ -7,7 +7,10 @@
 //! The budget is the environment variable `CONTACTWAVE_MEMORY_BUDGET` (bytes, with an
 //! optional suffix `k`, `M`, `G` or `T`, powers of 1000: `CONTACTWAVE_MEMORY_BUDGET=8G`),
 //! read at each check; by default half of the memory the machine has available
-//! (`MemAvailable` of `/proc/meminfo`, 4 GB where it cannot be read).
+//! (`MemAvailable` of `/proc/meminfo`, 4 GB where it cannot be read). Whatever the budget,
+//! an estimate above the machine's memory ([`machine_memory`]) is refused: a budget raised
+//! beyond it (one copied from a larger machine's job script) names itself and the memory
+//! the machine has.
 //!
 //! ```
 //! use contactwave::budget;
@@ -33,7 +36,8 @@ pub const FALLBACK: f64 = 4e9;
 /// the `f64` itself, the derived series of the analysis and its text in a CSV file.
 pub const BYTES_PER_SAMPLE: f64 = 64.0;
 
-/// Half of the memory available now (`MemAvailable`), bytes; read once.
+/// Half of the memory available now (`MemAvailable`, at most the [`machine_memory`]: a
+/// container's limit), bytes; read once.
 fn default_budget() -> f64 {
     static AVAILABLE: OnceLock<f64> = OnceLock::new();
     *AVAILABLE.get_or_init(|| {
@@ -45,9 +49,40 @@ fn default_budget() -> f64 {
                     .and_then(|l| l.split_whitespace().nth(1))
                     .and_then(|kb| kb.parse::<f64>().ok())
             })
-            .map(|kb| 0.5 * kb * 1024.0)
+            .map(|kb| 0.5 * (kb * 1024.0).min(machine_memory().unwrap_or(f64::INFINITY)))
             .filter(|b| *b > 0.0)
             .unwrap_or(FALLBACK)
+    })
+}
+
+/// The memory of this machine, bytes: `MemTotal` of `/proc/meminfo`, or the limit of the
+/// process's control group where it is lower (a container, a batch job's allocation);
+/// `None` where neither can be read. Read once.
+pub fn machine_memory() -> Option<f64> {
+    static TOTAL: OnceLock<Option<f64>> = OnceLock::new();
+    *TOTAL.get_or_init(|| {
+        let total = std::fs::read_to_string("/proc/meminfo")
+            .ok()
+            .and_then(|text| {
+                text.lines()
+                    .find(|l| l.starts_with("MemTotal:"))
+                    .and_then(|l| l.split_whitespace().nth(1))
+                    .and_then(|kb| kb.parse::<f64>().ok())
+                    .map(|kb| kb * 1024.0)
+            });
+        // cgroup v2, then v1 ("max", or a v1 value of about 2^63, is no limit)
+        let group = [
+            "/sys/fs/cgroup/memory.max",
+            "/sys/fs/cgroup/memory/memory.limit_in_bytes",
+        ]
+        .iter()
+        .filter_map(|p| std::fs::read_to_string(p).ok())
+        .filter_map(|t| t.trim().parse::<f64>().ok())
+        .find(|b| *b > 0.0 && *b < 1e18);
+        match (total.filter(|b| *b > 0.0), group) {
+            (Some(t), Some(g)) => Some(t.min(g)),
+            (t, g) => t.or(g),
+        }
     })
 }
 
@@ -139,19 +174,47 @@ pub fn check_or(
     change: &str,
 ) -> Result<()> {
     let limit = limit()?;
-    if bytes.is_finite() && bytes >= 0.0 && bytes <= limit {
-        return Ok(());
-    }
-    Err(Error::invalid(
-        file,
-        field,
-        value,
-        format!(
+    let budget = match std::env::var(ENV) {
+        Ok(v) => format!("{ENV}={v}"),
+        Err(_) => human(limit),
+    };
+    refusal(bytes, limit, machine_memory(), &budget, what, change)
+        .map_or(Ok(()), |why| Err(Error::invalid(file, field, value, why)))
+}
+
+/// Why `bytes` (what `what` needs) is refused under the budget `limit` (shown as `budget`)
+/// on a machine of `machine` bytes, naming `change` as the way out; `None` if it is not.
+fn refusal(
+    bytes: f64,
+    limit: f64,
+    machine: Option<f64>,
+    budget: &str,
+    what: &str,
+    change: &str,
+) -> Option<String> {
+    if !(bytes.is_finite() && bytes >= 0.0 && bytes <= limit) {
+        return Some(format!(
             "needs about {} of memory ({what}), above the memory budget of {} ({change}, or raise the budget with {ENV}=BYTES)",
             human(bytes),
             human(limit)
-        ),
-    ))
+        ));
+    }
+    // within a budget raised above what the machine has: it would swap or be killed
+    match machine {
+        Some(machine) if bytes > machine => Some(format!(
+            "needs about {} of memory ({what}), above this machine's memory of {} (the \
+             memory budget, {budget}, is above it): {change}, or run it on a machine with \
+             more memory",
+            human(bytes),
+            human(machine),
+        )),
+        _ => None,
+    }
+}
+
+/// Whether `bytes` fits the budget and the machine ([`check`] passes).
+pub fn fits(bytes: f64) -> bool {
+    check("", "", "", bytes, "").is_ok()
 }
 
 /// Refuse to read a file whose size on disk times `factor` (bytes of memory per byte of
@@ -183,6 +246,31 @@ mod tests {
         assert_eq!(human(52e6), "52 MB");
         assert_eq!(human(1.6e12), "1.6 TB");
         assert_eq!(human(2e9), "2 GB");
+    }
+
+    /// A budget raised above the machine's memory lets nothing through that the machine
+    /// cannot hold: the refusal names the budget as set and the machine's memory.
+    #[test]
+    fn a_budget_above_the_machine_is_no_licence() {
+        let budget = "CONTACTWAVE_MEMORY_BUDGET=100G";
+        let (limit, machine) = (100e9, Some(23e9));
+        let why = refusal(48e9, limit, machine, budget, "a 2D mesh", "raise `h`").unwrap();
+        assert_eq!(
+            why,
+            "needs about 48 GB of memory (a 2D mesh), above this machine's memory of 23 GB \
+             (the memory budget, CONTACTWAVE_MEMORY_BUDGET=100G, is above it): raise `h`, or \
+             run it on a machine with more memory"
+        );
+        // what the machine holds passes, and so does anything where its memory is unknown
+        assert_eq!(refusal(20e9, limit, machine, budget, "m", "c"), None);
+        assert_eq!(refusal(48e9, limit, None, budget, "m", "c"), None);
+        // beyond the budget, the budget is named as before
+        let why = refusal(200e9, limit, machine, budget, "m", "c").unwrap();
+        assert!(why.contains("above the memory budget of 100 GB"), "{why}");
+        // this machine has some memory, and the default budget is at most half of it
+        if let Some(m) = machine_memory() {
+            assert!(m > 1e6 && default_budget() <= 0.5 * m, "{m}");
+        }
     }
 
     #[test]

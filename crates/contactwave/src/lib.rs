@@ -50,6 +50,7 @@ pub mod analytic;
 pub mod budget;
 pub mod error;
 pub mod excitation;
+pub mod human;
 pub mod interrupt;
 #[cfg(feature = "identify")]
 pub mod inverse;

@@ -9,6 +9,7 @@ pub mod fit;
 pub mod identify;
 pub mod law;
 pub mod merge;
+pub mod progress;
 pub mod reproduce;
 pub mod run;
 pub mod sweep;
@@ -16,8 +17,7 @@ pub mod validate;
 
 use contactwave::output::{self, OutputFile};
 use contactwave::Error;
-use indicatif::{ProgressBar, ProgressStyle};
-use std::io::IsTerminal;
+pub use progress::{progress_bar, step_reporter, STEPS_TEMPLATE};
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -170,55 +170,6 @@ pub fn claim_out(
         );
     }
     Ok(())
-}
-
-/// Progress-bar template of the step-by-step computations (`run` of a bar stack,
-/// `convergence`).
-pub const STEPS_TEMPLATE: &str = "{bar:40} {pos}/{len}  {elapsed_precise} elapsed, eta {eta}";
-
-/// A progress bar of length `len` with the given template on stderr when it is a terminal
-/// (hidden otherwise).
-pub fn progress_bar(template: &str, len: u64) -> ProgressBar {
-    if !std::io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let b = ProgressBar::new(len);
-    if let Ok(style) = ProgressStyle::with_template(template) {
-        b.set_style(style);
-    }
-    b
-}
-
-/// How long a run goes on before, without a terminal (a log file, a batch job), it reports
-/// its progress in plain lines.
-const LOG_AFTER: std::time::Duration = std::time::Duration::from_secs(10);
-
-/// What a step-by-step computation reports its progress `(done, total)` to: the bar of
-/// [`progress_bar`] on a terminal; otherwise, once the run has lasted [`LOG_AFTER`], one
-/// line on stderr at each tenth of the steps (`progress: 40 % (838 of 2095 steps, 12 s)`),
-/// so that a long run in a log is not silent.
-pub fn step_reporter(bar: &ProgressBar) -> impl Fn(usize, usize) + Send + Sync + 'static {
-    use std::sync::atomic::AtomicUsize;
-    let b = bar.clone();
-    let logged = AtomicUsize::new(0);
-    let start = std::time::Instant::now();
-    move |done: usize, total: usize| {
-        b.set_length(total as u64);
-        b.set_position(done as u64);
-        if !b.is_hidden() || total == 0 {
-            return;
-        }
-        let tenth = (done.min(total) * 10 / total).min(9);
-        let elapsed = start.elapsed();
-        if tenth > logged.load(Ordering::Relaxed) && elapsed >= LOG_AFTER {
-            logged.store(tenth, Ordering::Relaxed);
-            eprintln!(
-                "progress: {} % ({done} of {total} steps, {:.0} s)",
-                tenth * 10,
-                elapsed.as_secs_f64()
-            );
-        }
-    }
 }
 
 /// Set by Ctrl-C or SIGTERM once [`install_interrupt_handler`] has installed its handler.

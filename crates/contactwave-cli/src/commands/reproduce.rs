@@ -42,25 +42,25 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let source = format!("reproduce {}", args.which);
     check_out(out, &source, args.overwrite)?;
     let t0 = Instant::now();
+    // a bar per study on a terminal; in a log, progress lines per study with the time left
     let bar = progress_bar("{msg:<28} {bar:30} {pos}/{len} runs  {elapsed_precise}", 0);
+    let reporter = super::progress::Reporter::new(&bar, "runs");
     let current = std::sync::Mutex::new(String::new());
     let progress = |study: &str, done: usize, total: usize| {
         let mut c = current.lock().unwrap_or_else(|p| p.into_inner());
         if *c != study {
-            if !c.is_empty() && !bar.is_hidden() {
-                bar.println(format!("  done: {c}"));
+            if !c.is_empty() {
+                reporter.say(&format!("  done: {c}"));
             }
             *c = study.to_string();
-            bar.set_message(study.to_string());
-            bar.set_length(total as u64);
-            bar.reset_elapsed();
+            reporter.stage(study);
         }
-        bar.set_position(done as u64);
+        reporter.report(done, total);
     };
     let mut results = Vec::new();
     for ch in chapters {
         let r = run_chapter_at(ch, args.quick, &progress)?;
-        bar.println(format!(
+        reporter.say(&format!(
             "{}: {} figures, {} simulations, {:.1} s",
             ch.name(),
             r.figures.len(),

@@ -7,6 +7,7 @@
 //! progress lines without one).
 
 use super::{check_out, progress_bar, read_table, step_reporter, EXIT_OK, STEPS_TEMPLATE};
+use contactwave::human;
 use contactwave::model::{self, RunControl};
 use contactwave::output;
 use contactwave::output::provenance::{process_command_line, Provenance};
@@ -49,6 +50,29 @@ pub struct Args {
     /// summary and the provenance as attributes (docs/outputs.md; MATLAB h5read, h5py).
     #[arg(long)]
     hdf5: bool,
+    /// Run a scenario even where it holds a slip that cannot be meant (a 2D source whose
+    /// wave does not fit the rectangle, a side over 10 m: docs/scenario.md section 1.2),
+    /// which is refused without it.
+    #[arg(long)]
+    yes: bool,
+}
+
+/// Refuse the first of `warnings` that is a slip that cannot be meant
+/// ([`contactwave::scenario::Warning::blocking`]) unless `yes` (`--yes`): an error naming
+/// its file, key and value (exit 2, nothing run or written).
+pub fn refuse_slips(
+    warnings: &[contactwave::scenario::Warning],
+    yes: bool,
+) -> contactwave::Result<()> {
+    match warnings.iter().find(|w| w.blocking) {
+        Some(w) if !yes => Err(contactwave::Error::invalid(
+            &w.file,
+            &w.field,
+            &w.value,
+            format!("{}; nothing was run (--yes runs it as it is)", w.reason),
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// `--record`.
@@ -60,6 +84,7 @@ enum Record {
 }
 
 pub fn run(args: Args) -> contactwave::Result<u8> {
+    let t0 = Instant::now();
     let (path, out) = (args.scenario.as_path(), args.out.as_path());
     let recording = Recording {
         series: match args.record {
@@ -75,14 +100,16 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let base = template.base()?;
     base.check_budget()?;
     // values that are legal but almost surely a unit slip: one line each, the run goes on
-    for w in base.warnings() {
+    // (a slip that cannot be meant stops it, unless --yes)
+    let slips = base.warnings();
+    refuse_slips(&slips, args.yes)?;
+    for w in &slips {
         eprintln!("warning: {w}");
     }
     let source = super::source("run", &[path]);
     check_out(out, &source, args.overwrite)?;
     // the input files hashed as read (a file edited during the run does not change them)
     let provenance = Provenance::of_scenario(path, process_command_line())?;
-    let t0 = Instant::now();
     // long runs report progress: a bar on a terminal, lines in a log
     let bar = progress_bar(STEPS_TEMPLATE, 0);
     let control = RunControl {
@@ -91,8 +118,12 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let outcome = base.run(&control);
     bar.finish_and_clear();
     let outcome = outcome?;
-    let wall = t0.elapsed();
+    let simulated = t0.elapsed();
     let mut files = recording::files(&*outcome, &recording)?;
+    // every warning of the run in summary.json: the scenario's, then the results'
+    let mut warnings: Vec<String> = slips.iter().map(|w| w.to_string()).collect();
+    warnings.extend(outcome.warnings());
+    contactwave::render::stamp_warnings(&mut files, &warnings);
     provenance.stamp(&mut files);
     // every file is rendered before the first is written: an error writes nothing
     let mut binary = outcome.binary_files()?;
@@ -112,7 +143,14 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     for line in outcome.report() {
         println!("{line}");
     }
-    println!("wall time              {:.1} ms", wall.as_secs_f64() * 1e3);
+    // the whole command: the scenario read, the run and its files rendered and written
+    let wall = t0.elapsed();
+    println!(
+        "wall time              {} (simulation {}, files {})",
+        human::duration(wall.as_secs_f64()),
+        human::duration(simulated.as_secs_f64()),
+        human::duration((wall - simulated).as_secs_f64())
+    );
     println!("wrote {} files to {}", names.len(), out.display());
     Ok(EXIT_OK)
 }

@@ -54,6 +54,11 @@ pub struct Args {
     /// the root group (docs/outputs.md).
     #[arg(long)]
     hdf5: bool,
+    /// Run the sweep even where its base scenario holds a slip that cannot be meant (a 2D
+    /// source whose wave does not fit the rectangle, a side over 10 m: docs/scenario.md
+    /// section 1.2), which is refused without it.
+    #[arg(long)]
+    yes: bool,
 }
 
 /// The files a sweep writes into its folder (those that exist are its manifest).
@@ -91,9 +96,12 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
     let validated = sweep.validate_with(&checked);
     setup.finish_and_clear();
     validated?;
-    // the base scenario's likely unit slips (one line each; the sweep goes on)
+    // the base scenario's likely unit slips (one line each; the sweep goes on, unless
+    // one cannot be meant and --yes is not given)
     if let Ok(base) = contactwave::model::plan(sweep.base_table.clone(), &sweep.base).base() {
-        for w in base.warnings() {
+        let slips = base.warnings();
+        super::run::refuse_slips(&slips, args.yes)?;
+        for w in slips {
             eprintln!("warning: {w}");
         }
     }
@@ -109,7 +117,9 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         "{bar:40} {pos}/{len} points  {elapsed_precise} elapsed, eta {eta}",
         total as u64,
     );
-    let progress = |d: usize, _total: usize| bar.set_position(d as u64);
+    // (lines with the time left in a log, the time estimate once measured)
+    let reporter = super::progress::Reporter::new(&bar, "points");
+    let progress = |d: usize, t: usize| reporter.report(d, t);
     let csv = out.join("sweep.csv");
     let opts = SweepOptions {
         threads: args.threads,

@@ -476,6 +476,13 @@ pub trait Outcome: Debug + Send + Sync {
     /// The lines a person reads after the run (`contactwave run` prints them): the
     /// quantities that matter for this kind, one per line, label padded to 23 columns.
     fn report(&self) -> Vec<String>;
+    /// What the results warn of (a harmonic within a factor 10 of its analysis floor), one
+    /// line each without the `warning: ` that [`Self::report`] prints before it; with the
+    /// scenario's own ([`Model::warnings`]) they are `summary.json`'s `warnings`
+    /// ([`crate::render::stamp_warnings`]). None by default.
+    fn warnings(&self) -> Vec<String> {
+        Vec::new()
+    }
     /// The concrete outcome, for callers that need kind-specific signals.
     fn as_any(&self) -> &dyn Any;
     /// The concrete outcome, by value.

@@ -220,9 +220,71 @@ pub fn summary_json(scenario_file: &str, summary: &Summary) -> String {
     s
 }
 
+/// Write the warnings of a run into its `summary.json` among `files`: the key `warnings`, a
+/// list of strings (one per warning, as `contactwave run` prints it after `warning: `),
+/// after the summary's keys (a provenance stamped later comes after it). Without warnings,
+/// or without a `summary.json` holding an object, the files are left as they are.
+///
+/// ```
+/// use contactwave::render::{stamp_warnings, summary_json, OutputFile};
+/// use contactwave::analysis::Summary;
+/// let mut s = Summary::new();
+/// s.set("xi", 0.5);
+/// let mut files = vec![OutputFile::new("summary.json", summary_json("a.toml", &s))];
+/// stamp_warnings(&mut files, &["a.toml: model.width = 60 m: longer than 10 m".to_string()]);
+/// let v: serde_json::Value = serde_json::from_str(&files[0].contents).unwrap();
+/// assert_eq!(v["xi"], 0.5);
+/// assert_eq!(v["warnings"][0], "a.toml: model.width = 60 m: longer than 10 m");
+/// ```
+pub fn stamp_warnings(files: &mut [OutputFile], warnings: &[String]) {
+    if warnings.is_empty() {
+        return;
+    }
+    let Some(f) = files.iter_mut().find(|f| f.name == "summary.json") else {
+        return;
+    };
+    let body = f.contents.trim_end();
+    let Some(inner) = body.strip_suffix('}') else {
+        return;
+    };
+    if !body.trim_start().starts_with('{') {
+        return;
+    }
+    let inner = inner.trim_end();
+    let list = serde_json::to_string_pretty(warnings)
+        .unwrap_or_default()
+        .replace('\n', "\n  ");
+    let sep = if inner.trim_start() == "{" { "" } else { "," };
+    f.contents = format!("{inner}{sep}\n  \"warnings\": {list}\n}}\n");
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The warnings come after every key of the summary, which keeps its text, and an
+    /// empty list leaves the file as it was.
+    #[test]
+    fn warnings_follow_the_summary_keys() {
+        let mut s = Summary::new();
+        s.set("A2_over_A1", f64::NAN);
+        let text = summary_json("a.toml", &s);
+        let mut files = vec![OutputFile::new("summary.json", text.clone())];
+        stamp_warnings(&mut files, &[]);
+        assert_eq!(files[0].contents, text);
+        let w = ["one \"quoted\"".to_string(), "two".to_string()];
+        stamp_warnings(&mut files, &w);
+        let t = &files[0].contents;
+        assert!(
+            t.starts_with(text.trim_end().trim_end_matches('}').trim_end()),
+            "{t}"
+        );
+        let v: serde_json::Value = serde_json::from_str(t).unwrap();
+        assert!(t.find("\"warnings\"") > t.find("\"A2_over_A1\""), "{t}");
+        assert_eq!(v["A2_over_A1"], serde_json::Value::Null);
+        assert_eq!(v["warnings"], serde_json::json!(["one \"quoted\"", "two"]));
+        assert!(t.ends_with("]\n}\n"), "{t}");
+    }
 
     /// A wide table (formatted in bands of rows and groups of columns, in parallel) is the
     /// row-by-row text, read back to the same numbers, for any thread count.

@@ -12,15 +12,17 @@ pub mod solid_2d;
 pub mod spec;
 pub mod units;
 mod value;
+mod warning;
 pub(crate) use value::whole_numbers;
 
 pub use cache::{BuildCache, Columns};
 pub use oblique::ObliqueSetup;
-pub use plausible::{Warning, HIGHEST_FREQUENCY, LOWEST_FREQUENCY};
+pub use plausible::{HIGHEST_FREQUENCY, LOWEST_FREQUENCY};
 pub use value::{
     apply_set, deserialize_format, parse_toml, read_base, read_table, same_key, set_dotted,
     table_to_spec, FieldProblem,
 };
+pub use warning::Warning;
 
 use crate::error::{Error, Result};
 use crate::excitation::{Excitation, FileWaveform, ToneBurst, TwoTone, Window};

@@ -1,37 +1,18 @@
 //! Plausibility warnings: values that are legal but almost surely a unit slip
 //! (`frequency = 1` meant as 1 MHz, `static_pressure = 0.082` meant as MPa), judged from
-//! the scenario's own scales. They are values, not errors: the run goes on; the CLI prints
-//! each as one line on stderr, Python raises a `UserWarning`.
+//! the scenario's own scales. They are values, not errors: the CLI prints each as one line
+//! on stderr (and writes them into `summary.json`), Python raises a `UserWarning`. A few are
+//! slips that cannot be meant ([`Warning::blocking`]: a 2D run with no wave in it, a plate
+//! tens of metres wide): `contactwave run` and `sweep` refuse those unless `--yes`.
 
 use super::bar_stack::BarStackScenario;
 use super::solid_2d::{Solid2dScenario, DEFAULT_HARMONIC, DISPERSION_BUDGET};
 use super::{IncidentKind, Scenario};
+use crate::human::number;
 use crate::solver::solid_2d::dispersion::{element_size_for, worst_phase_error};
 use crate::solver::solid_2d::Side;
-use std::fmt;
 
-/// A value that is allowed but looks like a unit slip.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Warning {
-    /// File the value comes from.
-    pub file: String,
-    /// Dotted key of the field, e.g. `incident.frequency`.
-    pub field: String,
-    /// The value, in SI, with its unit.
-    pub value: String,
-    /// Why it is suspicious, and what was probably meant.
-    pub reason: String,
-}
-
-impl fmt::Display for Warning {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{}: {} = {}: {}",
-            self.file, self.field, self.value, self.reason
-        )
-    }
-}
+pub use super::warning::Warning;
 
 /// Lowest frequency of a tone burst into a half-space taken at face value, Hz (the bottom
 /// of the audio range; the thesis' lowest is 5 kHz).
@@ -65,10 +46,21 @@ pub const LARGEST_FRICTION: f64 = 2.0;
 /// A 2D rectangle's side over 1 m and over this many S wavelengths at f0 is taken as a
 /// length in the wrong unit (a 2 m plate under a 50 kHz guided wave is 30 wavelengths).
 pub const MOST_WAVELENGTHS: f64 = 1e3;
-/// Node-updates (nodes times steps) of a 2D run above which it is announced with its
-/// estimated length: 1e10, some two minutes at 1e8 node-updates/s (the reference case is
-/// 4e9; a width in mm read as m gives 1.6e10).
+/// Node-updates (nodes times steps) of a 2D run above which it is announced with its size:
+/// 1e10, minutes on any machine (the reference case is 4e9; a width in mm read as m gives
+/// 1.6e10). How long it takes is measured while it runs (the CLI's time estimate).
 pub const LONG_RUN_UPDATES: f64 = 1e10;
+
+/// `v` given in a unit 10^`k` times SI, written in SI as a person types it: `71e9` for 71
+/// (GPa), the product where `v` is in exponent form already (`5e-5` MHz is `50`).
+fn in_si(v: f64, k: i32) -> String {
+    let shown = number(v);
+    if shown.contains(['e', 'N', 'i']) {
+        number(v * 10f64.powi(k))
+    } else {
+        format!("{shown}e{k}")
+    }
+}
 
 /// Collects the warnings of one scenario file.
 struct Warnings<'a> {
@@ -86,11 +78,20 @@ impl<'a> Warnings<'a> {
 
     fn warn(&mut self, field: String, value: String, reason: String) {
         self.out.push(Warning {
+            blocking: false,
             file: self.file.to_string(),
             field,
             value,
             reason,
         })
+    }
+
+    /// [`Warnings::warn`] of a slip that cannot be meant ([`Warning::blocking`]).
+    fn stop(&mut self, field: String, value: String, reason: String) {
+        self.warn(field, value, reason);
+        if let Some(w) = self.out.last_mut() {
+            w.blocking = true;
+        }
     }
 
     /// A tone burst's frequencies into a half-space (`prefix.frequency`,
@@ -101,11 +102,13 @@ impl<'a> Warnings<'a> {
             match f {
                 Some(f) if f < LOWEST_FREQUENCY => self.warn(
                     format!("{prefix}.{key}"),
-                    format!("{f} Hz"),
+                    format!("{} Hz", number(f)),
                     format!(
                         "below the audio range for a burst into a half-space (wavelength {:.3e} m); \
-                         a frequency in MHz? write \"{f} MHz\" or {f}e6",
-                        speed / f
+                         a frequency in MHz? write \"{f} MHz\" or {}",
+                        speed / f,
+                        in_si(f, 6),
+                        f = number(f)
                     ),
                 ),
                 _ => {}
@@ -132,10 +135,12 @@ impl<'a> Warnings<'a> {
             match v {
                 Some(v) if v < LOWEST_MODULUS => self.warn(
                     format!("{prefix}.{key}"),
-                    format!("{v} Pa"),
+                    format!("{} Pa", number(v)),
                     format!(
                         "below 1 MPa, softer than any solid; a modulus in GPa? write \
-                         \"{v} GPa\" or {v}e9 (SI units: Pa)"
+                         \"{v} GPa\" or {} (SI units: Pa)",
+                        in_si(v, 9),
+                        v = number(v)
                     ),
                 ),
                 _ => {}
@@ -144,11 +149,12 @@ impl<'a> Warnings<'a> {
         match rho {
             Some(rho) if rho < LOWEST_DENSITY => self.warn(
                 format!("{prefix}.density"),
-                format!("{rho} kg/m^3"),
+                format!("{} kg/m^3", number(rho)),
                 format!(
-                    "lighter than any solid; a density in g/cm^3? write \"{rho} g/cm^3\" \
+                    "lighter than any solid; a density in g/cm^3? write \"{} g/cm^3\" \
                      or {} (SI units: kg/m^3)",
-                    rho * 1e3
+                    number(rho),
+                    number(rho * 1e3)
                 ),
             ),
             _ => {}
@@ -199,9 +205,11 @@ impl Scenario {
         if p0 > 0.0 && p0 < LOWEST_PRESSURE {
             w.warn(
                 "interface.static_pressure".into(),
-                format!("{p0} Pa"),
+                format!("{} Pa", number(p0)),
                 format!(
-                    "below 1 kPa; a pressure in MPa? write \"{p0} MPa\" or {p0}e6 (SI units: Pa)"
+                    "below 1 kPa; a pressure in MPa? write \"{p0} MPa\" or {} (SI units: Pa)",
+                    in_si(p0, 6),
+                    p0 = number(p0)
                 ),
             );
         }
@@ -231,12 +239,12 @@ impl BarStackScenario {
             if seg.length > LONGEST_SEGMENT {
                 w.warn(
                     format!("{prefix}.length"),
-                    format!("{} m", seg.length),
+                    format!("{} m", number(seg.length)),
                     format!(
                         "a bar longer than {LONGEST_SEGMENT} m; a length in mm? write \
                          \"{} mm\" or {} (SI units: m)",
-                        seg.length,
-                        seg.length * 1e-3
+                        number(seg.length),
+                        number(seg.length * 1e-3)
                     ),
                 );
             }
@@ -255,9 +263,12 @@ impl Solid2dScenario {
     /// with no wave in it), and an `element_size` (or `time_step`) coarser than the
     /// phase-velocity budget at the highest analysed harmonic (the harmonics then carry
     /// numerical dispersion), a velocity receiver on a rigid side (zero velocity), a
-    /// stress receiver of a traction component on a free side (zero), and a run over
-    /// [`LONG_RUN_UPDATES`] node-updates (announced with its estimated length). Empty for
-    /// every shipped example.
+    /// stress receiver of a traction component on a free side (zero), a run over
+    /// [`LONG_RUN_UPDATES`] node-updates (announced with its size), and a crack the mesh
+    /// resolves too coarsely for its harmonics
+    /// ([`Solid2dScenario::crack_resolution_warnings`]). Empty for every shipped
+    /// example. A side over 10 m and a source without a wave in the rectangle are
+    /// [`Warning::blocking`].
     ///
     /// ```
     /// use contactwave::model;
@@ -276,20 +287,25 @@ impl Solid2dScenario {
     ///     signal = { frequency = 5, cycles = 3, amplitude = 1e6 }   # meant: MHz
     /// "#, "slip.toml").unwrap().base().unwrap();
     /// let w = m.warnings();
-    /// assert!(w.iter().any(|w| w.field == "source.0.signal.frequency"), "{w:?}");
+    /// let slip = w.iter().find(|w| w.field == "source.0.signal.frequency").unwrap();
+    /// // no wave fits the plate: a slip that cannot be meant (`run` refuses it without --yes)
+    /// assert!(slip.blocking && slip.value == "5 Hz", "{slip:?}");
     /// ```
     pub fn warnings(&self) -> Vec<Warning> {
         let mut w = Warnings::new(&self.file);
         let spec = &self.spec;
+        // (a slip that cannot be meant: meshed at the waves' scale, a side of tens of
+        // metres is a run of hours to days)
         let long = |w: &mut Warnings, field: String, v: f64| {
             if v > LONGEST_SEGMENT {
-                w.warn(
+                w.stop(
                     field,
-                    format!("{v} m"),
+                    format!("{} m", number(v)),
                     format!(
-                        "longer than {LONGEST_SEGMENT} m; a length in mm? write \"{v} mm\" \
+                        "longer than {LONGEST_SEGMENT} m; a length in mm? write \"{} mm\" \
                          or {} (SI units: m)",
-                        v * 1e-3
+                        number(v),
+                        number(v * 1e-3)
                     ),
                 );
             }
@@ -303,11 +319,12 @@ impl Solid2dScenario {
                 if let Some(v) = v.filter(|&v| v < LOWEST_SPEED) {
                     w.warn(
                         format!("{prefix}.{key}"),
-                        format!("{v} m/s"),
+                        format!("{} m/s", number(v)),
                         format!(
                             "slower than any solid's waves; a speed in km/s? write \
-                             \"{v} km/s\" or {} (SI units: m/s)",
-                            v * 1e3
+                             \"{} km/s\" or {} (SI units: m/s)",
+                            number(v),
+                            number(v * 1e3)
                         ),
                     );
                 }
@@ -325,7 +342,7 @@ impl Solid2dScenario {
             if soft.is_finite() && v.abs() > LARGEST_STRAIN * soft {
                 w.warn(
                     field,
-                    format!("{v} Pa"),
+                    format!("{} Pa", number(v)),
                     format!(
                         "{what} strains the solid by {:.1e} (over {LARGEST_STRAIN:e} of \
                          rho c_P^2 = {soft:.3e} Pa): beyond linear elasticity and small gaps; \
@@ -360,10 +377,12 @@ impl Solid2dScenario {
             if p0 > 0.0 && p0 < LOWEST_PRESSURE {
                 w.warn(
                     format!("crack.{i}.static_pressure"),
-                    format!("{p0} Pa"),
+                    format!("{} Pa", number(p0)),
                     format!(
-                        "below 1 kPa; a pressure in MPa? write \"{p0} MPa\" or {p0}e6 \
-                         (SI units: Pa)"
+                        "below 1 kPa; a pressure in MPa? write \"{p0} MPa\" or {} \
+                         (SI units: Pa)",
+                        in_si(p0, 6),
+                        p0 = number(p0)
                     ),
                 );
             }
@@ -388,12 +407,13 @@ impl Solid2dScenario {
                 if v > 1.0 && v <= LONGEST_SEGMENT && v > MOST_WAVELENGTHS * wavelength {
                     w.warn(
                         field,
-                        format!("{v} m"),
+                        format!("{} m", number(v)),
                         format!(
                             "{:.0} S wavelengths at f0 ({wavelength:.3e} m): a length in mm? \
-                             write \"{v} mm\" or {} (SI units: m)",
+                             write \"{} mm\" or {} (SI units: m)",
                             v / wavelength,
-                            v * 1e-3
+                            number(v),
+                            number(v * 1e-3)
                         ),
                     );
                 }
@@ -415,15 +435,18 @@ impl Solid2dScenario {
                 ("frequency", src.signal.frequency),
                 ("frequency2", src.signal.frequency2),
             ] {
+                // (a slip that cannot be meant: every harmonic of such a run is null)
                 if let Some(f) = f.filter(|&f| cs / f > LONGEST_WAVELENGTH * size) {
-                    w.warn(
+                    w.stop(
                         format!("source.{i}.signal.{key}"),
-                        format!("{f} Hz"),
+                        format!("{} Hz", number(f)),
                         format!(
                             "its S wavelength ({:.3e} m) is over {LONGEST_WAVELENGTH} times the \
-                             rectangle ({size:.3e} m): the run would hold no wave; a frequency \
-                             in MHz? write \"{f} MHz\" or {f}e6",
-                            cs / f
+                             rectangle ({size:.3e} m): the run would hold no wave (every A2/A1 \
+                             null); a frequency in MHz? write \"{f} MHz\" or {}",
+                            cs / f,
+                            in_si(f, 6),
+                            f = number(f)
                         ),
                     );
                 }
@@ -440,7 +463,7 @@ impl Solid2dScenario {
             if burst.is_finite() && p.duration < burst {
                 w.warn(
                     "model.duration".into(),
-                    format!("{} s", p.duration),
+                    format!("{} s", number(p.duration)),
                     format!(
                         "shorter than source {i}'s burst ({burst:.3e} s with its delay): the \
                          run ends before the source does, and its harmonics are those of a \
@@ -510,28 +533,27 @@ impl Solid2dScenario {
             }
         }
         // a run far longer than usual (a crack end, a receiver or a layer that forces tiny
-        // elements, or a long duration): say how long before it starts
+        // elements, or a long duration): say how large before it starts; how long it takes
+        // depends on the machine and its load, so the CLI measures it over the first steps
         // (not for a run beyond the memory budget: its refusal says what to change)
-        let within = |bytes: f64| crate::budget::limit().is_ok_and(|l| bytes <= l);
         if let Some(e) = p
             .memory_estimate(&self.file)
             .ok()
-            .filter(|e| within(self.runs() * e.total()))
+            .filter(|e| crate::budget::fits(self.runs() * e.total()))
         {
             let updates = e.nodes * e.steps;
             if updates > LONG_RUN_UPDATES {
                 w.warn(
                     "model.duration".into(),
-                    format!("{} s", p.duration),
+                    format!("{} s", number(p.duration)),
                     format!(
-                        "about {:.1e} nodes x {:.1e} steps = {updates:.1e} node-updates, some \
-                         {:.0} minutes at 1e8 node-updates/s (2 cores; docs/performance.md); \
-                         the smallest element is set by the mesh lines of the cracks' ends, \
-                         the receivers and the layers (model.md 15.1): check the units of \
-                         short features, model.element_size and model.duration",
-                        e.nodes,
-                        e.steps,
-                        updates / 1e8 / 60.0
+                        "about {:.1e} nodes x {:.1e} steps = {updates:.1e} node-updates, over \
+                         {LONG_RUN_UPDATES:.0e} (the reference case takes 4e9; `contactwave run` \
+                         prints the time it will take from the rate of its first steps); the \
+                         smallest element is set by the mesh lines of the cracks' ends, the \
+                         receivers and the layers (model.md 15.1): check the units of short \
+                         features, model.element_size and model.duration",
+                        e.nodes, e.steps,
                     ),
                 );
             }
@@ -547,7 +569,7 @@ impl Solid2dScenario {
             if self.f0 > 0.0 && t > LONGEST_WAVELENGTH * wavelength {
                 w.warn(
                     "model.pml_thickness".into(),
-                    format!("{t} m"),
+                    format!("{} m", number(t)),
                     format!(
                         "over {LONGEST_WAVELENGTH} P wavelengths at f0 ({wavelength:.3e} m): the \
                          layers absorb no better and their nodes cost time; a thickness in mm? \
@@ -588,8 +610,8 @@ impl Solid2dScenario {
                     })
             };
             let (field, value) = match spec.model.element_size {
-                Some(h) => ("model.element_size", format!("{h} m")),
-                None => ("model.time_step", format!("{dt} s")),
+                Some(h) => ("model.element_size", format!("{} m", number(h))),
+                None => ("model.time_step", format!("{} s", number(dt))),
             };
             let at = format!("{harmonic} f0 ({f_max:.3e} Hz, model.harmonic)");
             match worst {
@@ -616,6 +638,112 @@ impl Solid2dScenario {
                 Some(_) => {}
             }
         }
+        // a crack too coarse for its harmonics (model.md 15.4): known before the run
+        w.out.extend(self.crack_resolution_warnings());
         w.out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::model;
+
+    /// The plate of `examples/solid_2d/plate_crack_quick.toml` (40 x 10 mm, a 1 MHz
+    /// transducer), with `edit` applied to its text.
+    fn plate(edit: impl Fn(String) -> String) -> Vec<super::Warning> {
+        let text = edit(
+            r#"
+            [model]
+            kind = "solid_2d"
+            width = 40e-3
+            duration = 20e-6
+            harmonic = 2
+            [[layer]]
+            thickness = 10e-3
+            material = "aluminium"
+            [[crack]]
+            start = [19e-3, 5e-3]
+            end = [21e-3, 5e-3]
+            static_pressure = 1e6
+            [[source]]
+            x0 = 8e-3
+            x1 = 12e-3
+            signal = { frequency = 1e6, cycles = 5, amplitude = 10e6, window = "hann" }
+            [[receiver]]
+            name = "top_far"
+            at = [30e-3, 0.0]
+            "#
+            .to_string(),
+        );
+        let m = model::from_toml_str(&text, "plate.toml")
+            .and_then(|t| t.base())
+            .unwrap_or_else(|e| panic!("{e}"));
+        m.warnings()
+    }
+
+    /// Issue 56 (8a, 8b): a source whose wave does not fit the plate (5 Hz for 5 MHz) and
+    /// a plate tens of metres wide (mm read as m) are slips that cannot be meant; a short
+    /// duration or a soft closure only warn, and the plate as shipped draws nothing.
+    #[test]
+    fn slips_that_cannot_be_meant_block() {
+        assert_eq!(plate(|t| t), vec![]);
+        let w = plate(|t| t.replace("frequency = 1e6", "frequency = 5"));
+        let f = w.iter().find(|w| w.field == "source.0.signal.frequency");
+        assert!(f.is_some_and(|f| f.blocking && f.value == "5 Hz"), "{w:?}");
+        // the width and the positions along it in mm, read as m: the plate is 40 m wide
+        // (coarse elements keep the mesh within any budget)
+        let mm = |t: String| {
+            t.replace("width = 40e-3", "width = 40\nelement_size = 2e-3")
+                .replace("[19e-3, 5e-3]", "[19, 5e-3]")
+                .replace("[21e-3, 5e-3]", "[21, 5e-3]")
+                .replace("x0 = 8e-3", "x0 = 8")
+                .replace("x1 = 12e-3", "x1 = 12")
+                .replace("[30e-3, 0.0]", "[30, 0.0]")
+        };
+        let w = plate(mm);
+        let width = w.iter().find(|w| w.field == "model.width");
+        assert!(
+            width.is_some_and(|w| w.blocking && w.value == "40 m"),
+            "{w:?}"
+        );
+        let w = plate(|t| t.replace("duration = 20e-6", "duration = \"3 us\""));
+        assert!(
+            !w.is_empty() && w.iter().all(|w| !w.blocking && w.field == "model.duration"),
+            "{w:?}"
+        );
+    }
+
+    /// Issue 56 (8e): a value is shown short, without the round-off of its unit's
+    /// conversion ("30 us" is 2.9999999999999997e-5 s), and the long-run line assumes no
+    /// machine speed (the CLI measures it).
+    #[test]
+    fn values_are_shown_short_and_no_speed_is_assumed() {
+        let w = plate(|t| {
+            t.replace("duration = 20e-6", "duration = \"30 ns\"")
+                .replace("cycles = 5", "cycles = 40")
+        });
+        let d = w.iter().find(|w| w.field == "model.duration").unwrap();
+        assert_eq!(d.value, "3e-8 s", "{d:?}");
+        // what to write instead reads as a number too
+        assert_eq!(super::in_si(71.0, 9), "71e9");
+        assert_eq!(super::in_si(0.082, 6), "0.082e6");
+        assert_eq!(super::in_si(5e-5, 6), "50");
+        assert!(!d.to_string().contains("0000000"), "{d}");
+        // a plate 4 m wide at 1 MHz: over 1e10 node-updates
+        let w = plate(|t| {
+            t.replace("width = 40e-3", "width = 4")
+                .replace("harmonic = 2", "harmonic = 1")
+                .replace("duration = 20e-6", "duration = 4e-3")
+        });
+        let long = w.iter().find(|w| w.reason.contains("node-updates"));
+        let long = long.unwrap_or_else(|| panic!("{w:?}"));
+        assert!(
+            !long.reason.contains("1e8") && !long.reason.contains("minutes"),
+            "{long}"
+        );
+        assert!(
+            long.reason.contains("from the rate of its first steps"),
+            "{long}"
+        );
     }
 }

@@ -1,7 +1,7 @@
 //! The library's layering, checked on its source: modules import downwards only
 //!
 //! ```text
-//! error → numeric, material, analytic → analysis, law → excitation, measured, render → solver
+//! error → numeric, material, analytic, human, budget, interrupt → analysis, law → excitation, measured, render → solver
 //!       → scenario, model → run → study, inverse → output, reproduce
 //! ```
 //!
@@ -18,6 +18,7 @@ const LAYERS: &[(&str, u32)] = &[
     ("numeric", 1),
     ("material", 1),
     ("analytic", 1),
+    ("human", 1),
     ("budget", 1),
     ("interrupt", 1),
     ("analysis", 2),

@@ -369,18 +369,44 @@ impl Outcome for RunResult {
         ));
         if self.a_inc > 0.0 {
             lines.push(format!("analysis method        {}", self.method.name()));
-            let prefix = if oblique { "reflected_normal_" } else { "" };
-            let near = crate::analysis::harmonics_near_floor(&self.summary, prefix);
-            if !near.is_empty() {
-                let names: Vec<String> = near.iter().map(|n| format!("{prefix}A{n}")).collect();
-                lines.push(format!(
-                    "warning: {} within a factor 10 of the analysis floor ({} on the linear response; {prefix}A*_floor_over_Ainc); pulse_inversion or linear_reference remove the leakage floor",
-                    names.join(", "),
-                    self.method.name()
-                ));
-            }
         }
+        lines.extend(
+            Outcome::warnings(self)
+                .iter()
+                .map(|w| format!("warning: {w}")),
+        );
         lines
+    }
+
+    fn warnings(&self) -> Vec<String> {
+        if !(self.a_inc > 0.0) {
+            return Vec::new();
+        }
+        let prefix = if self.summary.get("angle").is_some() {
+            "reflected_normal_"
+        } else {
+            ""
+        };
+        let near = crate::analysis::harmonics_near_floor(&self.summary, prefix);
+        if near.is_empty() {
+            return Vec::new();
+        }
+        let get = |k: String| self.summary.get(&k).unwrap_or(f64::NAN);
+        let readings: Vec<String> = near
+            .iter()
+            .filter_map(|n| {
+                crate::analysis::floor_reading(
+                    &format!("{prefix}A{n}"),
+                    get(format!("{prefix}A{n}_over_Ainc")),
+                    get(format!("{prefix}A{n}_floor_over_Ainc")),
+                )
+            })
+            .collect();
+        vec![format!(
+            "{} (the analysis floor: {} on the linear response, {prefix}A*_floor_over_Ainc); pulse_inversion or linear_reference remove the leakage floor",
+            readings.join("; "),
+            self.method.name()
+        )]
     }
 
     fn as_any(&self) -> &dyn Any {
