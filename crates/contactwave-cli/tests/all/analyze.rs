@@ -360,3 +360,38 @@ fn two_records_give_no_fit_statistics() {
     );
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// Issue 56 item 11: `--keep-dc` detects f0 on the record without its mean (a DC of 5
+/// times the burst today hid the fundamental and the error named `f0`, which the user
+/// never gave); `plateau_fit` with a gate whose ramps leave no flat part says so.
+#[test]
+fn keep_dc_detects_f0_and_a_plateau_needs_a_flat_part() {
+    let d = tmpdir("analyze-keep-dc");
+    let clean = burst_csv(&d, "b.csv", 10e-6, 0.02, 1e-4, 10.0);
+    let text = std::fs::read_to_string(&clean).unwrap();
+    let mut offset = String::from("t,echo\n");
+    for line in text.lines().skip(1) {
+        let (t, v) = line.split_once(',').unwrap();
+        let v: f64 = v.parse().unwrap();
+        offset.push_str(&format!("{t},{:e}\n", v + 5.0));
+    }
+    let dc = d.join("dc.csv");
+    std::fs::write(&dc, offset).unwrap();
+    let out = d.join("out");
+    let (ok, _, stderr) = stdout_of(&dc, &["--keep-dc"], &out);
+    assert!(ok, "{stderr}");
+    let f0 = summary(&out)["f0"].as_f64().unwrap();
+    assert!((f0 - 1e6).abs() < 1e3, "{f0}");
+    let (code, stderr) = analyze(
+        &clean,
+        &["--method", "plateau-fit", "--gate", "10e-6,20e-6,5e-6"],
+        &d.join("out2"),
+    );
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(
+        stderr.contains("flat part") && stderr.contains("`gate`"),
+        "{stderr}"
+    );
+    assert!(!d.join("out2").exists());
+    std::fs::remove_dir_all(&d).ok();
+}

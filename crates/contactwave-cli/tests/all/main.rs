@@ -6,6 +6,8 @@ mod analyze;
 mod cli;
 mod cli_identify;
 mod common;
+mod convergence_2d;
 mod determinism;
 mod hostile;
 mod provenance;
+mod trust;

@@ -216,6 +216,68 @@ pub fn method_floor(method: AnalysisMethod, linear: &[f64], s: &Signal) -> BandA
     }
 }
 
+/// The floor a record's fundamental alone sets on `method`'s harmonics (the record's
+/// unit): what the method reads at `n f0` from `x` band-limited to `[f0/2, 3 f0/2)` before
+/// the gate (so that the gate's edges spread it as they spread the record; [`band_limited`]);
+/// zero for `plateau_fit`, exact over whole periods.
+pub fn leakage_floor(
+    method: AnalysisMethod,
+    x: &[f64],
+    gate: Option<&super::Gate>,
+    s: &Signal,
+) -> [f64; 6] {
+    if method == AnalysisMethod::PlateauFit {
+        return [0.0; 6];
+    }
+    let mut fundamental = band_limited(x, s.dt, 0.5 * s.f0, 1.5 * s.f0);
+    if let Some(g) = gate {
+        g.apply(&mut fundamental, s.t0, s.dt);
+    }
+    method_floor(method, &fundamental, s).harmonic
+}
+
+/// `x` band-limited to `(f_lo, f_hi)` (Hz): its transform weighted by 1 over the middle half
+/// of the band and half-cosine ramps to 0 at its edges, 0 outside (zero-padded to twice its
+/// length, so that the ringing does not wrap around). The smooth edges keep the ringing of
+/// the record's own ends short (a brick-wall band would ring at its edge frequency, near
+/// `2 f0` for the band around `f0`, across the whole record).
+pub fn band_limited(x: &[f64], dt: f64, f_lo: f64, f_hi: f64) -> Vec<f64> {
+    let n = x.len();
+    let m = (2 * n).next_power_of_two();
+    let mut planner = realfft::RealFftPlanner::<f64>::new();
+    let fwd = planner.plan_fft_forward(m);
+    let inv = planner.plan_fft_inverse(m);
+    let mut input = vec![0.0; m];
+    input[..n].copy_from_slice(x);
+    let mut spec = fwd.make_output_vec();
+    if fwd.process(&mut input, &mut spec).is_err() {
+        return vec![0.0; n];
+    }
+    let df = 1.0 / (m as f64 * dt);
+    let (mid, half) = (0.5 * (f_lo + f_hi), 0.5 * (f_hi - f_lo));
+    for (k, c) in spec.iter_mut().enumerate() {
+        // distance from the band's centre, in half-widths: flat below 1/2, ramp to 1
+        let r = (k as f64 * df - mid).abs() / half;
+        let w = if r <= 0.5 {
+            1.0
+        } else if r < 1.0 {
+            0.5 * (1.0 + (std::f64::consts::TAU * (r - 0.5)).cos())
+        } else {
+            0.0
+        };
+        *c *= w;
+    }
+    let mut out = inv.make_output_vec();
+    if inv.process(&mut spec, &mut out).is_err() {
+        return vec![0.0; n];
+    }
+    out.truncate(n);
+    for v in &mut out {
+        *v /= m as f64;
+    }
+    out
+}
+
 /// The flat top of a burst: the longest run of whole periods of `f0` in `[0, duration]`
 /// whose fundamental amplitude (projection of `stress` over the period) is within 1e-3 of
 /// the largest, as `(start, end)` in s. A window without a flat top (Hann) gives the

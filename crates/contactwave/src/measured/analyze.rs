@@ -22,11 +22,10 @@
 //!    are marked unreliable.
 
 use super::series::{Measured, Series};
-use crate::analysis::methods::{gated_bands, method_floor, Quantity, Signal};
+use crate::analysis::methods::{gated_bands, leakage_floor, Quantity, Signal};
 use crate::analysis::{spectral_peak, with_analyzer, AnalysisMethod, Gate};
 use crate::error::{Error, Result};
 use crate::numeric::t975;
-use realfft::RealFftPlanner;
 
 /// How records are analysed.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -302,7 +301,27 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
         .map(|r| Prepared::of(r, settings))
         .collect();
     // the fundamental
-    let detected = detect_f0(&prepared, settings.gate.as_ref(), t0, dt, file);
+    // the fundamental is detected on the records without their mean, whatever keep_dc (a
+    // kept DC offset's leakage would hide the peak, and the error would name an f0 the
+    // user never gave)
+    let detected = if settings.keep_dc {
+        let centred: Vec<Prepared> = series
+            .records
+            .iter()
+            .map(|r| {
+                Prepared::of(
+                    r,
+                    &Settings {
+                        keep_dc: false,
+                        ..*settings
+                    },
+                )
+            })
+            .collect();
+        detect_f0(&centred, settings.gate.as_ref(), t0, dt, file)
+    } else {
+        detect_f0(&prepared, settings.gate.as_ref(), t0, dt, file)
+    };
     let peak = detected.as_ref().copied().unwrap_or(f64::NAN);
     let (f0, f0_detected) = match settings.f0 {
         Some(f) => {
@@ -356,6 +375,25 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
         ));
     }
     let plateau = plateau_window(settings.gate.as_ref(), f0, t0, duration);
+    if method == AnalysisMethod::PlateauFit
+        && let Some(g) = &settings.gate
+    {
+        // the fit needs whole periods inside the gate's flat part (between its ramps)
+        let flat = (g.end - g.taper) - (g.start + g.taper);
+        if flat * f0 < 1.0 {
+            return Err(Error::invalid(
+                file,
+                "gate",
+                format!("{:e}, {:e}, {:e}", g.start, g.end, g.taper),
+                format!(
+                    "plateau_fit fits whole periods of f0 inside the gate's flat part, between \
+                     its ramps: this one leaves {flat:e} s, {:.2} periods of f0 = {f0:e} Hz \
+                     (a shorter taper, or a longer gate over the echo's flat top)",
+                    (flat * f0).max(0.0)
+                ),
+            ));
+        }
+    }
     let sig = Signal {
         quantity: Quantity::Samples,
         dt,
@@ -390,15 +428,7 @@ pub fn analyze(series: &Series, settings: &Settings, file: &str) -> Result<Analy
             // otherwise the floor is what the method reads at n f0 from the record's
             // fundamental alone (band-limited before the gate, so that the gate's edges
             // spread it as they spread the record)
-            let leakage = if method == AnalysisMethod::PlateauFit {
-                [0.0; 6]
-            } else {
-                let mut fundamental = band_limited(&p.samples, dt, 0.5 * f0, 1.5 * f0);
-                if let Some(g) = gate {
-                    g.apply(&mut fundamental, t0, dt);
-                }
-                method_floor(method, &fundamental, &sig).harmonic
-            };
+            let leakage = leakage_floor(method, &p.samples, gate, &sig);
             // a linear reference is scaled onto the record before it is subtracted: its
             // noise, scaled alike, adds to the record's
             let window = noise_window(&p.samples, gate, &sig);
@@ -591,48 +621,6 @@ fn scale_onto(x: &[f64], l: &[f64], gate: Option<&Gate>, t0: f64, dt: f64) -> f6
     } else {
         0.0
     }
-}
-
-/// `x` band-limited to `(f_lo, f_hi)` (Hz): its transform weighted by 1 over the middle half
-/// of the band and half-cosine ramps to 0 at its edges, 0 outside (zero-padded to twice its
-/// length, so that the ringing does not wrap around). The smooth edges keep the ringing of
-/// the record's own ends short (a brick-wall band would ring at its edge frequency, near
-/// `2 f0` for the band around `f0`, across the whole record).
-fn band_limited(x: &[f64], dt: f64, f_lo: f64, f_hi: f64) -> Vec<f64> {
-    let n = x.len();
-    let m = (2 * n).next_power_of_two();
-    let mut planner = RealFftPlanner::<f64>::new();
-    let fwd = planner.plan_fft_forward(m);
-    let inv = planner.plan_fft_inverse(m);
-    let mut input = vec![0.0; m];
-    input[..n].copy_from_slice(x);
-    let mut spec = fwd.make_output_vec();
-    if fwd.process(&mut input, &mut spec).is_err() {
-        return vec![0.0; n];
-    }
-    let df = 1.0 / (m as f64 * dt);
-    let (mid, half) = (0.5 * (f_lo + f_hi), 0.5 * (f_hi - f_lo));
-    for (k, c) in spec.iter_mut().enumerate() {
-        // distance from the band's centre, in half-widths: flat below 1/2, ramp to 1
-        let r = (k as f64 * df - mid).abs() / half;
-        let w = if r <= 0.5 {
-            1.0
-        } else if r < 1.0 {
-            0.5 * (1.0 + (std::f64::consts::TAU * (r - 0.5)).cos())
-        } else {
-            0.0
-        };
-        *c *= w;
-    }
-    let mut out = inv.make_output_vec();
-    if inv.process(&mut spec, &mut out).is_err() {
-        return vec![0.0; n];
-    }
-    out.truncate(n);
-    for v in &mut out {
-        *v /= m as f64;
-    }
-    out
 }
 
 /// The samples `[a, b)` of `x` that hold noise alone: with a gate, the longer side of the

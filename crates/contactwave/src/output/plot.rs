@@ -382,6 +382,93 @@ pub fn convergence(r: &crate::study::convergence::ConvergenceResult) -> Result<S
     })
 }
 
+/// Most quantities `convergence.svg` of a 2D study draws (a receiver line's points are
+/// many; `convergence.csv` has every one).
+pub const CONVERGENCE_2D_CURVES: usize = 12;
+
+/// `convergence.svg` of a 2D study (`contactwave convergence` on a `solid_2d` scenario):
+/// each receiver's `A_n/A1` against the element size, and its change against the finest
+/// level (log-log: the slope is the observed order).
+pub fn convergence_2d(r: &crate::study::convergence_2d::Convergence2dResult) -> Result<String> {
+    let name = "convergence.svg";
+    let shown = r.quantities.len().min(CONVERGENCE_2D_CURVES);
+    let h = |l: &crate::study::convergence_2d::Level2d| (1e3 * l.element_size).log10();
+    let label = |i: usize| {
+        let q = &r.quantities[i];
+        let order = r.order[i];
+        format!(
+            "{} A{}/A1 (order {})",
+            r.receivers[q.receiver],
+            q.harmonic,
+            if order.is_finite() {
+                format!("{order:.2}")
+            } else {
+                "n/a".into()
+            }
+        )
+    };
+    let values: Vec<Curve> = (0..shown)
+        .map(|i| Curve {
+            label: label(i),
+            points: r
+                .levels
+                .iter()
+                .map(|l| (h(l), l.values[i]))
+                .filter(|p| p.0.is_finite() && p.1.is_finite())
+                .collect(),
+            color: color(i),
+        })
+        .collect();
+    let changes: Vec<Curve> = (0..shown)
+        .map(|i| Curve {
+            label: label(i),
+            points: r
+                .levels
+                .iter()
+                .map(|l| (h(l), (100.0 * l.change[i].abs()).log10()))
+                .filter(|p| p.0.is_finite() && p.1.is_finite())
+                .collect(),
+            color: color(i),
+        })
+        .collect();
+    let more = if shown < r.quantities.len() {
+        format!(" (the first {shown} of {})", r.quantities.len())
+    } else {
+        String::new()
+    };
+    let marked = vec![true; shown];
+    render(name, (1150, 800), |root| {
+        let areas = root.split_evenly((2, 1));
+        crate::render::svg::panel_with(
+            &areas[0],
+            &format!("Harmonics at the receivers against the element size{more}"),
+            "element size, mm",
+            "A_n/A1",
+            &values,
+            &[],
+            crate::render::svg::PanelOpts {
+                log_x: true,
+                marked: &marked,
+                ..Default::default()
+            },
+        )?;
+        crate::render::svg::panel_with(
+            &areas[1],
+            "Change against the finest level (slope: the observed order)",
+            "element size, mm",
+            "log10(|change|, %)",
+            &changes,
+            &[],
+            crate::render::svg::PanelOpts {
+                log_x: true,
+                marked: &marked,
+                ..Default::default()
+            },
+        )?;
+        Ok(())
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

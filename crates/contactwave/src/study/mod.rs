@@ -11,6 +11,7 @@
 //! row as it finishes.
 
 pub mod convergence;
+pub mod convergence_2d;
 mod sweep;
 pub mod validation;
 

@@ -279,9 +279,11 @@ fn clipped_records_are_refused_unless_allowed() {
     let mut text =
         String::from("t,record_1,record_2,record_3,record_4,record_5,record_6,record_7,record_8\n");
     for k in 0..cols[0].len() {
-        let row: Vec<String> = (0..9)
-            .map(|c| {
-                let v = cols[c][k];
+        let row: Vec<String> = cols
+            .iter()
+            .enumerate()
+            .map(|(c, col)| {
+                let v = col[k];
                 let v = if c == 8 { v.clamp(-level, level) } else { v };
                 format!("{v:e}")
             })

@@ -227,9 +227,10 @@ fn sweep_keys_reach_the_crack_and_the_source() {
 #[test]
 fn bad_input_is_an_error_naming_the_key() {
     let cases = [
+        // (a horizontal crack below the plate: moving its start alone would incline it)
         (
-            "start = [0.7e-3, 0.5e-3]",
-            "start = [0.7e-3, 2e-3]",
+            "start = [0.7e-3, 0.5e-3]\nend = [1.3e-3, 0.5e-3]",
+            "start = [0.7e-3, 2e-3]\nend = [1.3e-3, 2e-3]",
             "crack.0.start",
         ),
         (
@@ -775,6 +776,59 @@ fn a_surface_breaking_crack_runs_and_is_refused_under_an_absorbing_top() {
     assert_eq!(err.lines().count(), 1, "{err}");
 }
 
+/// An inclined crack is refused first, with what cracks can be: before the checks of its
+/// position, static shear or closure table, which read it as a vertical crack (a crack
+/// reaching the top surface got "only a vertical crack may end there", a static shear got
+/// the friction limit).
+#[test]
+fn an_inclined_crack_is_said_to_be_one_first() {
+    let end = "end = [1.3e-3, 0.5e-3]";
+    assert!(SMALL.contains(end));
+    for (what, replace) in [
+        ("inclined", "end = [1.3e-3, 0.6e-3]"),
+        ("to the top surface", "end = [1.3e-3, 0.0]"),
+        ("out of the plate", "end = [3e-3, 2e-3]"),
+        (
+            "beyond the friction limit",
+            "end = [1.3e-3, 0.6e-3]\nstatic_shear = 1e6",
+        ),
+        (
+            "with a closure table",
+            "end = [1.3e-3, 0.6e-3]\nclosure = { position = [0.0, 1e-3], pressure = [0.1e6, 0.2e6] }",
+        ),
+    ] {
+        let text = SMALL.replace(end, replace);
+        let err = model::from_toml_str(&text, "inclined.toml")
+            .and_then(|t| t.base().map(|_| ()))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("inclined.toml: field `crack.0.end`")
+                && err.contains("cracks are horizontal or vertical"),
+            "{what}: {err}"
+        );
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
+    // a later crack is named by its own index, before the first crack's other checks
+    let text = SMALL.replace("static_pressure = 0.2e6", "static_pressure = -1.0")
+        + "\n[[crack]]\nstart = [0.2e-3, 0.2e-3]\nend = [0.4e-3, 0.3e-3]\n";
+    let err = run_error(&text, "two.toml");
+    assert!(
+        err.starts_with("two.toml: field `crack.1.end`") && err.contains("horizontal or vertical"),
+        "{err}"
+    );
+    // horizontal and vertical cracks still pass this check
+    for ok in ["end = [1.3e-3, 0.5e-3]", "end = [0.7e-3, 0.8e-3]"] {
+        let text = SMALL.replace(end, ok);
+        assert!(
+            model::from_toml_str(&text, "ok.toml")
+                .and_then(|t| t.base().map(|_| ()))
+                .is_ok(),
+            "{ok}"
+        );
+    }
+}
+
 /// An end within a millionth of an element of the start is merged with it (one element
 /// edge): a crack with no node to split is refused when the mesh is built, not read as a
 /// crack from another edge (it once became one from x = 0).
@@ -853,4 +907,53 @@ fn run_error(text: &str, file: &str) -> String {
         .map(|_| ())
         .unwrap_err()
         .to_string()
+}
+
+/// Issue 56 item 4: every 2D receiver gets its analysis floor (`<name>_A<n>_floor`, the
+/// method on its fundamental alone) and the floor flag; a `[[receiver]]` gate of its own
+/// (receivers before and after a crack see the wave at different times) replaces the
+/// analysis' for that receiver only; and each receiver's position is the node it records
+/// at, in summary.json.
+#[test]
+fn each_receiver_has_its_floor_gate_and_position() {
+    let gated = SMALL.replace(
+        "name = \"under\"\nat = [1e-3, 1e-3]",
+        "name = \"under\"\nat = [1.03e-3, 1e-3]\ngate = [0.1e-6, 0.6e-6]\ntaper = 0.05e-6",
+    );
+    assert_ne!(gated, SMALL);
+    let run = |text: &str| {
+        let t = model::from_toml_str(text, "small.toml").unwrap();
+        t.base().unwrap().run(&RunControl::default()).unwrap()
+    };
+    let (plain, own) = (run(SMALL), run(&gated));
+    let (p, o) = (plain.summary(), own.summary());
+    for n in 2..=5 {
+        for name in ["top", "under"] {
+            let f = o.get(&format!("{name}_A{n}_floor")).unwrap();
+            assert!(f.is_finite() && f >= 0.0, "{name} A{n} floor {f}");
+        }
+    }
+    assert!(o.get("under_harmonic_floor_warning").is_some());
+    // the gate changes the gated receiver's harmonics, not the other's
+    assert_eq!(p.get("top_A2"), o.get("top_A2"));
+    assert_ne!(p.get("under_A1"), o.get("under_A1"));
+    // the node it records at: on the mesh, not the position asked for, and within half an
+    // element of it
+    let x = o.get("under_x").unwrap();
+    assert!(x != 1.03e-3 && (x - 1.03e-3).abs() < 0.05e-3, "{x}");
+    assert_eq!(o.get("under_z"), Some(1e-3));
+    assert!(
+        own.report()
+            .iter()
+            .any(|l| l.contains("record at the node nearest")),
+        "{:?}",
+        own.report()
+    );
+    // a bad gate names the receiver's key
+    let bad = gated.replace("gate = [0.1e-6, 0.6e-6]", "gate = [0.5e-6, 0.2e-6]");
+    let e = model::from_toml_str(&bad, "small.toml")
+        .and_then(|t| t.base().map(|_| ()))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("receiver.1.gate"), "{e}");
 }

@@ -9,7 +9,7 @@
 
 pub mod pictures;
 
-use crate::analysis::methods::{gated_bands, Quantity, Signal};
+use crate::analysis::methods::{gated_bands, leakage_floor, Quantity, Signal};
 use crate::analysis::{set_record_harmonics, AnalysisMethod, Summary};
 use crate::error::{Error, Result};
 use crate::excitation::Scaled;
@@ -365,15 +365,26 @@ impl Solid2dScenario {
             None => None,
         };
         let (dt, duration) = (output.dt, self.problem.duration);
-        let sig = Signal {
-            quantity: Quantity::Samples,
-            dt,
-            t0: output.time.first().copied().unwrap_or(0.0),
-            f0: self.f0,
-            f2: None,
-            plateau: self.gate.map_or((0.0, duration), |g| (g.start, g.end)),
-        };
         for spec in &self.receivers {
+            // each receiver's own window (its [[receiver]] gate, or [analysis]'s)
+            let gate = spec.gate.as_ref();
+            let sig = Signal {
+                quantity: Quantity::Samples,
+                dt,
+                t0: output.time.first().copied().unwrap_or(0.0),
+                f0: self.f0,
+                f2: None,
+                plateau: gate.map_or((0.0, duration), |g| (g.start, g.end)),
+            };
+            // where it records: the node nearest the position asked for
+            let asked = if spec.stress {
+                self.stress_points[spec.index]
+            } else {
+                self.problem.receivers[spec.index]
+            };
+            let at = plan.node_position(asked);
+            s.set(&format!("{}_x", spec.name), at[0]);
+            s.set(&format!("{}_z", spec.name), at[1]);
             let trace = |o: &'_ Solid2dOutput| -> Vec<f64> {
                 if spec.stress {
                     o.stress_trace(spec.index, spec.component).to_vec()
@@ -386,7 +397,7 @@ impl Solid2dScenario {
             let pick = |m: AnalysisMethod| other.as_deref().filter(|_| method == m);
             let h = gated_bands(
                 method,
-                self.gate.as_ref(),
+                gate,
                 &sig,
                 &response,
                 pick(AnalysisMethod::PulseInversion),
@@ -395,6 +406,18 @@ impl Solid2dScenario {
             .unwrap_or_default()
             .harmonic;
             set_record_harmonics(&mut s, &format!("{}_", spec.name), &h);
+            // the analysis floor: what the method reads at n f0 from the receiver's
+            // fundamental alone (the gate's and the record's edges; no noise in a run)
+            let floor = leakage_floor(method, &response, gate, &sig);
+            let mut near = false;
+            for n in 2..=5 {
+                s.set(&format!("{}_A{n}_floor", spec.name), floor[n]);
+                near |= floor[n] > 0.0 && h[n] < 10.0 * floor[n];
+            }
+            s.set(
+                &format!("{}_harmonic_floor_warning", spec.name),
+                if near { 1.0 } else { 0.0 },
+            );
         }
         let names = |stress: bool| {
             self.receivers
@@ -583,7 +606,9 @@ impl Solid2dResult {
 
     /// `crack.csv`: one row per crack node and record: crack index, time (s), position
     /// along the crack (m), normal and tangential gaps (m), normal and shear contact
-    /// stresses (Pa), adhesion, state (0 open, 1 stick, 2 slip).
+    /// stresses (Pa), adhesion, state (0 open, 1 stick, 2 slip); every value of a row at the
+    /// row's time level, constraint reactions included
+    /// ([`crate::solver::solid_2d::CrackRecord`]).
     fn crack_csv(&self) -> OutputFile {
         let mut cols: [Vec<f64>; 9] = Default::default();
         for (i, c) in self.output.cracks.iter().enumerate() {
@@ -831,11 +856,15 @@ impl Outcome for Solid2dResult {
             .chain(&self.stress_receivers)
             .take(REPORTED)
         {
+            // each ratio with its floor (the method's on the receiver's fundamental)
+            let a1 = get(&format!("{name}_A1"));
             lines.push(format!(
-                "{:<23}{:.6e}   A3/A1 {:.6e}",
+                "{:<23}{:.6e} (floor {:.1e})   A3/A1 {:.6e} (floor {:.1e})",
                 format!("{name} A2/A1"),
                 get(&format!("{name}_A2_over_A1")),
-                get(&format!("{name}_A3_over_A1"))
+                get(&format!("{name}_A2_floor")) / a1,
+                get(&format!("{name}_A3_over_A1")),
+                get(&format!("{name}_A3_floor")) / a1,
             ));
         }
         if all > REPORTED {
@@ -859,7 +888,85 @@ impl Outcome for Solid2dResult {
                 ));
             }
         }
+        lines.extend(
+            Outcome::warnings(self)
+                .iter()
+                .map(|w| format!("warning: {w}")),
+        );
         lines
+    }
+
+    /// The receivers' harmonics near their analysis floor (how to read each, eq. 16.2;
+    /// the first few of a long line) and the receivers that record at a node other than
+    /// the position asked for.
+    fn warnings(&self) -> Vec<String> {
+        let get = |k: &str| self.summary.get(k).unwrap_or(f64::NAN);
+        let names: Vec<&String> = self
+            .receivers
+            .iter()
+            .chain(&self.stress_receivers)
+            .collect();
+        let mut out = Vec::new();
+        let mut readings = Vec::new();
+        let mut near = 0usize;
+        for name in &names {
+            let r: Vec<String> = (2..=5)
+                .filter_map(|n| {
+                    crate::analysis::floor_reading(
+                        &format!("A{n}"),
+                        get(&format!("{name}_A{n}")),
+                        get(&format!("{name}_A{n}_floor")),
+                    )
+                })
+                .collect();
+            if !r.is_empty() {
+                near += 1;
+                if readings.len() < 3 {
+                    readings.push(format!("{name}: {}", r.join("; ")));
+                }
+            }
+        }
+        if near > 0 {
+            let more = if near > readings.len() {
+                format!(
+                    "; ... {} receivers in all (<name>_harmonic_floor_warning = 1)",
+                    near
+                )
+            } else {
+                String::new()
+            };
+            out.push(format!(
+                "{}{more} (the analysis floor: the method on the receiver's fundamental alone, <name>_A<n>_floor)",
+                readings.join(" | ")
+            ));
+        }
+        // the nodes the receivers record at, against the positions asked for
+        let asked = self
+            .geometry
+            .receivers
+            .iter()
+            .chain(&self.geometry.stress_receivers);
+        let (mut moved, mut worst, mut first) = (0usize, 0.0f64, None);
+        for (name, a) in names.iter().zip(asked) {
+            let at = [get(&format!("{name}_x")), get(&format!("{name}_z"))];
+            let d = (at[0] - a[0]).hypot(at[1] - a[1]);
+            if d > 1e-9 {
+                moved += 1;
+                if d > worst {
+                    worst = d;
+                    first = Some((name.to_string(), *a, at));
+                }
+            }
+        }
+        if let Some((name, a, at)) = first {
+            out.push(format!(
+                "{moved} receiver(s) record at the node nearest the position asked for, up to \
+                 {worst:.3e} m from it (e.g. {name}: asked [{:e}, {:e}] m, records at [{:e}, {:e}] m); \
+                 summary.json has each one's <name>_x, <name>_z",
+                a[0], a[1], at[0], at[1]
+            ));
+        }
+        out
     }
 
     fn as_any(&self) -> &dyn Any {

@@ -7,6 +7,7 @@
 mod closure;
 mod material;
 mod receivers;
+pub mod resolution;
 
 use crate::analysis::{AnalysisMethod, Gate};
 use crate::error::{Error, Result};
@@ -25,6 +26,7 @@ use closure::ClosureProfile;
 pub use closure::{ClosureSpec, PrestressSpec};
 use material::material;
 pub use receivers::{component_names, Receiver2d, ReceiverSpec};
+pub use resolution::{CrackResolution, CRACK_ELEMENT_SIZES};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::sync::Arc;
@@ -411,6 +413,29 @@ impl Solid2dScenario {
             "sh" => WaveType::Sh,
             w => return Err(inv(file, "model.wave", w, "p_sv or sh")),
         };
+        // an inclined crack is said first: the checks of its position, law and static
+        // state below read a crack that is not horizontal as a vertical one
+        for (i, c) in spec.cracks.iter().enumerate() {
+            if let Some(end) = c.end
+                && !c.full_width
+                && end.iter().chain(&c.start).all(|v| v.is_finite())
+                && end[0] != c.start[0]
+                && end[1] != c.start[1]
+            {
+                return Err(inv(
+                    file,
+                    format!("crack.{i}.end"),
+                    format!("[{}, {}]", end[0], end[1]),
+                    &format!(
+                        "cracks are horizontal or vertical: an end at the start's z = {} m \
+                         (horizontal) or at its x = {} m (vertical); the mesh follows a \
+                         crack along its elements' edges, so an inclined one cannot be \
+                         meshed",
+                        c.start[1], c.start[0]
+                    ),
+                ));
+            }
+        }
         positive(file, "model.width", m.width)?;
         positive(file, "model.duration", m.duration)?;
         if spec.layers.is_empty() {
@@ -873,6 +898,34 @@ impl Solid2dScenario {
             },
         };
         let gate = analysis_gate(&spec.analysis, file, m.duration, f0)?;
+        // each receiver's gate: its table's own, or the analysis'
+        let mut receivers = receivers;
+        for (i, r) in spec.receivers.iter().enumerate() {
+            let own = match (r.gate, r.taper) {
+                (None, None) => gate,
+                (g, taper) => {
+                    let key = format!("receiver.{i}");
+                    // its own window (ramps 0 unless given), or the analysis' window with
+                    // its own ramps
+                    let own = AnalysisSpec {
+                        method: spec.analysis.method,
+                        gate: g.or(spec.analysis.gate),
+                        taper: taper.unwrap_or(if g.is_some() {
+                            0.0
+                        } else {
+                            spec.analysis.taper
+                        }),
+                    };
+                    analysis_gate(&own, file, m.duration, f0).map_err(|e| {
+                        e.renamed_field("analysis.gate", &format!("{key}.gate"))
+                            .renamed_field("analysis.taper", &format!("{key}.taper"))
+                    })?
+                }
+            };
+            for p in receivers.iter_mut().filter(|p| p.table == i) {
+                p.gate = own;
+            }
+        }
         let snapshots = match &spec.snapshots {
             Some(s) => Some(s.check(file, m.duration, wave)?),
             None => None,

@@ -31,6 +31,12 @@ pub struct ReceiverSpec {
     /// The analysed component: velocity `x`, `z` (default in P-SV runs) or `y` (SH runs);
     /// stress `xx`, `zz` (default), `xz` (P-SV) or `yx`, `yz` (default, SH).
     pub component: Option<String>,
+    /// `[start, end]` of this receiver's time gate, s (default: `[analysis] gate`):
+    /// receivers before and after a crack see the wave at different times.
+    pub gate: Option<[f64; 2]>,
+    /// Half-cosine ramps of this receiver's gate, inside it, s (default: `[analysis]
+    /// taper` with the analysis' gate, 0 with the receiver's own).
+    pub taper: Option<f64>,
 }
 
 fn velocity() -> String {
@@ -48,6 +54,11 @@ pub struct Receiver2d {
     pub index: usize,
     /// The analysed component (index into the quantity's components).
     pub component: usize,
+    /// The time gate of its analysis (its `[[receiver]]`'s, or `[analysis]`'s; `None`:
+    /// the whole record).
+    pub gate: Option<crate::analysis::Gate>,
+    /// Index of its `[[receiver]]` table.
+    pub table: usize,
 }
 
 /// Component names of a velocity or stress receiver in P-SV or SH runs.
@@ -207,6 +218,8 @@ pub(super) fn check(
                 stress,
                 index: list.len(),
                 component: comp,
+                gate: None,
+                table: i,
             });
             list.push(at);
         }

@@ -301,12 +301,18 @@ pub struct Plan<L> {
     snapshot_steps: Vec<usize>,
 }
 
-/// One crack's recorded fields, `[record][point]` flattened point-fastest.
+/// One crack's recorded fields, `[record][point]` flattened point-fastest: every field of
+/// a record at the record's time level (the gaps and a compliant law's stresses of the
+/// level; a constraint's reaction, the normal stress of a closed rigid or bonded point and
+/// a rigid-stick slider's stress, the force of the step that starts at the level,
+/// [`crack`]).
 #[derive(Debug, Clone, Default)]
 pub struct CrackRecord {
     /// Position of each point along the crack, m.
     pub position: Vec<f64>,
-    /// Times of the records, s.
+    /// Times of the records, s: the levels `k dt` for k = 1, 1 + `crack_every`,
+    /// 1 + 2 `crack_every`, ... and the last complete level `(N - 1) dt` of a run of N
+    /// steps (its reactions are those of the last step).
     pub time: Vec<f64>,
     /// Normal gap, m.
     pub normal_gap: Vec<f64>,
@@ -321,7 +327,8 @@ pub struct CrackRecord {
     /// Contact state: 0 open (the normal gap beyond the law's contact-loss gap `[u]_c`:
     /// 0 for Signorini, positive for a compliant compression branch, whose faces still
     /// press at a positive gap from rest), 1 stick, 2 slip (sliding, or closed without
-    /// friction).
+    /// friction); a rigid-stick slider's state is that of the step whose stress is
+    /// recorded.
     pub state: Vec<f64>,
     /// The largest normal gap of any point at any step (every step, not only the
     /// recorded ones; 0 if it never opens), m.
@@ -419,6 +426,15 @@ impl<L> Plan<L> {
                 .push(StressProbe::new(mesh, ix, iz, layer_of));
         }
         Ok(())
+    }
+}
+
+impl<L> Plan<L> {
+    /// The position of the grid node nearest `p = [x, z]` (m), where a receiver or a point
+    /// source asked for at `p` records or loads, m.
+    pub fn node_position(&self, p: [f64; 2]) -> [f64; 2] {
+        let m = &self.mesh;
+        [m.x[nearest(&m.x, p[0])], m.z[nearest(&m.z, p[1])]]
     }
 }
 
@@ -836,6 +852,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 state: Vec::new(),
                 gaps: Vec::new(),
                 applied: Vec::new(),
+                fields: Vec::new(),
                 work: 0.0,
                 tangential_work: 0.0,
             };
@@ -875,6 +892,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
                 };
                 let mut state = PointState::at_rest(&law, Some(&law));
                 state.gap = g0;
+                nodes.fields.push(crack::PointFields::at_rest(&law, &state));
                 nodes.state.push(state);
                 nodes.law.push(law);
                 nodes.initial_gap.push(g0);
