@@ -398,6 +398,12 @@ def read_json(rel, text):
 
     leaves = {}
     flatten_json(json.loads(text, parse_constant=constant), "", leaves)
+    # the checkout's own path (an output folder's manifest names its run by its input,
+    # canonicalized): the same in every clone
+    root = str(ROOT)
+    for k, v in leaves.items():
+        if isinstance(v, str) and root in v:
+            leaves[k] = v.replace(root, "<ROOT>")
     for pattern, key in NONDETERMINISTIC_JSON_KEYS:
         if matches(rel, pattern):
             leaves.pop(key, None)
