@@ -68,7 +68,7 @@ use kernel::{max_frequency, ElementData, NodeRows, Stiffness};
 use mesh::{aperture_faces, edge_weight, CrackLine, Mesh};
 pub use plane_wave::Incidence;
 pub use pml::Pml;
-use probe::StressProbe;
+use probe::{nearest, StressProbe};
 use std::sync::Arc;
 
 /// An isotropic elastic solid.
@@ -379,73 +379,6 @@ impl Solid2dOutput {
         let i = (r * self.stress_components + c) * n;
         &self.stresses[i..i + n]
     }
-}
-
-impl<L> Plan<L> {
-    /// Add stress receivers at `points` (`[x, z]`, m; the nearest node, in the element to
-    /// its lower right), recorded at the receivers' times as the mean of the two levels
-    /// around each (Pa); their series' memory is checked against the budget first.
-    pub fn add_stress_receivers(
-        &mut self,
-        points: &[[f64; 2]],
-        layers: &[Layer],
-        file: &str,
-    ) -> Result<()> {
-        let sc = if self.components == 1 { 2 } else { 3 };
-        crate::budget::check(
-            file,
-            "receiver",
-            points.len() as f64,
-            (points.len() * sc) as f64 * self.steps as f64 * 8.0,
-            &format!(
-                "{} time steps of {} stress receivers",
-                self.steps,
-                points.len()
-            ),
-        )?;
-        let Some(last) = layers.last() else {
-            return Err(Error::invalid(
-                file,
-                "layer",
-                "none",
-                "at least one [[layer]]",
-            ));
-        };
-        let mesh = &self.mesh;
-        let layer_of = |ez: usize| {
-            let zmid = 0.5 * (mesh.z_edges[ez] + mesh.z_edges[ez + 1]);
-            layers
-                .iter()
-                .find(|l| zmid < l.bottom)
-                .unwrap_or(last)
-                .material
-        };
-        for p in points {
-            let (ix, iz) = (nearest(&mesh.x, p[0]), nearest(&mesh.z, p[1]));
-            self.stress_probes
-                .push(StressProbe::new(mesh, ix, iz, layer_of));
-        }
-        Ok(())
-    }
-}
-
-impl<L> Plan<L> {
-    /// The position of the grid node nearest `p = [x, z]` (m), where a receiver or a point
-    /// source asked for at `p` records or loads, m.
-    pub fn node_position(&self, p: [f64; 2]) -> [f64; 2] {
-        let m = &self.mesh;
-        [m.x[nearest(&m.x, p[0])], m.z[nearest(&m.z, p[1])]]
-    }
-}
-
-fn nearest(values: &[f64], v: f64) -> usize {
-    let mut best = 0;
-    for (i, x) in values.iter().enumerate() {
-        if (x - v).abs() < (values[best] - v).abs() {
-            best = i;
-        }
-    }
-    best
 }
 
 impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {

@@ -4,7 +4,8 @@
 //! (docs/model.md section 15.1). Plain data built once; evaluating allocates nothing.
 
 use super::mesh::Mesh;
-use super::Elastic;
+use super::{Elastic, Layer, Plan};
+use crate::error::{Error, Result};
 
 /// One stress receiver.
 #[derive(Debug, Clone)]
@@ -64,4 +65,72 @@ impl StressProbe {
             out[2] = mu * (uxz + uzx);
         }
     }
+}
+
+impl<L> Plan<L> {
+    /// Add stress receivers at `points` (`[x, z]`, m; the nearest node, in the element to
+    /// its lower right), recorded at the receivers' times as the mean of the two levels
+    /// around each (Pa); their series' memory is checked against the budget first.
+    pub fn add_stress_receivers(
+        &mut self,
+        points: &[[f64; 2]],
+        layers: &[Layer],
+        file: &str,
+    ) -> Result<()> {
+        let sc = if self.components == 1 { 2 } else { 3 };
+        crate::budget::check(
+            file,
+            "receiver",
+            points.len() as f64,
+            (points.len() * sc) as f64 * self.steps as f64 * 8.0,
+            &format!(
+                "{} time steps of {} stress receivers",
+                self.steps,
+                points.len()
+            ),
+        )?;
+        let Some(last) = layers.last() else {
+            return Err(Error::invalid(
+                file,
+                "layer",
+                "none",
+                "at least one [[layer]]",
+            ));
+        };
+        let mesh = &self.mesh;
+        let layer_of = |ez: usize| {
+            let zmid = 0.5 * (mesh.z_edges[ez] + mesh.z_edges[ez + 1]);
+            layers
+                .iter()
+                .find(|l| zmid < l.bottom)
+                .unwrap_or(last)
+                .material
+        };
+        for p in points {
+            let (ix, iz) = (nearest(&mesh.x, p[0]), nearest(&mesh.z, p[1]));
+            self.stress_probes
+                .push(StressProbe::new(mesh, ix, iz, layer_of));
+        }
+        Ok(())
+    }
+}
+
+impl<L> Plan<L> {
+    /// The position of the grid node nearest `p = [x, z]` (m), where a receiver or a point
+    /// source asked for at `p` records or loads, m.
+    pub fn node_position(&self, p: [f64; 2]) -> [f64; 2] {
+        let m = &self.mesh;
+        [m.x[nearest(&m.x, p[0])], m.z[nearest(&m.z, p[1])]]
+    }
+}
+
+/// Index of the value of `values` nearest `v`.
+pub(super) fn nearest(values: &[f64], v: f64) -> usize {
+    let mut best = 0;
+    for (i, x) in values.iter().enumerate() {
+        if (x - v).abs() < (values[best] - v).abs() {
+            best = i;
+        }
+    }
+    best
 }
