@@ -246,6 +246,22 @@ fn a_compliant_crack_is_open_only_beyond_its_contact_loss_gap() {
 /// that every node of the record carries the same values within 1e-6 of each column's
 /// largest (a plane wave at normal incidence on a full-width interface moves the whole
 /// line alike).
+/// Run the strip `text` (named `name` in errors): its time step (s), with the energy
+/// closed, and its crack.csv series ([`crack_csv_series`]).
+fn run_strip(text: &str, name: &str) -> (f64, Vec<f64>, Vec<[f64; 4]>) {
+    let outcome = model::from_toml_str(text, name)
+        .unwrap()
+        .base()
+        .unwrap()
+        .run(&RunControl::default())
+        .unwrap();
+    let s = outcome.summary();
+    assert!(s.get("energy_closure_error").unwrap() < 1e-9, "{s:?}");
+    let dt = s.get("dt").unwrap();
+    let (t, rows) = crack_csv_series(outcome.as_ref());
+    (dt, t, rows)
+}
+
 fn crack_csv_series(outcome: &dyn model::Outcome) -> (Vec<f64>, Vec<[f64; 4]>) {
     let files = outcome.files().unwrap();
     let csv = files.iter().find(|f| f.name == "crack.csv").unwrap();
@@ -456,16 +472,7 @@ signal = {{ frequency = {f0:e}, cycles = {cycles}, amplitude = {amplitude:e}, wi
 "#
     );
     let text = clipping_strip("sh", [h, depth, z_crack], [p0, mu], duration, &sources);
-    let outcome = model::from_toml_str(&text, "sh_clipping.toml")
-        .unwrap()
-        .base()
-        .unwrap()
-        .run(&RunControl::default())
-        .unwrap();
-    let s = outcome.summary();
-    assert!(s.get("energy_closure_error").unwrap() < 1e-9, "{s:?}");
-    let dt = s.get("dt").unwrap();
-    let (t, rows) = crack_csv_series(outcome.as_ref());
+    let (dt, t, rows) = run_strip(&text, "sh_clipping.toml");
     assert!(t.len() > 500, "{} records", t.len());
     let incident = ToneBurst::new(amplitude, f0, cycles, Window::Hann);
     let limit = mu * p0;
@@ -532,16 +539,7 @@ signal = {{ frequency = {f_s:e}, cycles = {cycles_s}, amplitude = {a_s:e}, windo
 "#
     );
     let text = clipping_strip("p_sv", [h, depth, z_crack], [p0, mu], duration, &sources);
-    let outcome = model::from_toml_str(&text, "p_sv_clipping.toml")
-        .unwrap()
-        .base()
-        .unwrap()
-        .run(&RunControl::default())
-        .unwrap();
-    let s = outcome.summary();
-    assert!(s.get("energy_closure_error").unwrap() < 1e-9, "{s:?}");
-    let dt = s.get("dt").unwrap();
-    let (t, rows) = crack_csv_series(outcome.as_ref());
+    let (dt, t, rows) = run_strip(&text, "p_sv_clipping.toml");
     let p_wave = ToneBurst::new(a_p, f_p, cycles_p, Window::Hann);
     let s_wave = ToneBurst::new(a_s, f_s, cycles_s, Window::Hann);
     let limit = |t: f64| mu * (p0 - p_wave.stress(t - tau_p));
