@@ -101,10 +101,12 @@ impl PointFields {
 /// One crack's split nodes and their state.
 #[derive(Debug, Clone)]
 pub struct CrackNodes<L> {
-    /// Unit normal (from face 1 to face 2) and tangent, `[x, z]`.
-    pub normal: [f64; 2],
-    /// Unit tangent `[x, z]` (plane strain; antiplane runs use `y`).
-    pub tangent: [f64; 2],
+    /// Unit normal of each point (from face 1 to face 2), `[x, z]`: one value along a
+    /// straight crack, the averaged normal of the edges at a kink, exact at the GLL points
+    /// of a curved (second-order) edge.
+    pub normal: Vec<[f64; 2]>,
+    /// Unit tangent of each point `[x, z]` (plane strain; antiplane runs use `y`).
+    pub tangent: Vec<[f64; 2]>,
     /// Face-1 and face-2 node of each point.
     pub faces: Vec<(usize, usize)>,
     /// Position along the crack of each point, m (from its start).
@@ -157,10 +159,10 @@ impl<L: NormalPart + TangentialPart> CrackNodes<L> {
             dt,
             t: t_new,
         };
-        let [nx, nz] = self.normal;
-        let [tx, tz] = self.tangent;
         for k in 0..self.faces.len() {
             let (i1, i2) = self.faces[k];
+            let [nx, nz] = self.normal[k];
+            let [tx, tz] = self.tangent[k];
             let chi = self.compliance[k];
             let (gn, gt) = if antiplane {
                 (self.initial_gap[k], u[i2] - u[i1])

@@ -37,6 +37,7 @@ pub mod mesh;
 pub mod plane_wave;
 pub mod pml;
 pub mod probe;
+pub mod quad;
 pub mod region;
 mod registers;
 mod simd;
@@ -773,8 +774,8 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             };
             let pairs = &mesh.splits[ci];
             let mut nodes = CrackNodes {
-                normal,
-                tangent,
+                normal: vec![normal; pairs.len()],
+                tangent: vec![tangent; pairs.len()],
                 faces: Vec::with_capacity(pairs.len()),
                 position: Vec::new(),
                 weight: Vec::new(),

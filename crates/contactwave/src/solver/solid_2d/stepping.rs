@@ -249,17 +249,41 @@ pub(super) struct Records {
 
 impl Records {
     pub(super) fn new<L>(plan: &Plan<L>) -> Self {
-        let n_t = plan.steps;
-        let sc = if plan.components == 1 { 2 } else { 3 };
-        let n_records = n_t / plan.crack_every + 2;
+        Records::sized(
+            plan.steps,
+            plan.components,
+            plan.receiver_nodes.len(),
+            plan.stress_probes.len(),
+            &plan.cracks,
+            plan.crack_every,
+            plan.snapshot_steps.clone(),
+            plan.components * plan.mesh.n_nodes,
+        )
+    }
+
+    /// The records of a run of `n_t` steps with `components` per node, `receivers`
+    /// velocity and `stress_probes` stress receivers, the `cracks`' fields every
+    /// `crack_every` levels and the whole field (`len` values) at `snapshot_steps`.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn sized<L>(
+        n_t: usize,
+        components: usize,
+        receivers: usize,
+        stress_probes: usize,
+        cracks: &[CrackNodes<L>],
+        crack_every: usize,
+        snapshot_steps: Vec<usize>,
+        len: usize,
+    ) -> Self {
+        let sc = if components == 1 { 2 } else { 3 };
+        let n_records = n_t / crack_every + 2;
         Records {
             time: Vec::with_capacity(n_t),
-            receivers: vec![0.0; plan.receiver_nodes.len() * plan.components * n_t],
-            stresses: vec![0.0; plan.stress_probes.len() * sc * n_t],
+            receivers: vec![0.0; receivers * components * n_t],
+            stresses: vec![0.0; stress_probes * sc * n_t],
             stress_components: sc,
-            last_stress: vec![0.0; plan.stress_probes.len() * sc],
-            cracks: plan
-                .cracks
+            last_stress: vec![0.0; stress_probes * sc],
+            cracks: cracks
                 .iter()
                 .map(|cr| {
                     let m = n_records * cr.position.len();
@@ -282,12 +306,31 @@ impl Records {
             level_time: 0.0,
             started: false,
             n_t,
-            crack_every: plan.crack_every,
-            snapshots: Capture::new(
-                plan.snapshot_steps.clone(),
-                plan.components * plan.mesh.n_nodes,
-            ),
+            crack_every,
+            snapshots: Capture::new(snapshot_steps, len),
         }
+    }
+
+    /// The recorded series and crack fields (time, receivers, stresses, their components,
+    /// cracks, snapshots).
+    pub(super) fn into_parts(
+        self,
+    ) -> (
+        Vec<f64>,
+        Vec<f64>,
+        Vec<f64>,
+        usize,
+        Vec<CrackRecord>,
+        Capture,
+    ) {
+        (
+            self.time,
+            self.receivers,
+            self.stresses,
+            self.stress_components,
+            self.cracks,
+            self.snapshots,
+        )
     }
 }
 

@@ -1,0 +1,232 @@
+//! A quadrilateral-mesh plan's step as a scheme of the explicit solvers' one time loop
+//! ([`crate::solver::stepping`]): sources, the kernel's forces, the node-wise predicted
+//! motion, the absorbing sides' dashpots (implicit in the velocity: `(M + dt C / 2)
+//! v^{n+1/2} = (M - dt C / 2) v^{n-1/2} + dt F`, eq. 15.22), the cracks' split-node update
+//! and the energy audit.
+
+use super::{Dashpot, QuadPlan};
+use crate::error::{Error, Result};
+use crate::law::{NormalPart, TangentialPart};
+use crate::solver::solid_2d::crack::CrackNodes;
+use crate::solver::solid_2d::stepping::Records;
+use crate::solver::solid_2d::{Energy2d, Solid2dOutput};
+use crate::solver::stepping::{self, Recorder, Schedule, Scheme};
+
+/// The state of a running plan.
+struct Run<'p, L> {
+    plan: &'p QuadPlan<L>,
+    cracks: Vec<CrackNodes<L>>,
+    u: Vec<f64>,
+    v: Vec<f64>,
+    f: Vec<f64>,
+    /// The dashpot nodes' velocities of the last half level.
+    v_dash: Vec<[f64; 2]>,
+    v_load: Vec<f64>,
+    input: f64,
+    absorbed: f64,
+}
+
+impl<L: NormalPart + TangentialPart + Clone> QuadPlan<L> {
+    /// Run from rest (a fresh copy of the cracks at rest: the plan is not changed).
+    pub fn run(&self) -> Result<Solid2dOutput> {
+        self.run_with(None)
+    }
+
+    /// [`QuadPlan::run`] reporting `(steps done, steps)` to `progress`.
+    pub fn run_with(
+        &self,
+        progress: Option<&(dyn Fn(usize, usize) + Send + Sync)>,
+    ) -> Result<Solid2dOutput> {
+        let c = self.components;
+        let len = c * self.mesh.n_nodes();
+        let mut recorder = Records::sized(
+            self.steps,
+            c,
+            self.receivers.len(),
+            0,
+            &self.cracks,
+            self.crack_every,
+            Vec::new(),
+            len,
+        );
+        let mut run = Run {
+            plan: self,
+            cracks: self.cracks.clone(),
+            u: vec![0.0; len],
+            v: vec![0.0; len],
+            f: vec![0.0; len],
+            v_dash: vec![[0.0; 2]; self.dashpots.len()],
+            v_load: vec![0.0; self.loads.len()],
+            input: 0.0,
+            absorbed: 0.0,
+        };
+        let schedule = Schedule {
+            t0: 0.0,
+            dt: self.dt,
+            steps: self.steps,
+            record_every: 1,
+            check_every: (4_000_000 / len.max(1)).clamp(1, 64),
+            progress,
+        };
+        stepping::run(&schedule, &mut run, &mut recorder)?;
+        Ok(self.output(recorder, run))
+    }
+
+    fn output(&self, recorder: Records, run: Run<'_, L>) -> Solid2dOutput {
+        let Run {
+            cracks,
+            u,
+            v,
+            mut f,
+            input,
+            absorbed,
+            ..
+        } = run;
+        let (c, dt) = (self.components, self.dt);
+        f.iter_mut().for_each(|x| *x = 0.0);
+        self.op.add_forces(&u, &mut f);
+        let mut solid = 0.0;
+        for i in 0..u.len() {
+            solid += 0.5 * self.mass[i / c] * v[i] * v[i];
+            solid += 0.5 * (u[i] - dt * v[i]) * -f[i];
+        }
+        let tally = |g: fn(&crate::law::contact::PointState) -> f64| -> f64 {
+            cracks
+                .iter()
+                .flat_map(|cr| cr.weight.iter().zip(&cr.state).map(move |(b, s)| b * g(s)))
+                .sum()
+        };
+        let static_shear_work = cracks
+            .iter()
+            .flat_map(|cr| {
+                (0..cr.weight.len()).map(move |k| {
+                    let law = &cr.law[k];
+                    if crate::law::TangentialBranch::friction(law.branch()) > 0.0 {
+                        cr.weight[k] * law.static_shear() * cr.state[k].shear.slip
+                    } else {
+                        0.0
+                    }
+                })
+            })
+            .sum();
+        let energy = Energy2d {
+            input,
+            solid,
+            cracks: cracks.iter().map(|cr| cr.work).sum(),
+            absorbed,
+            cracks_tangential: cracks.iter().map(|cr| cr.tangential_work).sum(),
+            static_shear_work,
+            friction: tally(|s| s.friction),
+            damage: tally(|s| s.damage),
+        };
+        let (time, receivers, stresses, stress_components, cracks, snapshots) =
+            recorder.into_parts();
+        Solid2dOutput {
+            dt,
+            time,
+            receivers,
+            components: c,
+            stresses,
+            stress_components,
+            cracks,
+            energy,
+            snapshots,
+        }
+    }
+}
+
+impl<L: NormalPart + TangentialPart> Scheme for Run<'_, L> {
+    fn step(&mut self, t: f64, t1: f64) -> Result<()> {
+        let p = self.plan;
+        let (c, dt) = (p.components, p.dt);
+        let (u, v, f) = (&mut self.u, &mut self.v, &mut self.f);
+        for l in &p.loads {
+            f[l.index] += l.weight * p.signals[l.source].stress(t - l.delay);
+        }
+        p.op.add_forces(u, f);
+        for (d, old) in p.dashpots.iter().zip(&mut self.v_dash) {
+            for k in 0..c {
+                old[k] = v[c * d.node + k];
+            }
+        }
+        for i in 0..u.len() {
+            v[i] += dt * p.inv_mass[i / c] * f[i];
+            f[i] = 0.0;
+        }
+        for (d, old) in p.dashpots.iter().zip(&self.v_dash) {
+            self.absorbed += dashpot(d, c, p.mass[d.node], dt, old, v);
+        }
+        for i in 0..u.len() {
+            u[i] += dt * v[i];
+        }
+        for cr in &mut self.cracks {
+            cr.update(u, v, dt, t1, c == 1)?;
+        }
+        for (l, vo) in p.loads.iter().zip(&mut self.v_load) {
+            let fv = l.weight * p.signals[l.source].stress(t - l.delay);
+            self.input += fv * dt * 0.5 * (v[l.index] + *vo);
+            *vo = v[l.index];
+        }
+        Ok(())
+    }
+
+    fn check_finite(&self, t1: f64) -> Result<()> {
+        if self.u.iter().chain(&self.v).all(|x| x.is_finite()) {
+            Ok(())
+        } else {
+            Err(Error::numerical(
+                t1,
+                "2D solver: non-finite displacement or velocity",
+                format!("time step {:e} s", self.plan.dt),
+            ))
+        }
+    }
+
+    fn advance(&mut self) {}
+}
+
+/// A dashpot node's velocity of the new half level from its explicit prediction `v*`
+/// (in `v`) and the old one: `(M + dt C / 2) v+ = M v* - dt C v- / 2`; returns the energy
+/// it absorbed over the step, `dt vbar C vbar` with `vbar = (v+ + v-) / 2` (J/m).
+fn dashpot(d: &Dashpot, c: usize, m: f64, dt: f64, old: &[f64; 2], v: &mut [f64]) -> f64 {
+    let h = 0.5 * dt;
+    let i = c * d.node;
+    if c == 1 {
+        let vn = (m * v[i] - h * d.c[0] * old[0]) / (m + h * d.c[0]);
+        v[i] = vn;
+        let vb = 0.5 * (vn + old[0]);
+        return dt * d.c[0] * vb * vb;
+    }
+    let [cxx, cxz, czx, czz] = d.c;
+    let rx = m * v[i] - h * (cxx * old[0] + cxz * old[1]);
+    let rz = m * v[i + 1] - h * (czx * old[0] + czz * old[1]);
+    let (a, b, cc, dd) = (m + h * cxx, h * cxz, h * czx, m + h * czz);
+    let det = a * dd - b * cc;
+    let vx = (dd * rx - b * rz) / det;
+    let vz = (-cc * rx + a * rz) / det;
+    v[i] = vx;
+    v[i + 1] = vz;
+    let (bx, bz) = (0.5 * (vx + old[0]), 0.5 * (vz + old[1]));
+    dt * (bx * (cxx * bx + cxz * bz) + bz * (czx * bx + czz * bz))
+}
+
+impl<L: NormalPart + TangentialPart> Recorder<Run<'_, L>> for Records {
+    fn record(&mut self, t: f64, s: &Run<'_, L>) {
+        let Some(n) = self.next_sample(s.plan.dt) else {
+            return;
+        };
+        let p = s.plan;
+        let c = p.components;
+        let n_t = self.n_t;
+        for (r, weights) in p.receivers.iter().enumerate() {
+            for cc in 0..c {
+                let mut val = 0.0;
+                for &(g, w) in weights {
+                    val += w * s.v[c * g + cc];
+                }
+                self.receivers[(r * c + cc) * n_t + n] = val;
+            }
+        }
+        self.crack_fields(t, n, &s.cracks);
+    }
+}

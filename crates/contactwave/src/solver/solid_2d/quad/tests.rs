@@ -1,0 +1,433 @@
+//! Tests of the quadrilateral-mesh path: on the rectangle's own grid it is the rectangle's
+//! run (the same traces and crack fields to round-off); the same specimen rotated gives the
+//! rotated run; on a skewed, curved second-order mesh with an inclined curved crack the
+//! energy closes at round-off, no point penetrates, a crack closed beyond the wave's
+//! stress never opens and reciprocity holds; a crack made as an interface between two
+//! parts is the crack made by splitting one mesh; the Gmsh reader reads a file and refuses
+//! what the solver cannot use.
+
+use super::input::QuadInput;
+use super::*;
+use crate::solver::solid_2d::tests::{burst, clapping_plate, signorini, Signorini, ALUMINIUM};
+use crate::solver::solid_2d::{Side, Solid2d};
+
+/// The grid lines of the structured problem's mesh (no absorbing layers).
+fn grid_of(p: &Solid2d<Signorini>) -> (Vec<f64>, Vec<f64>) {
+    let plan = p.plan("<test>").unwrap();
+    (plan.mesh.x_edges.clone(), plan.mesh.z_edges.clone())
+}
+
+/// The clapping plate of the rectangle's tests on a quadrilateral mesh of its own grid,
+/// mapped by `map` (the sources, crack and receivers mapped with it).
+fn clapping_quad(
+    map: &dyn Fn([f64; 2]) -> [f64; 2],
+    second_order: bool,
+    dt: f64,
+) -> QuadSolid<Signorini> {
+    let p = clapping_plate(Side::Free);
+    let (xs, zs) = grid_of(&p);
+    let c = &p.cracks[0];
+    let input = QuadInput::grid(
+        &xs,
+        &zs,
+        map,
+        vec!["aluminium".into()],
+        &|_| 0,
+        &[
+            ("crack", c.start, c.end),
+            ("wedge", [3e-3, 0.0], [5e-3, 0.0]),
+        ],
+        second_order,
+    );
+    QuadSolid {
+        input: Arc::new(input),
+        order: p.order,
+        materials: vec![ALUMINIUM],
+        wave: WaveType::PSv,
+        courant: p.courant,
+        max_time_step: dt,
+        boundaries: Vec::new(),
+        cracks: vec![QuadCrack {
+            curve: "crack".into(),
+            law: signorini(1e6),
+            profile: None,
+        }],
+        sources: vec![QuadSource {
+            kind: QuadSourceKind::Traction {
+                curve: "wedge".into(),
+                normal: true,
+                delay_per_m: 0.0,
+            },
+            signal: burst(10e6, 2e6, 3.0),
+        }],
+        receivers: p.receivers.iter().map(|&r| map(r)).collect(),
+        duration: p.duration,
+        crack_every: 1,
+    }
+}
+
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |a, &b| a.max(b.abs()))
+}
+
+/// The rectangle's time step, a little under its own (both paths then take it).
+fn common_dt() -> f64 {
+    0.95 * clapping_plate(Side::Free).plan("<test>").unwrap().dt
+}
+
+/// On the rectangle's own grid (every element on the fast path), with the same time step,
+/// the quadrilateral path's run is the rectangle's: receiver traces and the crack's gaps
+/// within 1e-9 of their peaks (the sums run in another order), the same energies.
+#[test]
+fn the_rectangle_grid_gives_the_rectangle_run() {
+    let dt = common_dt();
+    let mut rect = clapping_plate(Side::Free);
+    rect.max_time_step = dt;
+    let a = rect.plan("<test>").unwrap().run().unwrap();
+    let quad = clapping_quad(&|p| p, false, dt).plan("<test>").unwrap();
+    assert!(quad.mesh.rectangle.iter().all(|&r| r));
+    assert_eq!(quad.dt, dt);
+    let b = quad.run().unwrap();
+    assert_eq!(a.time.len(), b.time.len());
+    let scale = max_abs(&a.receivers);
+    let err = a
+        .receivers
+        .iter()
+        .zip(&b.receivers)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        scale > 0.0 && err < 1e-9 * scale,
+        "receivers differ by {err:e} of {scale:e}"
+    );
+    let (ca, cb) = (&a.cracks[0], &b.cracks[0]);
+    assert_eq!(ca.position.len(), cb.position.len());
+    assert!(ca.peak_normal_gap > 1e-10);
+    let g = (ca.peak_normal_gap - cb.peak_normal_gap).abs();
+    assert!(
+        g < 1e-8 * ca.peak_normal_gap,
+        "peak gap {:e} vs {:e}",
+        ca.peak_normal_gap,
+        cb.peak_normal_gap
+    );
+    let gap_err = ca
+        .normal_gap
+        .iter()
+        .zip(&cb.normal_gap)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        gap_err < 1e-8 * ca.peak_normal_gap,
+        "gaps differ by {gap_err:e}"
+    );
+    assert!((a.energy.input - b.energy.input).abs() < 1e-9 * a.energy.input);
+    assert!(b.energy.closure_error() < 1e-9, "{:?}", b.energy);
+}
+
+/// The same specimen, crack and source rotated by 30 and by 45 degrees: every element on
+/// the general path, and the receivers' velocities are the aligned run's rotated, within
+/// 1e-9 of their peak (the discrete problem is the same one rotated).
+#[test]
+fn a_rotated_specimen_gives_the_rotated_run() {
+    let dt = common_dt();
+    let aligned = clapping_quad(&|p| p, false, dt)
+        .plan("<test>")
+        .unwrap()
+        .run()
+        .unwrap();
+    let scale = max_abs(&aligned.receivers);
+    for deg in [30.0f64, 45.0] {
+        let (s, c) = deg.to_radians().sin_cos();
+        let rot = move |p: [f64; 2]| [c * p[0] - s * p[1], s * p[0] + c * p[1]];
+        let plan = clapping_quad(&rot, false, dt).plan("<test>").unwrap();
+        assert!(plan.mesh.rectangle.iter().all(|&r| !r));
+        let out = plan.run().unwrap();
+        let n = out.time.len();
+        let mut err = 0.0f64;
+        for r in 0..2 {
+            for k in 0..n {
+                let (vx, vz) = (aligned.trace(r, 0)[k], aligned.trace(r, 1)[k]);
+                let want = rot([vx, vz]);
+                err = err.max((out.trace(r, 0)[k] - want[0]).abs());
+                err = err.max((out.trace(r, 1)[k] - want[1]).abs());
+            }
+        }
+        assert!(err < 1e-9 * scale, "{deg} degrees: {err:e} of {scale:e}");
+        let g = (out.cracks[0].peak_normal_gap - aligned.cracks[0].peak_normal_gap).abs();
+        assert!(g < 1e-8 * aligned.cracks[0].peak_normal_gap);
+    }
+}
+
+/// A skewed and bent map: straight grid lines become inclined curves.
+fn bend(p: [f64; 2]) -> [f64; 2] {
+    [
+        p[0] + 0.35 * p[1],
+        p[1] + 0.25e-3 * (2.0 * std::f64::consts::PI * p[0] / 8e-3).sin(),
+    ]
+}
+
+/// On a skewed, curved second-order mesh with an inclined, curved clapping crack (free
+/// sides: a closed domain): the energy audit closes at round-off, no point penetrates
+/// (`U_N >= 0` at every point and record) and the crack opens and closes again.
+#[test]
+fn a_curved_mesh_with_an_inclined_crack_closes_the_energy() {
+    let plan = clapping_quad(&bend, true, f64::INFINITY)
+        .plan("<test>")
+        .unwrap();
+    assert!(plan.mesh.rectangle.iter().all(|&r| !r));
+    let out = plan.run().unwrap();
+    let e = out.energy;
+    assert!(e.input > 0.0);
+    assert!(
+        e.closure_error() < 1e-9,
+        "{e:?}: closure {:e}",
+        e.closure_error()
+    );
+    let rec = &out.cracks[0];
+    assert!(
+        rec.peak_normal_gap > 1e-10,
+        "never opened: {:e}",
+        rec.peak_normal_gap
+    );
+    let least = rec.normal_gap.iter().fold(f64::INFINITY, |a, &b| a.min(b));
+    assert!(
+        least >= -1e-12 * rec.peak_normal_gap,
+        "penetration {least:e}"
+    );
+    // the normals vary along the curved crack: not one value
+    let n0 = plan.cracks[0].normal[0];
+    assert!(plan.cracks[0]
+        .normal
+        .iter()
+        .any(|n| (n[0] - n0[0]).abs() > 1e-3));
+}
+
+/// The same curved mesh with the crack pressed far beyond the wave's stress (1 GPa under a
+/// 10 kPa burst): it never opens, the run is linear, and a point force at A read at B
+/// equals the force at B read at A (reciprocity, to 1e-6 of the peak).
+#[test]
+fn a_closed_crack_never_opens_and_the_run_is_reciprocal() {
+    let a = [2.0e-3, 1.0e-3];
+    let b = [6.0e-3, 3.2e-3];
+    let (da, db) = ([0.6, 0.8], [1.0, 0.0]);
+    let run = |at: [f64; 2], dir: [f64; 2], at_r: [f64; 2]| {
+        let mut p = clapping_quad(&bend, true, f64::INFINITY);
+        p.cracks[0].law = signorini(1e9);
+        p.sources = vec![QuadSource {
+            kind: QuadSourceKind::Force {
+                at: bend(at),
+                direction: dir,
+            },
+            signal: burst(1e4, 2e6, 3.0),
+        }];
+        p.receivers = vec![bend(at_r)];
+        p.plan("<test>").unwrap().run().unwrap()
+    };
+    let ab = run(a, da, b);
+    let ba = run(b, db, a);
+    assert_eq!(ab.cracks[0].peak_normal_gap, 0.0);
+    assert_eq!(ba.cracks[0].peak_normal_gap, 0.0);
+    // v_B . db from the force at A along da, and v_A . da from the force at B along db
+    let n = ab.time.len();
+    let g_ab: Vec<f64> = (0..n)
+        .map(|k| ab.trace(0, 0)[k] * db[0] + ab.trace(0, 1)[k] * db[1])
+        .collect();
+    let g_ba: Vec<f64> = (0..n)
+        .map(|k| ba.trace(0, 0)[k] * da[0] + ba.trace(0, 1)[k] * da[1])
+        .collect();
+    let scale = max_abs(&g_ab);
+    let err = g_ab
+        .iter()
+        .zip(&g_ba)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        scale > 0.0 && err < 1e-6 * scale,
+        "reciprocity: {err:e} of {scale:e}"
+    );
+}
+
+/// A plan runs twice to the same bits (each run from rest), and on one thread as on many.
+#[test]
+fn runs_repeat_bit_for_bit_for_any_thread_count() {
+    let plan = clapping_quad(&bend, true, f64::INFINITY)
+        .plan("<test>")
+        .unwrap();
+    let a = plan.run().unwrap();
+    let b = plan.run().unwrap();
+    assert_eq!(a.receivers, b.receivers);
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let c = one.install(|| plan.run().unwrap());
+    assert_eq!(a.receivers, c.receivers);
+    assert_eq!(a.cracks[0].normal_gap, c.cracks[0].normal_gap);
+}
+
+/// A minimal MSH 4.1 file: two unit squares side by side (nodes 1-6), the curve "top"
+/// (y = 0) and the surface "steel"; `tri` makes the second element a triangle.
+fn tiny_msh(tri: bool) -> String {
+    let el = if tri {
+        "2 1 2 1\n2 2 3 6\n"
+    } else {
+        "2 1 3 1\n2 2 3 6 5\n"
+    };
+    format!(
+        "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n1 1 \"top\"\n2 2 \"steel\"\n\
+         $EndPhysicalNames\n$Entities\n0 1 1 0\n1 0 0 0 2 0 0 1 1 0\n1 0 0 0 2 1 0 1 2 1 1\n\
+         $EndEntities\n$Nodes\n1 6 1 6\n2 1 0 6\n1\n2\n3\n4\n5\n6\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n\
+         1 1 0\n2 1 0\n$EndNodes\n$Elements\n3 4 1 4\n1 1 1 2\n3 1 2\n4 2 3\n2 1 3 1\n1 1 2 5 4\n\
+         {el}$EndElements\n"
+    )
+}
+
+#[test]
+fn the_gmsh_reader_reads_groups_and_refuses_triangles() {
+    let input = gmsh::read(tiny_msh(false).as_bytes(), "tiny.msh").unwrap();
+    assert_eq!(input.quads.len(), 2);
+    assert_eq!(input.materials, vec!["steel".to_string()]);
+    assert_eq!(input.curve("top").map(|s| s.len()), Some(2));
+    let mesh = geometry::Mesh::build(&input, 4).unwrap();
+    // two elements of order 4 sharing an edge: 9 x 5 nodes
+    assert_eq!(mesh.n_nodes(), 45);
+    let e = gmsh::read(tiny_msh(true).as_bytes(), "tiny.msh")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("tiny.msh: field `element 2`") && e.contains("recombine"),
+        "{e}"
+    );
+    let e = gmsh::read(b"hello", "x.msh").unwrap_err().to_string();
+    assert!(e.contains("MSH 4.1"), "{e}");
+}
+
+/// Errors name the entity: a crack group that is not in the mesh, a crack on the
+/// boundary, a receiver outside the mesh, a degenerate element.
+#[test]
+fn unusable_meshes_and_keys_are_refused_in_one_line() {
+    let dt = f64::INFINITY;
+    let mut p = clapping_quad(&|p| p, false, dt);
+    p.cracks[0].curve = "krack".into();
+    let e = p.plan("s.toml").unwrap_err().to_string();
+    assert!(e.contains("`krack`") && e.contains("crack, wedge"), "{e}");
+    let mut p = clapping_quad(&|p| p, false, dt);
+    p.cracks[0].curve = "top".into();
+    let e = p.plan("s.toml").unwrap_err().to_string();
+    assert!(e.contains("inside the mesh"), "{e}");
+    let mut p = clapping_quad(&|p| p, false, dt);
+    p.receivers[0] = [9e-3, 1e-3];
+    let e = p.plan("s.toml").unwrap_err().to_string();
+    assert!(e.contains("receiver.0.at"), "{e}");
+    let mut p = clapping_quad(&|p| p, false, dt);
+    let mut input = (*p.input).clone();
+    input.nodes[input.quads[3][2] as usize] = input.nodes[input.quads[3][0] as usize];
+    p.input = Arc::new(input);
+    let e = p.plan("s.toml").unwrap_err().to_string();
+    assert!(e.contains("element 4") && e.contains("degenerate"), "{e}");
+}
+
+/// Two parts meshed apart (the plate's upper and lower halves, their nodes coincident
+/// along z = 2 mm) joined by a contact interface along part of their common boundary (the
+/// rest welded by the coincident nodes): the run of the crack made by splitting one mesh,
+/// to round-off.
+#[test]
+fn an_interface_between_two_parts_is_the_split_crack() {
+    let one = clapping_quad(&|p| p, false, f64::INFINITY);
+    let (xs, zs) = grid_of(&clapping_plate(Side::Free));
+    let cut = zs.iter().position(|&z| (z - 2e-3).abs() < 1e-12).unwrap();
+    let crack = ("crack", [2.5e-3, 2e-3], [5.5e-3, 2e-3]);
+    let wedge = ("wedge", [3e-3, 0.0], [5e-3, 0.0]);
+    let id = |p: [f64; 2]| p;
+    let upper = QuadInput::grid(
+        &xs,
+        &zs[..=cut],
+        &id,
+        vec!["aluminium".into()],
+        &|_| 0,
+        &[crack, wedge],
+        false,
+    );
+    let lower = QuadInput::grid(
+        &xs,
+        &zs[cut..],
+        &id,
+        vec!["aluminium".into()],
+        &|_| 0,
+        &[crack],
+        false,
+    );
+    // the lower part after the upper one, its nodes renumbered
+    let mut both = upper.clone();
+    let shift = both.nodes.len() as u32;
+    both.nodes.extend(&lower.nodes);
+    both.quads
+        .extend(lower.quads.iter().map(|q| q.map(|k| k + shift)));
+    both.material.extend(&lower.material);
+    for (name, segs) in &lower.curves {
+        let segs = segs.iter().map(|s| s.map(|k| k + shift));
+        match both.curves.iter_mut().find(|c| &c.0 == name) {
+            Some(c) if name == "crack" => c.1.extend(segs),
+            Some(_) => {}
+            None => both.curves.push((name.clone(), segs.collect())),
+        }
+    }
+    let mut two = one.clone();
+    two.input = Arc::new(both);
+    let (a, b) = (one.plan("<test>").unwrap(), two.plan("<test>").unwrap());
+    assert_eq!(a.mesh.n_nodes(), b.mesh.n_nodes());
+    assert_eq!(a.dt, b.dt);
+    let (a, b) = (a.run().unwrap(), b.run().unwrap());
+    assert_eq!(a.receivers, b.receivers);
+    assert_eq!(a.cracks[0].normal_gap, b.cracks[0].normal_gap);
+}
+
+/// Every example mesh reads, splits its cracks (a mouth on the bottom surface, a crack
+/// from a hole, an interface between two plates, a curved delamination) and runs a
+/// microsecond with the energy closed at round-off (free sides).
+#[test]
+fn the_example_meshes_build_and_close_their_energy() {
+    let root =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/solid_2d/mesh");
+    for (file, crack, wedge, order) in [
+        ("inclined_crack/plate.msh", "crack", "wedge", 3),
+        ("rivet_hole/plate.msh", "crack", "wedge", 2),
+        ("lap_joint/joint.msh", "joint", "wedge", 3),
+        ("curved_delamination/shell.msh", "delamination", "wedge", 3),
+        ("rotated/plate_30.msh", "crack", "wedge", 3),
+    ] {
+        let bytes = std::fs::read(root.join(file)).unwrap();
+        let input = gmsh::read(&bytes, file).unwrap();
+        let at = input.nodes[input.quads[0][0] as usize];
+        let p = QuadSolid {
+            materials: vec![ALUMINIUM; input.materials.len()],
+            input: Arc::new(input),
+            order,
+            wave: WaveType::PSv,
+            courant: 0.8,
+            max_time_step: f64::INFINITY,
+            boundaries: Vec::new(),
+            cracks: vec![QuadCrack {
+                curve: crack.into(),
+                law: signorini(1e5),
+                profile: None,
+            }],
+            sources: vec![QuadSource {
+                kind: QuadSourceKind::Traction {
+                    curve: wedge.into(),
+                    normal: true,
+                    delay_per_m: 0.0,
+                },
+                signal: burst(10e6, 2e6, 2.0),
+            }],
+            receivers: vec![at],
+            duration: 1e-6,
+            crack_every: 10,
+        };
+        let plan = p.plan(file).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let out = plan.run().unwrap();
+        let e = out.energy;
+        assert!(e.input > 0.0 && e.closure_error() < 1e-9, "{file}: {e:?}");
+        assert!(!out.cracks[0].position.is_empty());
+    }
+}
