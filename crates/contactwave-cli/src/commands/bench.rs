@@ -209,6 +209,9 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             plan.steps,
             updates / s
         );
+        if on == Backend::Cpu {
+            mesh_lines(&scenario.problem, file, updates / s)?;
+        }
     }
     // (e) one identification, forward runs on all cores
     if let Some(path) = identify_file {
@@ -224,4 +227,88 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
         );
     }
     Ok(EXIT_OK)
+}
+
+/// The same plate through the quadrilateral-mesh path (docs/model.md section 15.13): on
+/// its own grid (every element on the rectangle fast path) and rotated by 30 degrees
+/// (every element general), each beside the rectangle path's `rect` node-updates/s; the
+/// kernels' bytes and flops per node-update and a STREAM-like triad's bandwidth.
+fn mesh_lines(
+    problem: &contactwave::solver::solid_2d::Solid2d<contactwave::law::point::SharedLaw>,
+    file: &str,
+    rect: f64,
+) -> contactwave::Result<()> {
+    use contactwave::solver::solid_2d::quad::QuadSolid;
+    let (s, c) = 30f64.to_radians().sin_cos();
+    let rotate = move |p: [f64; 2]| [c * p[0] - s * p[1], s * p[0] + c * p[1]];
+    let identity = |p: [f64; 2]| p;
+    type Map<'a> = &'a dyn Fn([f64; 2]) -> [f64; 2];
+    let maps: [(&str, Map); 2] = [
+        ("its own grid, rectangle elements", &identity),
+        ("rotated 30 degrees, general elements", &rotate),
+    ];
+    let n = problem.order;
+    let mut general = 0.0;
+    for (what, map) in maps {
+        let Some(q) = QuadSolid::of_rectangle(problem, map, file)? else {
+            return Ok(());
+        };
+        let plan = q.plan(file)?;
+        let updates = (plan.mesh.n_nodes() * plan.steps) as f64;
+        let t0 = Instant::now();
+        std::hint::black_box(plan.run()?);
+        let rate = updates / t0.elapsed().as_secs_f64();
+        general = rate;
+        println!(
+            "2D solid on a mesh ({what}, {} nodes, {} steps): {rate:.3e} node-updates/s ({:.2} of the rectangle path)",
+            plan.mesh.n_nodes(),
+            plan.steps,
+            rate / rect
+        );
+    }
+    // per node-update, P-SV, order n: the element pass over (n+1)^2/n^2 points a node
+    // (conn 4 B, metric 40 B of a general element, u gathered 16 B, f scattered 32 B) and
+    // the node pass (u, v, f read and written, the inverse mass: 56 B)
+    let per = ((n + 1) * (n + 1)) as f64 / (n * n) as f64;
+    let m = (n + 1) as f64;
+    let bytes = (
+        per * (4.0 + 40.0 + 16.0 + 32.0),
+        per * (4.0 + 16.0 + 32.0) + 56.0,
+    );
+    let flops = (per * (16.0 * m + 50.0), per * (16.0 * m + 24.0));
+    let triad = triad_bandwidth();
+    println!(
+        "  kernel per node-update at order {n}: general {:.0} B, {:.0} flops; rectangle {:.0} B, {:.0} flops; triad bandwidth {:.2e} B/s (the general path at its rate above moves {:.0} % of it)",
+        bytes.0 + 56.0,
+        flops.0,
+        bytes.1,
+        flops.1,
+        triad,
+        100.0 * general * (bytes.0 + 56.0) / triad
+    );
+    Ok(())
+}
+
+/// A STREAM-like triad `a = b + s c` over three 32-Mi-value arrays (768 MiB, past every
+/// cache), on all threads: the best of 5, bytes moved per second (24 B a value).
+fn triad_bandwidth() -> f64 {
+    use rayon::prelude::*;
+    let n = 1 << 25;
+    let b = vec![1.0f64; n];
+    let c = vec![2.0f64; n];
+    let mut a = vec![0.0f64; n];
+    let mut best = f64::INFINITY;
+    for _ in 0..5 {
+        let t0 = Instant::now();
+        a.par_chunks_mut(1 << 16)
+            .zip(b.par_chunks(1 << 16).zip(c.par_chunks(1 << 16)))
+            .for_each(|(a, (b, c))| {
+                for i in 0..a.len() {
+                    a[i] = b[i] + 3.0 * c[i];
+                }
+            });
+        best = best.min(t0.elapsed().as_secs_f64());
+        std::hint::black_box(&a);
+    }
+    24.0 * n as f64 / best
 }

@@ -243,7 +243,17 @@ pub fn plan_convergence_2d(
     let file = template.file().to_string();
     check(spec, &file)?;
     let base = template.base()?;
-    let h0 = solid_2d(base.as_ref())?.problem.element_size;
+    let s0 = solid_2d(base.as_ref())?;
+    if s0.mesh.is_some() {
+        return Err(crate::error::Error::invalid(
+            &file,
+            "mesh.file",
+            "given",
+            "a rectangle (the study refines model.element_size; on a mesh, re-mesh with a \
+             smaller h and compare the runs: docs/mesh.md)",
+        ));
+    }
+    let h0 = s0.problem.element_size;
     let param = template.param("model.element_size")?;
     let mut models: Vec<Arc<dyn Model>> = vec![base.clone()];
     for k in 1..spec.levels {

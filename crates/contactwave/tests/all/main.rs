@@ -20,6 +20,7 @@ mod shear_fd;
 mod slip_weakening;
 mod solid_2d;
 mod solid_2d_examples;
+mod solid_2d_mesh;
 mod solid_2d_plane;
 mod sweep_2d;
 mod units;

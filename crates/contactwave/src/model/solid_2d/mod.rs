@@ -94,6 +94,10 @@ impl Fields for Solid2dSpec {
     fn slot(&mut self, path: &[&str]) -> Option<Slot<'_>> {
         match path {
             ["model", rest @ ..] => self.model.slot(rest),
+            ["mesh", "order"] => self
+                .mesh
+                .as_mut()
+                .map(|m| Slot::OptUsize(&mut m.order, crate::solver::solid_2d::ORDERS)),
             ["layer", rest @ ..] => nth(&mut self.layers, rest),
             ["crack", rest @ ..] => nth(&mut self.cracks, rest),
             ["source", rest @ ..] => nth(&mut self.sources, rest),
@@ -249,6 +253,19 @@ impl Solid2dScenario {
     /// key of its larger part (`model.element_size` or `model.pml_thickness` for the mesh,
     /// `model.duration` for the records).
     pub fn budget(&self) -> Result<()> {
+        if let Some(q) = &self.mesh {
+            return crate::budget::check_or(
+                &self.file,
+                "mesh.file",
+                &q.input.source,
+                self.memory_bytes()?,
+                &format!(
+                    "a 2D run on a mesh of about {:.3e} nodes",
+                    q.node_estimate()
+                ),
+                "a coarser mesh, a lower `mesh.order` or a shorter `model.duration`",
+            );
+        }
         let e = self.problem.memory_estimate(&self.file)?;
         let stress = self.stress_bytes(e.steps);
         let (key, value, change) = if stress > e.mesh.max(e.series) {
@@ -310,16 +327,43 @@ impl Solid2dScenario {
     /// `model.duration` for the records).
     pub fn simulate(&self, control: &RunControl) -> Result<Solid2dResult> {
         self.budget()?;
-        let mut plan = self.problem.plan(&self.file)?;
-        plan.add_stress_receivers(&self.stress_points, &self.problem.layers, &self.file)?;
-        let nodes = plan.mesh.n_nodes;
-        self.prepare_snapshots(&mut plan)?;
-        let mut output = plan.run_on(
-            self.backend,
-            &self.file,
-            control.progress.as_ref().map(|p| &*p.0),
-        )?;
-        let snapshots = self.snapshots_of(&plan, &output.snapshots);
+        let progress = control.progress.as_ref().map(|p| &*p.0);
+        // where each receiver records: the node nearest the position asked for (the
+        // rectangle), the position itself (a mesh: interpolated)
+        let (mut output, nodes, snapshots, at): (_, _, _, Vec<[f64; 2]>) = match self
+            .mesh_problem(&self.problem)
+        {
+            Some(q) => {
+                let plan = q.plan(&self.file)?;
+                let out = plan.run_with(progress)?;
+                let at = self
+                    .receivers
+                    .iter()
+                    .map(|r| self.problem.receivers[r.index])
+                    .collect();
+                (out, plan.mesh.n_nodes(), None, at)
+            }
+            None => {
+                let mut plan = self.problem.plan(&self.file)?;
+                plan.add_stress_receivers(&self.stress_points, &self.problem.layers, &self.file)?;
+                self.prepare_snapshots(&mut plan)?;
+                let out = plan.run_on(self.backend, &self.file, progress)?;
+                let snapshots = self.snapshots_of(&plan, &out.snapshots);
+                let at = self
+                    .receivers
+                    .iter()
+                    .map(|spec| {
+                        plan.node_position(if spec.stress {
+                            self.stress_points[spec.index]
+                        } else {
+                            self.problem.receivers[spec.index]
+                        })
+                    })
+                    .collect();
+                let nodes = plan.mesh.n_nodes;
+                (out, nodes, snapshots, at)
+            }
+        };
         // the nodal fields are on the pixel grid now
         output.snapshots = Default::default();
         let mut s = Summary::new();
@@ -365,7 +409,7 @@ impl Solid2dScenario {
             None => None,
         };
         let (dt, duration) = (output.dt, self.problem.duration);
-        for spec in &self.receivers {
+        for (spec, at) in self.receivers.iter().zip(&at) {
             // each receiver's own window (its [[receiver]] gate, or [analysis]'s)
             let gate = spec.gate.as_ref();
             let sig = Signal {
@@ -376,13 +420,6 @@ impl Solid2dScenario {
                 f2: None,
                 plateau: gate.map_or((0.0, duration), |g| (g.start, g.end)),
             };
-            // where it records: the node nearest the position asked for
-            let asked = if spec.stress {
-                self.stress_points[spec.index]
-            } else {
-                self.problem.receivers[spec.index]
-            };
-            let at = plan.node_position(asked);
             s.set(&format!("{}_x", spec.name), at[0]);
             s.set(&format!("{}_z", spec.name), at[1]);
             let trace = |o: &'_ Solid2dOutput| -> Vec<f64> {
@@ -470,14 +507,15 @@ impl Solid2dScenario {
         problem: &Solid2d<SharedLaw>,
         control: &RunControl,
     ) -> Result<(Solid2dOutput, usize)> {
+        let progress = control.progress.as_ref().map(|p| &*p.0);
+        if let Some(q) = self.mesh_problem(problem) {
+            let plan = q.plan(&self.file)?;
+            return Ok((plan.run_with(progress)?, plan.mesh.n_nodes()));
+        }
         let mut plan = problem.plan(&self.file)?;
         plan.add_stress_receivers(&self.stress_points, &problem.layers, &self.file)?;
         let nodes = plan.mesh.n_nodes;
-        let output = plan.run_on(
-            self.backend,
-            &self.file,
-            control.progress.as_ref().map(|p| &*p.0),
-        )?;
+        let output = plan.run_on(self.backend, &self.file, progress)?;
         Ok((output, nodes))
     }
 

@@ -7,6 +7,7 @@
 mod closure;
 mod gate;
 mod material;
+pub mod mesh;
 mod receivers;
 pub mod resolution;
 
@@ -53,9 +54,18 @@ pub const PHASE_STEP: f64 = 0.12;
 pub struct Solid2dSpec {
     /// Model settings.
     pub model: ModelSpec,
-    /// Layers from the top surface (z = 0) down.
-    #[serde(rename = "layer")]
+    /// Layers from the top surface (z = 0) down (the rectangle; none with `[mesh]`).
+    #[serde(rename = "layer", default)]
     pub layers: Vec<LayerSpec>,
+    /// A mesh file instead of the rectangle (`[mesh]`, docs/mesh.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<mesh::MeshSpec>,
+    /// The materials of the mesh's physical surfaces (`[[material]]`, with `[mesh]`).
+    #[serde(rename = "material", default, skip_serializing_if = "Vec::is_empty")]
+    pub materials: Vec<mesh::MaterialSpec>,
+    /// The mesh's physical curves that are not free sides (`[[boundary]]`, with `[mesh]`).
+    #[serde(rename = "boundary", default, skip_serializing_if = "Vec::is_empty")]
+    pub boundaries: Vec<mesh::BoundarySpec>,
     /// Cracks.
     #[serde(rename = "crack", default)]
     pub cracks: Vec<CrackSpec>,
@@ -101,7 +111,8 @@ pub struct ModelSpec {
     /// `p_sv` (plane strain, default) or `sh` (antiplane).
     #[serde(default = "p_sv")]
     pub wave: String,
-    /// Width along x, m.
+    /// Width along x, m (the rectangle; not with `[mesh]`).
+    #[serde(default)]
     pub width: f64,
     /// Simulated time, s.
     pub duration: f64,
@@ -176,8 +187,13 @@ pub struct LayerSpec {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CrackSpec {
-    /// Start `[x, z]`, m.
+    /// Start `[x, z]`, m (the rectangle's cracks).
+    #[serde(default = "mesh::unset_point")]
     pub start: [f64; 2],
+    /// The mesh's physical curve that is the crack or contact interface (with `[mesh]`,
+    /// instead of start and end).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
     /// End `[x, z]`, m: the same z (horizontal) or the same x (vertical). Give this or
     /// `length`.
     pub end: Option<[f64; 2]>,
@@ -220,6 +236,10 @@ pub struct SourceSpec {
     /// `transducer` (default), `force` or `plane_wave`.
     #[serde(default = "transducer")]
     pub kind: String,
+    /// Transducer on a mesh: the physical curve of its aperture (with `[mesh]`, instead
+    /// of x0, x1 and surface).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
     /// Transducer: aperture start and end along x, m.
     pub x0: Option<f64>,
     /// Transducer: aperture end, m.
@@ -297,6 +317,10 @@ pub struct Solid2dScenario {
     pub snapshots: Option<crate::scenario::snapshots::Snapshots>,
     /// Where the time loop runs (`model.backend`).
     pub backend: Backend,
+    /// The problem on a mesh (`[mesh]`): its cracks' laws and sources' signals are taken
+    /// from `problem` when it runs (a twin changes them there), `problem` standing for
+    /// the mesh's bounding box, materials and largest element.
+    pub mesh: Option<crate::solver::solid_2d::quad::QuadSolid<SharedLaw>>,
 }
 
 pub(super) fn inv(
@@ -348,6 +372,14 @@ impl Solid2dScenario {
     /// The memory a run needs, bytes ([`Solid2d::memory_estimate`] and the stress
     /// receivers' series, [`Self::stress_bytes`], times [`Self::runs`]).
     pub fn memory_bytes(&self) -> Result<f64> {
+        if let Some(q) = &self.mesh {
+            // the mesh and its state, and the receivers' series (as the rectangle's: four
+            // copies of each trace and its text)
+            let c = if q.wave == WaveType::Sh { 1.0 } else { 2.0 };
+            let nodes = q.node_estimate();
+            let mesh = nodes * crate::solver::solid_2d::quad::bytes_per_node(q.order, c as usize);
+            return Ok(self.runs() * mesh);
+        }
         let e = self.problem.memory_estimate(&self.file)?;
         Ok(self.runs() * (e.total() + self.stress_bytes(e.steps)))
     }
@@ -413,6 +445,49 @@ impl Solid2dScenario {
         dir: &Path,
         cache: &BuildCache,
     ) -> Result<Self> {
+        if spec.mesh.is_some() {
+            return mesh::from_spec(spec, file, dir, cache);
+        }
+        for (i, c) in spec.cracks.iter().enumerate() {
+            if c.group.is_some() || c.start[0].is_nan() {
+                return Err(inv(
+                    file,
+                    format!(
+                        "crack.{i}.{}",
+                        if c.group.is_some() { "group" } else { "start" }
+                    ),
+                    if c.group.is_some() {
+                        "given"
+                    } else {
+                        "missing"
+                    },
+                    "a rectangle's crack takes start and end (group: a curve of a `[mesh]`)",
+                ));
+            }
+        }
+        for (i, s) in spec.sources.iter().enumerate() {
+            if s.group.is_some() {
+                return Err(inv(
+                    file,
+                    format!("source.{i}.group"),
+                    "given",
+                    "a rectangle's transducer takes x0, x1 and surface (group: a curve of a `[mesh]`)",
+                ));
+            }
+        }
+        if !spec.materials.is_empty() || !spec.boundaries.is_empty() {
+            let key = if spec.materials.is_empty() {
+                "boundary"
+            } else {
+                "material"
+            };
+            return Err(inv(
+                file,
+                key,
+                "given",
+                "with a `[mesh]` (a rectangle has [[layer]] and model.top, bottom, sides)",
+            ));
+        }
         let m = &spec.model;
         let wave = match m.wave.as_str() {
             "p_sv" => WaveType::PSv,
@@ -442,10 +517,13 @@ impl Solid2dScenario {
                 ));
             }
         }
+        if m.width == 0.0 {
+            return Err(inv(file, "model.width", "(missing)", "required: the rectangle's width along x, m (> 0), or a `[mesh]` file instead of the rectangle"));
+        }
         positive(file, "model.width", m.width)?;
         positive(file, "model.duration", m.duration)?;
         if spec.layers.is_empty() {
-            return Err(inv(file, "layer", "none", "at least one [[layer]]"));
+            return Err(inv(file, "layer", "(missing)", "required: at least one [[layer]] table, from the top: thickness (m) and a material (or a `[mesh]` file instead of the rectangle)"));
         }
         let mut layers = Vec::new();
         let mut bottom = 0.0;
@@ -920,6 +998,7 @@ impl Solid2dScenario {
             gate,
             snapshots,
             backend,
+            mesh: None,
         })
     }
 }

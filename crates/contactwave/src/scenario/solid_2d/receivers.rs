@@ -91,7 +91,16 @@ pub(super) fn check(
     depth: f64,
     file: &str,
 ) -> Result<Checked> {
-    let region = Region::new(width, depth);
+    check_in(spec, wave, Region::new(width, depth), file)
+}
+
+/// [`check`] in `region` (a mesh's bounding box).
+pub(super) fn check_in(
+    spec: &[ReceiverSpec],
+    wave: WaveType,
+    region: Region,
+    file: &str,
+) -> Result<Checked> {
     let mut points = Vec::new();
     let mut receivers = Vec::new();
     let mut stress_points = Vec::new();

@@ -81,6 +81,9 @@ impl Solid2dScenario {
     /// assert_eq!((c.elements, c.split_nodes), (2, 11));
     /// ```
     pub fn crack_resolution(&self) -> Vec<CrackResolution> {
+        if self.mesh.is_some() {
+            return Vec::new(); // (the rectangle's mesh lines; a mesh's are its own)
+        }
         let p = &self.problem;
         let Ok((xs, zs)) = p.validate(&self.file) else {
             return Vec::new();
@@ -169,6 +172,9 @@ impl Solid2dScenario {
     /// (docs/model.md section 15.4). Its key is `model.element_size`, with the largest size
     /// that resolves the crack.
     pub fn crack_resolution_warnings(&self) -> Vec<Warning> {
+        if self.mesh.is_some() {
+            return Vec::new();
+        }
         let p = &self.problem;
         let harmonic = self.spec.model.harmonic.unwrap_or(DEFAULT_HARMONIC);
         let wave = if p.wave == WaveType::Sh { "SH" } else { "S" };

@@ -1,4 +1,4 @@
-//! The mesh of the general quadrilateral path as data (docs/model.md section 15.9): the
+//! The mesh of the general quadrilateral path as data (docs/model.md section 15.13): the
 //! GLL nodes' coordinates, the element-to-node map (one `(n+1)^2` block an element, local
 //! node `b (n + 1) + a`, a along xi and b along eta), a material tag per element, the
 //! geometry of every GLL point (`xi_x, xi_z, eta_x, eta_z, w J`), each element flagged an

@@ -1,5 +1,5 @@
 //! What a mesh generator gives the general quadrilateral path (docs/model.md section
-//! 15.9): control nodes, quadrilaterals of first order (4 corners) or second order (9
+//! 15.13): control nodes, quadrilaterals of first order (4 corners) or second order (9
 //! nodes, curved edges), a material tag per element and named curves (chains of element
 //! edges by their end nodes). The Gmsh reader ([`super::gmsh`]) and the structured
 //! generator [`QuadInput::grid`] make one; [`super::geometry::Mesh::build`] turns it into
@@ -145,5 +145,109 @@ impl QuadInput {
             curves,
             points: Vec::new(),
         }
+    }
+}
+
+impl<L: Clone> super::QuadSolid<L> {
+    /// The rectangle `p` (free sides, no absorbing layers; transducers, point forces and
+    /// straight cracks) on a quadrilateral mesh of its own grid mapped by `map` (a
+    /// rotation: the same problem turned): the general path's benchmark and its check
+    /// against the rectangle's run. `None` for what it does not carry over (rigid,
+    /// periodic or absorbing sides, plane waves, a full-width crack, a crack profile).
+    pub fn of_rectangle(
+        p: &super::super::Solid2d<L>,
+        map: &dyn Fn([f64; 2]) -> [f64; 2],
+        file: &str,
+    ) -> crate::error::Result<Option<Self>>
+    where
+        L: crate::law::NormalPart + crate::law::TangentialPart,
+    {
+        use super::super::{Side, SourceKind};
+        use super::{QuadCrack, QuadSource, QuadSourceKind};
+        let free = [p.top, p.bottom, p.sides].iter().all(|&s| s == Side::Free);
+        if !free || p.cracks.iter().any(|c| c.full_width || c.profile.is_some()) {
+            return Ok(None);
+        }
+        let plan = p.plan(file)?;
+        let (xs, zs) = (plan.mesh.x_edges.clone(), plan.mesh.z_edges.clone());
+        drop(plan);
+        let mut lines = Vec::new();
+        let names: Vec<String> = (0..p.cracks.len()).map(|i| format!("crack{i}")).collect();
+        let wedges: Vec<String> = (0..p.sources.len()).map(|i| format!("wedge{i}")).collect();
+        for (c, n) in p.cracks.iter().zip(&names) {
+            lines.push((n.as_str(), c.start, c.end));
+        }
+        let depth = p.depth();
+        let mut sources = Vec::new();
+        for (s, n) in p.sources.iter().zip(&wedges) {
+            let kind = match s.kind {
+                SourceKind::Force { at, direction } => QuadSourceKind::Force {
+                    at: map(at),
+                    direction: {
+                        let d = map(direction);
+                        let o = map([0.0; 2]);
+                        [d[0] - o[0], d[1] - o[1]]
+                    },
+                },
+                SourceKind::Traction {
+                    top,
+                    x0,
+                    x1,
+                    normal,
+                    delay_per_m,
+                } => {
+                    let z = if top { 0.0 } else { depth };
+                    lines.push((n.as_str(), [x0, z], [x1, z]));
+                    QuadSourceKind::Traction {
+                        curve: n.clone(),
+                        normal,
+                        delay_per_m,
+                    }
+                }
+                SourceKind::PlaneWave { .. } => return Ok(None),
+            };
+            sources.push(QuadSource {
+                kind,
+                signal: s.signal.clone(),
+            });
+        }
+        let layers = p.layers.clone();
+        let input = QuadInput::grid(
+            &xs,
+            &zs,
+            map,
+            (0..layers.len()).map(|i| format!("layer{i}")).collect(),
+            &|z| {
+                layers
+                    .iter()
+                    .position(|l| z < l.bottom)
+                    .unwrap_or(layers.len() - 1) as u16
+            },
+            &lines,
+            false,
+        );
+        Ok(Some(super::QuadSolid {
+            input: std::sync::Arc::new(input),
+            order: p.order,
+            materials: p.layers.iter().map(|l| l.material).collect(),
+            wave: p.wave,
+            courant: p.courant,
+            max_time_step: p.max_time_step,
+            boundaries: Vec::new(),
+            cracks: p
+                .cracks
+                .iter()
+                .zip(&names)
+                .map(|(c, n)| QuadCrack {
+                    curve: n.clone(),
+                    law: c.law.clone(),
+                    profile: None,
+                })
+                .collect(),
+            sources,
+            receivers: p.receivers.iter().map(|&r| map(r)).collect(),
+            duration: p.duration,
+            crack_every: p.crack_every,
+        }))
     }
 }

@@ -1,4 +1,4 @@
-//! The internal forces `-K u` on any quadrilateral mesh (docs/model.md eq. 15.20): per
+//! The internal forces `-K u` on any quadrilateral mesh (docs/model.md eq. 15.13b): per
 //! element, the reference derivatives by the GLL derivative matrix, the physical ones by
 //! each point's metric (`xi_x, xi_z, eta_x, eta_z`), the stresses of the element's
 //! isotropic material, and the weak divergence back to the nodes (SPECFEM2D's loop). An

@@ -1,4 +1,4 @@
-//! Finite cracks in 2D on any quadrilateral mesh (docs/model.md section 15.9): the mesh is
+//! Finite cracks in 2D on any quadrilateral mesh (docs/model.md section 15.13): the mesh is
 //! data ([`input::QuadInput`], from the Gmsh reader [`gmsh`] or the structured generator
 //! [`input::QuadInput::grid`]) turned into GLL nodes and per-point geometry
 //! ([`geometry::Mesh`]); cracks and contact interfaces are named curves split into node
@@ -8,7 +8,7 @@
 //! kernel ([`kernel`]; axis-aligned rectangles on its constant-factor path), assembled by
 //! colour; sources are point forces (located and spread by the element's Lagrange basis)
 //! and tractions on named curves; receivers are interpolated; sides are free (natural),
-//! rigid or absorbing (Lysmer's dashpots, eq. 15.22). The time loop is the rectangle's
+//! rigid or absorbing (Lysmer's dashpots, eq. 15.13d). The time loop is the rectangle's
 //! (eqs. 15.2-15.5), its energy audit closing at round-off in a closed domain.
 //!
 //! A plan is immutable: [`QuadPlan::run`] starts every run from rest with fresh crack
@@ -43,7 +43,7 @@ pub enum Boundary {
     Free,
     /// Fixed: zero displacement.
     Rigid,
-    /// Absorbing: Lysmer's dashpots `t = -rho (c_P v_n n + c_S v_t t)` (eq. 15.22), exact at
+    /// Absorbing: Lysmer's dashpots `t = -rho (c_P v_n n + c_S v_t t)` (eq. 15.13d), exact at
     /// normal incidence.
     Absorbing,
 }
@@ -172,6 +172,62 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
         self.input.quads.len() as f64 * (self.order * self.order) as f64
     }
 
+    /// The mesh built with its cracks split (in the order of `cracks`).
+    fn split_mesh(&self, file: &str) -> Result<(Mesh, Vec<split::SplitCrack>)> {
+        let _ = file;
+        let mut mesh = Mesh::build(&self.input, self.order)?;
+        crate::interrupt::check()?;
+        let mut done = vec![false; mesh.n_nodes()];
+        let mut splits = Vec::new();
+        for (i, c) in self.cracks.iter().enumerate() {
+            splits.push(split::split(
+                &mut mesh,
+                &c.curve,
+                &format!("crack.{i}.group"),
+                &mut done,
+            )?);
+        }
+        Ok((mesh, splits))
+    }
+
+    /// Check the geometry without building the operator: the mesh, its cracks, the sides'
+    /// and apertures' curves on the boundary, every force and receiver inside the mesh
+    /// (what a scenario checks when it is loaded; [`QuadSolid::plan`] does it again).
+    pub fn check(&self, file: &str) -> Result<()> {
+        let (mesh, _) = self.split_mesh(file)?;
+        for (name, _) in &self.boundaries {
+            on_boundary(&mesh, name, &format!("boundary `{name}`"), file)?;
+        }
+        for (i, s) in self.sources.iter().enumerate() {
+            match &s.kind {
+                QuadSourceKind::Traction { curve, .. } => {
+                    on_boundary(&mesh, curve, &format!("source.{i}.group"), file)?;
+                }
+                QuadSourceKind::Force { at, .. } => {
+                    if mesh.locate(*at).is_none() {
+                        return Err(Error::invalid(
+                            file,
+                            format!("source.{i}.at"),
+                            format!("{at:?}"),
+                            "a point inside the mesh",
+                        ));
+                    }
+                }
+            }
+        }
+        for (i, r) in self.receivers.iter().enumerate() {
+            if mesh.locate(*r).is_none() {
+                return Err(Error::invalid(
+                    file,
+                    format!("receiver.{i}.at"),
+                    format!("{r:?}"),
+                    "a point inside the mesh",
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Check the problem and build its plan (errors name `file` and the key or entity).
     pub fn plan(&self, file: &str) -> Result<QuadPlan<L>> {
         let bad = |field: &str, value: String, allowed: &str| {
@@ -222,19 +278,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
             &format!("a mesh of about {:.3e} nodes", self.node_estimate()),
             "a coarser mesh or a lower `mesh.order`",
         )?;
-        let mut mesh = Mesh::build(&self.input, self.order)?;
-        crate::interrupt::check()?;
-        // cracks: split each curve
-        let mut done = vec![false; mesh.n_nodes()];
-        let mut splits = Vec::new();
-        for (i, c) in self.cracks.iter().enumerate() {
-            splits.push(split::split(
-                &mut mesh,
-                &c.curve,
-                &format!("crack.{i}.group"),
-                &mut done,
-            )?);
-        }
+        let (mut mesh, splits) = self.split_mesh(file)?;
         mesh.colour();
         let mm = mesh.per_element();
         let lame: Vec<[f64; 2]> = mesh
@@ -259,19 +303,8 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
         let mut dashpots: Vec<Dashpot> = Vec::new();
         for (name, kind) in &self.boundaries {
             let field = format!("boundary `{name}`");
-            let set = mesh.set(name, &field)?;
-            for (ends, on) in &set.segments {
-                if on.len() != 1 {
-                    let p = mesh.position[ends[0] as usize];
-                    return bad(
-                        &field,
-                        format!(
-                            "a segment inside the mesh at x = {:.4e} m, z = {:.4e} m",
-                            p[0], p[1]
-                        ),
-                        "a curve on the mesh's boundary",
-                    );
-                }
+            let set = on_boundary(&mesh, name, &field, file)?;
+            for (_, on) in &set.segments {
                 let (e, s) = on[0];
                 for k in 0..=mesh.gll.order {
                     let (g, normal, bw) = mesh.side_point(e as usize, s, k);
@@ -407,20 +440,9 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
                     delay_per_m,
                 } => {
                     let field = format!("source.{si}.group");
-                    let set = mesh.set(curve, &field)?;
+                    let set = on_boundary(&mesh, curve, &field, file)?;
                     let (p0, dir) = chord(&mesh, set);
-                    for (ends, on) in &set.segments {
-                        if on.len() != 1 {
-                            let p = mesh.position[ends[0] as usize];
-                            return bad(
-                                &field,
-                                format!(
-                                    "`{curve}` inside the mesh at x = {:.4e} m, z = {:.4e} m",
-                                    p[0], p[1]
-                                ),
-                                "a curve on the mesh's boundary (an aperture)",
-                            );
-                        }
+                    for (_, on) in &set.segments {
                         let (e, sd) = on[0];
                         for k in 0..=mesh.gll.order {
                             let (g, [nx, nz], bw) = mesh.side_point(e as usize, sd, k);
@@ -477,6 +499,30 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
             crack_every: self.crack_every.max(1),
         })
     }
+}
+
+/// The curve `name` of `mesh` (its key `field`), refused unless every segment is on the
+/// mesh's boundary (a side or an aperture).
+fn on_boundary<'m>(
+    mesh: &'m Mesh,
+    name: &str,
+    field: &str,
+    file: &str,
+) -> Result<&'m geometry::EdgeSet> {
+    let set = mesh.set(name, field)?;
+    if let Some((ends, _)) = set.segments.iter().find(|(_, on)| on.len() != 1) {
+        let p = mesh.position[ends[0] as usize];
+        return Err(Error::invalid(
+            file,
+            field,
+            format!(
+                "`{name}` inside the mesh at x = {:.4e} m, z = {:.4e} m",
+                p[0], p[1]
+            ),
+            "a curve on the mesh's boundary (a side or an aperture)",
+        ));
+    }
+    Ok(set)
 }
 
 /// A curve's first end (smaller x, then z, of its chain's ends; any node of a closed

@@ -1,5 +1,5 @@
 //! A crack or contact interface along any chain of element edges (docs/model.md section
-//! 15.9): its nodes are duplicated and the twins renumbered in the elements on one side
+//! 15.13): its nodes are duplicated and the twins renumbered in the elements on one side
 //! ("face 2"). A chain's vertex is split where the crack cuts the ring of elements around
 //! it in two: always inside the chain, at an end on the mesh's boundary (a mouth: a
 //! surface-breaking crack, an interface reaching a free side), never at an end inside the

@@ -1,7 +1,7 @@
 //! A quadrilateral-mesh plan's step as a scheme of the explicit solvers' one time loop
 //! ([`crate::solver::stepping`]): sources, the kernel's forces, the node-wise predicted
 //! motion, the absorbing sides' dashpots (implicit in the velocity: `(M + dt C / 2)
-//! v^{n+1/2} = (M - dt C / 2) v^{n-1/2} + dt F`, eq. 15.22), the cracks' split-node update
+//! v^{n+1/2} = (M - dt C / 2) v^{n-1/2} + dt F`, eq. 15.13d), the cracks' split-node update
 //! and the energy audit.
 
 use super::{Dashpot, QuadPlan};
