@@ -51,7 +51,9 @@ pub struct Mesh {
     /// Whether each element is an axis-aligned rectangle with xi along +x and eta along +z
     /// (its metric constant: `xi_x = 2 / h_x`, `eta_z = 2 / h_z`).
     pub rectangle: Vec<bool>,
-    /// Elements by colour: no two elements of a colour share a node.
+    /// Tiles: ranges of consecutive elements ([`Mesh::colour`]).
+    pub tiles: Vec<std::ops::Range<u32>>,
+    /// Tiles by colour: no two tiles of a colour share a node.
     pub colours: Vec<Vec<u32>>,
     /// The named curves.
     pub sets: Vec<EdgeSet>,
@@ -330,6 +332,7 @@ impl Mesh {
             materials: input.materials.clone(),
             metric,
             rectangle,
+            tiles: Vec::new(),
             colours: Vec::new(),
             sets: Vec::new(),
             points: input.points.clone(),
@@ -392,29 +395,41 @@ impl Mesh {
         })
     }
 
-    /// Colour the elements greedily in their order (the smallest colour no element
-    /// sharing a node has taken): a fixed colouring, so that assembling colour by colour
-    /// sums every node's contributions in one order whatever the threads.
+    /// Cut the elements into tiles of [`TILE`] consecutive elements (the generators'
+    /// orders keep a tile's elements together in space, so that its gather and scatter stay
+    /// in cache) and colour the tiles greedily in their order (the smallest colour no tile
+    /// sharing a node has taken): a fixed colouring, so that assembling colour by colour,
+    /// the tiles of a colour in parallel and each tile's elements in order, sums every
+    /// node's contributions in one order whatever the threads. A tile that finds no free
+    /// colour among 127 goes to the last, which runs its tiles one after another.
     pub fn colour(&mut self) {
         let mm = self.per_element();
+        let ne = self.n_elements();
+        self.tiles = (0..ne.div_ceil(TILE))
+            .map(|t| (t * TILE) as u32..((t + 1) * TILE).min(ne) as u32)
+            .collect();
         let mut used = vec![0u128; self.n_nodes()];
         let mut colours: Vec<Vec<u32>> = Vec::new();
-        for e in 0..self.n_elements() {
-            let nodes = &self.conn[e * mm..(e + 1) * mm];
+        for (t, tile) in self.tiles.iter().enumerate() {
+            let nodes = &self.conn[tile.start as usize * mm..tile.end as usize * mm];
             let taken = nodes.iter().fold(0u128, |acc, &g| acc | used[g as usize]);
-            let c = (!taken).trailing_zeros() as usize;
-            let c = c.min(127);
+            let c = ((!taken).trailing_zeros() as usize).min(SERIAL_COLOUR);
             for &g in nodes {
                 used[g as usize] |= 1 << c;
             }
             if colours.len() <= c {
                 colours.resize(c + 1, Vec::new());
             }
-            colours[c].push(e as u32);
+            colours[c].push(t as u32);
         }
         self.colours = colours;
     }
 }
+
+/// Elements per tile of the colouring.
+pub const TILE: usize = 128;
+/// The colour whose tiles run one after another (no free colour was left for them).
+pub const SERIAL_COLOUR: usize = 127;
 
 /// Coincident points found by a hash of their coordinates rounded to cells of the
 /// tolerance (each point looked for in its cell and the 8 around it).

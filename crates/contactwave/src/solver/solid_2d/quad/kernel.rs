@@ -3,12 +3,15 @@
 //! each point's metric (`xi_x, xi_z, eta_x, eta_z`), the stresses of the element's
 //! isotropic material, and the weak divergence back to the nodes (SPECFEM2D's loop). An
 //! axis-aligned rectangle takes the fast path: its metric is two constants and the cross
-//! terms vanish. Elements are assembled colour by colour ([`super::geometry::Mesh::colour`]),
-//! the elements of a colour in parallel: no two of them share a node, so every node sums
-//! its elements in the colouring's order and the forces are the same bits for any number
-//! of threads. Nothing is allocated per call.
+//! terms vanish. Elements are assembled tile by tile and colour by colour
+//! ([`super::geometry::Mesh::colour`]), the tiles of a colour in parallel: no two of them
+//! share a node, so every node sums its elements in one fixed order and the forces are the
+//! same bits for any number of threads. The production path runs eight elements at a time
+//! ([`super::lanes`]); the element loop here is its reference. Nothing is allocated per
+//! call.
 
 use super::geometry::Mesh;
+use super::lanes::{batch_psv, batch_sh, Batches};
 use rayon::prelude::*;
 
 /// Largest GLL order the kernel's stack buffers hold.
@@ -28,7 +31,8 @@ pub struct Operator {
     rectangle: Vec<Option<[f64; 3]>>,
     /// Lame's lambda and mu of each element, Pa.
     lame: Vec<[f64; 2]>,
-    colours: Vec<Vec<u32>>,
+    /// The production path's batches ([`super::lanes`]).
+    batches: Batches,
     /// One component per node (antiplane `u_y`), else two (`u_x, u_z`).
     pub antiplane: bool,
 }
@@ -53,7 +57,7 @@ impl Operator {
         let mm = mesh.per_element();
         let w = &mesh.gll.weights;
         let m = mesh.gll.order + 1;
-        let rectangle = (0..mesh.n_elements())
+        let rectangle: Vec<Option<[f64; 3]>> = (0..mesh.n_elements())
             .map(|e| {
                 mesh.rectangle[e].then(|| {
                     let [xx, _, _, ez, wj] = mesh.metric[e * mm];
@@ -62,7 +66,17 @@ impl Operator {
             })
             .collect();
         debug_assert_eq!(m * m, mm);
+        let batches = Batches::new(
+            m,
+            &mesh.tiles,
+            &mesh.colours,
+            &mesh.conn,
+            &mesh.metric,
+            &rectangle,
+            &lame,
+        );
         Operator {
+            batches,
             n: mesh.gll.order,
             derivative: mesh.gll.derivative.clone(),
             weights: mesh.gll.weights.clone(),
@@ -70,7 +84,6 @@ impl Operator {
             metric: mesh.metric.clone(),
             rectangle,
             lame,
-            colours: mesh.colours.clone(),
             antiplane,
         }
     }
@@ -80,29 +93,62 @@ impl Operator {
         self.lame.len()
     }
 
-    /// Add the elements' forces `-K u` to `f` (N/m), parallel over each colour.
+    /// Add the elements' forces `-K u` to `f` (N/m): each colour's batches in parallel
+    /// ([`super::lanes`]), the colours one after another.
     pub fn add_forces(&self, u: &[f64], f: &mut [f64]) {
         let out = Shared(f.as_mut_ptr());
-        for colour in &self.colours {
-            colour.par_chunks(32).for_each(|chunk| {
-                for &e in chunk {
-                    // SAFETY: the elements of a colour share no node, so no two of them
-                    // write the same entries of `f`; every index is a node of the mesh
-                    // (the conn entries index u and f alike).
-                    unsafe { self.element(e as usize, u, out.ptr()) };
+        let b = &self.batches;
+        for (c, tiles) in b.colours.iter().enumerate() {
+            let tile = |&t: &u32| {
+                for i in b.tiles[t as usize].clone() {
+                    // SAFETY: the tiles of a colour share no node, so no two threads
+                    // write the same entries of `f` (the last colour's tiles run one
+                    // after another); every index is a node of the mesh.
+                    unsafe { self.batch(i, u, out.ptr()) };
                 }
-            });
+            };
+            if c == super::geometry::SERIAL_COLOUR {
+                tiles.iter().for_each(tile);
+            } else {
+                tiles.par_iter().for_each(tile);
+            }
         }
     }
 
-    /// Add the elements' forces to `f`, one element after another (no threads).
+    /// Batch `i`'s forces, by the order's compiled kernel.
+    ///
+    /// # Safety
+    /// As [`Operator::element`].
+    unsafe fn batch(&self, i: usize, u: &[f64], f: *mut f64) {
+        let (b, d, w) = (&self.batches, &self.derivative[..], &self.weights[..]);
+        macro_rules! by_order {
+            ($kernel:ident, $rect:literal) => {
+                match self.n {
+                    2 => unsafe { $kernel::<3, $rect>(b, i, d, w, u, f) },
+                    3 => unsafe { $kernel::<4, $rect>(b, i, d, w, u, f) },
+                    4 => unsafe { $kernel::<5, $rect>(b, i, d, w, u, f) },
+                    5 => unsafe { $kernel::<6, $rect>(b, i, d, w, u, f) },
+                    6 => unsafe { $kernel::<7, $rect>(b, i, d, w, u, f) },
+                    7 => unsafe { $kernel::<8, $rect>(b, i, d, w, u, f) },
+                    _ => unsafe { $kernel::<9, $rect>(b, i, d, w, u, f) },
+                }
+            };
+        }
+        match (self.antiplane, b.rect[i]) {
+            (true, true) => by_order!(batch_sh, true),
+            (true, false) => by_order!(batch_sh, false),
+            (false, true) => by_order!(batch_psv, true),
+            (false, false) => by_order!(batch_psv, false),
+        }
+    }
+
+    /// Add the elements' forces to `f`, one element after another (no threads, no
+    /// batches: the reference the batched path is tested against).
     pub fn add_forces_serial(&self, u: &[f64], f: &mut [f64]) {
         let out = f.as_mut_ptr();
-        for colour in &self.colours {
-            for &e in colour {
-                // SAFETY: as in add_forces, one element at a time.
-                unsafe { self.element(e as usize, u, out) };
-            }
+        for e in 0..self.elements() {
+            // SAFETY: as in add_forces, one element at a time.
+            unsafe { self.element(e, u, out) };
         }
     }
 

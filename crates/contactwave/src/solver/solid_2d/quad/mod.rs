@@ -18,6 +18,7 @@ pub mod geometry;
 pub mod gmsh;
 pub mod input;
 pub mod kernel;
+mod lanes;
 pub mod locate;
 pub mod split;
 mod stepping;
