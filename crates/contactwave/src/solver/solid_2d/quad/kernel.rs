@@ -25,8 +25,6 @@ pub struct Operator {
     /// `d[i (n+1) + j] = l_j'(x_i)`.
     derivative: Vec<f64>,
     weights: Vec<f64>,
-    conn: Vec<u32>,
-    metric: Vec<[f64; 5]>,
     /// Per element: `Some([xi_x, eta_z, J])` for an axis-aligned rectangle.
     rectangle: Vec<Option<[f64; 3]>>,
     /// Lame's lambda and mu of each element, Pa.
@@ -80,8 +78,6 @@ impl Operator {
             n: mesh.gll.order,
             derivative: mesh.gll.derivative.clone(),
             weights: mesh.gll.weights.clone(),
-            conn: mesh.conn.clone(),
-            metric: mesh.metric.clone(),
             rectangle,
             lame,
             antiplane,
@@ -144,11 +140,11 @@ impl Operator {
 
     /// Add the elements' forces to `f`, one element after another (no threads, no
     /// batches: the reference the batched path is tested against).
-    pub fn add_forces_serial(&self, u: &[f64], f: &mut [f64]) {
+    pub fn add_forces_serial(&self, mesh: &Mesh, u: &[f64], f: &mut [f64]) {
         let out = f.as_mut_ptr();
         for e in 0..self.elements() {
             // SAFETY: as in add_forces, one element at a time.
-            unsafe { self.element(e, u, out) };
+            unsafe { self.element(mesh, e, u, out) };
         }
     }
 
@@ -158,22 +154,22 @@ impl Operator {
     /// `f` points to a vector as long as `u`, and no other thread writes the element's
     /// nodes meanwhile.
     #[inline]
-    unsafe fn element(&self, e: usize, u: &[f64], f: *mut f64) {
+    unsafe fn element(&self, mesh: &Mesh, e: usize, u: &[f64], f: *mut f64) {
         if self.antiplane {
-            unsafe { self.element_sh(e, u, f) }
+            unsafe { self.element_sh(mesh, e, u, f) }
         } else {
-            unsafe { self.element_psv(e, u, f) }
+            unsafe { self.element_psv(mesh, e, u, f) }
         }
     }
 
     /// The P-SV element: `(u_x, u_z)` per node.
     #[inline]
-    unsafe fn element_psv(&self, e: usize, u: &[f64], f: *mut f64) {
+    unsafe fn element_psv(&self, mesh: &Mesh, e: usize, u: &[f64], f: *mut f64) {
         let m = self.n + 1;
         let mm = m * m;
         let d = &self.derivative[..mm];
         let w = &self.weights[..m];
-        let conn = &self.conn[e * mm..(e + 1) * mm];
+        let conn = &mesh.conn[e * mm..(e + 1) * mm];
         let [lambda, mu] = self.lame[e];
         let l2m = lambda + 2.0 * mu;
         let mut ux = [0.0; MM];
@@ -208,7 +204,7 @@ impl Operator {
                     f2x[l] = wj * shear * cz;
                     f2z[l] = wj * szz * cz;
                 } else {
-                    let [xx, xz, ex, ez, wj] = self.metric[e * mm + l];
+                    let [xx, xz, ex, ez, wj] = mesh.metric[e * mm + l];
                     let dux_dx = xi_x * xx + e_x * ex;
                     let dux_dz = xi_x * xz + e_x * ez;
                     let duz_dx = xi_z * xx + e_z * ex;
@@ -244,12 +240,12 @@ impl Operator {
 
     /// The antiplane element: `u_y` per node.
     #[inline]
-    unsafe fn element_sh(&self, e: usize, u: &[f64], f: *mut f64) {
+    unsafe fn element_sh(&self, mesh: &Mesh, e: usize, u: &[f64], f: *mut f64) {
         let m = self.n + 1;
         let mm = m * m;
         let d = &self.derivative[..mm];
         let w = &self.weights[..m];
-        let conn = &self.conn[e * mm..(e + 1) * mm];
+        let conn = &mesh.conn[e * mm..(e + 1) * mm];
         let mu = self.lame[e][1];
         let mut uy = [0.0; MM];
         for l in 0..mm {
@@ -270,7 +266,7 @@ impl Operator {
                     f1[l] = wj * mu * dxi * cx * cx;
                     f2[l] = wj * mu * deta * cz * cz;
                 } else {
-                    let [xx, xz, ex, ez, wj] = self.metric[e * mm + l];
+                    let [xx, xz, ex, ez, wj] = mesh.metric[e * mm + l];
                     let syx = mu * (dxi * xx + deta * ex);
                     let syz = mu * (dxi * xz + deta * ez);
                     f1[l] = wj * (syx * xx + syz * xz);

@@ -160,8 +160,8 @@ pub struct QuadPlan<L> {
 }
 
 /// Bytes per GLL node of a quadrilateral-mesh run (state, masses, positions, the
-/// element map and per-point geometry held by the mesh and the kernel, what the build
-/// holds meanwhile), at GLL order `n` with `components` per node.
+/// element map and per-point geometry held by the mesh and by the kernel's batches, what
+/// the build holds meanwhile), at GLL order `n` with `components` per node.
 pub fn bytes_per_node(n: usize, components: usize) -> f64 {
     let per_point = ((n + 1) * (n + 1)) as f64 / (n * n) as f64;
     3.0 * 8.0 * components as f64 + 16.0 + 16.0 + per_point * 2.0 * (4.0 + 40.0) + per_point * 16.0

@@ -454,7 +454,7 @@ fn the_batched_kernel_is_the_scalar_loop_bit_for_bit() {
                 .collect();
             let (mut a, mut b) = (vec![0.0; len], vec![0.0; len]);
             op.add_forces(&u, &mut a);
-            op.add_forces_serial(&u, &mut b);
+            op.add_forces_serial(&plan.mesh, &u, &mut b);
             let scale = max_abs(&b);
             let err = a
                 .iter()
