@@ -291,7 +291,7 @@ if cmp -s "$MESH_OUT/joint.msh" examples/solid_2d/mesh/lap_joint/joint.msh; then
 else
     echo "joint.msh regenerated: differs from the committed file (another gmsh build); running it"
 fi
-sed 's/^duration = .*/duration = 2e-6/' examples/solid_2d/mesh/lap_joint/lap_joint.toml >"$MESH_OUT/lap_joint.toml"
+sed 's/^duration = .*/duration = 8e-6/' examples/solid_2d/mesh/lap_joint/lap_joint.toml >"$MESH_OUT/lap_joint.toml"
 "$TARGET/release/contactwave" run "$MESH_OUT/lap_joint.toml" --out "$MESH_OUT/run" --overwrite
 
 # examples/notebooks/*.ipynb executed with nbclient in a kernel of .venv's Python (any

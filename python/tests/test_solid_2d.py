@@ -154,3 +154,39 @@ def test_a_scenario_may_be_given_as_toml_text(root):
     assert cw._as_scenario(text).kind == "solid_2d"
     with pytest.raises(ValueError, match=r"^bad\.toml: line 2"):
         cw.scenario_from_toml("[model]\nkind = \n", file="bad.toml")
+
+
+def test_a_gmsh_mesh_run_gives_arrays_with_the_cracks_coordinates():
+    # the reference plate rotated by 30 degrees, meshed by Gmsh (examples/solid_2d/mesh/):
+    # the crack's points carry their own coordinates, on the rotated crack line
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    msh = root / "examples" / "solid_2d" / "mesh" / "rotated" / "plate_30.msh"
+    s, c = np.sin(np.radians(30.0)), np.cos(np.radians(30.0))
+    rot = lambda x, z: [c * x - s * z, s * x + c * z]  # noqa: E731
+    scenario = {
+        "model": {"kind": "solid_2d", "duration": 3e-6, "harmonic": 2},
+        "mesh": {"file": str(msh), "order": 4},
+        "material": [{"group": "aluminium", "material": "aluminium"}],
+        "crack": [{"group": "crack", "static_pressure": 0.2e6}],
+        "source": [
+            {
+                "kind": "transducer",
+                "group": "wedge",
+                "signal": {"frequency": 2e6, "cycles": 3, "amplitude": 10e6, "window": "hann"},
+            }
+        ],
+        "receiver": [{"name": "far", "at": rot(30e-3, 0.0)}],
+    }
+    r = cw.run(scenario)
+    assert r.receivers.shape[0] == 2
+    assert np.allclose([r.receiver_x[0], r.receiver_z[0]], rot(30e-3, 0.0))
+    assert r.summary["energy_closure_error"] < 1e-9
+    crack = r.cracks[0]
+    x, z = np.asarray(crack["x"]), np.asarray(crack["z"])
+    # back in the plate's frame: the crack from x = 19 to 21 mm at z = 5 mm
+    xp, zp = c * x + s * z, -s * x + c * z
+    assert np.allclose(zp, 5e-3, atol=1e-9)
+    assert xp.min() > 19e-3 - 1e-9 and xp.max() < 21e-3 + 1e-9
+    assert np.allclose(crack["position"], xp - xp.min(), atol=1e-9)

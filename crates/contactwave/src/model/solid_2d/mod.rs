@@ -605,7 +605,11 @@ impl Outcome for Solid2dResult {
             // the nodes' coordinates from the line's start along its direction
             let [x0, z0, x1, z1] = *line;
             let length = (x1 - x0).hypot(z1 - z0).max(f64::MIN_POSITIVE);
-            let along = |a: f64, b: f64| -> Value {
+            // (a mesh's crack: each point's own coordinates, `k` 0 for x, 1 for z)
+            let along = |a: f64, b: f64, k: usize| -> Value {
+                if !c.points.is_empty() {
+                    return c.points.iter().map(|p| p[k]).collect::<Vec<f64>>().into();
+                }
                 c.position
                     .iter()
                     .map(|p| a + p * (b - a) / length)
@@ -622,8 +626,8 @@ impl Outcome for Solid2dResult {
             cracks.push(Value::Map(
                 Record::new()
                     .with("position", c.position.clone().into())
-                    .with("x", along(x0, x1))
-                    .with("z", along(z0, z1))
+                    .with("x", along(x0, x1, 0))
+                    .with("z", along(z0, z1, 1))
                     .with("time", c.time.clone().into())
                     .with("normal_gap", by_node(&c.normal_gap))
                     .with("tangential_gap", by_node(&c.tangential_gap))

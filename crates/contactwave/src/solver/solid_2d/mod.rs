@@ -311,6 +311,9 @@ pub struct Plan<L> {
 pub struct CrackRecord {
     /// Position of each point along the crack, m.
     pub position: Vec<f64>,
+    /// Each point's `[x, z]`, m, where the crack is not a straight line from its start
+    /// (a mesh's crack); empty for the rectangle's (its start plus `position` along it).
+    pub points: Vec<[f64; 2]>,
     /// Times of the records, s: the levels `k dt` for k = 1, 1 + `crack_every`,
     /// 1 + 2 `crack_every`, ... and the last complete level `(N - 1) dt` of a run of N
     /// steps (its reactions are those of the last step).

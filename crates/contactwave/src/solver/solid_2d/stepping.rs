@@ -289,6 +289,7 @@ impl Records {
                     let m = n_records * cr.position.len();
                     CrackRecord {
                         position: cr.position.clone(),
+                        points: Vec::new(),
                         time: Vec::with_capacity(n_records),
                         normal_gap: Vec::with_capacity(m),
                         tangential_gap: Vec::with_capacity(m),

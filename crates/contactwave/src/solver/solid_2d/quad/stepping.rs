@@ -121,8 +121,15 @@ impl<L: NormalPart + TangentialPart + Clone> QuadPlan<L> {
             friction: tally(|s| s.friction),
             damage: tally(|s| s.damage),
         };
-        let (time, receivers, stresses, stress_components, cracks, snapshots) =
+        let (time, receivers, stresses, stress_components, mut records, snapshots) =
             recorder.into_parts();
+        for (rec, cr) in records.iter_mut().zip(&cracks) {
+            rec.points = cr
+                .faces
+                .iter()
+                .map(|&(g, _)| self.mesh.position[g])
+                .collect();
+        }
         Solid2dOutput {
             dt,
             time,
@@ -130,7 +137,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadPlan<L> {
             components: c,
             stresses,
             stress_components,
-            cracks,
+            cracks: records,
             energy,
             snapshots,
         }
