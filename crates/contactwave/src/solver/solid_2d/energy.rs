@@ -35,6 +35,47 @@ pub struct Energy2d {
 }
 
 impl Energy2d {
+    /// The audit of a run from the sources' work `input`, the solid's final energy `solid`
+    /// and the flux `absorbed` (J/m), and the cracks' own tallies: their work, its
+    /// tangential part, the static shear's work through the final slip (with friction)
+    /// and the per-point friction and damage over the points' lengths.
+    pub fn audit<L: crate::law::NormalPart + crate::law::TangentialPart>(
+        input: f64,
+        solid: f64,
+        absorbed: f64,
+        cracks: &[super::crack::CrackNodes<L>],
+    ) -> Energy2d {
+        let tally = |f: fn(&crate::law::contact::PointState) -> f64| -> f64 {
+            cracks
+                .iter()
+                .flat_map(|c| c.weight.iter().zip(&c.state).map(move |(b, s)| b * f(s)))
+                .sum()
+        };
+        let static_shear_work = cracks
+            .iter()
+            .flat_map(|c| {
+                (0..c.weight.len()).map(move |k| {
+                    let law = &c.law[k];
+                    if crate::law::TangentialBranch::friction(law.branch()) > 0.0 {
+                        c.weight[k] * law.static_shear() * c.state[k].shear.slip
+                    } else {
+                        0.0
+                    }
+                })
+            })
+            .sum();
+        Energy2d {
+            input,
+            solid,
+            cracks: cracks.iter().map(|c| c.work).sum(),
+            absorbed,
+            cracks_tangential: cracks.iter().map(|c| c.tangential_work).sum(),
+            static_shear_work,
+            friction: tally(|s| s.friction),
+            damage: tally(|s| s.damage),
+        }
+    }
+
     /// `|input - solid - cracks - absorbed| / input`.
     pub fn closure_error(&self) -> f64 {
         (self.input - self.solid - self.cracks - self.absorbed).abs()

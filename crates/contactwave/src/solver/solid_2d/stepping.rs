@@ -109,32 +109,6 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
             solid += 0.5 * m * v[i] * v[i];
             solid += 0.5 * (u[i] - dt * v[i]) * -f[i];
         }
-        let cracks = self.cracks.iter().map(|c| c.work).sum();
-        let cracks_tangential = self.cracks.iter().map(|c| c.tangential_work).sum();
-        // the per-point tallies of the contact update, J/m^2, over the points' lengths
-        let tally = |f: fn(&crate::law::contact::PointState) -> f64| -> f64 {
-            self.cracks
-                .iter()
-                .flat_map(|c| c.weight.iter().zip(&c.state).map(move |(b, s)| b * f(s)))
-                .sum()
-        };
-        let (friction, damage) = (tally(|s| s.friction), tally(|s| s.damage));
-        // the static shear's work through the final slip (the pre-stress does it, not the
-        // sources, and friction dissipates it too; as the coupled 1D solver's audit)
-        let static_shear_work = self
-            .cracks
-            .iter()
-            .flat_map(|c| {
-                (0..c.weight.len()).map(move |k| {
-                    let law = &c.law[k];
-                    if crate::law::TangentialBranch::friction(law.branch()) > 0.0 {
-                        c.weight[k] * law.static_shear() * c.state[k].shear.slip
-                    } else {
-                        0.0
-                    }
-                })
-            })
-            .sum();
         Solid2dOutput {
             dt,
             time: recorder.time,
@@ -144,16 +118,7 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
             stress_components: recorder.stress_components,
             cracks: recorder.cracks,
             snapshots: recorder.snapshots,
-            energy: Energy2d {
-                input,
-                solid,
-                cracks,
-                absorbed,
-                cracks_tangential,
-                static_shear_work,
-                friction,
-                damage,
-            },
+            energy: Energy2d::audit(input, solid, absorbed, &self.cracks),
         }
     }
 }

@@ -92,35 +92,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadPlan<L> {
             solid += 0.5 * self.mass[i / c] * v[i] * v[i];
             solid += 0.5 * (u[i] - dt * v[i]) * -f[i];
         }
-        let tally = |g: fn(&crate::law::contact::PointState) -> f64| -> f64 {
-            cracks
-                .iter()
-                .flat_map(|cr| cr.weight.iter().zip(&cr.state).map(move |(b, s)| b * g(s)))
-                .sum()
-        };
-        let static_shear_work = cracks
-            .iter()
-            .flat_map(|cr| {
-                (0..cr.weight.len()).map(move |k| {
-                    let law = &cr.law[k];
-                    if crate::law::TangentialBranch::friction(law.branch()) > 0.0 {
-                        cr.weight[k] * law.static_shear() * cr.state[k].shear.slip
-                    } else {
-                        0.0
-                    }
-                })
-            })
-            .sum();
-        let energy = Energy2d {
-            input,
-            solid,
-            cracks: cracks.iter().map(|cr| cr.work).sum(),
-            absorbed,
-            cracks_tangential: cracks.iter().map(|cr| cr.tangential_work).sum(),
-            static_shear_work,
-            friction: tally(|s| s.friction),
-            damage: tally(|s| s.damage),
-        };
+        let energy = Energy2d::audit(input, solid, absorbed, &cracks);
         let (time, receivers, stresses, stress_components, mut records, snapshots) =
             recorder.into_parts();
         for (rec, cr) in records.iter_mut().zip(&cracks) {
