@@ -9,5 +9,6 @@ mod common;
 mod convergence_2d;
 mod determinism;
 mod hostile;
+mod mesh;
 mod provenance;
 mod trust;

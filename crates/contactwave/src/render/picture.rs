@@ -60,11 +60,20 @@ pub struct Heatmap<'a> {
     /// its nearest index (clipped to the classes) and the colour bar is one labelled band
     /// per class instead of a continuous scale; `scale` is then unused.
     pub classes: Vec<(String, [u8; 3])>,
+    /// Segments drawn thin in dark grey (display units), e.g. a mesh's outline: its sides,
+    /// holes and crack faces.
+    pub outline: Vec<[(f64, f64); 2]>,
 }
+
+/// The colour of a pixel with no value (NaN: outside a meshed specimen).
+pub const NO_VALUE: [u8; 3] = [190, 190, 190];
 
 impl Heatmap<'_> {
     /// The colour of value `v`.
     fn colour_of(&self, v: f64) -> [u8; 3] {
+        if v.is_nan() {
+            return NO_VALUE;
+        }
         if let Some(last) = self.classes.len().checked_sub(1) {
             let k = if v.is_finite() {
                 v.round().clamp(0.0, last as f64) as usize
@@ -277,6 +286,10 @@ pub fn heatmap(h: &Heatmap) -> RgbImage {
                 img.put_pixel(LEFT + ix, row as u32, Rgb([90, 90, 90]));
             }
         }
+    }
+    for l in &h.outline {
+        let (a, b) = ((px(l[0].0), py(l[0].1)), (px(l[1].0), py(l[1].1)));
+        segment(&mut img, a, b, 1.5, [60, 60, 60]);
     }
     for l in &h.lines {
         let (a, b) = ((px(l[0].0), py(l[0].1)), (px(l[1].0), py(l[1].1)));

@@ -1,10 +1,12 @@
 //! VTK files of pictures (the `plot` feature): a field on a uniform grid as XML ImageData
-//! (`.vti`, written by `vtkio`), and the ParaView collection (`.pvd`) that makes a time
+//! (`.vti`, written by `vtkio`), nodal fields on quadrilateral cells as XML
+//! UnstructuredGrid (`.vtu`), and the ParaView collection (`.pvd`) that makes a time
 //! series of them.
 
 use crate::error::Result;
 use vtkio::model::{
-    Attribute, Attributes, ByteOrder, DataSet, Extent, ImageDataPiece, Piece, Version, Vtk,
+    Attribute, Attributes, ByteOrder, CellType, Cells, DataSet, Extent, ImageDataPiece, Piece,
+    UnstructuredGridPiece, Version, VertexNumbers, Vtk,
 };
 
 /// The `.vti` text of one frame: `values` (`[row][column]`, `nx` columns, `ny` rows, the
@@ -37,6 +39,53 @@ pub fn image_data(
                 },
             }))],
         },
+    };
+    let mut out = Vec::new();
+    vtk.write_xml(&mut out)
+        .map_err(|e| crate::render::svg::plot_error(file, e.to_string().into()))?;
+    String::from_utf8(out).map_err(|e| crate::render::svg::plot_error(file, e.to_string().into()))
+}
+
+/// The `.vtu` text of one frame: quadrilateral `cells` (4 point indices each) on `points`
+/// (`[x, y]`, z = 0), with the point fields `fields` (name, components (1 or 3), values
+/// point-major).
+pub fn unstructured(
+    file: &str,
+    points: &[[f64; 2]],
+    cells: &[[u32; 4]],
+    fields: Vec<(&str, u32, Vec<f64>)>,
+) -> Result<String> {
+    let coords: Vec<f64> = points.iter().flat_map(|p| [p[0], p[1], 0.0]).collect();
+    let connectivity: Vec<u64> = cells.iter().flatten().map(|&i| i as u64).collect();
+    let offsets: Vec<u64> = (1..=cells.len() as u64).map(|k| 4 * k).collect();
+    let vtk = Vtk {
+        version: Version::new_xml(1, 0),
+        title: String::new(),
+        byte_order: ByteOrder::LittleEndian,
+        file_path: None,
+        data: DataSet::inline(UnstructuredGridPiece {
+            points: coords.into(),
+            cells: Cells {
+                cell_verts: VertexNumbers::XML {
+                    connectivity,
+                    offsets,
+                },
+                types: vec![CellType::Quad; cells.len()],
+            },
+            data: Attributes {
+                point: fields
+                    .into_iter()
+                    .map(|(name, n, v)| {
+                        if n == 3 {
+                            Attribute::vectors(name).with_data(v)
+                        } else {
+                            Attribute::scalars(name, 1).with_data(v)
+                        }
+                    })
+                    .collect(),
+                cell: vec![],
+            },
+        }),
     };
     let mut out = Vec::new();
     vtk.write_xml(&mut out)

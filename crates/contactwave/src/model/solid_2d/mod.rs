@@ -183,18 +183,22 @@ impl Solid2dScenario {
         let progress = control.progress.as_ref().map(|p| &*p.0);
         // where each receiver records: the node nearest the position asked for (the
         // rectangle), the position itself (a mesh: interpolated)
-        let (mut output, nodes, snapshots, at): (_, _, _, Vec<[f64; 2]>) = match self
+        let (mut output, nodes, snapshots, at, geometry): (_, _, _, Vec<[f64; 2]>, _) = match self
             .mesh_problem(&self.problem)
         {
             Some(q) => {
-                let plan = q.plan(&self.file)?;
-                let out = plan.run_with(progress)?;
+                let mut plan = q.plan(&self.file)?;
+                self.prepare_mesh_snapshots(&mut plan)?;
+                let mut out = plan.run_with(progress)?;
+                let capture = std::mem::take(&mut out.snapshots);
+                let snapshots = self.mesh_snapshots_of(&plan, capture);
                 let at = self
                     .receivers
                     .iter()
                     .map(|r| self.problem.receivers[r.index])
                     .collect();
-                (out, plan.mesh.n_nodes(), None, at)
+                let geometry = Geometry::of_mesh(self, &plan, &out);
+                (out, plan.mesh.n_nodes(), snapshots, at, geometry)
             }
             None => {
                 let mut plan = self.problem.plan(&self.file)?;
@@ -214,7 +218,7 @@ impl Solid2dScenario {
                     })
                     .collect();
                 let nodes = plan.mesh.n_nodes;
-                (out, nodes, snapshots, at)
+                (out, nodes, snapshots, at, Geometry::of(self))
             }
         };
         // the nodal fields are on the pixel grid now
@@ -327,7 +331,7 @@ impl Solid2dScenario {
             output,
             summary: s,
             snapshots,
-            geometry: Geometry::of(self),
+            geometry,
             stress_points: self.stress_points.clone(),
             f0: self.f0,
         })

@@ -108,17 +108,23 @@ fn rectangle_key(spec: &Solid2dSpec) -> Option<(String, &'static str)> {
         ("model.pml_reflection", m.pml_reflection.is_some()),
         ("model.prestress", m.prestress.is_some()),
         ("layer", !spec.layers.is_empty()),
-        ("snapshots", spec.snapshots.is_some()),
     ];
     named.iter().find(|(_, set)| *set).map(|(k, _)| {
         let why = match *k {
-            "model.width" | "layer" => "not with [mesh]: the mesh is the specimen ([[material]] for its surfaces)",
-            "model.element_size" => "not with [mesh]: the element size is the mesh's (re-mesh with a smaller h)",
+            "model.width" | "layer" => {
+                "not with [mesh]: the mesh is the specimen ([[material]] for its surfaces)"
+            }
+            "model.element_size" => {
+                "not with [mesh]: the element size is the mesh's (re-mesh with a smaller h)"
+            }
             "model.order" => "not with [mesh]: the order is `mesh.order`",
-            "model.top" | "model.bottom" | "model.sides" | "model.pml_thickness" | "model.pml_reflection" => {
+            "model.top"
+            | "model.bottom"
+            | "model.sides"
+            | "model.pml_thickness"
+            | "model.pml_reflection" => {
                 "not with [mesh]: the sides are its physical curves ([[boundary]] group, kind)"
             }
-            "snapshots" => "not yet on a mesh (the rectangle's pictures; docs/mesh.md says what a mesh run writes)",
             _ => "not with [mesh] (the prestress of a rectangle's cracks)",
         };
         (k.to_string(), why)
@@ -522,6 +528,10 @@ pub(super) fn from_spec(
     let gate = gate::analysis_gate(&spec.analysis, file, m.duration, f0)?;
     let mut receivers = receivers;
     gate::receiver_gates(&spec, &mut receivers, gate, file, m.duration, f0)?;
+    let snapshots = match &spec.snapshots {
+        Some(s) => Some(s.check(file, m.duration, wave)?),
+        None => None,
+    };
     Ok(Solid2dScenario {
         spec,
         file: file.to_string(),
@@ -530,7 +540,7 @@ pub(super) fn from_spec(
         receivers,
         stress_points,
         gate,
-        snapshots: None,
+        snapshots,
         backend: Backend::Cpu,
         mesh: Some(quad),
     })

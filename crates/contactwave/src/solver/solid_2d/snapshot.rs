@@ -70,9 +70,15 @@ impl<L> Plan<L> {
 
     /// The step whose half level `(n + 1/2) dt` is nearest to `t` (s), within the run.
     pub fn step_at(&self, t: f64) -> usize {
-        let n = (t / self.dt - 0.5).round().max(0.0);
-        (n as usize).min(self.steps.saturating_sub(1))
+        step_at(t, self.dt, self.steps)
     }
+}
+
+/// The step of a run of `steps` steps of `dt` (s) whose half level `(n + 1/2) dt` is
+/// nearest to `t` (s).
+pub fn step_at(t: f64, dt: f64, steps: usize) -> usize {
+    let n = (t / dt - 0.5).round().max(0.0);
+    (n as usize).min(steps.saturating_sub(1))
 }
 
 /// Which value a picture shows of the velocity field.

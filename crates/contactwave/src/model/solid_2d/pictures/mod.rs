@@ -13,6 +13,9 @@ use crate::scenario::solid_2d::Solid2dScenario;
 use crate::solver::solid_2d::snapshot::{self, Capture, Field, Raster};
 use crate::solver::solid_2d::Plan;
 
+mod mesh;
+pub use mesh::NodeFrames;
+
 /// Margins and colour bar around a frame's field, px (an upper bound, for the budget).
 const FRAME_EXTRA: (f64, f64) = (180.0, 120.0);
 
@@ -46,20 +49,44 @@ pub struct Snapshots2d {
     pub gif: bool,
     /// Write the VTK files.
     pub vtk: bool,
+    /// On a mesh: the frames at its nodes, for ParaView's `.vtu` files.
+    pub nodes: Option<mesh::NodeFrames>,
 }
 
 impl Solid2dScenario {
     /// Before a run: check the snapshots' memory against the budget (the key named is the
     /// one that sets their number) and have `plan` keep the fields at their steps.
     pub(crate) fn prepare_snapshots<L>(&self, plan: &mut Plan<L>) -> Result<()> {
-        let Some(s) = &self.snapshots else {
-            return Ok(());
-        };
-        let steps: Vec<usize> = s.times.iter().map(|&t| plan.step_at(t)).collect();
-        let frames = steps.len() as f64;
         let len = plan.components * plan.mesh.n_nodes;
-        let width = self.problem.width;
-        let depth = self.problem.depth();
+        let size = [self.problem.width, self.problem.depth()];
+        if let Some(steps) = self.snapshot_steps(plan.dt, plan.steps, len, size, 0.0)? {
+            plan.capture_at(steps);
+        }
+        Ok(())
+    }
+
+    /// The steps of the snapshots of a run of `steps` steps of `dt` (s) whose field has
+    /// `len` values, drawn over a box of `size` (m), with `per_value` more bytes a field
+    /// value held for each frame (a mesh's ParaView files), once their memory is checked
+    /// against the budget; `None` without `[snapshots]`.
+    pub(crate) fn snapshot_steps(
+        &self,
+        dt: f64,
+        steps: usize,
+        len: usize,
+        size: [f64; 2],
+        per_value: f64,
+    ) -> Result<Option<Vec<usize>>> {
+        let Some(s) = &self.snapshots else {
+            return Ok(None);
+        };
+        let steps: Vec<usize> = s
+            .times
+            .iter()
+            .map(|&t| snapshot::step_at(t, dt, steps))
+            .collect();
+        let frames = steps.len() as f64;
+        let [width, depth] = size;
         let nx = s.pixels as f64;
         let nz = (nx * depth / width).round().max(1.0);
         // the kept fields, their pixels, and the pictures (RGB and RGBA for the GIF), with
@@ -68,7 +95,9 @@ impl Solid2dScenario {
         let drawn = nz * row_height(nz as usize) as f64;
         let pictures = (nx + FRAME_EXTRA.0) * (drawn + FRAME_EXTRA.1) * 10.0;
         let vti = if s.vtk { 11.0 } else { 0.0 };
-        let bytes = Capture::bytes(steps.len(), len) + frames * (nx * nz * (16.0 + vti) + pictures);
+        let vtu = if s.vtk { per_value * len as f64 } else { 0.0 };
+        let bytes =
+            Capture::bytes(steps.len(), len) + frames * (nx * nz * (16.0 + vti) + pictures + vtu);
         let change = if s.key == "snapshots.every" {
             "raise `snapshots.every` or lower `snapshots.pixels`"
         } else {
@@ -94,8 +123,7 @@ impl Solid2dScenario {
             ),
             change,
         )?;
-        plan.capture_at(steps);
-        Ok(())
+        Ok(Some(steps))
     }
 
     /// After a run: the kept fields on the pixel grid.
@@ -110,17 +138,34 @@ impl Solid2dScenario {
             s.pixels,
             size,
         );
-        let largest = raster.values.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        Some(Self::snapshots_2d(s, capture.times.clone(), raster, None))
+    }
+
+    /// The snapshots of frames at `times` (s) on their pixel grid (and on a mesh, its
+    /// nodes), their colour scale fixed or the largest value.
+    fn snapshots_2d(
+        s: &Snapshots,
+        times: Vec<f64>,
+        raster: Raster,
+        nodes: Option<mesh::NodeFrames>,
+    ) -> Snapshots2d {
+        // (NaN: a pixel outside a mesh's specimen)
+        let largest = raster
+            .values
+            .iter()
+            .filter(|v| v.is_finite())
+            .fold(0.0f64, |a, b| a.max(b.abs()));
         let scale = s.scale.unwrap_or(if largest > 0.0 { largest } else { 1.0 });
-        Some(Snapshots2d {
-            times: capture.times.clone(),
+        Snapshots2d {
+            times,
             field: s.field_name.clone(),
             raster,
             scale,
             signed: s.field != Field::Magnitude,
             gif: s.gif,
             vtk: s.vtk,
-        })
+            nodes,
+        }
     }
 }
 
@@ -175,12 +220,24 @@ mod files {
         } else {
             (field, format!("t = {:.2} \u{b5}s", s.times[k] * 1e6))
         };
+        let [x0, z0] = r.geometry.origin;
+        let seg = |c: &[f64; 4]| [(c[0] * mm, c[1] * mm), (c[2] * mm, c[3] * mm)];
+        let lines = if r.geometry.crack_paths.is_empty() {
+            r.geometry.cracks.iter().map(seg).collect()
+        } else {
+            (r.geometry.crack_paths.iter())
+                .flat_map(|p| {
+                    p.windows(2)
+                        .map(|w| seg(&[w[0][0], w[0][1], w[1][0], w[1][1]]))
+                })
+                .collect()
+        };
         let h = Heatmap {
             nx,
             nz: nz * rows,
             values,
-            x_range: (0.0, width * mm),
-            y_range: (0.0, depth * mm),
+            x_range: (x0 * mm, (x0 + width) * mm),
+            y_range: (z0 * mm, (z0 + depth) * mm),
             scale: if s.signed {
                 (-s.scale, s.scale)
             } else {
@@ -192,12 +249,8 @@ mod files {
             ylabel: "z (mm)".into(),
             bar_label: field_label(s),
             boundaries: r.geometry.layer_boundaries.iter().map(|z| z * mm).collect(),
-            lines: r
-                .geometry
-                .cracks
-                .iter()
-                .map(|c| [(c[0] * mm, c[1] * mm), (c[2] * mm, c[3] * mm)])
-                .collect(),
+            lines,
+            outline: r.geometry.outline.iter().map(seg).collect(),
             marks: r
                 .geometry
                 .receivers
@@ -205,12 +258,7 @@ mod files {
                 .chain(&r.geometry.stress_receivers)
                 .map(|p| (p[0] * mm, p[1] * mm))
                 .collect(),
-            sources: r
-                .geometry
-                .sources
-                .iter()
-                .map(|c| [(c[0] * mm, c[1] * mm), (c[2] * mm, c[3] * mm)])
-                .collect(),
+            sources: r.geometry.sources.iter().map(seg).collect(),
             classes: Vec::new(),
         };
         picture::heatmap(&h)
@@ -235,8 +283,8 @@ mod files {
         let mut values = vec![0.0; nx * nz];
         // tip to tip, as crack_state.svg: a pixel shows its nearest node (the tips are welded)
         let (p0, p1) = match r.geometry.cracks.get(i) {
-            Some(&[x0, z0, x1, z1]) => (0.0, (x1 - x0).hypot(z1 - z0)),
-            None => (
+            Some(&[x0, z0, x1, z1]) if c.points.is_empty() => (0.0, (x1 - x0).hypot(z1 - z0)),
+            _ => (
                 c.position.first().copied().unwrap_or(0.0),
                 c.position.last().copied().unwrap_or(1.0),
             ),
@@ -524,7 +572,26 @@ mod files {
                 crate::render::svg::state_map(&name, &map)?,
             ));
         }
-        if let Some(s) = r.snapshots.as_ref().filter(|s| s.vtk) {
+        if let Some((s, nodes)) = r
+            .snapshots
+            .as_ref()
+            .and_then(|s| Some((s, s.nodes.as_ref()?)))
+        {
+            // a mesh: the nodal fields on the GLL sub-cells
+            let mut entries = Vec::new();
+            for (k, &t) in s.times.iter().enumerate() {
+                let name = frame_name(k, "vtu");
+                out.push(OutputFile::new(
+                    &name,
+                    super::mesh::vtu(&name, s, nodes, k)?,
+                ));
+                entries.push((t, name.trim_start_matches("snapshots/").to_string()));
+            }
+            out.push(OutputFile::new(
+                "snapshots/snapshots.pvd",
+                vtk::collection(&entries),
+            ));
+        } else if let Some(s) = r.snapshots.as_ref().filter(|s| s.vtk) {
             let (x, z) = (&s.raster.x, &s.raster.z);
             let (nx, nz) = (x.len(), z.len());
             let dx = if nx > 1 { x[1] - x[0] } else { 2.0 * x[0] };
@@ -582,12 +649,21 @@ mod files {
 /// transducer apertures, m.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Geometry {
+    /// The top left corner of the drawn box `[x, z]`, m (the rectangle's: `[0, 0]`; a
+    /// mesh's: its nodes' least x and z).
+    pub origin: [f64; 2],
     /// Width, m.
     pub width: f64,
     /// Depth, m.
     pub depth: f64,
-    /// Cracks `[x0, z0, x1, z1]`.
+    /// Cracks `[x0, z0, x1, z1]` (a mesh's: the chord from end to end).
     pub cracks: Vec<[f64; 4]>,
+    /// A mesh's cracks as drawn: each one's points from end to end `[x, z]` (empty on the
+    /// rectangle: its cracks are straight).
+    pub crack_paths: Vec<Vec<[f64; 2]>>,
+    /// A mesh's outline, segments `[x0, z0, x1, z1]` (its sides, holes and crack faces;
+    /// empty on the rectangle).
+    pub outline: Vec<[f64; 4]>,
     /// Whether each crack is frictionless (friction coefficient 0): its closed points
     /// slide freely, never stick, and the state maps name them `closed`, not `slip`.
     pub frictionless: Vec<bool>,
@@ -607,8 +683,11 @@ impl Geometry {
         let p = &s.problem;
         let depth = p.depth();
         Geometry {
+            origin: [0.0, 0.0],
             width: p.width,
             depth,
+            crack_paths: Vec::new(),
+            outline: Vec::new(),
             cracks: p
                 .cracks
                 .iter()

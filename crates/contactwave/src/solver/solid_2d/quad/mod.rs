@@ -20,6 +20,7 @@ pub mod input;
 pub mod kernel;
 mod lanes;
 pub mod locate;
+pub mod raster;
 pub mod split;
 mod stepping;
 
@@ -157,6 +158,8 @@ pub struct QuadPlan<L> {
     /// Each receiver's nodes and weights.
     pub receivers: Vec<Vec<(usize, f64)>>,
     crack_every: usize,
+    /// Steps after which the whole velocity field is kept ([`QuadPlan::capture_at`]).
+    snapshot_steps: Vec<usize>,
 }
 
 /// Bytes per GLL node of a quadrilateral-mesh run (state, masses, positions, the
@@ -498,6 +501,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
             dashpots,
             receivers,
             crack_every: self.crack_every.max(1),
+            snapshot_steps: Vec::new(),
         })
     }
 }

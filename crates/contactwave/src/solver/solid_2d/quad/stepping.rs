@@ -28,6 +28,16 @@ struct Run<'p, L> {
     absorbed: f64,
 }
 
+impl<L> QuadPlan<L> {
+    /// Keep the velocity field after each of `steps` (0-based; the field of the half level
+    /// `(n + 1/2) dt`); steps at or beyond [`QuadPlan::steps`] are never reached. The
+    /// caller checks [`crate::solver::solid_2d::snapshot::Capture::bytes`] against the
+    /// memory budget first.
+    pub fn capture_at(&mut self, steps: Vec<usize>) {
+        self.snapshot_steps = steps;
+    }
+}
+
 impl<L: NormalPart + TangentialPart + Clone> QuadPlan<L> {
     /// Run from rest (a fresh copy of the cracks at rest: the plan is not changed).
     pub fn run(&self) -> Result<Solid2dOutput> {
@@ -48,7 +58,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadPlan<L> {
             0,
             &self.cracks,
             self.crack_every,
-            Vec::new(),
+            self.snapshot_steps.clone(),
             len,
         );
         let mut run = Run {
@@ -216,6 +226,7 @@ impl<L: NormalPart + TangentialPart> Recorder<Run<'_, L>> for Records {
                 self.receivers[(r * c + cc) * n_t + n] = val;
             }
         }
+        self.snapshots.take(n, n as f64 * p.dt + 0.5 * p.dt, &s.v);
         self.crack_fields(t, n, &s.cracks);
     }
 }

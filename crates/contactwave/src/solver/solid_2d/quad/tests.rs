@@ -468,3 +468,89 @@ fn the_batched_kernel_is_the_scalar_loop_bit_for_bit() {
         }
     }
 }
+
+/// Pictures on a mesh: on a grid rotated by 30 degrees (affine elements), a velocity field
+/// that is a polynomial of degree `order` in x and z is resampled by the elements' Lagrange
+/// interpolants to round-off at every pixel inside the rotated plate, pixels outside it are
+/// NaN, the outline is the plate's rim (its length the perimeter) and the sub-cells tile the
+/// plate (their areas sum to the plate's).
+#[test]
+fn pictures_on_a_mesh_interpolate_inside_and_leave_the_outside_blank() {
+    use crate::solver::solid_2d::snapshot::{Capture, Field};
+    let (s, c) = 30f64.to_radians().sin_cos();
+    let rot = move |p: [f64; 2]| [c * p[0] - s * p[1], s * p[0] + c * p[1]];
+    let xs: Vec<f64> = (0..=6).map(|i| i as f64 * 1e-3).collect();
+    let zs: Vec<f64> = (0..=3).map(|i| i as f64 * 1e-3).collect();
+    let input = QuadInput::grid(&xs, &zs, &rot, vec!["al".into()], &|_| 0, &[], false);
+    let order = 4;
+    let mesh = geometry::Mesh::build(&input, order).unwrap();
+    // vx = (x/L)^4 - 2 (x/L)(z/L)^3 + 1, vz = (z/L)^2 (x/L): degree <= 4
+    let l = 1e-3;
+    let f = |p: [f64; 2]| {
+        let (x, z) = (p[0] / l, p[1] / l);
+        [x.powi(4) - 2.0 * x * z.powi(3) + 1.0, z * z * x]
+    };
+    let mut cap = Capture::new(vec![0], 2 * mesh.n_nodes());
+    let v: Vec<f64> = mesh.position.iter().flat_map(|&p| f(p)).collect();
+    cap.take(0, 0.5, &v);
+    let (lo, hi) = raster::bounds(&mesh);
+    let r = raster::raster(&mesh, 2, &cap, Field::Component(0), 80, lo, hi);
+    let rz = raster::raster(&mesh, 2, &cap, Field::Component(1), 80, lo, hi);
+    let m = raster::raster(&mesh, 2, &cap, Field::Magnitude, 80, lo, hi);
+    assert_eq!(r.frames(), 1);
+    // inside: the pixel rotated back lies in the aligned plate
+    let back = |p: [f64; 2]| [c * p[0] + s * p[1], -s * p[0] + c * p[1]];
+    let (mut inside, mut outside, mut err) = (0, 0, 0.0f64);
+    let scale = 6f64.powi(4);
+    for (iz, &z) in r.z.iter().enumerate() {
+        for (ix, &x) in r.x.iter().enumerate() {
+            let k = iz * r.x.len() + ix;
+            let q = back([x, z]);
+            let margin = 1e-9;
+            let within =
+                q[0] > margin && q[0] < 6e-3 - margin && q[1] > margin && q[1] < 3e-3 - margin;
+            let beyond =
+                q[0] < -margin || q[0] > 6e-3 + margin || q[1] < -margin || q[1] > 3e-3 + margin;
+            let want = f([x, z]);
+            if within {
+                inside += 1;
+                err = err.max((r.values[k] - want[0]).abs() / scale);
+                err = err.max((rz.values[k] - want[1]).abs() / scale);
+                let mag = (want[0] * want[0] + want[1] * want[1]).sqrt();
+                err = err.max((m.values[k] - mag).abs() / scale);
+            } else if beyond {
+                outside += 1;
+                assert!(
+                    r.values[k].is_nan() && m.values[k].is_nan(),
+                    "pixel {ix},{iz}"
+                );
+            }
+        }
+    }
+    assert!(
+        inside > 1000 && outside > 1000,
+        "{inside} inside, {outside} outside"
+    );
+    assert!(
+        err < 1e-12,
+        "interpolation error {err:e} of the field's scale"
+    );
+    let rim: f64 = raster::outline(&mesh)
+        .iter()
+        .map(|g| ((g[2] - g[0]).powi(2) + (g[3] - g[1]).powi(2)).sqrt())
+        .sum();
+    assert!((rim - 18e-3).abs() < 1e-12, "outline length {rim:e}");
+    let area: f64 = raster::sub_cells(&mesh)
+        .iter()
+        .map(|q| {
+            let p: Vec<[f64; 2]> = q.iter().map(|&i| mesh.position[i as usize]).collect();
+            0.5 * (0..4)
+                .map(|i| {
+                    let (a, b) = (p[i], p[(i + 1) % 4]);
+                    a[0] * b[1] - b[0] * a[1]
+                })
+                .sum::<f64>()
+        })
+        .sum();
+    assert!((area.abs() - 18e-6).abs() < 1e-15, "sub-cell area {area:e}");
+}
