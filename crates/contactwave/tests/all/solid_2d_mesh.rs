@@ -137,3 +137,37 @@ fn unusable_mesh_scenarios_are_refused_naming_the_entity() {
     let e = error(&scenario("nowhere.msh", ""));
     assert!(e.contains("mesh.file") && e.contains("nowhere.msh"), "{e}");
 }
+
+/// A stress receiver on a mesh (docs/mesh.md section 4): recorded at the point asked for
+/// (its `_x`, `_z` are that point, not a node), its three components in `receivers.csv`
+/// beside a velocity receiver's, its harmonics analysed (Pa); one outside the mesh is
+/// refused naming its own `[[receiver]]` table.
+#[test]
+fn a_stress_receiver_on_a_mesh_records_where_asked() {
+    use contactwave::model::RunControl;
+    let msh = dir().join("rotated/plate_0.msh").display().to_string();
+    let extra = "[[receiver]]\nname = \"v\"\nat = [30e-3, 0.0]\n\
+                 [[receiver]]\nname = \"s\"\nat = [20.123e-3, 3.217e-3]\nquantity = \"stress\"\ncomponent = \"xx\"\n";
+    let t = model::from_toml_str(&scenario(&msh, extra), "/tmp/s.toml").unwrap();
+    let outcome = t.base().unwrap().run(&RunControl::default()).unwrap();
+    let s = outcome.summary();
+    assert_eq!(s.get("s_x"), Some(20.123e-3));
+    assert_eq!(s.get("s_z"), Some(3.217e-3));
+    // a 10 MPa burst on the wedge: the stress under it is of that order, not zero
+    let a1 = s.get("s_A1").unwrap();
+    assert!(a1 > 1e3 && a1 < 1e8, "s_A1 = {a1} Pa");
+    let files = outcome.files().unwrap();
+    let csv = files.iter().find(|f| f.name == "receivers.csv").unwrap();
+    assert!(
+        csv.contents.starts_with("t,v_vx,v_vz,s_sxx,s_szz,s_sxz\n"),
+        "{}",
+        &csv.contents[..80]
+    );
+    let e = error(&scenario(
+        &msh,
+        "[[receiver]]\nname = \"v\"\nat = [30e-3, 0.0]\n\
+         [[receiver]]\nname = \"s\"\nat = [20e-3, 3e-3]\n\
+         [[receiver]]\nname = \"far\"\nat = [1.0, 3e-3]\nquantity = \"stress\"\n",
+    ));
+    assert!(e.contains("receiver.2.at"), "{e}");
+}

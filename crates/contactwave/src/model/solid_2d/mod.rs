@@ -195,7 +195,13 @@ impl Solid2dScenario {
                 let at = self
                     .receivers
                     .iter()
-                    .map(|r| self.problem.receivers[r.index])
+                    .map(|r| {
+                        if r.stress {
+                            self.stress_points[r.index]
+                        } else {
+                            self.problem.receivers[r.index]
+                        }
+                    })
                     .collect();
                 let geometry = Geometry::of_mesh(self, &plan, &out);
                 (out, plan.mesh.n_nodes(), snapshots, at, geometry)

@@ -440,19 +440,6 @@ pub(super) fn from_spec(
         receivers,
         stress_points,
     } = receivers::check_in(&spec.receivers, wave, Region::bounds(lo, hi), file)?;
-    if !stress_points.is_empty() {
-        let i = spec
-            .receivers
-            .iter()
-            .position(|r| r.quantity == "stress")
-            .unwrap_or(0);
-        return Err(inv(
-            file,
-            format!("receiver.{i}.quantity"),
-            "stress",
-            "velocity (stress receivers are not yet on a mesh)",
-        ));
-    }
     let harmonic = m.harmonic.unwrap_or(DEFAULT_HARMONIC);
     if !(harmonic.is_finite() && harmonic >= 1.0) {
         return Err(inv(file, "model.harmonic", harmonic, ">= 1"));
@@ -521,10 +508,27 @@ pub(super) fn from_spec(
         cracks: quad_cracks,
         sources: quad_sources,
         receivers: points,
+        stress_receivers: stress_points.clone(),
         duration: m.duration,
         crack_every,
     };
-    quad.check(file)?;
+    let split = quad.check(file)?;
+    // every receiver inside the mesh, named by its table (a line's points by its first)
+    for r in &receivers {
+        let at = if r.stress {
+            quad.stress_receivers[r.index]
+        } else {
+            quad.receivers[r.index]
+        };
+        if split.locate(at).is_none() {
+            return Err(inv(
+                file,
+                format!("receiver.{}.at", r.table),
+                format!("[{:e}, {:e}]", at[0], at[1]),
+                "a point inside the mesh",
+            ));
+        }
+    }
     let gate = gate::analysis_gate(&spec.analysis, file, m.duration, f0)?;
     let mut receivers = receivers;
     gate::receiver_gates(&spec, &mut receivers, gate, file, m.duration, f0)?;

@@ -1,7 +1,8 @@
 //! Stress receivers: the stress at a node from the displacements of the element it
 //! belongs to (the element to its lower right where it is shared; on a crack, the face of
 //! that element), by the element's GLL derivative along the node's row and column
-//! (docs/model.md section 15.1). Plain data built once; evaluating allocates nothing.
+//! (docs/model.md section 15.1); on a mesh, at the point itself by the gradient of its
+//! element's basis (`Mesh::stress_probe`). Plain data built once; evaluating allocates nothing.
 
 use super::mesh::Mesh;
 use super::{Elastic, Layer, Plan};
@@ -10,10 +11,11 @@ use crate::error::{Error, Result};
 /// One stress receiver.
 #[derive(Debug, Clone)]
 pub struct StressProbe {
-    /// The nodes of the element's row through the receiver's node with the weights of
-    /// d/dx there, `(node, 1/m)`.
+    /// The taps of d/dx at the receiver, `(node, 1/m)`: on the rectangle the nodes of the
+    /// element's row through the receiver's node, on a mesh every node of its element.
     pub row: Vec<(usize, f64)>,
-    /// The nodes of the element's column through it with the weights of d/dz.
+    /// The taps of d/dz at the receiver (the element's column through it on the
+    /// rectangle).
     pub column: Vec<(usize, f64)>,
     /// Lame's lambda and mu of the element, Pa.
     pub lame: (f64, f64),

@@ -6,6 +6,7 @@
 
 use super::crack::CrackNodes;
 use super::kernel::advance_nodes;
+use super::probe::StressProbe;
 use super::snapshot::Capture;
 use super::{CrackRecord, Energy2d, Load, Plan, Solid2dOutput};
 use crate::error::{Error, Result};
@@ -213,6 +214,28 @@ pub(super) struct Records {
 }
 
 impl Records {
+    /// Sample `n` of the stress receivers `probes` from the displacements `u` of the level
+    /// after the step (`components` per node): the half level's stress, the mean of the
+    /// levels around it, Pa.
+    pub(super) fn stresses_at(
+        &mut self,
+        n: usize,
+        probes: &[StressProbe],
+        u: &[f64],
+        components: usize,
+    ) {
+        let sc = self.stress_components;
+        let mut now = [0.0; 3];
+        for (r, probe) in probes.iter().enumerate() {
+            probe.stress(u, components, &mut now);
+            for (cc, &new) in now.iter().enumerate().take(sc) {
+                let last = &mut self.last_stress[r * sc + cc];
+                self.stresses[(r * sc + cc) * self.n_t + n] = 0.5 * (*last + new);
+                *last = new;
+            }
+        }
+    }
+
     pub(super) fn new<L>(plan: &Plan<L>) -> Self {
         Records::sized(
             plan.steps,
@@ -314,17 +337,7 @@ impl<L: NormalPart + TangentialPart> Recorder<Run2d<'_, L>> for Records {
                 self.receivers[(r * c + cc) * self.n_t + n] = s.v[c * g + cc];
             }
         }
-        // stresses of the half level: the mean of the levels around it
-        let sc = self.stress_components;
-        let mut now = [0.0; 3];
-        for (r, probe) in p.stress_probes.iter().enumerate() {
-            probe.stress(&s.u, c, &mut now);
-            for (cc, &new) in now.iter().enumerate().take(sc) {
-                let last = &mut self.last_stress[r * sc + cc];
-                self.stresses[(r * sc + cc) * self.n_t + n] = 0.5 * (*last + new);
-                *last = new;
-            }
-        }
+        self.stresses_at(n, &p.stress_probes, &s.u, c);
         self.snapshots.take(n, n as f64 * p.dt + 0.5 * p.dt, &s.v);
         self.crack_fields(t, n, &p.cracks);
     }

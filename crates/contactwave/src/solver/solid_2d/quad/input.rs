@@ -246,6 +246,7 @@ impl<L: Clone> super::QuadSolid<L> {
                 .collect(),
             sources,
             receivers: p.receivers.iter().map(|&r| map(r)).collect(),
+            stress_receivers: Vec::new(),
             duration: p.duration,
             crack_every: p.crack_every,
         }))

@@ -5,6 +5,7 @@
 //! point force is spread over the nodes by the same weights (its work is the same).
 
 use super::geometry::Mesh;
+use crate::solver::solid_2d::probe::StressProbe;
 
 /// The Lagrange basis of the GLL `points` at `s` and its derivative.
 pub(super) fn basis(points: &[f64], s: f64, l: &mut [f64], dl: &mut [f64]) {
@@ -75,6 +76,56 @@ impl Mesh {
             element: e,
             reference: r,
             weights,
+        })
+    }
+
+    /// A stress receiver at `p = [x, z]` (m) in the element [`Mesh::locate`] finds, of
+    /// Lame constants `lame(material tag)` (Pa), or `None` outside the mesh: the taps of
+    /// d/dx and d/dz of every node of the element at the point, the gradient of
+    /// `l_a(xi) l_b(eta)` by the inverse of the map's Jacobian there (the map the GLL
+    /// interpolant of the element's node positions, as in [`Mesh::locate`]).
+    pub fn stress_probe(
+        &self,
+        p: [f64; 2],
+        lame: impl Fn(u16) -> (f64, f64),
+    ) -> Option<StressProbe> {
+        let loc = self.locate(p)?;
+        let e = loc.element;
+        let m = self.gll.order + 1;
+        let mm = m * m;
+        let mut s = Scratch::new(m);
+        let pts = &self.gll.points;
+        basis(pts, loc.reference[0], &mut s.lx, &mut s.dlx);
+        basis(pts, loc.reference[1], &mut s.lz, &mut s.dlz);
+        let nodes = &self.conn[e * mm..(e + 1) * mm];
+        // the Jacobian of the map at the point
+        let (mut x_xi, mut x_eta, mut z_xi, mut z_eta) = (0.0, 0.0, 0.0, 0.0);
+        for b in 0..m {
+            for a in 0..m {
+                let q = self.position[nodes[b * m + a] as usize];
+                let (d_xi, d_eta) = (s.dlx[a] * s.lz[b], s.lx[a] * s.dlz[b]);
+                x_xi += d_xi * q[0];
+                z_xi += d_xi * q[1];
+                x_eta += d_eta * q[0];
+                z_eta += d_eta * q[1];
+            }
+        }
+        let j = x_xi * z_eta - x_eta * z_xi;
+        let (xi_x, xi_z, eta_x, eta_z) = (z_eta / j, -x_eta / j, -z_xi / j, x_xi / j);
+        let mut row = Vec::with_capacity(mm);
+        let mut column = Vec::with_capacity(mm);
+        for b in 0..m {
+            for a in 0..m {
+                let g = nodes[b * m + a] as usize;
+                let (d_xi, d_eta) = (s.dlx[a] * s.lz[b], s.lx[a] * s.dlz[b]);
+                row.push((g, xi_x * d_xi + eta_x * d_eta));
+                column.push((g, xi_z * d_xi + eta_z * d_eta));
+            }
+        }
+        Some(StressProbe {
+            row,
+            column,
+            lame: lame(self.material[e]),
         })
     }
 

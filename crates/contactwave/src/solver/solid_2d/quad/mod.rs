@@ -28,6 +28,7 @@ mod stepping;
 mod tests;
 
 use super::crack::{CrackNodes, PointFields};
+use super::probe::StressProbe;
 use super::{CrackProfile, Elastic, Load, WaveType};
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
@@ -120,6 +121,8 @@ pub struct QuadSolid<L> {
     pub sources: Vec<QuadSource>,
     /// Velocity receivers `[x, z]`, m (interpolated).
     pub receivers: Vec<[f64; 2]>,
+    /// Stress receivers `[x, z]`, m (the gradient of the element's basis at the point).
+    pub stress_receivers: Vec<[f64; 2]>,
     /// Duration, s.
     pub duration: f64,
     /// Record the crack fields every this many steps.
@@ -157,6 +160,8 @@ pub struct QuadPlan<L> {
     dashpots: Vec<Dashpot>,
     /// Each receiver's nodes and weights.
     pub receivers: Vec<Vec<(usize, f64)>>,
+    /// The stress receivers.
+    pub stress_probes: Vec<StressProbe>,
     crack_every: usize,
     /// Steps after which the whole velocity field is kept ([`QuadPlan::capture_at`]).
     snapshot_steps: Vec<usize>,
@@ -196,8 +201,9 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
 
     /// Check the geometry without building the operator: the mesh, its cracks, the sides'
     /// and apertures' curves on the boundary, every force and receiver inside the mesh
-    /// (what a scenario checks when it is loaded; [`QuadSolid::plan`] does it again).
-    pub fn check(&self, file: &str) -> Result<()> {
+    /// (what a scenario checks when it is loaded; [`QuadSolid::plan`] does it again);
+    /// the split mesh, for the caller's own checks.
+    pub fn check(&self, file: &str) -> Result<Mesh> {
         let (mesh, _) = self.split_mesh(file)?;
         for (name, _) in &self.boundaries {
             on_boundary(&mesh, name, &format!("boundary `{name}`"), file)?;
@@ -229,7 +235,17 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
                 ));
             }
         }
-        Ok(())
+        for (i, r) in self.stress_receivers.iter().enumerate() {
+            if mesh.locate(*r).is_none() {
+                return Err(Error::invalid(
+                    file,
+                    format!("stress_receivers.{i}"),
+                    format!("{r:?}"),
+                    "a point inside the mesh",
+                ));
+            }
+        }
+        Ok(mesh)
     }
 
     /// Check the problem and build its plan (errors name `file` and the key or entity).
@@ -346,7 +362,9 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
         let dt = (self.courant * 2.0 / lambda.sqrt()).min(self.max_time_step);
         let steps = (self.duration / dt).ceil();
         let crack_points: usize = splits.iter().map(|s| s.faces.len()).sum();
+        let stress_components = if components == 1 { 2.0 } else { 3.0 };
         let series = self.receivers.len() as f64 * components as f64 * steps
+            + self.stress_receivers.len() as f64 * stress_components * steps
             + 6.0 * crack_points as f64 * (steps / self.crack_every.max(1) as f64 + 1.0);
         crate::budget::check(
             file,
@@ -355,7 +373,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
             series * 8.0,
             &format!(
                 "{steps:.3e} time steps of {} receivers and {crack_points} crack nodes",
-                self.receivers.len()
+                self.receivers.len() + self.stress_receivers.len()
             ),
         )?;
         let steps = steps as usize;
@@ -486,6 +504,21 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
             };
             receivers.push(loc.weights);
         }
+        let lame = |tag: u16| {
+            let m = &self.materials[tag as usize];
+            (m.lambda(), m.mu())
+        };
+        let mut stress_probes = Vec::with_capacity(self.stress_receivers.len());
+        for (i, r) in self.stress_receivers.iter().enumerate() {
+            let Some(probe) = mesh.stress_probe(*r, lame) else {
+                return bad(
+                    &format!("stress_receivers.{i}"),
+                    format!("{r:?}"),
+                    "a point inside the mesh",
+                );
+            };
+            stress_probes.push(probe);
+        }
         Ok(QuadPlan {
             crack_ends: splits.iter().map(|s| s.ends).collect(),
             mesh,
@@ -500,6 +533,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
             signals,
             dashpots,
             receivers,
+            stress_probes,
             crack_every: self.crack_every.max(1),
             snapshot_steps: Vec::new(),
         })

@@ -55,7 +55,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadPlan<L> {
             self.steps,
             c,
             self.receivers.len(),
-            0,
+            self.stress_probes.len(),
             &self.cracks,
             self.crack_every,
             self.snapshot_steps.clone(),
@@ -226,6 +226,7 @@ impl<L: NormalPart + TangentialPart> Recorder<Run<'_, L>> for Records {
                 self.receivers[(r * c + cc) * n_t + n] = val;
             }
         }
+        self.stresses_at(n, &p.stress_probes, &s.u, c);
         self.snapshots.take(n, n as f64 * p.dt + 0.5 * p.dt, &s.v);
         self.crack_fields(t, n, &s.cracks);
     }

@@ -9,7 +9,7 @@
 use super::input::QuadInput;
 use super::*;
 use crate::solver::solid_2d::tests::{burst, clapping_plate, signorini, Signorini, ALUMINIUM};
-use crate::solver::solid_2d::{Side, Solid2d};
+use crate::solver::solid_2d::{Side, Solid2d, Solid2dOutput};
 
 /// The grid lines of the structured problem's mesh (no absorbing layers).
 fn grid_of(p: &Solid2d<Signorini>) -> (Vec<f64>, Vec<f64>) {
@@ -61,6 +61,7 @@ fn clapping_quad(
             signal: burst(10e6, 2e6, 3.0),
         }],
         receivers: p.receivers.iter().map(|&r| map(r)).collect(),
+        stress_receivers: Vec::new(),
         duration: p.duration,
         crack_every: 1,
     }
@@ -77,14 +78,22 @@ fn common_dt() -> f64 {
 
 /// On the rectangle's own grid (every element on the fast path), with the same time step,
 /// the quadrilateral path's run is the rectangle's: receiver traces and the crack's gaps
-/// within 1e-9 of their peaks (the sums run in another order), the same energies.
+/// within 1e-9 of their peaks (the sums run in another order), the same energies; a
+/// stress receiver at an element's interior GLL node reads the rectangle's stress there.
 #[test]
 fn the_rectangle_grid_gives_the_rectangle_run() {
     let dt = common_dt();
     let mut rect = clapping_plate(Side::Free);
     rect.max_time_step = dt;
-    let a = rect.plan("<test>").unwrap().run().unwrap();
-    let quad = clapping_quad(&|p| p, false, dt).plan("<test>").unwrap();
+    // the centre node of the element [4, 4.5] x [1, 1.5] mm (order 4)
+    let at = [4.25e-3, 1.25e-3];
+    let mut plan = rect.plan("<test>").unwrap();
+    plan.add_stress_receivers(&[at], &rect.layers, "<test>")
+        .unwrap();
+    let a = plan.run().unwrap();
+    let mut q = clapping_quad(&|p| p, false, dt);
+    q.stress_receivers = vec![at];
+    let quad = q.plan("<test>").unwrap();
     assert!(quad.mesh.rectangle.iter().all(|&r| r));
     assert_eq!(quad.dt, dt);
     let b = quad.run().unwrap();
@@ -122,24 +131,38 @@ fn the_rectangle_grid_gives_the_rectangle_run() {
     );
     assert!((a.energy.input - b.energy.input).abs() < 1e-9 * a.energy.input);
     assert!(b.energy.closure_error() < 1e-9, "{:?}", b.energy);
+    let scale = max_abs(&a.stresses);
+    let err = a
+        .stresses
+        .iter()
+        .zip(&b.stresses)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        scale > 1e5 && a.stresses.len() == b.stresses.len() && err < 1e-9 * scale,
+        "stresses differ by {err:e} of {scale:e} Pa"
+    );
 }
 
 /// The same specimen, crack and source rotated by 30 and by 45 degrees: every element on
 /// the general path, and the receivers' velocities are the aligned run's rotated, within
-/// 1e-9 of their peak (the discrete problem is the same one rotated).
+/// 1e-9 of their peak (the discrete problem is the same one rotated), and stress
+/// receivers inside elements read the aligned stress tensor rotated, `R sigma R^T`.
 #[test]
 fn a_rotated_specimen_gives_the_rotated_run() {
     let dt = common_dt();
-    let aligned = clapping_quad(&|p| p, false, dt)
-        .plan("<test>")
-        .unwrap()
-        .run()
-        .unwrap();
+    let stress_at = [[4.13e-3, 1.17e-3], [1.31e-3, 3.2e-3]];
+    let mut q = clapping_quad(&|p| p, false, dt);
+    q.stress_receivers = stress_at.to_vec();
+    let aligned = q.plan("<test>").unwrap().run().unwrap();
+    let sigma_scale = max_abs(&aligned.stresses);
     let scale = max_abs(&aligned.receivers);
     for deg in [30.0f64, 45.0] {
         let (s, c) = deg.to_radians().sin_cos();
         let rot = move |p: [f64; 2]| [c * p[0] - s * p[1], s * p[0] + c * p[1]];
-        let plan = clapping_quad(&rot, false, dt).plan("<test>").unwrap();
+        let mut q = clapping_quad(&rot, false, dt);
+        q.stress_receivers = stress_at.iter().map(|&p| rot(p)).collect();
+        let plan = q.plan("<test>").unwrap();
         assert!(plan.mesh.rectangle.iter().all(|&r| !r));
         let out = plan.run().unwrap();
         let n = out.time.len();
@@ -153,6 +176,25 @@ fn a_rotated_specimen_gives_the_rotated_run() {
             }
         }
         assert!(err < 1e-9 * scale, "{deg} degrees: {err:e} of {scale:e}");
+        let mut err = 0.0f64;
+        for r in 0..2 {
+            for k in 0..n {
+                let t = |o: &Solid2dOutput, cc| o.stress_trace(r, cc)[k];
+                let (xx, zz, xz) = (t(&aligned, 0), t(&aligned, 1), t(&aligned, 2));
+                let want = [
+                    c * c * xx - 2.0 * c * s * xz + s * s * zz,
+                    s * s * xx + 2.0 * c * s * xz + c * c * zz,
+                    c * s * (xx - zz) + (c * c - s * s) * xz,
+                ];
+                for (cc, w) in want.iter().enumerate() {
+                    err = err.max((t(&out, cc) - w).abs());
+                }
+            }
+        }
+        assert!(
+            sigma_scale > 1e5 && err < 1e-9 * sigma_scale,
+            "{deg} degrees: stresses {err:e} of {sigma_scale:e} Pa"
+        );
         let g = (out.cracks[0].peak_normal_gap - aligned.cracks[0].peak_normal_gap).abs();
         assert!(g < 1e-8 * aligned.cracks[0].peak_normal_gap);
     }
@@ -421,6 +463,7 @@ fn the_example_meshes_build_and_close_their_energy() {
                 signal: burst(10e6, 2e6, 2.0),
             }],
             receivers: vec![at],
+            stress_receivers: Vec::new(),
             duration: 1e-6,
             crack_every: 10,
         };
