@@ -171,3 +171,67 @@ fn a_stress_receiver_on_a_mesh_records_where_asked() {
     ));
     assert!(e.contains("receiver.2.at"), "{e}");
 }
+
+/// The rows of crack 0's field `name` (one per crack point, one value per record).
+fn crack_rows(outcome: &dyn model::Outcome, name: &str) -> Vec<Vec<f64>> {
+    let record = outcome.record();
+    let Some(model::Value::Tuple(cracks)) = record.get("cracks") else {
+        panic!("cracks")
+    };
+    let model::Value::Map(c) = &cracks[0] else {
+        panic!("crack map")
+    };
+    let Some(model::Value::Rows(rows)) = c.get(name) else {
+        panic!("{name}")
+    };
+    rows.clone()
+}
+
+/// An adhesive bond (RCCM) along the inclined crack of the plate meshed by Gmsh at 30
+/// degrees, broken by the burst: the adhesion beta never increases at any point of it (it
+/// falls below 1 where the bond is damaged), no point penetrates (rigid compression:
+/// gap >= 0), the energy closes with the damage tallied; and the same crack closed by a
+/// static pressure far beyond the wave's stress never opens.
+#[test]
+fn a_bond_on_a_mesh_crack_only_loses_adhesion_and_a_crack_closed_hard_never_opens() {
+    use contactwave::model::RunControl;
+    let msh = dir().join("rotated/plate_30.msh").display().to_string();
+    let bond = scenario(&msh, "").replace(
+        "static_pressure = 0.2e6\n",
+        "static_pressure = 0.0\ncompression = { law = \"rigid\" }\n\
+         traction = { law = \"rccm\", stiffness = 2e13, energy = 2e-4, viscosity = 1e-8 }\n",
+    )
+    .replace("duration = 3e-6", "duration = 5e-6");
+    let t = model::from_toml_str(&bond, "/tmp/bond.toml").unwrap();
+    let outcome = t.base().unwrap().run(&RunControl::default()).unwrap();
+    let s = outcome.summary();
+    let beta = crack_rows(outcome.as_ref(), "adhesion");
+    let gap = crack_rows(outcome.as_ref(), "normal_gap");
+    assert!(beta.len() > 10 && beta[0].len() > 10);
+    for (p, row) in beta.iter().enumerate() {
+        for w in row.windows(2) {
+            assert!(
+                w[1] <= w[0],
+                "point {p}: adhesion rose from {} to {}",
+                w[0],
+                w[1]
+            );
+        }
+    }
+    let least = beta.iter().flatten().fold(1.0f64, |a, &b| a.min(b));
+    assert!(
+        least < 0.9,
+        "the bond is not damaged: least adhesion {least}"
+    );
+    assert_eq!(s.get("crack_min_adhesion_0"), Some(least));
+    assert!(
+        gap.iter().flatten().all(|&g| g >= 0.0),
+        "a point penetrates"
+    );
+    assert!(s.get("energy_damage").unwrap() > 0.0, "{s:?}");
+    assert!(s.get("energy_closure_error").unwrap() < 1e-9, "{s:?}");
+    // 1 GPa of closure under a 10 MPa burst: shut
+    let shut =
+        summary(&scenario(&msh, "").replace("static_pressure = 0.2e6", "static_pressure = 1e9"));
+    assert_eq!(shut.get("crack_max_gap_0"), Some(0.0), "{shut:?}");
+}
