@@ -196,12 +196,13 @@ fn crack_rows(outcome: &dyn model::Outcome, name: &str) -> Vec<Vec<f64>> {
 fn a_bond_on_a_mesh_crack_only_loses_adhesion_and_a_crack_closed_hard_never_opens() {
     use contactwave::model::RunControl;
     let msh = dir().join("rotated/plate_30.msh").display().to_string();
-    let bond = scenario(&msh, "").replace(
-        "static_pressure = 0.2e6\n",
-        "static_pressure = 0.0\ncompression = { law = \"rigid\" }\n\
+    let bond = scenario(&msh, "")
+        .replace(
+            "static_pressure = 0.2e6\n",
+            "static_pressure = 0.0\ncompression = { law = \"rigid\" }\n\
          traction = { law = \"rccm\", stiffness = 2e13, energy = 2e-4, viscosity = 1e-8 }\n",
-    )
-    .replace("duration = 3e-6", "duration = 5e-6");
+        )
+        .replace("duration = 3e-6", "duration = 5e-6");
     let t = model::from_toml_str(&bond, "/tmp/bond.toml").unwrap();
     let outcome = t.base().unwrap().run(&RunControl::default()).unwrap();
     let s = outcome.summary();

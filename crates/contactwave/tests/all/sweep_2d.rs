@@ -157,3 +157,72 @@ fn a_sweep_checks_every_points_memory_before_it_runs() {
     );
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// The numbers of `table` by dotted key (arrays of tables by index; arrays of numbers,
+/// such as `at = [x, z]`, are positions, swept as `.x`/`.z` or not at all).
+fn number_keys(prefix: &str, v: &toml::Value, out: &mut Vec<(String, f64)>) {
+    match v {
+        toml::Value::Table(t) => {
+            for (k, v) in t {
+                let key = if prefix.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{prefix}.{k}")
+                };
+                number_keys(&key, v, out);
+            }
+        }
+        toml::Value::Array(a) if a.iter().all(toml::Value::is_table) => {
+            for (i, v) in a.iter().enumerate() {
+                number_keys(&format!("{prefix}.{i}"), v, out);
+            }
+        }
+        toml::Value::Float(x) => out.push((prefix.to_string(), *x)),
+        toml::Value::Integer(n) => out.push((prefix.to_string(), *n as f64)),
+        _ => {}
+    }
+}
+
+/// The sweep keys are the scenario's own schema, not a list: every number the 2D example
+/// writes, and the model's optional numbers it leaves at their defaults (the absorbing
+/// layers' thickness and reflection among them), can be swept, each point built with the
+/// value set; the layers' thickness reaches the problem; a key the schema lacks is
+/// refused with the keys it has.
+#[test]
+fn every_number_of_the_schema_is_a_sweep_key() {
+    let t = quick();
+    let mut table = t.table().clone();
+    let model = table["model"].as_table_mut().unwrap();
+    model.insert("sides".into(), toml::Value::String("absorbing".into()));
+    let t = model::plan(table.clone(), Path::new("absorbing.toml"));
+    let mut keys = Vec::new();
+    number_keys("", &toml::Value::Table(table), &mut keys);
+    for (k, v) in [
+        ("model.pml_thickness", 2e-3),
+        ("model.pml_reflection", 1e-4),
+        ("model.courant", 0.5),
+        ("model.crack_every", 5.0),
+        ("model.element_size", 0.5e-3),
+        ("model.time_step", 5e-9),
+        ("model.order", 5.0),
+    ] {
+        keys.push((k.to_string(), v));
+    }
+    assert!(keys.len() >= 18, "{keys:?}");
+    for (key, value) in &keys {
+        let p = t
+            .param(key)
+            .unwrap_or_else(|e| panic!("{key} is not a sweep key: {e}"));
+        t.build(&[(&p, *value)])
+            .unwrap_or_else(|e| panic!("{key} = {value}: {e}"));
+    }
+    let p = t.param("model.pml_thickness").unwrap();
+    let m = t.build(&[(&p, 2e-3)]).unwrap();
+    let s = m.as_any().downcast_ref::<Solid2dScenario>().unwrap();
+    assert_eq!(s.problem.pml.thickness, 2e-3);
+    let e = t
+        .param("model.pml_thicknes")
+        .and_then(|p| t.build(&[(&p, 1e-3)]).map(|_| ()));
+    let e = e.unwrap_err().to_string();
+    assert!(e.contains("pml_thickness"), "{e}");
+}
