@@ -697,6 +697,7 @@ impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
         &mut self,
         progress: Option<&(dyn Fn(usize, usize) + Send + Sync)>,
     ) -> Result<Solid2dOutput> {
+        self.reset();
         let len = self.components * self.mesh.n_nodes;
         let mut recorder = GpuRecords {
             base: Records::new(self),

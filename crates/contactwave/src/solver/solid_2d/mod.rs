@@ -286,7 +286,10 @@ pub struct Plan<L> {
     pub steps: usize,
     /// Components per node (1 antiplane, 2 plane strain).
     pub components: usize,
+    /// The cracks' state, reset to `cracks_at_rest` when a run starts ([`Plan::reset`]).
     cracks: Vec<CrackNodes<L>>,
+    /// The cracks at rest, as planned.
+    cracks_at_rest: Vec<CrackNodes<L>>,
     loads: Vec<Load>,
     /// The absorbing sides' perfectly matched layers (their elements; none without).
     band: pml::Band,
@@ -940,6 +943,7 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             dt,
             steps,
             components,
+            cracks_at_rest: cracks.clone(),
             cracks,
             loads,
             band,

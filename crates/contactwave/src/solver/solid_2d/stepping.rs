@@ -35,14 +35,25 @@ struct Run2d<'p, L> {
     absorbed: f64,
 }
 
-impl<L: NormalPart + TangentialPart> Plan<L> {
+impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
+    /// Back to rest before a run: the cracks' state as planned (their gaps, adhesion and
+    /// extrema), the plane waves' injection, so that every run of a plan is the first
+    /// (no allocation once the plan has run).
+    pub(super) fn reset(&mut self) {
+        self.cracks.clone_from(&self.cracks_at_rest);
+        for pw in &mut self.plane_waves {
+            pw.reset();
+        }
+    }
+
     /// The signal of load `l` at time t, N/m.
     #[inline]
     pub(super) fn load_value(&self, l: &Load, t: f64) -> f64 {
         l.weight * self.signals[l.source].stress(t - l.delay)
     }
 
-    /// Run from rest, checking for Ctrl-C every [`check_every`] steps.
+    /// Run from rest (every run of a plan starts from the same state), checking for
+    /// Ctrl-C every [`check_every`] steps.
     pub fn run(&mut self) -> Result<Solid2dOutput> {
         self.run_with(None)
     }
@@ -55,10 +66,8 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
         let c = self.components;
         let len = c * self.mesh.n_nodes;
         let (dt, n_t) = (self.dt, self.steps);
+        self.reset();
         let mut recorder = Records::new(self);
-        for pw in &mut self.plane_waves {
-            pw.reset();
-        }
         let mut run = Run2d {
             u: vec![0.0; len],
             v: vec![0.0; len],
@@ -124,7 +133,7 @@ impl<L: NormalPart + TangentialPart> Plan<L> {
     }
 }
 
-impl<L: NormalPart + TangentialPart> Scheme for Run2d<'_, L> {
+impl<L: NormalPart + TangentialPart + Clone> Scheme for Run2d<'_, L> {
     /// Levels n -> n + 1 in place: `u` and `v` hold the new level when it returns.
     fn step(&mut self, t: f64, t1: f64) -> Result<()> {
         let p = &mut *self.plan;
@@ -323,7 +332,7 @@ impl Records {
     }
 }
 
-impl<L: NormalPart + TangentialPart> Recorder<Run2d<'_, L>> for Records {
+impl<L: NormalPart + TangentialPart + Clone> Recorder<Run2d<'_, L>> for Records {
     /// Level `t` (s) after a step: the receivers' velocities of the half level before it
     /// (`t - dt / 2`); the level at rest (`t = 0`) is not recorded.
     fn record(&mut self, t: f64, s: &Run2d<'_, L>) {
