@@ -3,6 +3,7 @@
 //! and by 45 degrees gives the aligned run's receivers rotated; each unusable mesh or key
 //! is refused in one line naming the file and the entity.
 
+use crate::common::crack_rows;
 use contactwave::model;
 use std::path::PathBuf;
 
@@ -170,21 +171,6 @@ fn a_stress_receiver_on_a_mesh_records_where_asked() {
          [[receiver]]\nname = \"far\"\nat = [1.0, 3e-3]\nquantity = \"stress\"\n",
     ));
     assert!(e.contains("receiver.2.at"), "{e}");
-}
-
-/// The rows of crack 0's field `name` (one per crack point, one value per record).
-fn crack_rows(outcome: &dyn model::Outcome, name: &str) -> Vec<Vec<f64>> {
-    let record = outcome.record();
-    let Some(model::Value::Tuple(cracks)) = record.get("cracks") else {
-        panic!("cracks")
-    };
-    let model::Value::Map(c) = &cracks[0] else {
-        panic!("crack map")
-    };
-    let Some(model::Value::Rows(rows)) = c.get(name) else {
-        panic!("{name}")
-    };
-    rows.clone()
 }
 
 /// An adhesive bond (RCCM) along the inclined crack of the plate meshed by Gmsh at 30

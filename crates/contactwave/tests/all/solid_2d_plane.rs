@@ -4,6 +4,7 @@
 //! half-spaces take the 2D preset's P-wave modulus `E (1 - nu) / ((1 + nu) (1 - 2 nu))`
 //! (E = 71 GPa, nu = 0.33: 1.05197e11 Pa, c_P = 6230.4 m/s) as their Young's modulus.
 
+use crate::common::crack_rows;
 use contactwave::excitation::{Excitation, ToneBurst, Window};
 use contactwave::model::{self, RunControl};
 
@@ -124,21 +125,6 @@ fn bad_plane_wave_sources_are_errors_naming_the_key() {
         assert!(err.starts_with("bad.toml"), "{err}");
         assert_eq!(err.lines().count(), 1, "{err}");
     }
-}
-
-/// One crack's recorded field `name`, `[point][record]`.
-fn crack_rows(outcome: &dyn model::Outcome, name: &str) -> Vec<Vec<f64>> {
-    let record = outcome.record();
-    let Some(model::Value::Tuple(cracks)) = record.get("cracks") else {
-        panic!("cracks")
-    };
-    let model::Value::Map(c) = &cracks[0] else {
-        panic!("crack map")
-    };
-    let Some(model::Value::Rows(rows)) = c.get(name) else {
-        panic!("{name}")
-    };
-    rows.clone()
 }
 
 /// A plane wave at normal incidence on a full-width interface of a periodic strip moves

@@ -26,3 +26,19 @@ pub fn pmma(interface: &str, incident: &str) -> String {
 pub fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
 }
+
+/// Crack 0's recorded field `name` of a 2D run, `[point][record]`.
+pub fn crack_rows(outcome: &dyn contactwave::model::Outcome, name: &str) -> Vec<Vec<f64>> {
+    use contactwave::model::Value;
+    let record = outcome.record();
+    let Some(Value::Tuple(cracks)) = record.get("cracks") else {
+        panic!("cracks")
+    };
+    let Value::Map(c) = &cracks[0] else {
+        panic!("crack map")
+    };
+    let Some(Value::Rows(rows)) = c.get(name) else {
+        panic!("{name}")
+    };
+    rows.clone()
+}
