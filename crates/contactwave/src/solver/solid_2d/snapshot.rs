@@ -91,6 +91,36 @@ pub enum Field {
     Component(usize),
 }
 
+impl Field {
+    /// The value drawn of a node's or a pixel's velocity `v` (its components), m/s.
+    #[inline]
+    pub fn of(self, v: &[f64]) -> f64 {
+        match self {
+            Field::Magnitude => v.iter().map(|s| s * s).sum::<f64>().sqrt(),
+            Field::Component(k) => v[k.min(v.len() - 1)],
+        }
+    }
+}
+
+/// The centres of `nx` pixel columns (at least one) across the box from `lo` of `size`
+/// (m; `[x, z]`) and of as many rows as keep the pixels square (at least one; one for a
+/// box of no width), m.
+pub fn pixel_centres(nx: usize, lo: [f64; 2], size: [f64; 2]) -> (Vec<f64>, Vec<f64>) {
+    let [width, depth] = size;
+    let nx = nx.max(1);
+    let nz = if width > 0.0 {
+        ((nx as f64 * depth / width).round() as usize).max(1)
+    } else {
+        1
+    };
+    let centres = |n: usize, o: f64, len: f64| -> Vec<f64> {
+        (0..n)
+            .map(|i| o + (i as f64 + 0.5) * len / n as f64)
+            .collect()
+    };
+    (centres(nx, lo[0], width), centres(nz, lo[1], depth))
+}
+
 /// Frames resampled on a uniform grid of pixel centres.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Raster {
@@ -162,13 +192,8 @@ pub fn raster(
     nx: usize,
     size: [f64; 2],
 ) -> Raster {
-    let [width, depth] = size;
-    let nx = nx.max(1);
-    let nz = ((nx as f64 * depth / width).round() as usize).max(1);
-    let centres = |n: usize, len: f64| -> Vec<f64> {
-        (0..n).map(|i| (i as f64 + 0.5) * len / n as f64).collect()
-    };
-    let (x, z) = (centres(nx, width), centres(nz, depth));
+    let (x, z) = pixel_centres(nx, [0.0; 2], size);
+    let (nx, nz) = (x.len(), z.len());
     let p = &mesh.gll.points;
     let m = p.len();
     let (ex, wx) = locate(&mesh.x_edges, p, &x);
@@ -196,10 +221,7 @@ pub fn raster(
                         }
                     }
                 }
-                out[iz * nx + ix] = match field {
-                    Field::Magnitude => comp[..c].iter().map(|s| s * s).sum::<f64>().sqrt(),
-                    Field::Component(k) => comp[k.min(c - 1)],
-                };
+                out[iz * nx + ix] = field.of(&comp[..c]);
             }
         }
     }

@@ -7,7 +7,7 @@
 
 use super::geometry::{side_node, Mesh};
 use super::locate::basis;
-use crate::solver::solid_2d::snapshot::{Capture, Field, Raster};
+use crate::solver::solid_2d::snapshot::{pixel_centres, Capture, Field, Raster};
 use std::collections::HashMap;
 
 /// The frames of `capture` (fields of `components` values per node of `mesh`) on `nx`
@@ -24,19 +24,9 @@ pub fn raster(
     lo: [f64; 2],
     hi: [f64; 2],
 ) -> Raster {
-    let (width, depth) = ((hi[0] - lo[0]).max(0.0), (hi[1] - lo[1]).max(0.0));
-    let nx = nx.max(1);
-    let nz = if width > 0.0 {
-        ((nx as f64 * depth / width).round() as usize).max(1)
-    } else {
-        1
-    };
-    let centres = |n: usize, o: f64, len: f64| -> Vec<f64> {
-        (0..n)
-            .map(|i| o + (i as f64 + 0.5) * len / n as f64)
-            .collect()
-    };
-    let (x, z) = (centres(nx, lo[0], width), centres(nz, lo[1], depth));
+    let size = [(hi[0] - lo[0]).max(0.0), (hi[1] - lo[1]).max(0.0)];
+    let (x, z) = pixel_centres(nx, lo, size);
+    let (nx, nz) = (x.len(), z.len());
     let m = mesh.gll.order + 1;
     let mm = m * m;
     let pts = &mesh.gll.points;
@@ -79,10 +69,7 @@ pub fn raster(
                     }
                 }
             }
-            *o = match field {
-                Field::Magnitude => comp[..c].iter().map(|s| s * s).sum::<f64>().sqrt(),
-                Field::Component(k) => comp[k.min(c - 1)],
-            };
+            *o = field.of(&comp[..c]);
         }
     }
     Raster { x, z, values }
