@@ -1,10 +1,12 @@
-//! The element forces of the bulk kernel ([`super::kernel`]'s `psv_block`) on vector
-//! registers, one element a lane: the gradients along rows and columns by the even-odd
-//! derivative, Hooke's law and the quadrature weights at each point, the divergence, with
-//! each column's values kept in registers from its gradient to its z-divergence. One
-//! macro body, two instruction sets: AVX-512 (eight lanes, [`avx512`]) and AVX2 (four,
-//! [`avx2`]); both do the portable kernel's operations in its order (no fused
-//! multiply-add), so every path gives the same bits.
+//! The element forces of the bulk kernels on vector registers, one element a lane: the
+//! gradients along rows and columns by the even-odd derivative, the point-wise law at each
+//! point, the divergence, with each column's values kept in registers from its gradient to
+//! its z-divergence (`psv_with`, `sh_with`). The laws: the rectangle kernel's
+//! ([`super::kernel`]'s `psv_block`: two constants a lane), and the quadrilateral mesh's
+//! general elements (`psv_general`, `sh_general`: the per-point metric) and rectangles
+//! (`sh_rectangle`). One macro body, two instruction sets: AVX-512 (eight lanes, [`avx512`])
+//! and AVX2 (four, [`avx2`]); both do the portable kernel's operations in its order (no
+//! fused multiply-add), so every path gives the same bits.
 
 /// A module `$name` of the element forces on `$lanes` lanes of vector type `$v` under
 /// target feature `$feature`, with its intrinsics.
@@ -95,34 +97,150 @@ macro_rules! element_forces {
                 gx: &mut Block<M>,
                 gz: &mut Block<M>,
             ) {
-                // the x-gradients along the rows
-                let dxx: [[$v; M]; M] = std::array::from_fn(|b| even_odd(&r.grad, row(&ux[b])));
-                let dxz: [[$v; M]; M] = std::array::from_fn(|b| even_odd(&r.grad, row(&uz[b])));
                 let (sx, sz) = (load(&p.sx), load(&p.sz));
                 let (l2m, lam, mu) = (load(&p.l2m), load(&p.lam), load(&p.mu));
                 let (hx2, hz2) = (load(&p.hx2), load(&p.hz2));
                 let w = &r.w;
-                // the x-fluxes of each row, filled column by column
+                psv_with(r, ux, uz, gx, gz, |a, b, [dxx, dxz, dzx, dzz]| {
+                    let wab = splat(w[a] * w[b]);
+                    let (exx, ezz) = (mul(dxx, sx), mul(dzz, sz));
+                    let exz = add(mul(dzx, sz), mul(dxz, sx));
+                    let sxx = add(mul(l2m, exx), mul(lam, ezz));
+                    let szz = add(mul(lam, exx), mul(l2m, ezz));
+                    let sxz = mul(mu, exz);
+                    let (wx, wz) = (mul(hz2, wab), mul(hx2, wab));
+                    [mul(wx, sxx), mul(wx, sxz), mul(wz, sxz), mul(wz, szz)]
+                });
+            }
+
+            /// The P-SV forces of `W` general quadrilaterals (docs/model.md eq. 15.13b): at
+            /// point `(a, b)` (column `a`, row `b`) the physical gradient by the point's
+            /// metric, read at `metric[(5 (a M + b) + c) W + lane]` for `c` = `xi_x, xi_z,
+            /// eta_x, eta_z, w J` (in the order the points are visited), Hooke's law with the lanes'
+            /// `lame` (`lambda + 2 mu`, `lambda`, `mu`, Pa) and the fluxes along `xi` and
+            /// `eta`; `gx`, `gz`: the forces `K u` at the element's points.
+            ///
+            /// # Safety
+            /// The CPU must have the module's instruction set; `metric` holds `5 M^2 W`
+            /// values.
+            #[target_feature(enable = $feature)]
+            pub(in crate::solver::solid_2d) unsafe fn psv_general<const M: usize>(
+                r: &Rule<M>,
+                ux: &Block<M>,
+                uz: &Block<M>,
+                metric: *const f64,
+                lame: &[[f64; W]; 3],
+                gx: &mut Block<M>,
+                gz: &mut Block<M>,
+            ) {
+                let (l2m, lam, mu) = (load(&lame[0]), load(&lame[1]), load(&lame[2]));
+                psv_with(r, ux, uz, gx, gz, |a, b, [dxx, dxz, dzx, dzz]| {
+                    // SAFETY: the caller's contract (the point's five components)
+                    let g = |c: usize| unsafe { $loadu(metric.add((5 * (a * M + b) + c) * W)) };
+                    let (xx, xz, ex, ez, wj) = (g(0), g(1), g(2), g(3), g(4));
+                    let dux_dx = add(mul(dxx, xx), mul(dzx, ex));
+                    let dux_dz = add(mul(dxx, xz), mul(dzx, ez));
+                    let duz_dx = add(mul(dxz, xx), mul(dzz, ex));
+                    let duz_dz = add(mul(dxz, xz), mul(dzz, ez));
+                    let sxx = add(mul(l2m, dux_dx), mul(lam, duz_dz));
+                    let szz = add(mul(lam, dux_dx), mul(l2m, duz_dz));
+                    let sxz = mul(mu, add(dux_dz, duz_dx));
+                    [
+                        mul(wj, add(mul(sxx, xx), mul(sxz, xz))),
+                        mul(wj, add(mul(sxz, xx), mul(szz, xz))),
+                        mul(wj, add(mul(sxx, ex), mul(sxz, ez))),
+                        mul(wj, add(mul(sxz, ex), mul(szz, ez))),
+                    ]
+                });
+            }
+
+            /// The antiplane forces of `W` general quadrilaterals: [`psv_general`] with one
+            /// component (`mu` the lanes' shear moduli, Pa).
+            ///
+            /// # Safety
+            /// As [`psv_general`].
+            #[target_feature(enable = $feature)]
+            pub(in crate::solver::solid_2d) unsafe fn sh_general<const M: usize>(
+                r: &Rule<M>,
+                uy: &Block<M>,
+                metric: *const f64,
+                mu: &[f64; W],
+                gy: &mut Block<M>,
+            ) {
+                let mu = load(mu);
+                sh_with(r, uy, gy, |a, b, dxi, deta| {
+                    // SAFETY: the caller's contract (the point's five components)
+                    let g = |c: usize| unsafe { $loadu(metric.add((5 * (a * M + b) + c) * W)) };
+                    let (xx, xz, ex, ez, wj) = (g(0), g(1), g(2), g(3), g(4));
+                    let syx = mul(mu, add(mul(dxi, xx), mul(deta, ex)));
+                    let syz = mul(mu, add(mul(dxi, xz), mul(deta, ez)));
+                    [
+                        mul(wj, add(mul(syx, xx), mul(syz, xz))),
+                        mul(wj, add(mul(syx, ex), mul(syz, ez))),
+                    ]
+                });
+            }
+
+            /// The antiplane forces of `W` axis-aligned rectangles: `cx`, `cz` = `xi_x`,
+            /// `eta_z` (1/m), `jac` = `J` (m^2) and `mu` (Pa) per lane.
+            ///
+            /// # Safety
+            /// The CPU must have the module's instruction set.
+            #[target_feature(enable = $feature)]
+            pub(in crate::solver::solid_2d) unsafe fn sh_rectangle<const M: usize>(
+                r: &Rule<M>,
+                uy: &Block<M>,
+                coefs: &[[f64; W]; 4],
+                gy: &mut Block<M>,
+            ) {
+                let (cx, cz, jac, mu) = (
+                    load(&coefs[0]),
+                    load(&coefs[1]),
+                    load(&coefs[2]),
+                    load(&coefs[3]),
+                );
+                let (kx, kz) = (mul(mul(mu, cx), cx), mul(mul(mu, cz), cz));
+                let w = &r.w;
+                sh_with(r, uy, gy, |a, b, dxi, deta| {
+                    let wj = mul(splat(w[a] * w[b]), jac);
+                    [mul(mul(wj, kx), dxi), mul(mul(wj, kz), deta)]
+                });
+            }
+
+            /// The P-SV element forces given the point-wise law `point(a, b, [d_xi u_x,
+            /// d_xi u_z, d_eta u_x, d_eta u_z]) -> [xi-flux of x, xi-flux of z, eta-flux of
+            /// x, eta-flux of z]`: the gradients along rows and columns by the even-odd
+            /// derivative, each column's values kept in registers from its gradient to its
+            /// eta-divergence, then the xi-divergence of each row added.
+            #[inline]
+            #[target_feature(enable = $feature)]
+            fn psv_with<const M: usize, F: Fn(usize, usize, [$v; 4]) -> [$v; 4]>(
+                r: &Rule<M>,
+                ux: &Block<M>,
+                uz: &Block<M>,
+                gx: &mut Block<M>,
+                gz: &mut Block<M>,
+                point: F,
+            ) {
+                // the xi-gradients along the rows
+                let dxx: [[$v; M]; M] = std::array::from_fn(|b| even_odd(&r.grad, row(&ux[b])));
+                let dxz: [[$v; M]; M] = std::array::from_fn(|b| even_odd(&r.grad, row(&uz[b])));
+                // the xi-fluxes of each row, filled column by column
                 let mut fxx = [[MaybeUninit::<$v>::uninit(); M]; M];
                 let mut fzx = [[MaybeUninit::<$v>::uninit(); M]; M];
                 for a in 0..M {
-                    // the z-gradients of column a, Hooke's law at its points, and the z-divergence
-                    // of its z-fluxes (kept in g until the x-divergence is added)
+                    // the eta-gradients of column a, the law at its points, and the
+                    // eta-divergence of its eta-fluxes (kept in g until the xi-divergence is
+                    // added)
                     let dzx = even_odd(&r.grad, column(ux, a));
                     let dzz = even_odd(&r.grad, column(uz, a));
                     let (mut fxz, mut fzz) = ([splat(0.0); M], [splat(0.0); M]);
                     for b in 0..M {
-                        let wab = splat(w[a] * w[b]);
-                        let (exx, ezz) = (mul(dxx[b][a], sx), mul(dzz[b], sz));
-                        let exz = add(mul(dzx[b], sz), mul(dxz[b][a], sx));
-                        let sxx = add(mul(l2m, exx), mul(lam, ezz));
-                        let szz = add(mul(lam, exx), mul(l2m, ezz));
-                        let sxz = mul(mu, exz);
-                        let (wx, wz) = (mul(hz2, wab), mul(hx2, wab));
-                        fxx[b][a].write(mul(wx, sxx));
-                        fzx[b][a].write(mul(wx, sxz));
-                        fxz[b] = mul(wz, sxz);
-                        fzz[b] = mul(wz, szz);
+                        let [xx, zx, xz, zz] = point(a, b, [dxx[b][a], dxz[b][a], dzx[b], dzz[b]]);
+                        fxx[b][a].write(xx);
+                        fzx[b][a].write(zx);
+                        fxz[b] = xz;
+                        fzz[b] = zz;
                     }
                     let tx = even_odd(&r.div, fxz);
                     let tz = even_odd(&r.div, fzz);
@@ -134,7 +252,8 @@ macro_rules! element_forces {
                         }
                     }
                 }
-                // the x-divergence of each row, added to the z-divergence (x + z = z + x exactly)
+                // the xi-divergence of each row, added to the eta-divergence (x + z = z + x
+                // exactly)
                 for b in 0..M {
                     // SAFETY: every (b, a) was written in the column loop
                     let ox = even_odd(&r.div, fxx[b].map(|v| unsafe { v.assume_init() }));
@@ -146,6 +265,43 @@ macro_rules! element_forces {
                             $storeu(px, add(ox[a], $loadu(px)));
                             $storeu(pz, add(oz[a], $loadu(pz)));
                         }
+                    }
+                }
+            }
+
+            /// [`psv_with`] for one component: `point(a, b, d_xi u_y, d_eta u_y) ->
+            /// [xi-flux, eta-flux]`.
+            #[inline]
+            #[target_feature(enable = $feature)]
+            fn sh_with<const M: usize, F: Fn(usize, usize, $v, $v) -> [$v; 2]>(
+                r: &Rule<M>,
+                uy: &Block<M>,
+                gy: &mut Block<M>,
+                point: F,
+            ) {
+                let dxi: [[$v; M]; M] = std::array::from_fn(|b| even_odd(&r.grad, row(&uy[b])));
+                let mut f1 = [[MaybeUninit::<$v>::uninit(); M]; M];
+                for a in 0..M {
+                    let deta = even_odd(&r.grad, column(uy, a));
+                    let mut f2 = [splat(0.0); M];
+                    for b in 0..M {
+                        let [x, z] = point(a, b, dxi[b][a], deta[b]);
+                        f1[b][a].write(x);
+                        f2[b] = z;
+                    }
+                    let t = even_odd(&r.div, f2);
+                    for b in 0..M {
+                        // SAFETY: W doubles
+                        unsafe { $storeu(gy[b][a].as_mut_ptr(), t[b]) };
+                    }
+                }
+                for b in 0..M {
+                    // SAFETY: every (b, a) was written in the column loop
+                    let o = even_odd(&r.div, f1[b].map(|v| unsafe { v.assume_init() }));
+                    for a in 0..M {
+                        let p = gy[b][a].as_mut_ptr();
+                        // SAFETY: W doubles
+                        unsafe { $storeu(p, add(o[a], $loadu(p))) };
                     }
                 }
             }

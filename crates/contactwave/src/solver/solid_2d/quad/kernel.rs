@@ -11,7 +11,10 @@
 //! call.
 
 use super::geometry::Mesh;
-use super::lanes::{batch_psv, batch_sh, Batches};
+use super::lanes::{portable, Batches, Isa};
+#[cfg(target_arch = "x86_64")]
+use super::lanes::{tile_avx2, tile_avx512};
+use crate::solver::solid_2d::lines::Rule;
 use rayon::prelude::*;
 
 /// Largest GLL order the kernel's stack buffers hold.
@@ -33,6 +36,8 @@ pub struct Operator {
     batches: Batches,
     /// One component per node (antiplane `u_y`), else two (`u_x, u_z`).
     pub antiplane: bool,
+    /// The instruction set the batches run on.
+    isa: Isa,
 }
 
 /// A pointer to the force vector shared by the elements of one colour (they write
@@ -52,6 +57,11 @@ impl Shared {
 impl Operator {
     /// The operator of `mesh` with each element's `[lambda, mu]` (Pa).
     pub fn new(mesh: &Mesh, lame: Vec<[f64; 2]>, antiplane: bool) -> Operator {
+        Operator::on(Isa::detect(), mesh, lame, antiplane)
+    }
+
+    /// [`Operator::new`] on the instruction set `isa` (the CPU must have it).
+    pub fn on(isa: Isa, mesh: &Mesh, lame: Vec<[f64; 2]>, antiplane: bool) -> Operator {
         let mm = mesh.per_element();
         let w = &mesh.gll.weights;
         let m = mesh.gll.order + 1;
@@ -65,6 +75,7 @@ impl Operator {
             .collect();
         debug_assert_eq!(m * m, mm);
         let batches = Batches::new(
+            isa,
             m,
             &mesh.tiles,
             &mesh.colours,
@@ -81,7 +92,13 @@ impl Operator {
             rectangle,
             lame,
             antiplane,
+            isa,
         }
+    }
+
+    /// The instruction set the batches run on.
+    pub fn isa(&self) -> Isa {
+        self.isa
     }
 
     /// Elements of the mesh.
@@ -89,52 +106,47 @@ impl Operator {
         self.lame.len()
     }
 
-    /// Add the elements' forces `-K u` to `f` (N/m): each colour's batches in parallel
+    /// Add the elements' forces `-K u` to `f` (N/m): each colour's tiles in parallel
     /// ([`super::lanes`]), the colours one after another.
     pub fn add_forces(&self, u: &[f64], f: &mut [f64]) {
+        match self.n {
+            2 => self.forces::<3>(u, f),
+            3 => self.forces::<4>(u, f),
+            4 => self.forces::<5>(u, f),
+            5 => self.forces::<6>(u, f),
+            6 => self.forces::<7>(u, f),
+            7 => self.forces::<8>(u, f),
+            _ => self.forces::<9>(u, f),
+        }
+    }
+
+    /// [`Operator::add_forces`] at `M` GLL points per edge.
+    fn forces<const M: usize>(&self, u: &[f64], f: &mut [f64]) {
         let out = Shared(f.as_mut_ptr());
-        let b = &self.batches;
-        for (c, tiles) in b.colours.iter().enumerate() {
-            let tile = |&t: &u32| {
-                for i in b.tiles[t as usize].clone() {
-                    // SAFETY: the tiles of a colour share no node, so no two threads
-                    // write the same entries of `f` (the last colour's tiles run one
-                    // after another); every index is a node of the mesh.
-                    unsafe { self.batch(i, u, out.ptr()) };
+        let (b, d, w) = (&self.batches, &self.derivative[..], &self.weights[..]);
+        let rule = Rule::<M>::new(w, d);
+        let tile = |&t: &u32| {
+            let range = b.tiles[t as usize].clone();
+            let (anti, f) = (self.antiplane, out.ptr());
+            // SAFETY: the tiles of a colour share no node, so no two threads write the
+            // same entries of `f` (the last colour's tiles run one after another); every
+            // index is a node of the mesh; each kernel runs on the CPU that has it.
+            unsafe {
+                match self.isa {
+                    #[cfg(target_arch = "x86_64")]
+                    Isa::Avx512 => tile_avx512::<M>(b, range, &rule, anti, u, f),
+                    #[cfg(target_arch = "x86_64")]
+                    Isa::Avx2 => tile_avx2::<M>(b, range, &rule, anti, u, f),
+                    _ => portable::<M>(b, range, d, w, anti, u, f),
                 }
-            };
+            }
+        };
+        for (c, tiles) in b.colours.iter().enumerate() {
             if c == super::geometry::SERIAL_COLOUR {
                 tiles.iter().for_each(tile);
             } else {
                 tiles.par_iter().for_each(tile);
             }
-        }
-    }
-
-    /// Batch `i`'s forces, by the order's compiled kernel.
-    ///
-    /// # Safety
-    /// As [`Operator::element`].
-    unsafe fn batch(&self, i: usize, u: &[f64], f: *mut f64) {
-        let (b, d, w) = (&self.batches, &self.derivative[..], &self.weights[..]);
-        macro_rules! by_order {
-            ($kernel:ident, $rect:literal) => {
-                match self.n {
-                    2 => unsafe { $kernel::<3, $rect>(b, i, d, w, u, f) },
-                    3 => unsafe { $kernel::<4, $rect>(b, i, d, w, u, f) },
-                    4 => unsafe { $kernel::<5, $rect>(b, i, d, w, u, f) },
-                    5 => unsafe { $kernel::<6, $rect>(b, i, d, w, u, f) },
-                    6 => unsafe { $kernel::<7, $rect>(b, i, d, w, u, f) },
-                    7 => unsafe { $kernel::<8, $rect>(b, i, d, w, u, f) },
-                    _ => unsafe { $kernel::<9, $rect>(b, i, d, w, u, f) },
-                }
-            };
-        }
-        match (self.antiplane, b.rect[i]) {
-            (true, true) => by_order!(batch_sh, true),
-            (true, false) => by_order!(batch_sh, false),
-            (false, true) => by_order!(batch_psv, true),
-            (false, false) => by_order!(batch_psv, false),
         }
     }
 

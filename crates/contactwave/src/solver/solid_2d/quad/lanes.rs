@@ -1,19 +1,19 @@
-//! The production path of the quadrilateral kernel: [`W`] consecutive elements of a tile at a time,
-//! one per vector lane (the element loop of [`super::kernel`] with every operation done on
-//! `W` elements at once, compiled for AVX-512 and AVX2 where the CPU has them), the GLL
-//! order a compile-time constant so that the small loops unroll. A batch holds elements of
-//! one kind (axis-aligned rectangles: two constants a lane; general: the per-point metric,
-//! stored lane-fastest so that it loads as vectors). Each lane does the scalar element's
-//! operations in the scalar's order, and the lanes scatter one after another (they may
-//! share nodes), so the forces are the element loop's to round-off (its bits where a
-//! batch's elements are all of one kind).
+//! The production path of the quadrilateral kernel: [`W`] consecutive elements of a tile at a
+//! time, one per vector lane. A batch holds elements of one kind (axis-aligned rectangles:
+//! a few constants a lane; general: the per-point metric, stored lane-fastest so that it
+//! loads as vectors). Its nodes' displacements are gathered into lane blocks, the element
+//! forces computed on registers by [`crate::solver::solid_2d::registers`] (the rectangle
+//! kernel's even-odd derivative and column-in-registers order; a rectangle batch takes the
+//! rectangle solver's own element forces), and the lanes scatter one after another, each
+//! element's points in order (the element loop's order of assembly). AVX-512 takes a batch
+//! in one block of eight, AVX2 in two of four; without either, [`portable`] runs the
+//! element loop's arithmetic on the batch's data. The forces are the element loop's
+//! ([`super::kernel`]) to round-off.
 
-use multiversion::multiversion;
+use crate::solver::solid_2d::lines::Rule;
 
 /// Elements per batch (lanes of an AVX-512 register of doubles).
 pub const W: usize = 8;
-/// Largest GLL points per element the buffers hold (order 8).
-const MM: usize = 81;
 
 /// The batches of one operator: lane-fastest copies of what the element loop reads.
 #[derive(Debug, Clone, Default)]
@@ -24,10 +24,13 @@ pub struct Batches {
     pub rect: Vec<bool>,
     /// Per batch: `[l][lane]` node indices, `m^2 W` a batch.
     pub conn: Vec<u32>,
-    /// Per batch: lambda and mu per lane, `2 W` a batch.
+    /// Per batch: `lambda + 2 mu`, `lambda`, `mu` per lane (Pa), `3 W` a batch.
     pub lame: Vec<f64>,
-    /// Per batch: general: `[l][5][lane]` metric (`5 m^2 W`); rectangle: `[3][lane]`
-    /// (`xi_x, eta_z, J`), at `offset[batch]`.
+    /// Per batch: general: the metric (`5 m^2 W`: `xi_x, xi_z, eta_x, eta_z` in 1/m, `w
+    /// J` in m^2) in the order the kernel reads it, `[block][a][b][5][lane]` (blocks of
+    /// `block` lanes, each point's column `a` outermost: one stream a batch); rectangle:
+    /// `[RECT_COEFS][lane]` (`xi_x, eta_z` in 1/m, `J` in m^2, `J eta_z = hx / 2`, `J
+    /// xi_x = hz / 2` in m), at `offset[batch]`.
     pub geometry: Vec<f64>,
     /// Start of each batch's geometry in `geometry`.
     pub offset: Vec<usize>,
@@ -35,15 +38,32 @@ pub struct Batches {
     pub tiles: Vec<std::ops::Range<usize>>,
     /// The tiles of each colour.
     pub colours: Vec<Vec<u32>>,
+    /// Lanes of a block of the general metric (the instruction set's vector).
+    pub block: usize,
 }
+
+impl Batches {
+    /// Where the metric component `c` of point `(a, b)` (column `a`, row `b`) of lane `j`
+    /// sits in a general batch's geometry, at `M` points per edge.
+    #[inline(always)]
+    pub fn metric_at<const M: usize>(&self, a: usize, b: usize, c: usize, j: usize) -> usize {
+        let (h, jj) = (j / self.block, j % self.block);
+        ((((h * M + a) * M + b) * 5 + c) * self.block) + jj
+    }
+}
+
+/// Constants a lane of a rectangle batch.
+const RECT_COEFS: usize = 5;
 
 impl Batches {
     /// Batch each tile's elements, [`W`] consecutive ones a batch (a batch of rectangles
     /// only takes their fast path; one with a general element takes the metric of all),
     /// from the element data: `conn` (`m^2` an element), `metric` (per point), `rect`
-    /// (per element `Some([xi_x, eta_z, J])`), `lame`. Lanes of a batch may share nodes:
-    /// they scatter one after another.
+    /// (per element `Some([xi_x, eta_z, J])`), `lame` (`[lambda, mu]`, Pa), for `isa`.
+    /// Lanes of a batch may share nodes: they scatter one after another.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
+        isa: Isa,
         m: usize,
         tiles: &[std::ops::Range<u32>],
         colours: &[Vec<u32>],
@@ -53,8 +73,13 @@ impl Batches {
         lame: &[[f64; 2]],
     ) -> Batches {
         let mm = m * m;
+        let block = match isa {
+            Isa::Avx512 => 8,
+            Isa::Avx2 | Isa::Portable => 4,
+        };
         let mut b = Batches {
             colours: colours.to_vec(),
+            block,
             ..Default::default()
         };
         for tile in tiles {
@@ -70,23 +95,30 @@ impl Batches {
                         b.conn.push(conn[lane(j) * mm + l]);
                     }
                 }
-                for c in 0..2 {
-                    for j in 0..W {
-                        b.lame.push(lame[lane(j)][c]);
-                    }
-                }
+                let lambda: [f64; W] = std::array::from_fn(|j| lame[lane(j)][0]);
+                let mu: [f64; W] = std::array::from_fn(|j| lame[lane(j)][1]);
+                b.lame.extend((0..W).map(|j| lambda[j] + 2.0 * mu[j]));
+                b.lame.extend(lambda);
+                b.lame.extend(mu);
                 b.offset.push(b.geometry.len());
                 if all_rect {
-                    for c in 0..3 {
-                        for j in 0..W {
-                            b.geometry.push(rect[lane(j)].map_or(0.0, |r| r[c]));
-                        }
+                    let coefs = |j: usize| {
+                        let [cx, cz, jac] = rect[lane(j)].unwrap_or([1.0, 1.0, 0.0]);
+                        [cx, cz, jac, jac * cz, jac * cx]
+                    };
+                    for c in 0..RECT_COEFS {
+                        b.geometry.extend((0..W).map(|j| coefs(j)[c]));
                     }
                 } else {
-                    for l in 0..mm {
-                        for c in 0..5 {
-                            for j in 0..W {
-                                b.geometry.push(metric[lane(j) * mm + l][c]);
+                    for h in 0..W / block {
+                        for a in 0..m {
+                            for bb in 0..m {
+                                for c in 0..5 {
+                                    b.geometry.extend(
+                                        (h * block..(h + 1) * block)
+                                            .map(|j| metric[lane(j) * mm + bb * m + a][c]),
+                                    );
+                                }
                             }
                         }
                     }
@@ -98,210 +130,222 @@ impl Batches {
     }
 }
 
-/// The P-SV forces of batch `i` added to `f` (`u`, `f`: two components a node).
-///
-/// # Safety
-/// `f` points to a vector as long as `u`, and no other thread writes the batch's nodes.
-#[multiversion(targets("x86_64+avx512f+avx2+avx", "x86_64+avx2+avx"))]
-pub unsafe fn batch_psv<const M: usize, const RECT: bool>(
-    b: &Batches,
-    i: usize,
-    d: &[f64],
-    w: &[f64],
-    u: &[f64],
-    f: *mut f64,
-) {
-    let mm = M * M;
-    let d = &d[..mm];
-    let w = &w[..M];
-    let conn = &b.conn[i * mm * W..(i + 1) * mm * W];
-    let lame = &b.lame[i * 2 * W..(i + 1) * 2 * W];
-    let (mut ux, mut uz) = ([[0.0f64; W]; MM], [[0.0f64; W]; MM]);
-    for l in 0..mm {
-        for j in 0..W {
-            let g = conn[l * W + j] as usize;
-            ux[l][j] = u[2 * g];
-            uz[l][j] = u[2 * g + 1];
-        }
-    }
-    let mut lambda = [0.0; W];
-    let mut mu = [0.0; W];
-    let mut l2m = [0.0; W];
-    for j in 0..W {
-        lambda[j] = lame[j];
-        mu[j] = lame[W + j];
-        l2m[j] = lambda[j] + 2.0 * mu[j];
-    }
-    let (mut f1x, mut f1z, mut f2x, mut f2z) = (
-        [[0.0f64; W]; MM],
-        [[0.0f64; W]; MM],
-        [[0.0f64; W]; MM],
-        [[0.0f64; W]; MM],
-    );
-    let geo = &b.geometry[b.offset[i]..];
-    for bb in 0..M {
-        for a in 0..M {
-            let l = bb * M + a;
-            let (mut xi_x, mut xi_z, mut e_x, mut e_z) = ([0.0; W], [0.0; W], [0.0; W], [0.0; W]);
-            for k in 0..M {
-                let da = d[a * M + k];
-                let db = d[bb * M + k];
-                let (p, q) = (bb * M + k, k * M + a);
-                for j in 0..W {
-                    xi_x[j] += da * ux[p][j];
-                    xi_z[j] += da * uz[p][j];
-                    e_x[j] += db * ux[q][j];
-                    e_z[j] += db * uz[q][j];
-                }
+/// The instruction set the batches run on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Isa {
+    /// One block of eight lanes a batch.
+    Avx512,
+    /// Two blocks of four.
+    Avx2,
+    /// [`portable`]: the element loop's arithmetic on each lane.
+    Portable,
+}
+
+impl Isa {
+    /// The best this CPU has.
+    pub fn detect() -> Isa {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx512f") {
+                return Isa::Avx512;
             }
-            if RECT {
-                let (cx, cz, jac) = (&geo[..W], &geo[W..2 * W], &geo[2 * W..3 * W]);
-                for j in 0..W {
-                    let (dux_dx, duz_dz) = (xi_x[j] * cx[j], e_z[j] * cz[j]);
-                    let shear = mu[j] * (e_x[j] * cz[j] + xi_z[j] * cx[j]);
-                    let sxx = l2m[j] * dux_dx + lambda[j] * duz_dz;
-                    let szz = lambda[j] * dux_dx + l2m[j] * duz_dz;
-                    let wj = w[a] * w[bb] * jac[j];
-                    f1x[l][j] = wj * sxx * cx[j];
-                    f1z[l][j] = wj * shear * cx[j];
-                    f2x[l][j] = wj * shear * cz[j];
-                    f2z[l][j] = wj * szz * cz[j];
-                }
-            } else {
-                let g = &geo[l * 5 * W..(l + 1) * 5 * W];
-                for j in 0..W {
-                    let (xx, xz, ex, ez, wj) =
-                        (g[j], g[W + j], g[2 * W + j], g[3 * W + j], g[4 * W + j]);
-                    let dux_dx = xi_x[j] * xx + e_x[j] * ex;
-                    let dux_dz = xi_x[j] * xz + e_x[j] * ez;
-                    let duz_dx = xi_z[j] * xx + e_z[j] * ex;
-                    let duz_dz = xi_z[j] * xz + e_z[j] * ez;
-                    let sxx = l2m[j] * dux_dx + lambda[j] * duz_dz;
-                    let szz = lambda[j] * dux_dx + l2m[j] * duz_dz;
-                    let sxz = mu[j] * (dux_dz + duz_dx);
-                    f1x[l][j] = wj * (sxx * xx + sxz * xz);
-                    f1z[l][j] = wj * (sxz * xx + szz * xz);
-                    f2x[l][j] = wj * (sxx * ex + sxz * ez);
-                    f2z[l][j] = wj * (sxz * ex + szz * ez);
-                }
+            if std::is_x86_feature_detected!("avx2") {
+                return Isa::Avx2;
             }
         }
-    }
-    let count = b.count[i] as usize;
-    for bb in 0..M {
-        for a in 0..M {
-            // (each sum in its own loop over the lanes: vectors across the elements)
-            let (mut fx, mut fz) = ([0.0; W], [0.0; W]);
-            for k in 0..M {
-                let (da, row_x, row_z) = (d[k * M + a], &f1x[bb * M + k], &f1z[bb * M + k]);
-                for j in 0..W {
-                    fx[j] += da * row_x[j];
-                }
-                for j in 0..W {
-                    fz[j] += da * row_z[j];
-                }
-            }
-            for k in 0..M {
-                let (db, col_x, col_z) = (d[k * M + bb], &f2x[k * M + a], &f2z[k * M + a]);
-                for j in 0..W {
-                    fx[j] += db * col_x[j];
-                }
-                for j in 0..W {
-                    fz[j] += db * col_z[j];
-                }
-            }
-            let l = bb * M + a;
-            for j in 0..count {
-                let g = conn[l * W + j] as usize;
-                // SAFETY: the caller's contract
-                unsafe {
-                    *f.add(2 * g) -= fx[j];
-                    *f.add(2 * g + 1) -= fz[j];
-                }
-            }
-        }
+        Isa::Portable
     }
 }
 
-/// The antiplane forces of batch `i` added to `f` (one component a node).
+/// The forces of the batches `range` (one tile) added to `f` (`-K u`, N/m), on the block
+/// kernels of one instruction set (`$isa`, `$feature`): each batch in blocks of
+/// `$isa::W` lanes, gathered, computed on registers, scattered lane after lane.
+macro_rules! tile_kernel {
+    ($name:ident, $isa:ident, $feature:literal) => {
+        /// The batches `range` of `b` on the module's instruction set.
+        ///
+        /// # Safety
+        /// The CPU has the instruction set; `f` points to a vector as long as `u`
+        /// (`components` values a node), and no other thread writes the tile's nodes.
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = $feature)]
+        pub unsafe fn $name<const M: usize>(
+            b: &Batches,
+            range: std::ops::Range<usize>,
+            r: &Rule<M>,
+            antiplane: bool,
+            u: &[f64],
+            f: *mut f64,
+        ) {
+            use crate::solver::solid_2d::lines::Params;
+            use crate::solver::solid_2d::registers::$isa as k;
+            const H: usize = k::W;
+            let mm = M * M;
+            // the scratch, once per tile (lanes past a batch's count repeat its last
+            // element: finite values, computed and never scattered)
+            let zero = [[[0.0f64; H]; M]; M];
+            let (mut ux, mut uz, mut gx, mut gz) = (zero, zero, zero, zero);
+            for i in range {
+                let conn = &b.conn[i * mm * W..(i + 1) * mm * W];
+                let lame = &b.lame[i * 3 * W..(i + 1) * 3 * W];
+                let geo = &b.geometry[b.offset[i]..];
+                let count = b.count[i] as usize;
+                for h in 0..W / H {
+                    let lanes = h * H..(h + 1) * H;
+                    if count <= lanes.start {
+                        break;
+                    }
+                    let per = |s: &[f64], c: usize| -> [f64; H] {
+                        std::array::from_fn(|j| s[c * W + h * H + j])
+                    };
+                    let node = |l: usize, j: usize| conn[l * W + h * H + j] as usize;
+                    if antiplane {
+                        for j in 0..H {
+                            for l in 0..mm {
+                                ux[l / M][l % M][j] = u[node(l, j)];
+                            }
+                        }
+                        // SAFETY: the caller's CPU; a general batch holds 5 m^2 W metric
+                        // values from its offset, its blocks of H lanes one after another
+                        // (`Batches::block` is H: the operator's instruction set)
+                        unsafe {
+                            if b.rect[i] {
+                                let coefs = [per(geo, 0), per(geo, 1), per(geo, 2), per(lame, 2)];
+                                k::sh_rectangle::<M>(r, &ux, &coefs, &mut gx);
+                            } else {
+                                let metric = geo[h * 5 * mm * H..(h + 1) * 5 * mm * H].as_ptr();
+                                k::sh_general::<M>(r, &ux, metric, &per(lame, 2), &mut gx);
+                            }
+                        }
+                        for j in 0..count.min(lanes.end) - lanes.start {
+                            for l in 0..mm {
+                                // SAFETY: the caller's contract
+                                unsafe { *f.add(node(l, j)) -= gx[l / M][l % M][j] };
+                            }
+                        }
+                        continue;
+                    }
+                    for j in 0..H {
+                        for l in 0..mm {
+                            let g = node(l, j);
+                            ux[l / M][l % M][j] = u[2 * g];
+                            uz[l / M][l % M][j] = u[2 * g + 1];
+                        }
+                    }
+                    // SAFETY: as above
+                    unsafe {
+                        if b.rect[i] {
+                            let p = Params {
+                                sx: per(geo, 0),
+                                sz: per(geo, 1),
+                                l2m: per(lame, 0),
+                                lam: per(lame, 1),
+                                mu: per(lame, 2),
+                                hx2: per(geo, 3),
+                                hz2: per(geo, 4),
+                            };
+                            k::psv_block::<M>(r, &ux, &uz, &p, &mut gx, &mut gz);
+                        } else {
+                            let metric = geo[h * 5 * mm * H..(h + 1) * 5 * mm * H].as_ptr();
+                            let lame = [per(lame, 0), per(lame, 1), per(lame, 2)];
+                            k::psv_general::<M>(r, &ux, &uz, metric, &lame, &mut gx, &mut gz);
+                        }
+                    }
+                    for j in 0..count.min(lanes.end) - lanes.start {
+                        for l in 0..mm {
+                            let g = node(l, j);
+                            // SAFETY: the caller's contract
+                            unsafe {
+                                *f.add(2 * g) -= gx[l / M][l % M][j];
+                                *f.add(2 * g + 1) -= gz[l / M][l % M][j];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    };
+}
+
+tile_kernel!(tile_avx512, avx512, "avx512f,avx2");
+tile_kernel!(tile_avx2, avx2, "avx2");
+
+/// The batches `range` of `b` without vector extensions: each lane by the element loop's
+/// arithmetic (`d`: the derivative matrix, `w`: the GLL weights of order `M - 1`).
 ///
 /// # Safety
-/// As [`batch_psv`].
-#[multiversion(targets("x86_64+avx512f+avx2+avx", "x86_64+avx2+avx"))]
-pub unsafe fn batch_sh<const M: usize, const RECT: bool>(
+/// As the vector kernels' (`tile_avx2`), less the instruction set.
+pub unsafe fn portable<const M: usize>(
     b: &Batches,
-    i: usize,
+    range: std::ops::Range<usize>,
     d: &[f64],
     w: &[f64],
+    antiplane: bool,
     u: &[f64],
     f: *mut f64,
 ) {
     let mm = M * M;
-    let d = &d[..mm];
-    let w = &w[..M];
-    let conn = &b.conn[i * mm * W..(i + 1) * mm * W];
-    let mu = &b.lame[i * 2 * W + W..(i + 1) * 2 * W];
-    let mut uy = [[0.0f64; W]; MM];
-    for l in 0..mm {
-        for j in 0..W {
-            uy[l][j] = u[conn[l * W + j] as usize];
-        }
-    }
-    let (mut f1, mut f2) = ([[0.0f64; W]; MM], [[0.0f64; W]; MM]);
-    let geo = &b.geometry[b.offset[i]..];
-    for bb in 0..M {
-        for a in 0..M {
-            let l = bb * M + a;
-            let (mut dxi, mut deta) = ([0.0; W], [0.0; W]);
-            for k in 0..M {
-                let (da, db) = (d[a * M + k], d[bb * M + k]);
-                let (p, q) = (bb * M + k, k * M + a);
-                for j in 0..W {
-                    dxi[j] += da * uy[p][j];
-                    deta[j] += db * uy[q][j];
+    let c = if antiplane { 1 } else { 2 };
+    let mut uu = [[[0.0f64; M]; M]; 2];
+    let mut flux = [[[0.0f64; M]; M]; 4];
+    for i in range {
+        let conn = &b.conn[i * mm * W..(i + 1) * mm * W];
+        let lame = &b.lame[i * 3 * W..(i + 1) * 3 * W];
+        let geo = &b.geometry[b.offset[i]..];
+        for j in 0..b.count[i] as usize {
+            let node = |l: usize| conn[l * W + j] as usize;
+            for l in 0..mm {
+                for k in 0..c {
+                    uu[k][l / M][l % M] = u[c * node(l) + k];
                 }
             }
-            if RECT {
-                let (cx, cz, jac) = (&geo[..W], &geo[W..2 * W], &geo[2 * W..3 * W]);
-                for j in 0..W {
-                    let wj = w[a] * w[bb] * jac[j];
-                    f1[l][j] = wj * mu[j] * dxi[j] * cx[j] * cx[j];
-                    f2[l][j] = wj * mu[j] * deta[j] * cz[j] * cz[j];
-                }
-            } else {
-                let g = &geo[l * 5 * W..(l + 1) * 5 * W];
-                for j in 0..W {
-                    let (xx, xz, ex, ez, wj) =
-                        (g[j], g[W + j], g[2 * W + j], g[3 * W + j], g[4 * W + j]);
-                    let syx = mu[j] * (dxi[j] * xx + deta[j] * ex);
-                    let syz = mu[j] * (dxi[j] * xz + deta[j] * ez);
-                    f1[l][j] = wj * (syx * xx + syz * xz);
-                    f2[l][j] = wj * (syx * ex + syz * ez);
+            let (l2m, lam, mu) = (lame[j], lame[W + j], lame[2 * W + j]);
+            for bb in 0..M {
+                for a in 0..M {
+                    // the reference gradients of each component
+                    let mut grad = [[0.0; 2]; 2];
+                    for k in 0..M {
+                        for (cc, g) in grad.iter_mut().enumerate().take(c) {
+                            g[0] += d[a * M + k] * uu[cc][bb][k];
+                            g[1] += d[bb * M + k] * uu[cc][k][a];
+                        }
+                    }
+                    let [xx, xz, ex, ez, wj] = if b.rect[i] {
+                        let at = |c: usize| geo[c * W + j];
+                        [at(0), 0.0, 0.0, at(1), w[a] * w[bb] * at(2)]
+                    } else {
+                        std::array::from_fn(|cc| geo[b.metric_at::<M>(a, bb, cc, j)])
+                    };
+                    let phys = |g: [f64; 2]| [g[0] * xx + g[1] * ex, g[0] * xz + g[1] * ez];
+                    let along =
+                        |s: [f64; 2]| [wj * (s[0] * xx + s[1] * xz), wj * (s[0] * ex + s[1] * ez)];
+                    if antiplane {
+                        let [dx, dz] = phys(grad[0]);
+                        let [f1, f2] = along([mu * dx, mu * dz]);
+                        (flux[0][bb][a], flux[2][bb][a]) = (f1, f2);
+                    } else {
+                        let ([dux_dx, dux_dz], [duz_dx, duz_dz]) = (phys(grad[0]), phys(grad[1]));
+                        let sxx = l2m * dux_dx + lam * duz_dz;
+                        let szz = lam * dux_dx + l2m * duz_dz;
+                        let sxz = mu * (dux_dz + duz_dx);
+                        let ([f1x, f2x], [f1z, f2z]) = (along([sxx, sxz]), along([sxz, szz]));
+                        (flux[0][bb][a], flux[1][bb][a]) = (f1x, f1z);
+                        (flux[2][bb][a], flux[3][bb][a]) = (f2x, f2z);
+                    }
                 }
             }
-        }
-    }
-    let count = b.count[i] as usize;
-    for bb in 0..M {
-        for a in 0..M {
-            let mut fy = [0.0; W];
-            for k in 0..M {
-                let (da, row) = (d[k * M + a], &f1[bb * M + k]);
-                for j in 0..W {
-                    fy[j] += da * row[j];
+            for bb in 0..M {
+                for a in 0..M {
+                    let g = node(bb * M + a);
+                    for k in 0..c {
+                        let mut s = 0.0;
+                        for q in 0..M {
+                            s += d[q * M + a] * flux[k][bb][q] + d[q * M + bb] * flux[2 + k][q][a];
+                        }
+                        // SAFETY: the caller's contract
+                        unsafe { *f.add(c * g + k) -= s };
+                    }
                 }
-            }
-            for k in 0..M {
-                let (db, col) = (d[k * M + bb], &f2[k * M + a]);
-                for j in 0..W {
-                    fy[j] += db * col[j];
-                }
-            }
-            let l = bb * M + a;
-            for j in 0..count {
-                let g = conn[l * W + j] as usize;
-                // SAFETY: the caller's contract
-                unsafe { *f.add(g) -= fy[j] };
             }
         }
     }
