@@ -136,8 +136,7 @@ macro_rules! element_forces {
                 let (l2m, lam, mu) = (load(&lame[0]), load(&lame[1]), load(&lame[2]));
                 psv_with(r, ux, uz, gx, gz, |a, b, [dxx, dxz, dzx, dzz]| {
                     // SAFETY: the caller's contract (the point's five components)
-                    let g = |c: usize| unsafe { $loadu(metric.add((5 * (a * M + b) + c) * W)) };
-                    let (xx, xz, ex, ez, wj) = (g(0), g(1), g(2), g(3), g(4));
+                    let [xx, xz, ex, ez, wj] = unsafe { point_metric::<M>(metric, a, b) };
                     let dux_dx = add(mul(dxx, xx), mul(dzx, ex));
                     let dux_dz = add(mul(dxx, xz), mul(dzx, ez));
                     let duz_dx = add(mul(dxz, xx), mul(dzz, ex));
@@ -170,8 +169,7 @@ macro_rules! element_forces {
                 let mu = load(mu);
                 sh_with(r, uy, gy, |a, b, dxi, deta| {
                     // SAFETY: the caller's contract (the point's five components)
-                    let g = |c: usize| unsafe { $loadu(metric.add((5 * (a * M + b) + c) * W)) };
-                    let (xx, xz, ex, ez, wj) = (g(0), g(1), g(2), g(3), g(4));
+                    let [xx, xz, ex, ez, wj] = unsafe { point_metric::<M>(metric, a, b) };
                     let syx = mul(mu, add(mul(dxi, xx), mul(deta, ex)));
                     let syz = mul(mu, add(mul(dxi, xz), mul(deta, ez)));
                     [
@@ -304,6 +302,22 @@ macro_rules! element_forces {
                         unsafe { $storeu(p, add(o[a], $loadu(p))) };
                     }
                 }
+            }
+
+            /// The metric of point `(a, b)` (`xi_x, xi_z, eta_x, eta_z, w J`) from a
+            /// general batch's block (`metric[(5 (a M + b) + c) W + lane]`).
+            ///
+            /// # Safety
+            /// `metric` holds `5 M^2 W` values.
+            #[inline]
+            #[target_feature(enable = $feature)]
+            unsafe fn point_metric<const M: usize>(
+                metric: *const f64,
+                a: usize,
+                b: usize,
+            ) -> [$v; 5] {
+                // SAFETY: the caller's contract
+                std::array::from_fn(|c| unsafe { $loadu(metric.add((5 * (a * M + b) + c) * W)) })
             }
 
             /// The lanes from memory.
