@@ -32,6 +32,7 @@ ALL = [
     (MESH / "rivet_hole" / "plate.geo", {}, "plate.msh"),
     (MESH / "lap_joint" / "joint.geo", {}, "joint.msh"),
     (MESH / "curved_delamination" / "shell.geo", {}, "shell.msh"),
+    (MESH / "periodic_strip" / "strip.geo", {}, "strip.msh"),
 ] + [
     (MESH / "rotated" / "plate.geo", {"theta": float(t)}, f"plate_{t}.msh")
     for t in (0, 30, 45)

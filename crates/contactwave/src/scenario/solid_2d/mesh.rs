@@ -66,8 +66,11 @@ pub struct MaterialSpec {
 pub struct BoundarySpec {
     /// The physical curve's name.
     pub group: String,
-    /// `free`, `rigid` or `absorbing` (Lysmer's dashpots).
+    /// `free`, `rigid`, `absorbing` (Lysmer's dashpots) or `periodic` (with `partner`).
     pub kind: String,
+    /// The periodic partner: the physical curve that is `group` moved by a translation.
+    #[serde(default)]
+    pub partner: Option<String>,
 }
 
 /// The start of a crack that gives none (a mesh's crack, by its group).
@@ -209,21 +212,52 @@ pub(super) fn from_spec(
         }
     };
     let mut boundaries = Vec::new();
+    let mut periodic = Vec::new();
     for (i, b) in spec.boundaries.iter().enumerate() {
-        let kind = match b.kind.as_str() {
-            "free" => Boundary::Free,
-            "rigid" => Boundary::Rigid,
-            "absorbing" => Boundary::Absorbing,
-            k => {
+        let group = curve(format!("boundary.{i}.group"), &b.group)?;
+        let kind = match (b.kind.as_str(), &b.partner) {
+            ("periodic", Some(partner)) => {
+                let partner = curve(format!("boundary.{i}.partner"), partner)?;
+                if partner == group {
+                    return Err(inv(
+                        file,
+                        format!("boundary.{i}.partner"),
+                        &partner,
+                        "another physical curve than `group`",
+                    ));
+                }
+                periodic.push((group, partner));
+                continue;
+            }
+            ("periodic", None) => {
+                return Err(inv(
+                    file,
+                    format!("boundary.{i}.partner"),
+                    "missing",
+                    "the physical curve that is `group` moved by a translation",
+                ))
+            }
+            (_, Some(_)) => {
+                return Err(inv(
+                    file,
+                    format!("boundary.{i}.partner"),
+                    "given",
+                    "only with kind = \"periodic\"",
+                ))
+            }
+            ("free", None) => Boundary::Free,
+            ("rigid", None) => Boundary::Rigid,
+            ("absorbing", None) => Boundary::Absorbing,
+            (k, None) => {
                 return Err(inv(
                     file,
                     format!("boundary.{i}.kind"),
                     k,
-                    "free, rigid or absorbing",
+                    "free, rigid, absorbing or periodic",
                 ))
             }
         };
-        boundaries.push((curve(format!("boundary.{i}.group"), &b.group)?, kind));
+        boundaries.push((group, kind));
     }
     // the bounding box, the largest element edge
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
@@ -505,6 +539,7 @@ pub(super) fn from_spec(
         courant,
         max_time_step,
         boundaries,
+        periodic,
         cracks: quad_cracks,
         sources: quad_sources,
         receivers: points,

@@ -295,19 +295,15 @@ pub(super) fn strip<L>(
     Solid2d::periodic_strip(ALUMINIUM, wave, h, depth, (normal, signal), duration)
 }
 
-/// The largest gap error (over the max gap) of a full-width interface (periodic sides)
-/// under a plane P wave at normal incidence, against the exact half-space solver (delayed
-/// by the travel time from the surface), at each element size of `sizes` (wavelengths).
-fn reduction_errors<L: NormalPart + TangentialPart + Clone>(
-    law_2d: L,
+/// The exact half-space solver's normal gap (m) at time `t` (s, from the wave's arrival)
+/// for identical half-spaces of aluminium's P-wave modulus under a 2-cycle burst of `amp`
+/// (Pa) at `f0` (Hz) with the 1D law `law_1d`, and its largest magnitude: the reference of
+/// the full-width interfaces' reductions (here and on meshes).
+pub(super) fn exact_gap(
     law_1d: crate::law::ContactLaw,
-    sizes: &[f64],
-) -> Vec<f64> {
-    let f0 = 1e6;
-    let lambda = ALUMINIUM.p_speed / f0;
-    let (zc, depth) = (2.5 * lambda, 5.0 * lambda);
-    let amp = 1e6;
-    // the exact solver: identical half-spaces of P-wave modulus rho c_P^2
+    amp: f64,
+    f0: f64,
+) -> (impl Fn(f64) -> f64, f64) {
     let medium = Material {
         youngs_modulus: ALUMINIUM.density * ALUMINIUM.p_speed * ALUMINIUM.p_speed,
         density: ALUMINIUM.density,
@@ -320,7 +316,9 @@ fn reduction_errors<L: NormalPart + TangentialPart + Clone>(
             summary_only: false,
         })
         .unwrap();
-    let at = |t: f64| -> f64 {
+    let gmax = exact.gap.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
+    assert!(gmax > 0.0);
+    let at = move |t: f64| -> f64 {
         if t <= 0.0 {
             return 0.0;
         }
@@ -332,8 +330,22 @@ fn reduction_errors<L: NormalPart + TangentialPart + Clone>(
         let s = ((t - t0) / (t1 - t0)).clamp(0.0, 1.0);
         exact.gap[k - 1] + s * (exact.gap[k] - exact.gap[k - 1])
     };
-    let gmax = exact.gap.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
-    assert!(gmax > 0.0);
+    (at, gmax)
+}
+
+/// The largest gap error (over the max gap) of a full-width interface (periodic sides)
+/// under a plane P wave at normal incidence, against the exact half-space solver (delayed
+/// by the travel time from the surface), at each element size of `sizes` (wavelengths).
+fn reduction_errors<L: NormalPart + TangentialPart + Clone>(
+    law_2d: L,
+    law_1d: crate::law::ContactLaw,
+    sizes: &[f64],
+) -> Vec<f64> {
+    let f0 = 1e6;
+    let lambda = ALUMINIUM.p_speed / f0;
+    let (zc, depth) = (2.5 * lambda, 5.0 * lambda);
+    let amp = 1e6;
+    let (at, gmax) = exact_gap(law_1d, amp, f0);
     let mut errors = Vec::new();
     for &size in sizes {
         let h = size * lambda;

@@ -149,11 +149,12 @@ impl QuadInput {
 }
 
 impl<L: Clone> super::QuadSolid<L> {
-    /// The rectangle `p` (free sides, no absorbing layers; transducers, point forces and
-    /// straight cracks) on a quadrilateral mesh of its own grid mapped by `map` (a
-    /// rotation: the same problem turned): the general path's benchmark and its check
-    /// against the rectangle's run. `None` for what it does not carry over (rigid,
-    /// periodic or absorbing sides, plane waves, a full-width crack, a crack profile).
+    /// The rectangle `p` (free sides, or periodic x sides; no absorbing layers;
+    /// transducers, point forces and straight cracks, full-width ones with periodic sides)
+    /// on a quadrilateral mesh of its own grid mapped by `map` (a rotation: the same
+    /// problem turned; a shear along x keeps periodic sides translates): the general
+    /// path's benchmark and its check against the rectangle's run. `None` for what it does
+    /// not carry over (rigid or absorbing sides, plane waves, a crack profile).
     pub fn of_rectangle(
         p: &super::super::Solid2d<L>,
         map: &dyn Fn([f64; 2]) -> [f64; 2],
@@ -164,8 +165,12 @@ impl<L: Clone> super::QuadSolid<L> {
     {
         use super::super::{Side, SourceKind};
         use super::{QuadCrack, QuadSource, QuadSourceKind};
-        let free = [p.top, p.bottom, p.sides].iter().all(|&s| s == Side::Free);
-        if !free || p.cracks.iter().any(|c| c.full_width || c.profile.is_some()) {
+        let free = [p.top, p.bottom].iter().all(|&s| s == Side::Free);
+        let periodic = p.sides == Side::Periodic;
+        if !free
+            || !(periodic || p.sides == Side::Free)
+            || p.cracks.iter().any(|c| c.profile.is_some())
+        {
             return Ok(None);
         }
         let plan = p.plan(file)?;
@@ -234,6 +239,11 @@ impl<L: Clone> super::QuadSolid<L> {
             courant: p.courant,
             max_time_step: p.max_time_step,
             boundaries: Vec::new(),
+            periodic: if periodic {
+                vec![("left".into(), "right".into())]
+            } else {
+                Vec::new()
+            },
             cracks: p
                 .cracks
                 .iter()

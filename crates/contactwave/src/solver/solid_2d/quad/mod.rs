@@ -20,10 +20,13 @@ pub mod input;
 pub mod kernel;
 mod lanes;
 pub mod locate;
+pub mod periodic;
 pub mod raster;
 pub mod split;
 mod stepping;
 
+#[cfg(test)]
+mod periodic_tests;
 #[cfg(test)]
 mod tests;
 
@@ -115,6 +118,9 @@ pub struct QuadSolid<L> {
     pub max_time_step: f64,
     /// Named curves that are not free sides.
     pub boundaries: Vec<(String, Boundary)>,
+    /// Periodic sides: pairs of named boundary curves, the second the first moved by a
+    /// translation, joined node by node ([`periodic`]).
+    pub periodic: Vec<(String, String)>,
     /// Cracks and contact interfaces.
     pub cracks: Vec<QuadCrack<L>>,
     /// Sources.
@@ -135,6 +141,8 @@ pub struct QuadSolid<L> {
 struct Dashpot {
     node: usize,
     c: [f64; 4],
+    /// The node's mass (a periodic group's summed mass), kg/m.
+    mass: f64,
 }
 
 /// The built run.
@@ -158,6 +166,8 @@ pub struct QuadPlan<L> {
     loads: Vec<Load>,
     signals: Vec<Arc<dyn Excitation>>,
     dashpots: Vec<Dashpot>,
+    /// The periodic sides' joined nodes: each mirror with its primary.
+    mirrors: periodic::Mirrors,
     /// Each receiver's nodes and weights.
     pub receivers: Vec<Vec<(usize, f64)>>,
     /// The stress receivers.
@@ -204,7 +214,11 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
     /// (what a scenario checks when it is loaded; [`QuadSolid::plan`] does it again);
     /// the split mesh, for the caller's own checks.
     pub fn check(&self, file: &str) -> Result<Mesh> {
-        let (mesh, _) = self.split_mesh(file)?;
+        let (mesh, splits) = self.split_mesh(file)?;
+        let mirrors = periodic::join(&mesh, &self.periodic, file)?;
+        for (ci, sp) in splits.into_iter().enumerate() {
+            periodic::fold_crack(sp, &mirrors, &format!("crack.{ci}"), file)?;
+        }
         for (name, _) in &self.boundaries {
             on_boundary(&mesh, name, &format!("boundary `{name}`"), file)?;
         }
@@ -348,17 +362,27 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
                             };
                             match dashpots.iter_mut().find(|d| d.node == g) {
                                 Some(d) => (0..4).for_each(|i| d.c[i] += c[i]),
-                                None => dashpots.push(Dashpot { node: g, c }),
+                                None => dashpots.push(Dashpot {
+                                    node: g,
+                                    c,
+                                    mass: 0.0,
+                                }),
                             }
                         }
                     }
                 }
             }
         }
-        dashpots.retain(|d| inv_mass[d.node] > 0.0);
         let op = Operator::new(&mesh, lame, components == 1);
+        // (the nodes apart: the joined system's largest eigenvalue is not above theirs)
         let lambda = op.max_eigenvalue(&inv_mass);
         crate::interrupt::check()?;
+        let mirrors = periodic::join(&mesh, &self.periodic, file)?;
+        let step_mass = join_masses(&mirrors, &mass, &mut inv_mass, &mut dashpots);
+        dashpots.retain(|d| inv_mass[d.node] > 0.0);
+        for d in &mut dashpots {
+            d.mass = step_mass[d.node];
+        }
         let dt = (self.courant * 2.0 / lambda.sqrt()).min(self.max_time_step);
         let steps = (self.duration / dt).ceil();
         let crack_points: usize = splits.iter().map(|s| s.faces.len()).sum();
@@ -379,6 +403,11 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
         let steps = steps as usize;
         // the cracks' boundary objects
         let mut cracks = Vec::new();
+        let splits: Vec<split::SplitCrack> = splits
+            .into_iter()
+            .enumerate()
+            .map(|(ci, sp)| periodic::fold_crack(sp, &mirrors, &format!("crack.{ci}"), file))
+            .collect::<Result<_>>()?;
         for (ci, (c, sp)) in self.cracks.iter().zip(&splits).enumerate() {
             let k = sp.faces.len();
             let mut nodes = CrackNodes {
@@ -532,12 +561,55 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
             loads,
             signals,
             dashpots,
+            mirrors,
             receivers,
             stress_probes,
             crack_every: self.crack_every.max(1),
             snapshot_steps: Vec::new(),
         })
     }
+}
+
+/// Join the periodic groups' masses: each primary moves with its group's summed mass (held
+/// fixed where any node of the group is rigid), each mirror not at all (it takes the
+/// primary's motion after the step); a mirror's dashpot acts on its primary. Returns the
+/// mass each node moves with, kg/m.
+fn join_masses(
+    mirrors: &periodic::Mirrors,
+    mass: &[f64],
+    inv_mass: &mut [f64],
+    dashpots: &mut Vec<Dashpot>,
+) -> Vec<f64> {
+    let mut step = mass.to_vec();
+    for &(q, p) in mirrors {
+        step[p] += mass[q];
+        step[q] = 0.0;
+    }
+    let mut fixed: Vec<usize> = Vec::new();
+    for &(q, p) in mirrors {
+        if inv_mass[q] == 0.0 || inv_mass[p] == 0.0 {
+            fixed.push(p);
+        }
+    }
+    for &(q, p) in mirrors {
+        inv_mass[q] = 0.0;
+        inv_mass[p] = if step[p] > 0.0 { 1.0 / step[p] } else { 0.0 };
+    }
+    for p in fixed {
+        inv_mass[p] = 0.0;
+    }
+    // the mirrors' dashpots moved onto their primaries, in the mirrors' order
+    let primary: std::collections::HashMap<usize, usize> = mirrors.iter().copied().collect();
+    let mut moved: Vec<Dashpot> = Vec::with_capacity(dashpots.len());
+    for d in dashpots.drain(..) {
+        let node = primary.get(&d.node).copied().unwrap_or(d.node);
+        match moved.iter_mut().find(|m| m.node == node) {
+            Some(m) => (0..4).for_each(|i| m.c[i] += d.c[i]),
+            None => moved.push(Dashpot { node, ..d }),
+        }
+    }
+    *dashpots = moved;
+    step
 }
 
 /// The curve `name` of `mesh` (its key `field`), refused unless every segment is on the

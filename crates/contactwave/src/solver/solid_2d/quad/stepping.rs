@@ -1,6 +1,6 @@
 //! A quadrilateral-mesh plan's step as a scheme of the explicit solvers' one time loop
 //! ([`crate::solver::stepping`]): sources, the kernel's forces, the node-wise predicted
-//! motion, the absorbing sides' dashpots (implicit in the velocity: `(M + dt C / 2)
+//! motion (a periodic group moving as one node), the absorbing sides' dashpots (implicit in the velocity: `(M + dt C / 2)
 //! v^{n+1/2} = (M - dt C / 2) v^{n-1/2} + dt F`, eq. 15.13d), the cracks' split-node update
 //! and the energy audit.
 
@@ -135,6 +135,12 @@ impl<L: NormalPart + TangentialPart> Scheme for Run<'_, L> {
             f[l.index] += l.weight * p.signals[l.source].stress(t - l.delay);
         }
         p.op.add_forces(u, f);
+        // the periodic sides: each mirror's force on its primary
+        for &(q, r) in &p.mirrors {
+            for k in 0..c {
+                f[c * r + k] += f[c * q + k];
+            }
+        }
         for (d, old) in p.dashpots.iter().zip(&mut self.v_dash) {
             for k in 0..c {
                 old[k] = v[c * d.node + k];
@@ -153,13 +159,20 @@ impl<L: NormalPart + TangentialPart> Scheme for Run<'_, L> {
         for (d, old) in p.dashpots.iter().zip(&self.v_dash) {
             let i = c * d.node;
             let predicted = [v[i], if c == 2 { v[i + 1] } else { 0.0 }];
-            self.absorbed += dashpot(d, c, p.mass[d.node], dt, old, v);
+            self.absorbed += dashpot(d, c, d.mass, dt, old, v);
             for k in 0..c {
                 u[i + k] += dt * (v[i + k] - predicted[k]);
             }
         }
         for cr in &mut self.cracks {
             cr.update(u, v, dt, t1, c == 1)?;
+        }
+        // ... and each mirror takes its primary's motion
+        for &(q, r) in &p.mirrors {
+            for k in 0..c {
+                u[c * q + k] = u[c * r + k];
+                v[c * q + k] = v[c * r + k];
+            }
         }
         for (l, vo) in p.loads.iter().zip(&mut self.v_load) {
             let fv = l.weight * p.signals[l.source].stress(t - l.delay);

@@ -47,6 +47,7 @@ fn clapping_quad(
         courant: p.courant,
         max_time_step: dt,
         boundaries: Vec::new(),
+        periodic: Vec::new(),
         cracks: vec![QuadCrack {
             curve: "crack".into(),
             law: signorini(1e6),
@@ -449,6 +450,7 @@ fn the_example_meshes_build_and_close_their_energy() {
             courant: 0.8,
             max_time_step: f64::INFINITY,
             boundaries: Vec::new(),
+            periodic: Vec::new(),
             cracks: vec![QuadCrack {
                 curve: crack.into(),
                 law: signorini(1e5),
