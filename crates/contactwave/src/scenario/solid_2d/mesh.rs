@@ -473,7 +473,30 @@ pub(super) fn from_spec(
         points,
         receivers,
         stress_points,
-    } = receivers::check_in(&spec.receivers, wave, Region::bounds(lo, hi), file)?;
+    } = {
+        let along = |i: usize, g: &str, n: usize| -> Result<Vec<[f64; 2]>> {
+            let field = format!("receiver.{i}.group");
+            match input.along(g, n) {
+                Some(Ok(points)) => Ok(points),
+                Some(Err(what)) => Err(inv(
+                    file,
+                    field,
+                    format!("`{g}`: {what}"),
+                    "a chain of element edges, open or closed",
+                )),
+                None => {
+                    let names: Vec<&str> = input.curves.iter().map(|(n, _)| n.as_str()).collect();
+                    Err(inv(
+                        file,
+                        field,
+                        g,
+                        &format!("a physical curve of {}: {}", ms.file, names.join(", ")),
+                    ))
+                }
+            }
+        };
+        receivers::check_in(&spec.receivers, wave, Region::bounds(lo, hi), &along, file)?
+    };
     let harmonic = m.harmonic.unwrap_or(DEFAULT_HARMONIC);
     if !(harmonic.is_finite() && harmonic >= 1.0) {
         return Err(inv(file, "model.harmonic", harmonic, ">= 1"));

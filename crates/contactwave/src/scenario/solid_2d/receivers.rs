@@ -19,11 +19,15 @@ pub struct ReceiverSpec {
     /// Name (summary key prefix and CSV column prefix: letters, digits, `_`); a line's
     /// points are `<name>_0` ... `<name>_<count - 1>`.
     pub name: String,
-    /// Position `[x, z]`, m (the nearest node); a line's first point.
+    /// Position `[x, z]`, m; a line's first point (required unless `group`).
+    #[serde(default = "super::mesh::unset_point")]
     pub at: [f64; 2],
+    /// On a mesh: a line of `count` points evenly spaced along this physical curve (by
+    /// arc length, from its first end: smaller x, then z), instead of `at` and `to`.
+    pub group: Option<String>,
     /// A line's last point `[x, z]`, m (with `count`).
     pub to: Option<[f64; 2]>,
-    /// Points of a line, evenly spaced from `at` to `to` (>= 2).
+    /// Points of a line, evenly spaced from `at` to `to`, or along `group` (>= 2).
     pub count: Option<usize>,
     /// `velocity` (default, m/s) or `stress` (Pa).
     #[serde(default = "velocity")]
@@ -81,6 +85,10 @@ pub(super) struct Checked {
     pub stress_points: Vec<[f64; 2]>,
 }
 
+/// The points of a receiver line along a named curve: `(table, group, count)` to the
+/// points, or an error naming `receiver.<table>.group`.
+pub(super) type Along<'a> = &'a dyn Fn(usize, &str, usize) -> Result<Vec<[f64; 2]>>;
+
 /// The receivers `spec` of a run of `wave` type in a rectangle `width` x `depth` (m),
 /// checked (errors name `file` and `receiver.<i>.<key>`): the velocity points, the
 /// receivers (a line's points one each), the stress points.
@@ -91,14 +99,23 @@ pub(super) fn check(
     depth: f64,
     file: &str,
 ) -> Result<Checked> {
-    check_in(spec, wave, Region::new(width, depth), file)
+    let along: Along<'_> = &|i, g, _| {
+        Err(inv(
+            file,
+            format!("receiver.{i}.group"),
+            g,
+            "only with [mesh] (a physical curve); a line here is `at`, `to` and `count`",
+        ))
+    };
+    check_in(spec, wave, Region::new(width, depth), along, file)
 }
 
-/// [`check`] in `region` (a mesh's bounding box).
+/// [`check`] in `region` (a mesh's bounding box), the lines along curves by `along`.
 pub(super) fn check_in(
     spec: &[ReceiverSpec],
     wave: WaveType,
     region: Region,
+    along: Along<'_>,
     file: &str,
 ) -> Result<Checked> {
     let mut points = Vec::new();
@@ -143,9 +160,45 @@ pub(super) fn check_in(
                 .position(|n| *n == v)
                 .ok_or_else(|| inv(file, format!("{key}.component"), v, &names.join(", ")))?,
         };
-        let line: Vec<([f64; 2], String)> = match (r.to, r.count) {
-            (None, None) => vec![(r.at, r.name.clone())],
-            (Some(to), Some(n)) if LINE_POINTS.contains(&n) => (0..n)
+        let at_set = !r.at[0].is_nan() || !r.at[1].is_nan();
+        let named = |pts: Vec<[f64; 2]>| -> Vec<([f64; 2], String)> {
+            pts.into_iter()
+                .enumerate()
+                .map(|(k, p)| (p, format!("{}_{k}", r.name)))
+                .collect()
+        };
+        let line: Vec<([f64; 2], String)> = match (&r.group, r.to, r.count) {
+            (Some(_), _, _) if at_set || r.to.is_some() => {
+                let k = if at_set { "at" } else { "to" };
+                return Err(inv(
+                    file,
+                    format!("{key}.{k}"),
+                    "given",
+                    "not with `group` (a line along the curve, of `count` points)",
+                ));
+            }
+            (Some(_), _, Some(n)) | (None, Some(_), Some(n)) if !LINE_POINTS.contains(&n) => {
+                return Err(inv(file, format!("{key}.count"), n, "2 to 10000 points"));
+            }
+            (Some(g), _, Some(n)) => named(along(i, g, n)?),
+            (Some(_), _, None) => {
+                return Err(inv(
+                    file,
+                    format!("{key}.count"),
+                    "missing",
+                    "the points of the line along `group`, >= 2",
+                ));
+            }
+            (None, _, _) if !at_set => {
+                return Err(inv(
+                    file,
+                    format!("{key}.at"),
+                    "missing",
+                    "the receiver's position [x, z], m (or, on a mesh, `group` and `count`)",
+                ));
+            }
+            (None, None, None) => vec![(r.at, r.name.clone())],
+            (None, Some(to), Some(n)) => (0..n)
                 .map(|k| {
                     let w = k as f64 / (n - 1) as f64;
                     (
@@ -157,10 +210,7 @@ pub(super) fn check_in(
                     )
                 })
                 .collect(),
-            (Some(_), Some(n)) => {
-                return Err(inv(file, format!("{key}.count"), n, "2 to 10000 points"));
-            }
-            (Some(_), None) => {
+            (None, Some(_), None) => {
                 return Err(inv(
                     file,
                     format!("{key}.count"),
@@ -168,7 +218,7 @@ pub(super) fn check_in(
                     "the points of the line from `at` to `to`, >= 2",
                 ));
             }
-            (None, Some(_)) => {
+            (None, None, Some(_)) => {
                 return Err(inv(
                     file,
                     format!("{key}.to"),
@@ -206,7 +256,7 @@ pub(super) fn check_in(
             for k in keys {
                 keys_taken.insert(k, name.clone());
             }
-            if !region.contains(at) {
+            if r.group.is_none() && !region.contains(at) {
                 // (a line's points between its ends are inside when its ends are)
                 let same = at.iter().zip(r.at).all(|(a, b)| a.to_bits() == b.to_bits());
                 let end = if same || r.to.is_none() { "at" } else { "to" };

@@ -148,6 +148,157 @@ impl QuadInput {
     }
 }
 
+impl QuadInput {
+    /// `count` points (>= 2) evenly spaced along the named curve `name`, by arc length on
+    /// the curve itself (a second-order edge's own parabola), from its first end (the end
+    /// of smaller x, then z) to its last; a closed curve (a hole's rim) from its point of
+    /// smallest x, then z, once around (the last point one spacing short of the first).
+    /// Coincident segments (an interface's two faces) count once. `None`: no such curve;
+    /// `Err`: a curve that branches or is in pieces (what it is).
+    pub fn along(&self, name: &str, count: usize) -> Option<Result<Vec<[f64; 2]>, String>> {
+        let segments = self.curve(name)?;
+        Some(self.chain_points(segments, count.max(2)))
+    }
+
+    fn chain_points(&self, segments: &[[u32; 2]], count: usize) -> Result<Vec<[f64; 2]>, String> {
+        use std::collections::HashMap;
+        let key = |k: u32| {
+            let p = self.nodes[k as usize];
+            (p[0].to_bits(), p[1].to_bits())
+        };
+        // second-order edges' middle nodes, by their corners' positions
+        // (a position's bits: coincident nodes of parts meshed apart are one vertex)
+        type Vertex = (u64, u64);
+        let mut middle: HashMap<(Vertex, Vertex), u32> = HashMap::new();
+        if self.second_order {
+            for q in &self.quads {
+                for k in 0..4 {
+                    let (a, b) = (key(q[k]), key(q[(k + 1) % 4]));
+                    middle.insert((a.min(b), a.max(b)), q[4 + k]);
+                }
+            }
+        }
+        // the segments once each, and the vertices' segments
+        let mut seen = std::collections::HashSet::new();
+        let mut segs: Vec<[u32; 2]> = Vec::new();
+        for s in segments {
+            let (a, b) = (key(s[0]), key(s[1]));
+            if a != b && seen.insert((a.min(b), a.max(b))) {
+                segs.push(*s);
+            }
+        }
+        if segs.is_empty() {
+            return Err("a curve without segments".into());
+        }
+        let mut touching: HashMap<Vertex, Vec<usize>> = HashMap::new();
+        for (i, s) in segs.iter().enumerate() {
+            for &v in s {
+                touching.entry(key(v)).or_default().push(i);
+            }
+        }
+        if touching.values().any(|t| t.len() > 2) {
+            return Err("a curve that branches".into());
+        }
+        let first_of = |cands: &mut dyn Iterator<Item = u32>| {
+            cands.min_by(|&a, &b| {
+                let (p, q) = (self.nodes[a as usize], self.nodes[b as usize]);
+                p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
+            })
+        };
+        let ends: Vec<u32> = segs
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|&v| touching[&key(v)].len() == 1)
+            .collect();
+        let closed = ends.is_empty();
+        let start = if closed {
+            first_of(&mut segs.iter().flatten().copied())
+        } else {
+            first_of(&mut ends.iter().copied())
+        }
+        .ok_or("a curve without segments")?;
+        // walk the chain: each segment oriented along it, with its middle node
+        let mut path: Vec<[u32; 3]> = Vec::with_capacity(segs.len());
+        let mut used = vec![false; segs.len()];
+        let mut at = start;
+        while let Some(&i) = touching[&key(at)].iter().find(|&&i| !used[i]) {
+            used[i] = true;
+            let s = segs[i];
+            let next = if key(s[0]) == key(at) { s[1] } else { s[0] };
+            let (a, b) = (key(at), key(next));
+            let mid = middle
+                .get(&(a.min(b), a.max(b)))
+                .copied()
+                .unwrap_or(u32::MAX);
+            path.push([at, mid, next]);
+            at = next;
+        }
+        if used.iter().any(|u| !u) {
+            return Err("a curve in pieces".into());
+        }
+        // each segment's map x(r), r in [-1, 1], its length (5-point Gauss-Legendre)
+        let point = |seg: &[u32; 3], r: f64| -> [f64; 2] {
+            let (a, b) = (self.nodes[seg[0] as usize], self.nodes[seg[2] as usize]);
+            if seg[1] == u32::MAX {
+                let w = 0.5 * (r + 1.0);
+                return [a[0] + w * (b[0] - a[0]), a[1] + w * (b[1] - a[1])];
+            }
+            let m = self.nodes[seg[1] as usize];
+            let (fa, fm, fb) = (0.5 * r * (r - 1.0), 1.0 - r * r, 0.5 * r * (r + 1.0));
+            [
+                fa * a[0] + fm * m[0] + fb * b[0],
+                fa * a[1] + fm * m[1] + fb * b[1],
+            ]
+        };
+        let length = |seg: &[u32; 3]| -> f64 {
+            let (a, b) = (self.nodes[seg[0] as usize], self.nodes[seg[2] as usize]);
+            if seg[1] == u32::MAX {
+                return (b[0] - a[0]).hypot(b[1] - a[1]);
+            }
+            let m = self.nodes[seg[1] as usize];
+            const X: [f64; 5] = [
+                -0.906_179_845_938_664,
+                -0.538_469_310_105_683,
+                0.0,
+                0.538_469_310_105_683,
+                0.906_179_845_938_664,
+            ];
+            const W: [f64; 5] = [
+                0.236_926_885_056_189,
+                0.478_628_670_499_366,
+                0.568_888_888_888_889,
+                0.478_628_670_499_366,
+                0.236_926_885_056_189,
+            ];
+            X.iter()
+                .zip(W)
+                .map(|(&r, w)| {
+                    let (da, dm, db) = (r - 0.5, -2.0 * r, r + 0.5);
+                    let dx = da * a[0] + dm * m[0] + db * b[0];
+                    let dz = da * a[1] + dm * m[1] + db * b[1];
+                    w * dx.hypot(dz)
+                })
+                .sum()
+        };
+        let lengths: Vec<f64> = path.iter().map(length).collect();
+        let total: f64 = lengths.iter().sum();
+        let spacing = total / if closed { count } else { count - 1 } as f64;
+        let mut out = Vec::with_capacity(count);
+        let (mut j, mut s0) = (0usize, 0.0f64);
+        for k in 0..count {
+            let s = k as f64 * spacing;
+            while j + 1 < path.len() && s > s0 + lengths[j] {
+                s0 += lengths[j];
+                j += 1;
+            }
+            let f = ((s - s0) / lengths[j]).clamp(0.0, 1.0);
+            out.push(point(&path[j], 2.0 * f - 1.0));
+        }
+        Ok(out)
+    }
+}
+
 impl<L: Clone> super::QuadSolid<L> {
     /// The rectangle `p` (free sides, or periodic x sides; no absorbing layers;
     /// transducers, point forces and straight cracks, full-width ones with periodic sides)
