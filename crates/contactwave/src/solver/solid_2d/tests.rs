@@ -333,6 +333,49 @@ pub(super) fn exact_gap(
     (at, gmax)
 }
 
+/// The 1D Signorini interface (rigid in compression, free in traction) closed by `p0`
+/// (Pa): the exact solver's law of the reductions of a full-width Signorini interface.
+pub(super) fn signorini_1d(p0: f64) -> crate::law::ContactLaw {
+    crate::law::ContactLaw {
+        static_pressure: p0,
+        compression: Box::new(Rigid {
+            static_pressure: p0,
+        }),
+        traction: Box::new(Free),
+    }
+}
+
+/// A linear spring interface of stiffness `k` (Pa/m) closed by `p0` (Pa), frictionless:
+/// the 2D point law and the exact solver's 1D law of the reductions.
+pub(super) fn linear_spring(
+    p0: f64,
+    k: f64,
+) -> (
+    impl NormalPart + TangentialPart + Clone,
+    crate::law::ContactLaw,
+) {
+    use crate::law::compression::Linear;
+    use crate::law::traction::Linear as LinearTraction;
+    let law_2d = PointLaw::normal(
+        p0,
+        Linear {
+            static_pressure: p0,
+            stiffness: k,
+        },
+        LinearTraction { stiffness: k },
+        FreeSliding,
+    );
+    let law = crate::law::ContactLaw {
+        static_pressure: p0,
+        compression: Box::new(Linear {
+            static_pressure: p0,
+            stiffness: k,
+        }),
+        traction: Box::new(LinearTraction { stiffness: k }),
+    };
+    (law_2d, law)
+}
+
 /// The largest gap error (over the max gap) of a full-width interface (periodic sides)
 /// under a plane P wave at normal incidence, against the exact half-space solver (delayed
 /// by the travel time from the surface), at each element size of `sizes` (wavelengths).
@@ -385,14 +428,7 @@ fn reduction_errors<L: NormalPart + TangentialPart + Clone>(
 #[test]
 fn full_width_signorini_interface_reduces_to_the_exact_1d_solver() {
     let p0 = 0.3e6;
-    let law = crate::law::ContactLaw {
-        static_pressure: p0,
-        compression: Box::new(Rigid {
-            static_pressure: p0,
-        }),
-        traction: Box::new(Free),
-    };
-    let errors = reduction_errors(signorini(p0), law, &[0.5, 0.25, 0.125, 0.0625]);
+    let errors = reduction_errors(signorini(p0), signorini_1d(p0), &[0.5, 0.25, 0.125, 0.0625]);
     eprintln!("1D reduction (Signorini), max gap error / max gap: {errors:?}");
     assert!(errors[3] < 0.02, "{errors:?}");
     assert!(
@@ -405,26 +441,7 @@ fn full_width_signorini_interface_reduces_to_the_exact_1d_solver() {
 /// at a high order.
 #[test]
 fn full_width_linear_interface_reduces_to_the_exact_1d_solver() {
-    use crate::law::compression::Linear;
-    use crate::law::traction::Linear as LinearTraction;
-    let (p0, k) = (1e6, 1e14);
-    let law_2d = PointLaw::normal(
-        p0,
-        Linear {
-            static_pressure: p0,
-            stiffness: k,
-        },
-        LinearTraction { stiffness: k },
-        FreeSliding,
-    );
-    let law = crate::law::ContactLaw {
-        static_pressure: p0,
-        compression: Box::new(Linear {
-            static_pressure: p0,
-            stiffness: k,
-        }),
-        traction: Box::new(LinearTraction { stiffness: k }),
-    };
+    let (law_2d, law) = linear_spring(1e6, 1e14);
     let errors = reduction_errors(law_2d, law, &[0.5, 0.25, 0.125, 0.0625]);
     eprintln!("1D reduction (linear spring), max gap error / max gap: {errors:?}");
     // second order (the central differences in time; the elements are of order 4):

@@ -639,19 +639,7 @@ fn on_boundary<'m>(
 /// A curve's first end (smaller x, then z, of its chain's ends; any node of a closed
 /// curve) and the unit chord to its other end (`[0, 0]` for a closed one).
 fn chord(mesh: &Mesh, set: &geometry::EdgeSet) -> ([f64; 2], [f64; 2]) {
-    let mut count: std::collections::HashMap<u32, usize> = Default::default();
-    for (ends, _) in &set.segments {
-        for &v in ends {
-            *count.entry(v).or_default() += 1;
-        }
-    }
-    let mut ends: Vec<[f64; 2]> = count
-        .iter()
-        .filter(|(_, c)| **c == 1)
-        .map(|(&v, _)| mesh.position[v as usize])
-        .collect();
-    ends.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
-    match ends.as_slice() {
+    match periodic::ends(mesh, set).as_slice() {
         [a, b, ..] => {
             let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
             let l = dx.hypot(dz);

@@ -17,9 +17,9 @@ use crate::error::{Error, Result};
 /// sums run the same way whatever the threads).
 pub type Mirrors = Vec<(usize, usize)>;
 
-/// The ends of an open curve (its vertices on one segment only), `[x, z]`, m; empty for a
-/// closed curve.
-fn ends(mesh: &Mesh, set: &EdgeSet) -> Vec<[f64; 2]> {
+/// The ends of an open curve (its vertices on one segment only), `[x, z]`, m, in the
+/// order smaller x, then z; empty for a closed curve.
+pub(super) fn ends(mesh: &Mesh, set: &EdgeSet) -> Vec<[f64; 2]> {
     let mut count: std::collections::HashMap<u32, usize> = Default::default();
     for (e, _) in &set.segments {
         for &v in e {

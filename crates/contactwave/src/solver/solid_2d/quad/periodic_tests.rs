@@ -5,8 +5,9 @@
 
 use super::input::QuadInput;
 use super::*;
-use crate::law::point::PointLaw;
-use crate::solver::solid_2d::tests::{burst, exact_gap, signorini, strip, ALUMINIUM};
+use crate::solver::solid_2d::tests::{
+    burst, exact_gap, linear_spring, signorini, signorini_1d, strip, ALUMINIUM,
+};
 use crate::solver::solid_2d::{Crack, Solid2d};
 
 fn max_abs(v: &[f64]) -> f64 {
@@ -159,18 +160,9 @@ fn skewed_reduction<L: NormalPart + TangentialPart + Clone>(
 /// general elements: its gap's spread along the line 0.036 and 0.011 of the max gap).
 #[test]
 fn the_1d_reduction_holds_on_a_skewed_periodic_mesh() {
-    use crate::law::compression::Rigid;
-    use crate::law::traction::Free;
     let p0 = 0.3e6;
-    let law = || crate::law::ContactLaw {
-        static_pressure: p0,
-        compression: Box::new(Rigid {
-            static_pressure: p0,
-        }),
-        traction: Box::new(Free),
-    };
-    let coarse = skewed_reduction(signorini(p0), law(), 0.25);
-    let fine = skewed_reduction(signorini(p0), law(), 0.125);
+    let coarse = skewed_reduction(signorini(p0), signorini_1d(p0), 0.25);
+    let fine = skewed_reduction(signorini(p0), signorini_1d(p0), 0.125);
     eprintln!("skewed mesh 1D reduction (Signorini), (error, spread) / max gap: {coarse:?} at 4 per wavelength, {fine:?} at 8");
     assert!(fine.0 < 0.04, "{fine:?}");
     assert!(fine.0 < 0.6 * coarse.0, "{coarse:?} {fine:?}");
@@ -182,29 +174,10 @@ fn the_1d_reduction_holds_on_a_skewed_periodic_mesh() {
 /// wavelength; the rectangle's strip 6.5e-3 and 1.6e-3).
 #[test]
 fn a_linear_interface_reduces_at_second_order_on_a_skewed_periodic_mesh() {
-    use crate::law::compression::Linear;
-    use crate::law::tangential::Free as FreeSliding;
-    use crate::law::traction::Linear as LinearTraction;
-    let (p0, k) = (1e6, 1e14);
-    let law_2d = PointLaw::normal(
-        p0,
-        Linear {
-            static_pressure: p0,
-            stiffness: k,
-        },
-        LinearTraction { stiffness: k },
-        FreeSliding,
-    );
-    let law = || crate::law::ContactLaw {
-        static_pressure: p0,
-        compression: Box::new(Linear {
-            static_pressure: p0,
-            stiffness: k,
-        }),
-        traction: Box::new(LinearTraction { stiffness: k }),
-    };
-    let coarse = skewed_reduction(law_2d, law(), 0.25);
-    let fine = skewed_reduction(law_2d, law(), 0.125);
+    let (law_2d, law) = linear_spring(1e6, 1e14);
+    let (_, law_fine) = linear_spring(1e6, 1e14);
+    let coarse = skewed_reduction(law_2d.clone(), law, 0.25);
+    let fine = skewed_reduction(law_2d, law_fine, 0.125);
     eprintln!("skewed mesh 1D reduction (linear spring), (error, spread) / max gap: {coarse:?} at 4 per wavelength, {fine:?} at 8");
     assert!(fine.0 < 2e-3, "{fine:?}");
     assert!(
