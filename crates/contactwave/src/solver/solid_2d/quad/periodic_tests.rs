@@ -73,6 +73,52 @@ fn skew(width: f64, zc: f64, h: f64) -> impl Fn([f64; 2]) -> [f64; 2] {
     }
 }
 
+/// An aluminium strip on the mesh `input` at order 4, its sides `left` and `right`
+/// periodic (`periodic`) or free, the curves of `cracks` cracks of `law`, a normal
+/// traction `signal` on `top`, for `duration` (s).
+fn strip_on<L>(
+    input: QuadInput,
+    periodic: (&str, &str),
+    cracks: &[&str],
+    law: L,
+    signal: Arc<dyn crate::excitation::Excitation>,
+    duration: f64,
+) -> QuadSolid<L>
+where
+    L: Clone,
+{
+    QuadSolid {
+        input: Arc::new(input),
+        order: 4,
+        materials: vec![ALUMINIUM],
+        wave: WaveType::PSv,
+        courant: 0.5,
+        max_time_step: f64::INFINITY,
+        boundaries: Vec::new(),
+        periodic: vec![(periodic.0.into(), periodic.1.into())],
+        cracks: cracks
+            .iter()
+            .map(|&c| QuadCrack {
+                curve: c.into(),
+                law: law.clone(),
+                profile: None,
+            })
+            .collect(),
+        sources: vec![QuadSource {
+            kind: QuadSourceKind::Traction {
+                curve: "top".into(),
+                normal: true,
+                delay_per_m: 0.0,
+            },
+            signal,
+        }],
+        receivers: Vec::new(),
+        stress_receivers: Vec::new(),
+        duration,
+        crack_every: 1,
+    }
+}
+
 /// A full-width interface in a strip three elements wide on the skewed, curved mesh of
 /// elements `size` wavelengths, periodic sides, under a normal traction on the surface:
 /// the largest gap error over the max gap against the exact 1D solver, and the largest
@@ -101,33 +147,14 @@ fn skewed_reduction<L: NormalPart + TangentialPart + Clone>(
         &[("interface", [0.0, zc], [width, zc])],
         true,
     );
-    let quad = QuadSolid {
-        input: Arc::new(input),
-        order: 4,
-        materials: vec![ALUMINIUM],
-        wave: WaveType::PSv,
-        courant: 0.5,
-        max_time_step: f64::INFINITY,
-        boundaries: Vec::new(),
-        periodic: vec![("left".into(), "right".into())],
-        cracks: vec![QuadCrack {
-            curve: "interface".into(),
-            law: law_2d,
-            profile: None,
-        }],
-        sources: vec![QuadSource {
-            kind: QuadSourceKind::Traction {
-                curve: "top".into(),
-                normal: true,
-                delay_per_m: 0.0,
-            },
-            signal: burst(amp, f0, 2.0),
-        }],
-        receivers: Vec::new(),
-        stress_receivers: Vec::new(),
-        duration: zc / ALUMINIUM.p_speed + 3.0 / f0,
-        crack_every: 1,
-    };
+    let quad = strip_on(
+        input,
+        ("left", "right"),
+        &["interface"],
+        law_2d,
+        burst(amp, f0, 2.0),
+        zc / ALUMINIUM.p_speed + 3.0 / f0,
+    );
     let plan = quad.plan("<test>").unwrap();
     assert!(
         plan.mesh.rectangle.iter().all(|&r| !r),
@@ -205,37 +232,19 @@ fn periodic_curves_that_do_not_match_are_refused() {
             lines,
             false,
         );
-        QuadSolid {
-            input: Arc::new(input),
-            order: 4,
-            materials: vec![ALUMINIUM],
-            wave: WaveType::PSv,
-            courant: 0.5,
-            max_time_step: f64::INFINITY,
-            boundaries: Vec::new(),
-            periodic: vec![(periodic.0.into(), periodic.1.into())],
-            cracks: lines
-                .iter()
-                .filter(|l| l.0 == "crack")
-                .map(|_| QuadCrack {
-                    curve: "crack".into(),
-                    law: signorini(1e6),
-                    profile: None,
-                })
-                .collect(),
-            sources: vec![QuadSource {
-                kind: QuadSourceKind::Traction {
-                    curve: "top".into(),
-                    normal: true,
-                    delay_per_m: 0.0,
-                },
-                signal: burst(1e6, f0, 2.0),
-            }],
-            receivers: Vec::new(),
-            stress_receivers: Vec::new(),
-            duration: 1e-6,
-            crack_every: 1,
-        }
+        let cracks: Vec<&str> = lines
+            .iter()
+            .map(|l| l.0)
+            .filter(|&n| n == "crack")
+            .collect();
+        strip_on(
+            input,
+            periodic,
+            &cracks,
+            signorini(1e6),
+            burst(1e6, f0, 2.0),
+            1e-6,
+        )
     };
     let msg = |q: QuadSolid<_>| q.check("strip.toml").unwrap_err().to_string();
     // the top is 3 edges, the left 8
