@@ -18,6 +18,7 @@
 //! exact solution of the same initial-value problem the solver integrates, and iterating
 //! it over periods gives the periodic steady state (times T1, T2 of eqs. 5.11-5.15).
 
+pub mod cavity;
 pub mod friction;
 pub mod guided;
 pub mod oblique;

@@ -6,6 +6,7 @@
 pub mod oblique;
 pub mod shear;
 pub mod solid_2d;
+pub mod solid_2d_cavity;
 pub mod solid_2d_dispersion;
 pub mod solid_2d_plane;
 pub mod solid_2d_pml;
@@ -514,6 +515,7 @@ pub fn run_all() -> Result<Vec<ValidationCase>> {
     v.extend(solid_2d_plane::run_all()?);
     v.extend(solid_2d_reduction::run_rows()?);
     v.extend(solid_2d_pml::run_all()?);
+    v.extend(solid_2d_cavity::run_all()?);
     Ok(v)
 }
 

@@ -354,3 +354,31 @@ fn a_bond_on_a_mesh_crack_only_loses_adhesion_and_a_crack_closed_hard_never_open
         summary(&scenario(&msh, "").replace("static_pressure = 0.2e6", "static_pressure = 1e9"));
     assert_eq!(shut.get("crack_max_gap_0"), Some(0.0), "{shut:?}");
 }
+
+/// Curved boundaries (docs/model.md eq. 15.13g): the Pao-Mow cavity of `contactwave
+/// validate` on first-order (straight-sided) elements, the cavity a polygon, converges at
+/// the polygon's second order (h = 2 and 1 mm, order 6), and its error stays more than 10
+/// times the second-order (curved) elements' at the same mesh.
+#[test]
+#[ignore = "slow: full tier"]
+fn straight_sided_elements_bound_the_cavity_at_second_order_and_curved_ones_do_not() {
+    use contactwave::study::validation::solid_2d_cavity::cavity_run;
+    let (a, b) = (
+        cavity_run(1, 6, false).unwrap(),
+        cavity_run(2, 6, false).unwrap(),
+    );
+    let order = (a.max_error() / b.max_error()).log2();
+    assert!(
+        (1.6..2.6).contains(&order),
+        "first-order elements: {:?} then {:?}, order {order}",
+        a.error,
+        b.error
+    );
+    let curved = cavity_run(2, 6, true).unwrap();
+    assert!(
+        b.max_error() > 10.0 * curved.max_error(),
+        "straight {:?}, curved {:?}",
+        b.error,
+        curved.error
+    );
+}
