@@ -59,10 +59,12 @@ pub struct Args {
     #[arg(long)]
     harmonic: Option<usize>,
     /// 2D: number of element sizes, 3 to 8 (default 6: 15 to 25 s on 2 cores for
-    /// examples/solid_2d/plate_crack_quick.toml; each more level about 3.5 times as long).
+    /// examples/solid_2d/plate_crack_quick.toml; each more level about 3.5 times as long;
+    /// on a mesh, default 3, each level `mesh.refine` times the ratio, at most 8).
     #[arg(long, value_name = "N")]
     levels: Option<usize>,
-    /// 2D: ratio of one element size to the next, 1.1 to 4 (default 1.5).
+    /// 2D: ratio of one element size to the next, 1.1 to 4 (default 1.5; on a mesh an
+    /// integer, default 2: each element split into ratio x ratio).
     #[arg(long, value_name = "R")]
     ratio: Option<f64>,
     /// Also write the study's files into DIR (half-space: convergence.csv, efficiency.csv
@@ -188,13 +190,11 @@ fn run_2d(args: &Args, table: toml::Table) -> contactwave::Result<u8> {
     if args.method.is_some() {
         return Err(refuse(path, "--method", "given".into(), "half-space"));
     }
-    let mut spec = Convergence2dSpec::default();
-    if let Some(n) = args.levels {
-        spec.levels = n;
-    }
-    if let Some(r) = args.ratio {
-        spec.ratio = r;
-    }
+    let mut spec = Convergence2dSpec {
+        levels: args.levels,
+        ratio: args.ratio,
+        ..Convergence2dSpec::default()
+    };
     if let Some(n) = args.harmonic {
         spec.harmonics = vec![n];
     }

@@ -42,7 +42,7 @@
 //!     name = "below"
 //!     at = [3e-3, 2e-3]
 //! "#, "doc.toml").unwrap();
-//! let spec = Convergence2dSpec { levels: 3, ..Convergence2dSpec::default() };
+//! let spec = Convergence2dSpec { levels: Some(3), ..Convergence2dSpec::default() };
 //! let r = run_convergence_2d(t.as_ref(), &spec, &|_, _| {}).unwrap();
 //! assert_eq!(r.levels.len(), 3);
 //! assert!(r.levels[2].element_size < r.levels[0].element_size);
@@ -66,12 +66,15 @@ pub const MAX_LEVELS: usize = 8;
 /// What to compute.
 #[derive(Debug, Clone)]
 pub struct Convergence2dSpec {
-    /// Number of element sizes, 3 to [`MAX_LEVELS`] (the scenario's own first; default 6:
-    /// 15 to 25 s for `examples/solid_2d/plate_crack_quick.toml` on 2 cores, the finest
-    /// level two thirds of it, each more level about 3.5 times as long).
-    pub levels: usize,
-    /// Ratio of one element size to the next, in [1.1, 4].
-    pub ratio: f64,
+    /// Number of element sizes, 3 to [`MAX_LEVELS`] (the scenario's own first; default 6
+    /// on a rectangle: 15 to 25 s for `examples/solid_2d/plate_crack_quick.toml` on 2
+    /// cores, the finest level two thirds of it, each more level about 3.5 times as long;
+    /// 3 on a mesh).
+    pub levels: Option<usize>,
+    /// Ratio of one element size to the next, in [1.1, 4] (default 1.5); on a mesh an
+    /// integer (default 2): each level splits each element of the one before into
+    /// `ratio x ratio` (`mesh.refine`, at most [`crate::scenario::solid_2d::mesh::REFINE`]).
+    pub ratio: Option<f64>,
     /// Harmonics `n` whose `A_n/A1` is studied at every receiver, each 2 to 5.
     pub harmonics: Vec<usize>,
 }
@@ -79,8 +82,8 @@ pub struct Convergence2dSpec {
 impl Default for Convergence2dSpec {
     fn default() -> Self {
         Convergence2dSpec {
-            levels: 6,
-            ratio: 1.5,
+            levels: None,
+            ratio: None,
             harmonics: vec![2, 3],
         }
     }
@@ -175,33 +178,64 @@ fn invalid(file: &str, field: &str, value: String, allowed: &str) -> Error {
     Error::invalid(file, field, value, allowed)
 }
 
-/// Check the spec against the scenario file `file`.
-fn check(spec: &Convergence2dSpec, file: &str) -> Result<()> {
-    if !(3..=MAX_LEVELS).contains(&spec.levels) {
+/// Check the spec's levels, ratio and harmonics against the scenario file `file`.
+fn check(levels: usize, ratio: f64, harmonics: &[usize], file: &str) -> Result<()> {
+    if !(3..=MAX_LEVELS).contains(&levels) {
         return Err(invalid(
             file,
             "--levels",
-            spec.levels.to_string(),
+            levels.to_string(),
             &format!("3 to {MAX_LEVELS} element sizes (Richardson needs three)"),
         ));
     }
-    if !(spec.ratio >= 1.1 && spec.ratio <= 4.0) {
+    if !(1.1..=4.0).contains(&ratio) {
         return Err(invalid(
             file,
             "--ratio",
-            spec.ratio.to_string(),
+            ratio.to_string(),
             "a ratio of one element size to the next in [1.1, 4]",
         ));
     }
-    if spec.harmonics.is_empty() || spec.harmonics.iter().any(|n| !(2..=5).contains(n)) {
+    if harmonics.is_empty() || harmonics.iter().any(|n| !(2..=5).contains(n)) {
         return Err(invalid(
             file,
             "--harmonic",
-            format!("{:?}", spec.harmonics),
+            format!("{harmonics:?}"),
             "2 to 5 (A_n/A1 of each receiver)",
         ));
     }
     Ok(())
+}
+
+/// On a mesh: each level's `mesh.refine` (the scenario's own times `ratio^k`), refused
+/// naming `--ratio` (not an integer) or `--levels` (beyond the largest refinement).
+fn mesh_levels(own: usize, levels: usize, ratio: f64, file: &str) -> Result<Vec<usize>> {
+    let r = ratio.round();
+    if r != ratio || r < 2.0 {
+        return Err(invalid(
+            file,
+            "--ratio",
+            ratio.to_string(),
+            "on a mesh, an integer ratio from 2 (each level splits each element of the one \
+             before into ratio x ratio)",
+        ));
+    }
+    let refine: Vec<usize> = (0..levels)
+        .map(|k| own.saturating_mul((r as usize).saturating_pow(k as u32)))
+        .collect();
+    let most = *crate::scenario::solid_2d::mesh::REFINE.end();
+    if refine.iter().any(|&k| k > most) {
+        return Err(invalid(
+            file,
+            "--levels",
+            levels.to_string(),
+            &format!(
+                "on a mesh, levels whose finest splits each element of the file into at most \
+                 {most} x {most} (mesh.refine {own} times {r}^(levels - 1))"
+            ),
+        ));
+    }
+    Ok(refine)
 }
 
 /// The 2D scenario of a model.
@@ -241,26 +275,31 @@ pub fn plan_convergence_2d(
     spec: &Convergence2dSpec,
 ) -> Result<Convergence2dPlan> {
     let file = template.file().to_string();
-    check(spec, &file)?;
     let base = template.base()?;
     let s0 = solid_2d(base.as_ref())?;
-    if s0.mesh.is_some() {
-        return Err(crate::error::Error::invalid(
-            &file,
-            "mesh.file",
-            "given",
-            "a rectangle (the study refines model.element_size; on a mesh, re-mesh with a \
-             smaller h and compare the runs: docs/mesh.md)",
-        ));
-    }
+    let on_mesh = s0.spec.mesh.as_ref().map(|m| m.refine.unwrap_or(1));
+    let levels = spec.levels.unwrap_or(if on_mesh.is_some() { 3 } else { 6 });
+    let ratio = spec
+        .ratio
+        .unwrap_or(if on_mesh.is_some() { 2.0 } else { 1.5 });
+    check(levels, ratio, &spec.harmonics, &file)?;
+    let refine = match on_mesh {
+        Some(own) => Some(mesh_levels(own, levels, ratio, &file)?),
+        None => None,
+    };
     let h0 = s0.problem.element_size;
-    let param = template.param("model.element_size")?;
+    let param = template.param(if refine.is_some() {
+        "mesh.refine"
+    } else {
+        "model.element_size"
+    })?;
     let mut models: Vec<Arc<dyn Model>> = vec![base.clone()];
-    for k in 1..spec.levels {
-        let h = h0 / spec.ratio.powi(k as i32);
+    for k in 1..levels {
+        let h = h0 / ratio.powi(k as i32);
+        let value = refine.as_ref().map_or(h, |r| r[k] as f64);
         // (a scenario's own time step may be beyond a finer mesh's stability limit: say
         // at which level)
-        let m = template.build(&[(&param, h)]).map_err(|e| match e {
+        let m = template.build(&[(&param, value)]).map_err(|e| match e {
             Error::Invalid {
                 file,
                 field,
@@ -280,7 +319,7 @@ pub fn plan_convergence_2d(
             invalid(
                 &file,
                 "--levels",
-                spec.levels.to_string(),
+                levels.to_string(),
                 &format!(
                     "levels whose finest fits the memory budget: level {k} (element size \
                      {h:.3e} m) does not ({e}); fewer levels or a smaller --ratio"
@@ -290,15 +329,29 @@ pub fn plan_convergence_2d(
         models.push(m);
     }
     let (mut element_sizes, mut node_updates) = (Vec::new(), Vec::new());
-    for m in &models {
+    // (a mesh's steps: the coarsest level's plan's, growing with the refinement)
+    let mesh_steps = match &s0.mesh {
+        Some(q) => q.plan(&file)?.steps as f64,
+        None => 0.0,
+    };
+    for (k, m) in models.iter().enumerate() {
         let s = solid_2d(m.as_ref())?;
-        let e = s.problem.memory_estimate(&file)?;
-        element_sizes.push(s.problem.element_size);
-        node_updates.push(s.runs() * e.nodes * e.steps);
+        match &s.mesh {
+            Some(q) => {
+                let grow = ratio.powi(k as i32);
+                element_sizes.push(h0 / grow);
+                node_updates.push(s.runs() * q.node_estimate() * mesh_steps * grow);
+            }
+            None => {
+                let e = s.problem.memory_estimate(&file)?;
+                element_sizes.push(s.problem.element_size);
+                node_updates.push(s.runs() * e.nodes * e.steps);
+            }
+        }
     }
     Ok(Convergence2dPlan {
         file,
-        ratio: spec.ratio,
+        ratio,
         harmonics: spec.harmonics.clone(),
         models,
         element_sizes,
@@ -355,7 +408,7 @@ impl Convergence2dPlan {
             let sum = sum.ok_or(Error::Interrupted)?;
             let get = |k: &str| sum.get(k).unwrap_or(f64::NAN);
             levels.push(Level2d {
-                element_size: s.problem.element_size,
+                element_size: self.element_sizes[levels.len()],
                 nodes: get("nodes"),
                 steps: get("steps"),
                 dt: get("dt"),
@@ -525,7 +578,7 @@ mod tests {
     fn the_2d_study_refines_and_estimates_its_order() {
         let t = crate::model::from_toml_str(TINY, "tiny.toml").unwrap();
         let spec = Convergence2dSpec {
-            levels: 4,
+            levels: Some(4),
             ..Convergence2dSpec::default()
         };
         let r = run_convergence_2d(t.as_ref(), &spec, &|_, _| {}).unwrap();
@@ -555,14 +608,14 @@ mod tests {
         for (spec, field) in [
             (
                 Convergence2dSpec {
-                    levels: 2,
+                    levels: Some(2),
                     ..Default::default()
                 },
                 "--levels",
             ),
             (
                 Convergence2dSpec {
-                    ratio: 1.0,
+                    ratio: Some(1.0),
                     ..Default::default()
                 },
                 "--ratio",

@@ -382,3 +382,66 @@ fn straight_sided_elements_bound_the_cavity_at_second_order_and_curved_ones_do_n
         curved.error
     );
 }
+
+/// The reference plate's Gmsh mesh at order 2 with a receiver on the bottom below the
+/// crack, over 5 us.
+fn refinable(extra: &str) -> String {
+    let msh = dir().join("rotated/plate_0.msh").display().to_string();
+    scenario(
+        &msh,
+        &format!("[[receiver]]\nname = \"r\"\nat = [20e-3, 10e-3]\ncomponent = \"z\"\n{extra}"),
+    )
+    .replace("order = 4", "order = 2")
+    .replace("duration = 3e-6", "duration = 5e-6")
+}
+
+/// `mesh.refine` splits each element of the file (docs/model.md eq. 15.13h): refused
+/// outside 1 to 8 naming the key; the convergence study on a mesh takes integer ratios
+/// only, and no more levels than the largest refinement allows, each refused naming its
+/// option.
+#[test]
+fn mesh_refinement_and_its_study_refuse_what_they_cannot_do() {
+    let e = error(&refinable("").replace("order = 2", "order = 2\nrefine = 9"));
+    assert!(e.contains("mesh.refine") && e.contains("1 to 8"), "{e}");
+    use contactwave::study::convergence_2d::{plan_convergence_2d, Convergence2dSpec};
+    let t = model::from_toml_str(&refinable(""), "mesh.toml").unwrap();
+    let plan = |levels, ratio| {
+        let spec = Convergence2dSpec {
+            levels,
+            ratio,
+            ..Convergence2dSpec::default()
+        };
+        plan_convergence_2d(t.as_ref(), &spec).map(|p| p.element_sizes)
+    };
+    let e = plan(None, Some(1.5)).unwrap_err().to_string();
+    assert!(e.contains("--ratio") && e.contains("integer"), "{e}");
+    let e = plan(Some(5), None).unwrap_err().to_string();
+    assert!(e.contains("--levels") && e.contains("8 x 8"), "{e}");
+    let h = plan(None, None).unwrap();
+    assert_eq!(h.len(), 3);
+    assert!((h[0] / h[2] - 4.0).abs() < 1e-12, "{h:?}");
+}
+
+/// The convergence study on a Gmsh mesh: three levels, each element split into 2 x 2
+/// and 4 x 4; the nodes grow fourfold a level; the receiver's A2/A1 converges (its
+/// changes shrink, the observed order at least 1).
+#[test]
+#[ignore = "slow: full tier"]
+fn the_convergence_study_refines_a_mesh_by_splitting_its_elements() {
+    use contactwave::study::convergence_2d::{run_convergence_2d, Convergence2dSpec};
+    let t = model::from_toml_str(&refinable(""), "mesh.toml").unwrap();
+    let r = run_convergence_2d(t.as_ref(), &Convergence2dSpec::default(), &|_, _| {}).unwrap();
+    assert_eq!(r.levels.len(), 3);
+    for w in r.levels.windows(2) {
+        let grow = w[1].nodes / w[0].nodes;
+        assert!(
+            (3.8..4.1).contains(&grow),
+            "nodes {} then {}",
+            w[0].nodes,
+            w[1].nodes
+        );
+    }
+    let v: Vec<f64> = r.levels.iter().map(|l| l.values[0]).collect();
+    assert!((v[1] - v[2]).abs() < (v[0] - v[1]).abs(), "{v:?}");
+    assert!(r.order[0] >= 1.0, "{:?}", r.order);
+}

@@ -29,6 +29,10 @@ impl Fields for Solid2dSpec {
                 .mesh
                 .as_mut()
                 .map(|m| Slot::OptUsize(&mut m.order, crate::solver::solid_2d::ORDERS)),
+            ["mesh", "refine"] => self
+                .mesh
+                .as_mut()
+                .map(|m| Slot::OptUsize(&mut m.refine, crate::scenario::solid_2d::mesh::REFINE)),
             ["layer", rest @ ..] => nth(&mut self.layers, rest),
             ["crack", rest @ ..] => nth(&mut self.cracks, rest),
             ["source", rest @ ..] => nth(&mut self.sources, rest),

@@ -37,7 +37,13 @@ pub struct MeshSpec {
     pub file: String,
     /// GLL order of the elements, 2 to 8 (default 6, as the rectangle's `model.order`).
     pub order: Option<usize>,
+    /// Each element of the file split into `refine x refine` along its own map, 1 to 8
+    /// (default 1: the file's elements; docs/model.md eq. 15.13h).
+    pub refine: Option<usize>,
 }
+
+/// The range of `mesh.refine`.
+pub const REFINE: std::ops::RangeInclusive<usize> = 1..=8;
 
 /// `[[material]]`: the material of a physical surface (the keys of a `[[layer]]` without
 /// its thickness).
@@ -157,6 +163,31 @@ pub(super) fn from_spec(
     if !crate::solver::solid_2d::ORDERS.contains(&order) {
         return Err(inv(file, "mesh.order", order, "2 to 8"));
     }
+    let refine = ms.refine.unwrap_or(1);
+    if !REFINE.contains(&refine) {
+        return Err(inv(
+            file,
+            "mesh.refine",
+            refine,
+            "1 to 8 (each element split into refine x refine)",
+        ));
+    }
+    let input = if refine > 1 {
+        // (the refined control nodes and elements, before they are made: 16 bytes a node,
+        // 40 an element)
+        let elements = (input.quads.len() * refine * refine) as f64;
+        crate::budget::check_or(
+            file,
+            "mesh.refine",
+            refine,
+            16.0 * input.refined_nodes(refine) + 40.0 * elements,
+            &format!("the refined mesh of {elements:.3e} elements"),
+            "a smaller `mesh.refine`",
+        )?;
+        input.refine(refine)
+    } else {
+        input
+    };
     // materials: one for each physical surface
     for (i, mat) in spec.materials.iter().enumerate() {
         if !input.materials.contains(&mat.group) {

@@ -433,14 +433,14 @@ pub const SERIAL_COLOUR: usize = 127;
 
 /// Coincident points found by a hash of their coordinates rounded to cells of the
 /// tolerance (each point looked for in its cell and the 8 around it).
-struct NodeIndex {
+pub(super) struct NodeIndex {
     tol: f64,
     cells: HashMap<(i64, i64), Vec<u32>>,
     position: Vec<[f64; 2]>,
 }
 
 impl NodeIndex {
-    fn new(tol: f64) -> Self {
+    pub(super) fn new(tol: f64) -> Self {
         NodeIndex {
             tol,
             cells: HashMap::new(),
@@ -455,7 +455,7 @@ impl NodeIndex {
         )
     }
 
-    fn find(&self, p: [f64; 2]) -> Option<u32> {
+    pub(super) fn find(&self, p: [f64; 2]) -> Option<u32> {
         let (i, j) = self.cell(p);
         for di in -1..=1 {
             for dj in -1..=1 {
@@ -472,7 +472,7 @@ impl NodeIndex {
         None
     }
 
-    fn find_or_insert(&mut self, p: [f64; 2], out: &mut Vec<[f64; 2]>) -> u32 {
+    pub(super) fn find_or_insert(&mut self, p: [f64; 2], out: &mut Vec<[f64; 2]>) -> u32 {
         if let Some(k) = self.find(p) {
             return k;
         }

@@ -22,6 +22,7 @@ mod lanes;
 pub mod locate;
 pub mod periodic;
 pub mod raster;
+pub mod refine;
 pub mod split;
 mod stepping;
 
