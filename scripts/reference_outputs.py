@@ -16,8 +16,8 @@ values its data were made with); `record` stores nothing when one fails. Standar
 in the repository root, so input paths written into outputs, such as summary.json's
 "scenario", are relative).
 
-Commands (commands() below; about 6 minutes on 2 cores, most of it reproduce, validate and
-the 2D identification):
+Commands (commands() below; two at a time, AFTER the dependencies, the longest first: about
+5 minutes on 2 cores, most of it reproduce, validate and the 2D identification):
   reproduce all; run, law and sweep on every file of examples/shear/; run on every
   scenario of examples/*.toml (files with a top-level `base =`
   or an `[[axis]]` table are sweeps) and of examples/solid_2d/; sweep --threads 2 on every
@@ -437,20 +437,52 @@ def read_output(rel, data):
 # ---------------------------------------------------------------------------------------
 # Running
 # ---------------------------------------------------------------------------------------
+#: Commands that read what others wrote: each runs once those are done.
+AFTER = {"merge": {"shard_1_of_2", "shard_2_of_2"}}
+
+#: The longest commands (about 90 to 140 s on 2 cores), started first so that the short
+#: ones fill the other worker.
+LONG_FIRST = ("reproduce", "validate", "identify_crack_closure_friction")
+
+
 def run_all(binary, out, ran=None):
-    """Runs every command into `out`; returns {relative path: values}. `ran`, a list:
-    each command's argv (output folder substituted), exit code and seconds are appended."""
+    """Runs every command into `out`, JOBS at a time (environment CONTACTWAVE_REF_JOBS,
+    default 2: most commands are short and serial, the long ones parallel; outputs do not
+    depend on the thread count); returns {relative path: values}. `ran`, a list: each
+    command's argv (output folder substituted), exit code and seconds are appended, in the
+    order of commands()."""
+    from concurrent.futures import ThreadPoolExecutor
+
     files = {}
     out_str = str(out)
-    timings = []
-    for name, argv, kind in commands():
+    cmds = commands()
+    jobs = max(1, int(os.environ.get("CONTACTWAVE_REF_JOBS", "2")))
+
+    def run_one(name, argv):
         args = [binary] + [a.replace("{OUT}", out_str) for a in argv]
         t0 = time.monotonic()
         proc = subprocess.run(args, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-        timings.append((time.monotonic() - t0, name))
+        return args, proc, time.monotonic() - t0
+
+    first = [c for c in cmds if c[0] in LONG_FIRST and c[0] not in AFTER]
+    rest = [c for c in cmds if c[0] not in LONG_FIRST and c[0] not in AFTER]
+    done = {}
+    with ThreadPoolExecutor(max_workers=jobs) as pool:
+        futures = {c[0]: pool.submit(run_one, c[0], c[1]) for c in first + rest}
+        for name, argv, _ in cmds:
+            if name in AFTER:
+                for dep in AFTER[name]:
+                    futures[dep].result()
+                futures[name] = pool.submit(run_one, name, argv)
+        for name, f in futures.items():
+            done[name] = f.result()
+    timings = []
+    for name, argv, kind in cmds:
+        args, proc, seconds = done[name]
+        timings.append((seconds, name))
         if ran is not None:
             ran.append({"name": name, "argv": args[1:], "exit": proc.returncode,
-                        "seconds": round(timings[-1][0], 3)})
+                        "seconds": round(seconds, 3)})
         stdout = proc.stdout.decode("utf-8", errors="replace").replace(out_str, "<OUT>")
         if proc.returncode != 0:
             err = proc.stderr.decode("utf-8", errors="replace").strip().splitlines()[-5:]
