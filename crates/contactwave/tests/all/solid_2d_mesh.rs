@@ -70,6 +70,59 @@ fn every_mesh_example_parses_and_builds() {
     }
 }
 
+/// Every example mesh refined by 2 (`mesh.refine`: cracks from holes and edges, the lap
+/// joint's interface between parts meshed apart, the periodic strip's sides, curved
+/// second-order shells): it builds, with four times the elements, and its energy closes
+/// over 2 us.
+#[test]
+#[ignore = "slow: full tier"]
+fn every_mesh_example_refined_builds_and_closes_its_energy() {
+    use contactwave::scenario::solid_2d::Solid2dScenario;
+    for name in [
+        "inclined_crack/inclined_crack.toml",
+        "rivet_hole/rivet_hole.toml",
+        "lap_joint/lap_joint.toml",
+        "curved_delamination/curved_delamination.toml",
+        "periodic_strip/periodic_strip.toml",
+    ] {
+        let path = dir().join(name);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let elements = |text: &str| {
+            let t = model::from_toml_str(text, &path.display().to_string())
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
+            let m = t.base().unwrap_or_else(|e| panic!("{name}: {e}"));
+            let s = m.as_any().downcast_ref::<Solid2dScenario>().unwrap();
+            (s.mesh.as_ref().unwrap().input.quads.len(), m)
+        };
+        let refined = text
+            .replacen("[mesh]\n", "[mesh]\nrefine = 2\n", 1)
+            .replace("order = 6", "order = 3")
+            .replace("order = 4", "order = 3");
+        assert_ne!(refined, text, "{name}: no [mesh] table");
+        let (a, _) = elements(&text);
+        let short = with_duration(&refined, "2e-6");
+        let (b, m) = elements(&short);
+        assert_eq!(b, 4 * a, "{name}");
+        let s = m.summary().unwrap_or_else(|e| panic!("{name}: {e}"));
+        let closure = s.get("energy_closure_error").unwrap_or(f64::NAN);
+        assert!(closure < 1e-9, "{name}: closure {closure:e}");
+    }
+}
+
+/// `text` with its `[model]` table's `duration = ...` line set to `value`.
+fn with_duration(text: &str, value: &str) -> String {
+    text.lines()
+        .map(|l| {
+            if l.trim_start().starts_with("duration") {
+                format!("duration = {value}")
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// The periodic strip on Gmsh's sheared mesh (every element a parallelogram, the slanted
 /// sides periodic) with a full-width adhesive interface, under a normal traction on its
 /// top, against the rectangle's periodic strip under the same plane wave injected by
