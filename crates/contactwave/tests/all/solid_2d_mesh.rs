@@ -52,15 +52,18 @@ fn error(text: &str) -> String {
     }
 }
 
+/// The mesh examples' scenarios, relative to examples/solid_2d/mesh.
+const EXAMPLES: [&str; 5] = [
+    "inclined_crack/inclined_crack.toml",
+    "rivet_hole/rivet_hole.toml",
+    "lap_joint/lap_joint.toml",
+    "curved_delamination/curved_delamination.toml",
+    "periodic_strip/periodic_strip.toml",
+];
+
 #[test]
 fn every_mesh_example_parses_and_builds() {
-    for name in [
-        "inclined_crack/inclined_crack.toml",
-        "rivet_hole/rivet_hole.toml",
-        "lap_joint/lap_joint.toml",
-        "curved_delamination/curved_delamination.toml",
-        "periodic_strip/periodic_strip.toml",
-    ] {
+    for name in EXAMPLES {
         let path = dir().join(name);
         let text = std::fs::read_to_string(&path).unwrap();
         let t = model::from_toml_str(&text, &path.display().to_string())
@@ -78,13 +81,7 @@ fn every_mesh_example_parses_and_builds() {
 #[ignore = "slow: full tier"]
 fn every_mesh_example_refined_builds_and_closes_its_energy() {
     use contactwave::scenario::solid_2d::Solid2dScenario;
-    for name in [
-        "inclined_crack/inclined_crack.toml",
-        "rivet_hole/rivet_hole.toml",
-        "lap_joint/lap_joint.toml",
-        "curved_delamination/curved_delamination.toml",
-        "periodic_strip/periodic_strip.toml",
-    ] {
+    for name in EXAMPLES {
         let path = dir().join(name);
         let text = std::fs::read_to_string(&path).unwrap();
         let elements = |text: &str| {

@@ -298,16 +298,7 @@ pub(super) fn from_spec(
             hi[c] = hi[c].max(p[c]);
         }
     }
-    let mut h_max = 0.0f64;
-    for q in &input.quads {
-        for k in 0..4 {
-            let (a, b) = (
-                input.nodes[q[k] as usize],
-                input.nodes[q[(k + 1) % 4] as usize],
-            );
-            h_max = h_max.max((a[0] - b[0]).hypot(a[1] - b[1]));
-        }
-    }
+    let h_max = input.side_lengths().fold(0.0f64, f64::max);
     // sources
     if spec.sources.is_empty() {
         return Err(inv(file, "source", "none", "at least one [[source]]"));

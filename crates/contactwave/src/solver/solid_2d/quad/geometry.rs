@@ -306,16 +306,7 @@ impl Mesh {
         }
         // merge coincident points (within a millionth of the smallest GLL spacing)
         let spacing = (gll.points[1] - gll.points[0]) * 0.5;
-        let mut h_min = f64::INFINITY;
-        for quad in &quads {
-            for k in 0..4 {
-                let (a, b) = (
-                    input.nodes[quad[k] as usize],
-                    input.nodes[quad[(k + 1) % 4] as usize],
-                );
-                h_min = h_min.min((a[0] - b[0]).hypot(a[1] - b[1]));
-            }
-        }
+        let h_min = input.side_lengths().fold(f64::INFINITY, f64::min);
         let tol = 1e-6 * spacing * h_min;
         let mut index = NodeIndex::new(tol);
         let mut position = Vec::new();

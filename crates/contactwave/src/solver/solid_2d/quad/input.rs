@@ -32,6 +32,20 @@ pub struct QuadInput {
 }
 
 impl QuadInput {
+    /// The length of each element side between its corners (a straight chord of a curved
+    /// side), m: every side of every element, shared ones twice.
+    pub fn side_lengths(&self) -> impl Iterator<Item = f64> + '_ {
+        self.quads.iter().flat_map(move |q| {
+            (0..4).map(move |k| {
+                let (a, b) = (
+                    self.nodes[q[k] as usize],
+                    self.nodes[q[(k + 1) % 4] as usize],
+                );
+                (a[0] - b[0]).hypot(a[1] - b[1])
+            })
+        })
+    }
+
     /// The curve named `name`.
     pub fn curve(&self, name: &str) -> Option<&[[u32; 2]]> {
         self.curves

@@ -47,16 +47,7 @@ impl QuadInput {
         let used = if self.second_order { 9 } else { 4 };
         let kf = k as f64;
         // the tolerance: a millionth of the shortest new edge
-        let mut shortest = f64::INFINITY;
-        for quad in &self.quads {
-            for c in 0..4 {
-                let (a, b) = (
-                    self.nodes[quad[c] as usize],
-                    self.nodes[quad[(c + 1) % 4] as usize],
-                );
-                shortest = shortest.min((a[0] - b[0]).hypot(a[1] - b[1]));
-            }
-        }
+        let shortest = self.side_lengths().fold(f64::INFINITY, f64::min);
         let mut index = NodeIndex::new(1e-6 * shortest / kf);
         let mut nodes = Vec::new();
         let mut quads = Vec::with_capacity(self.quads.len() * k * k);
