@@ -283,10 +283,9 @@ pub fn plan_convergence_2d(
         .ratio
         .unwrap_or(if on_mesh.is_some() { 2.0 } else { 1.5 });
     check(levels, ratio, &spec.harmonics, &file)?;
-    let refine = match on_mesh {
-        Some(own) => Some(mesh_levels(own, levels, ratio, &file)?),
-        None => None,
-    };
+    let refine = on_mesh
+        .map(|own| mesh_levels(own, levels, ratio, &file))
+        .transpose()?;
     let h0 = s0.problem.element_size;
     let param = template.param(if refine.is_some() {
         "mesh.refine"

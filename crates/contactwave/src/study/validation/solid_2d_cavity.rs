@@ -24,11 +24,11 @@ use crate::analytic::cavity::Cavity;
 use crate::error::{Error, Result};
 use crate::excitation::{Excitation, ToneBurst, Window};
 use crate::law::point::SharedLaw;
+use crate::solver::solid_2d::quad::geometry::NodeIndex;
 use crate::solver::solid_2d::quad::input::{QuadInput, QuadNodes};
 use crate::solver::solid_2d::quad::{Boundary, QuadSolid, QuadSource, QuadSourceKind};
 use crate::solver::solid_2d::WaveType;
 use rustfft::num_complex::Complex64;
-use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::sync::Arc;
 
@@ -131,22 +131,26 @@ pub fn mesh(level: usize, second_order: bool) -> QuadInput {
 }
 
 /// Control nodes, merged by position, and the elements made of them.
-#[derive(Default)]
 struct Builder {
     nodes: Vec<[f64; 2]>,
-    index: HashMap<(i64, i64), u32>,
+    index: NodeIndex,
     quads: Vec<QuadNodes>,
+}
+
+impl Default for Builder {
+    fn default() -> Self {
+        // the O-grid's and the grid's shared nodes are one: within 1e-12 m
+        Builder {
+            nodes: Vec::new(),
+            index: NodeIndex::new(1e-12),
+            quads: Vec::new(),
+        }
+    }
 }
 
 impl Builder {
     fn node(&mut self, p: [f64; 2]) -> u32 {
-        // positions on a 1e-12 m lattice: the O-grid's and the grid's shared nodes are one
-        let key = ((p[0] * 1e12).round() as i64, (p[1] * 1e12).round() as i64);
-        let n = self.nodes.len() as u32;
-        *self.index.entry(key).or_insert_with(|| {
-            self.nodes.push(p);
-            n
-        })
+        self.index.find_or_insert(p, &mut self.nodes)
     }
 
     /// The element mapped from the unit square by `map` (corners, then the mid-edge nodes

@@ -424,14 +424,15 @@ pub const SERIAL_COLOUR: usize = 127;
 
 /// Coincident points found by a hash of their coordinates rounded to cells of the
 /// tolerance (each point looked for in its cell and the 8 around it).
-pub(super) struct NodeIndex {
+pub struct NodeIndex {
     tol: f64,
     cells: HashMap<(i64, i64), Vec<u32>>,
     position: Vec<[f64; 2]>,
 }
 
 impl NodeIndex {
-    pub(super) fn new(tol: f64) -> Self {
+    /// An empty index of points within `tol` (m) of each other.
+    pub fn new(tol: f64) -> Self {
         NodeIndex {
             tol,
             cells: HashMap::new(),
@@ -446,7 +447,8 @@ impl NodeIndex {
         )
     }
 
-    pub(super) fn find(&self, p: [f64; 2]) -> Option<u32> {
+    /// The point within the tolerance of `p`, if any.
+    pub fn find(&self, p: [f64; 2]) -> Option<u32> {
         let (i, j) = self.cell(p);
         for di in -1..=1 {
             for dj in -1..=1 {
@@ -463,7 +465,8 @@ impl NodeIndex {
         None
     }
 
-    pub(super) fn find_or_insert(&mut self, p: [f64; 2], out: &mut Vec<[f64; 2]>) -> u32 {
+    /// The point within the tolerance of `p`, or `p` added (to `out` too).
+    pub fn find_or_insert(&mut self, p: [f64; 2], out: &mut Vec<[f64; 2]>) -> u32 {
         if let Some(k) = self.find(p) {
             return k;
         }
