@@ -204,7 +204,7 @@ impl Solid2dScenario {
                     })
                     .collect();
                 let geometry = Geometry::of_mesh(self, &plan, &out);
-                (out, plan.mesh.n_nodes(), snapshots, at, geometry)
+                (out, plan.nodes, snapshots, at, geometry)
             }
             None => {
                 let mut plan = self.problem.plan(&self.file)?;
@@ -373,7 +373,7 @@ impl Solid2dScenario {
         let progress = control.progress.as_ref().map(|p| &*p.0);
         if let Some(q) = self.mesh_problem(problem) {
             let plan = q.plan(&self.file)?;
-            return Ok((plan.run_with(progress)?, plan.mesh.n_nodes()));
+            return Ok((plan.run_with(progress)?, plan.nodes));
         }
         let mut plan = problem.plan(&self.file)?;
         plan.add_stress_receivers(&self.stress_points, &problem.layers, &self.file)?;

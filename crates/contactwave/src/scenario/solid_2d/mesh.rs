@@ -16,6 +16,7 @@ use crate::error::Result;
 use crate::excitation::Excitation;
 use crate::law::point::SharedLaw;
 use crate::scenario::BuildCache;
+use crate::solver::solid_2d::pml;
 use crate::solver::solid_2d::quad::input::QuadInput;
 use crate::solver::solid_2d::quad::{
     gmsh, Boundary, QuadCrack, QuadSolid, QuadSource, QuadSourceKind,
@@ -72,7 +73,8 @@ pub struct MaterialSpec {
 pub struct BoundarySpec {
     /// The physical curve's name.
     pub group: String,
-    /// `free`, `rigid`, `absorbing` (Lysmer's dashpots) or `periodic` (with `partner`).
+    /// `free`, `rigid`, `absorbing` (Lysmer's dashpots), `pml` (a Cartesian PML frame
+    /// outside a straight side on the mesh's bounding box) or `periodic` (with `partner`).
     pub kind: String,
     /// The periodic partner: the physical curve that is `group` moved by a translation.
     #[serde(default)]
@@ -113,8 +115,6 @@ fn rectangle_key(spec: &Solid2dSpec) -> Option<(String, &'static str)> {
         ("model.top", m.top != "free"),
         ("model.bottom", m.bottom != "free"),
         ("model.sides", m.sides != "free"),
-        ("model.pml_thickness", m.pml_thickness.is_some()),
-        ("model.pml_reflection", m.pml_reflection.is_some()),
         ("model.prestress", m.prestress.is_some()),
         ("layer", !spec.layers.is_empty()),
     ];
@@ -127,11 +127,7 @@ fn rectangle_key(spec: &Solid2dSpec) -> Option<(String, &'static str)> {
                 "not with [mesh]: the element size is the mesh's (re-mesh with a smaller h)"
             }
             "model.order" => "not with [mesh]: the order is `mesh.order`",
-            "model.top"
-            | "model.bottom"
-            | "model.sides"
-            | "model.pml_thickness"
-            | "model.pml_reflection" => {
+            "model.top" | "model.bottom" | "model.sides" => {
                 "not with [mesh]: the sides are its physical curves ([[boundary]] group, kind)"
             }
             _ => "not with [mesh] (the prestress of a rectangle's cracks)",
@@ -279,12 +275,13 @@ pub(super) fn from_spec(
             ("free", None) => Boundary::Free,
             ("rigid", None) => Boundary::Rigid,
             ("absorbing", None) => Boundary::Absorbing,
+            ("pml", None) => Boundary::Pml,
             (k, None) => {
                 return Err(inv(
                     file,
                     format!("boundary.{i}.kind"),
                     k,
-                    "free, rigid, absorbing or periodic",
+                    "free, rigid, absorbing, pml or periodic",
                 ))
             }
         };
@@ -299,6 +296,36 @@ pub(super) fn from_spec(
         }
     }
     let h_max = input.side_lengths().fold(0.0f64, f64::max);
+    // the PML frame's keys: only with a pml side
+    let framed = boundaries.iter().any(|(_, k)| *k == Boundary::Pml);
+    for (key, given) in [
+        ("model.pml_thickness", m.pml_thickness.is_some()),
+        ("model.pml_reflection", m.pml_reflection.is_some()),
+    ] {
+        if given && !framed {
+            return Err(inv(
+                file,
+                key,
+                "given",
+                "only with a [[boundary]] of kind = \"pml\" (the frame's thickness and reflection)",
+            ));
+        }
+    }
+    let pml = if framed {
+        let reflection = m.pml_reflection.unwrap_or(pml::DEFAULT_REFLECTION);
+        if !(reflection > 0.0 && reflection < 1.0) {
+            return Err(inv(file, "model.pml_reflection", reflection, "in (0, 1)"));
+        }
+        Some(Pml {
+            thickness: match m.pml_thickness {
+                Some(l) => positive(file, "model.pml_thickness", l)?,
+                None => pml::DEFAULT_ELEMENTS * h_max,
+            },
+            reflection,
+        })
+    } else {
+        None
+    };
     // sources
     if spec.sources.is_empty() {
         return Err(inv(file, "source", "none", "at least one [[source]]"));
@@ -591,6 +618,7 @@ pub(super) fn from_spec(
         stress_receivers: stress_points.clone(),
         duration: m.duration,
         crack_every,
+        pml,
     };
     let split = quad.check(file)?;
     // every receiver inside the mesh, named by its table (a line's points by its first)

@@ -441,7 +441,7 @@ fn rule<const M: usize>(weights: &[f64], derivative: &[f64]) -> ([f64; M], [[f64
 /// The multiaxial damping (Meza-Fajardo and Papageorgiou, BSSA 98, 2008) of a point
 /// whose profiles give `dx`, `dz` (1/s): each direction also takes [`MULTIAXIAL`] times
 /// the other's.
-fn multiaxial(dx: f64, dz: f64) -> [f64; 2] {
+pub(super) fn multiaxial(dx: f64, dz: f64) -> [f64; 2] {
     [dx + MULTIAXIAL * dz, dz + MULTIAXIAL * dx]
 }
 

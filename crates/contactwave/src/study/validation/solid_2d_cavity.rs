@@ -248,6 +248,7 @@ pub fn cavity_run(level: usize, order: usize, second_order: bool) -> Result<Cavi
         stress_receivers: Vec::new(),
         duration,
         crack_every: usize::MAX,
+        pml: None,
     };
     let plan = solid.plan("<validation: cavity>")?;
     let (nodes, steps) = (plan.mesh.n_nodes(), plan.steps);

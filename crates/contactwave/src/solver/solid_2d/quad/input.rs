@@ -314,12 +314,13 @@ impl QuadInput {
 }
 
 impl<L: Clone> super::QuadSolid<L> {
-    /// The rectangle `p` (free sides, or periodic x sides; no absorbing layers;
-    /// transducers, point forces and straight cracks, full-width ones with periodic sides)
-    /// on a quadrilateral mesh of its own grid mapped by `map` (a rotation: the same
-    /// problem turned; a shear along x keeps periodic sides translates): the general
-    /// path's benchmark and its check against the rectangle's run. `None` for what it does
-    /// not carry over (rigid or absorbing sides, plane waves, a crack profile).
+    /// The rectangle `p` (free sides, periodic x sides, or absorbing ones as a PML frame of
+    /// the same layers; transducers, point forces and straight cracks, full-width ones with
+    /// periodic sides) on a quadrilateral mesh of its own grid mapped by `map` (a rotation:
+    /// the same problem turned, where no side absorbs, the frame being Cartesian; a shear
+    /// along x keeps periodic sides translates): the general path's benchmark and its check
+    /// against the rectangle's run. `None` for what it does not carry over (rigid sides,
+    /// plane waves, a crack profile).
     pub fn of_rectangle(
         p: &super::super::Solid2d<L>,
         map: &dyn Fn([f64; 2]) -> [f64; 2],
@@ -330,24 +331,48 @@ impl<L: Clone> super::QuadSolid<L> {
     {
         use super::super::{Side, SourceKind};
         use super::{QuadCrack, QuadSource, QuadSourceKind};
-        let free = [p.top, p.bottom].iter().all(|&s| s == Side::Free);
+        let carried = |s: Side| s == Side::Free || s == Side::Absorbing;
         let periodic = p.sides == Side::Periodic;
-        if !free
-            || !(periodic || p.sides == Side::Free)
+        if !carried(p.top)
+            || !carried(p.bottom)
+            || !(periodic || carried(p.sides))
             || p.cracks.iter().any(|c| c.profile.is_some())
         {
             return Ok(None);
         }
         let plan = p.plan(file)?;
-        let (xs, zs) = (plan.mesh.x_edges.clone(), plan.mesh.z_edges.clone());
+        // the physical rectangle's edges (without the absorbing layers' bands)
+        let depth = p.depth();
+        let inside = |edges: &[f64], end: f64| -> Vec<f64> {
+            let tol = 1e-9 * end;
+            edges
+                .iter()
+                .copied()
+                .filter(|&e| e >= -tol && e <= end + tol)
+                .collect()
+        };
+        let (xs, zs) = (
+            inside(&plan.mesh.x_edges, p.width),
+            inside(&plan.mesh.z_edges, depth),
+        );
         drop(plan);
+        let mut boundaries = Vec::new();
+        for (name, side) in [
+            ("top", p.top),
+            ("bottom", p.bottom),
+            ("left", p.sides),
+            ("right", p.sides),
+        ] {
+            if side == Side::Absorbing {
+                boundaries.push((name.to_string(), super::Boundary::Pml));
+            }
+        }
         let mut lines = Vec::new();
         let names: Vec<String> = (0..p.cracks.len()).map(|i| format!("crack{i}")).collect();
         let wedges: Vec<String> = (0..p.sources.len()).map(|i| format!("wedge{i}")).collect();
         for (c, n) in p.cracks.iter().zip(&names) {
             lines.push((n.as_str(), c.start, c.end));
         }
-        let depth = p.depth();
         let mut sources = Vec::new();
         for (s, n) in p.sources.iter().zip(&wedges) {
             let kind = match s.kind {
@@ -403,7 +428,7 @@ impl<L: Clone> super::QuadSolid<L> {
             wave: p.wave,
             courant: p.courant,
             max_time_step: p.max_time_step,
-            boundaries: Vec::new(),
+            boundaries,
             periodic: if periodic {
                 vec![("left".into(), "right".into())]
             } else {
@@ -424,6 +449,7 @@ impl<L: Clone> super::QuadSolid<L> {
             stress_receivers: Vec::new(),
             duration: p.duration,
             crack_every: p.crack_every,
+            pml: Some(p.pml),
         }))
     }
 }

@@ -8,12 +8,14 @@
 //! kernel ([`kernel`]; axis-aligned rectangles on its constant-factor path), assembled by
 //! colour; sources are point forces (located and spread by the element's Lagrange basis)
 //! and tractions on named curves; receivers are interpolated; sides are free (natural),
-//! rigid or absorbing (Lysmer's dashpots, eq. 15.13d). The time loop is the rectangle's
+//! rigid, absorbing (Lysmer's dashpots, eq. 15.13d) or framed by the rectangle's PML
+//! ([`frame`], eq. 15.13i). The time loop is the rectangle's
 //! (eqs. 15.2-15.5), its energy audit closing at round-off in a closed domain.
 //!
 //! A plan is immutable: [`QuadPlan::run`] starts every run from rest with fresh crack
 //! states, so running it twice gives the same bits.
 
+mod frame;
 pub mod geometry;
 pub mod gmsh;
 pub mod input;
@@ -27,11 +29,14 @@ pub mod split;
 mod stepping;
 
 #[cfg(test)]
+mod frame_tests;
+#[cfg(test)]
 mod periodic_tests;
 #[cfg(test)]
 mod tests;
 
 use super::crack::{CrackNodes, PointFields};
+use super::pml::{Band, Pml};
 use super::probe::StressProbe;
 use super::{CrackProfile, Elastic, Load, WaveType};
 use crate::error::{Error, Result};
@@ -53,6 +58,10 @@ pub enum Boundary {
     /// Absorbing: Lysmer's dashpots `t = -rho (c_P v_n n + c_S v_t t)` (eq. 15.13d), exact at
     /// normal incidence.
     Absorbing,
+    /// Absorbing by a Cartesian PML frame outside the mesh ([`QuadSolid::pml`]; the
+    /// rectangle's layers of section 15.7, eq. 15.13i): the curve must be straight, on the
+    /// mesh's bounding box.
+    Pml,
 }
 
 /// A crack or contact interface along a named curve, with its law.
@@ -134,6 +143,10 @@ pub struct QuadSolid<L> {
     pub duration: f64,
     /// Record the crack fields every this many steps.
     pub crack_every: usize,
+    /// The PML frame of the [`Boundary::Pml`] curves: thickness (m) and target reflection;
+    /// `None`: [`super::pml::DEFAULT_ELEMENTS`] of the mesh's largest element edge thick,
+    /// the default reflection.
+    pub pml: Option<Pml>,
 }
 
 /// An absorbing side's node: its damping `C` (`[c_xx, c_xz, c_zx, c_zz]`, or `[c]` in
@@ -167,6 +180,13 @@ pub struct QuadPlan<L> {
     loads: Vec<Load>,
     signals: Vec<Arc<dyn Excitation>>,
     dashpots: Vec<Dashpot>,
+    /// The PML frame's elements and fields at rest (each run starts from a copy; empty
+    /// without one).
+    band: Band,
+    /// Nodes of the state: the mesh's, then the frame's.
+    pub nodes: usize,
+    /// Layers of elements across the PML frame (0: none).
+    pub frame_layers: usize,
     /// The periodic sides' joined nodes: each mirror with its primary.
     mirrors: periodic::Mirrors,
     /// Each receiver's nodes and weights.
@@ -210,16 +230,64 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
         Ok((mesh, splits))
     }
 
+    /// The PML frame of the [`Boundary::Pml`] curves of the split `mesh` (none without
+    /// one), refused where a curve meets a periodic side (`mirrors`).
+    fn frame(
+        &self,
+        mesh: &Mesh,
+        mirrors: &periodic::Mirrors,
+        file: &str,
+    ) -> Result<Option<frame::Frame>> {
+        let curves: Vec<&str> = self
+            .boundaries
+            .iter()
+            .filter(|(_, k)| *k == Boundary::Pml)
+            .map(|(n, _)| n.as_str())
+            .collect();
+        if curves.is_empty() {
+            return Ok(None);
+        }
+        let h = self.input.side_lengths().fold(0.0, f64::max);
+        let pml = self
+            .pml
+            .unwrap_or_else(|| Pml::elements(super::pml::DEFAULT_ELEMENTS, h));
+        let fr = frame::build(
+            mesh,
+            &curves,
+            pml,
+            h,
+            &self.materials,
+            self.wave == WaveType::Sh,
+            file,
+        )?;
+        let inner = &fr.band.nodes[..fr.band.n_inner];
+        let joined = |g: usize| inner.contains(&(g as u32));
+        if let Some(&(q, _)) = mirrors.iter().find(|(q, r)| joined(*q) || joined(*r)) {
+            let p = mesh.position[q];
+            return Err(Error::invalid(
+                file,
+                "boundary",
+                format!(
+                    "a pml side meeting a periodic side at x = {:.4e} m, z = {:.4e} m",
+                    p[0], p[1]
+                ),
+                "pml sides apart from periodic ones",
+            ));
+        }
+        Ok(Some(fr))
+    }
+
     /// Check the geometry without building the operator: the mesh, its cracks, the sides'
-    /// and apertures' curves on the boundary, every force and receiver inside the mesh
-    /// (what a scenario checks when it is loaded; [`QuadSolid::plan`] does it again);
-    /// the split mesh, for the caller's own checks.
+    /// and apertures' curves on the boundary, the PML frame, every force and receiver
+    /// inside the mesh (what a scenario checks when it is loaded; [`QuadSolid::plan`] does
+    /// it again); the split mesh, for the caller's own checks.
     pub fn check(&self, file: &str) -> Result<Mesh> {
         let (mesh, splits) = self.split_mesh(file)?;
         let mirrors = periodic::join(&mesh, &self.periodic, file)?;
         for (ci, sp) in splits.into_iter().enumerate() {
             periodic::fold_crack(sp, &mirrors, &format!("crack.{ci}"), file)?;
         }
+        self.frame(&mesh, &mirrors, file)?;
         for (name, _) in &self.boundaries {
             on_boundary(&mesh, name, &format!("boundary `{name}`"), file)?;
         }
@@ -344,7 +412,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
                 for k in 0..=mesh.gll.order {
                     let (g, normal, bw) = mesh.side_point(e as usize, s, k);
                     match kind {
-                        Boundary::Free => {}
+                        Boundary::Free | Boundary::Pml => {}
                         Boundary::Rigid => inv_mass[g] = 0.0,
                         Boundary::Absorbing => {
                             let mat = self.materials[mesh.material[e as usize] as usize];
@@ -384,7 +452,31 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
         for d in &mut dashpots {
             d.mass = step_mass[d.node];
         }
-        let dt = (self.courant * 2.0 / lambda.sqrt()).min(self.max_time_step);
+        // the PML frame: its nodes after the mesh's, its mass added to the side's nodes
+        let mut omega = lambda.sqrt();
+        let (band, frame_layers) = match self.frame(&mesh, &mirrors, file)? {
+            None => (Band::default(), 0),
+            Some(fr) => {
+                let n_mesh = mesh.n_nodes();
+                inv_mass.resize(n_mesh + fr.added, 0.0);
+                for (g, &mb) in fr.mass.iter().enumerate() {
+                    if g >= n_mesh {
+                        inv_mass[g] = 1.0 / mb;
+                    } else if mb > 0.0 && inv_mass[g] > 0.0 {
+                        inv_mass[g] = 1.0 / (step_mass[g] + mb);
+                    }
+                }
+                for &g in &fr.fixed {
+                    inv_mass[g] = 0.0;
+                }
+                for d in &mut dashpots {
+                    d.mass += fr.mass[d.node];
+                }
+                omega = omega.max(fr.omega);
+                (fr.band, fr.layers)
+            }
+        };
+        let dt = (self.courant * 2.0 / omega).min(self.max_time_step);
         let steps = (self.duration / dt).ceil();
         let crack_points: usize = splits.iter().map(|s| s.faces.len()).sum();
         let stress_components = if components == 1 { 2.0 } else { 3.0 };
@@ -549,6 +641,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
             };
             stress_probes.push(probe);
         }
+        let nodes = inv_mass.len();
         Ok(QuadPlan {
             crack_ends: splits.iter().map(|s| s.ends).collect(),
             mesh,
@@ -562,6 +655,9 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
             loads,
             signals,
             dashpots,
+            nodes,
+            band,
+            frame_layers,
             mirrors,
             receivers,
             stress_probes,

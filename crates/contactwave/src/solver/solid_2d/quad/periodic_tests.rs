@@ -116,6 +116,7 @@ where
         stress_receivers: Vec::new(),
         duration,
         crack_every: 1,
+        pml: None,
     }
 }
 

@@ -1,6 +1,7 @@
 //! A quadrilateral-mesh plan's step as a scheme of the explicit solvers' one time loop
 //! ([`crate::solver::stepping`]): sources, the kernel's forces, the node-wise predicted
-//! motion (a periodic group moving as one node), the absorbing sides' dashpots (implicit in the velocity: `(M + dt C / 2)
+//! motion (a periodic group moving as one node), the PML frame (section 15.7's layers,
+//! eq. 15.13i), the absorbing sides' dashpots (implicit in the velocity: `(M + dt C / 2)
 //! v^{n+1/2} = (M - dt C / 2) v^{n-1/2} + dt F`, eq. 15.13d), the cracks' split-node update
 //! and the energy audit.
 
@@ -9,6 +10,7 @@ use crate::error::{Error, Result};
 use crate::law::{NormalPart, TangentialPart};
 use crate::solver::solid_2d::crack::CrackNodes;
 use crate::solver::solid_2d::kernel::advance_nodes;
+use crate::solver::solid_2d::pml::Band;
 use crate::solver::solid_2d::stepping::Records;
 use crate::solver::solid_2d::{Energy2d, Solid2dOutput};
 use crate::solver::stepping::{self, Recorder, Schedule, Scheme};
@@ -18,6 +20,8 @@ use rayon::prelude::*;
 struct Run<'p, L> {
     plan: &'p QuadPlan<L>,
     cracks: Vec<CrackNodes<L>>,
+    /// The PML frame's fields.
+    band: Band,
     u: Vec<f64>,
     v: Vec<f64>,
     f: Vec<f64>,
@@ -50,7 +54,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadPlan<L> {
         progress: Option<&(dyn Fn(usize, usize) + Send + Sync)>,
     ) -> Result<Solid2dOutput> {
         let c = self.components;
-        let len = c * self.mesh.n_nodes();
+        let len = c * self.nodes;
         let mut recorder = Records::sized(
             self.steps,
             c,
@@ -59,11 +63,12 @@ impl<L: NormalPart + TangentialPart + Clone> QuadPlan<L> {
             &self.cracks,
             self.crack_every,
             self.snapshot_steps.clone(),
-            len,
+            c * self.mesh.n_nodes(),
         );
         let mut run = Run {
             plan: self,
             cracks: self.cracks.clone(),
+            band: self.band.clone(),
             u: vec![0.0; len],
             v: vec![0.0; len],
             f: vec![0.0; len],
@@ -98,7 +103,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadPlan<L> {
         f.iter_mut().for_each(|x| *x = 0.0);
         self.op.add_forces(&u, &mut f);
         let mut solid = 0.0;
-        for i in 0..u.len() {
+        for i in 0..c * self.mesh.n_nodes() {
             solid += 0.5 * self.mass[i / c] * v[i] * v[i];
             solid += 0.5 * (u[i] - dt * v[i]) * -f[i];
         }
@@ -135,6 +140,8 @@ impl<L: NormalPart + TangentialPart> Scheme for Run<'_, L> {
             f[l.index] += l.weight * p.signals[l.source].stress(t - l.delay);
         }
         p.op.add_forces(u, f);
+        let g = &p.mesh.gll;
+        self.band.forces(&g.weights, &g.derivative, v, f);
         // the periodic sides: each mirror's force on its primary
         for &(q, r) in &p.mirrors {
             for k in 0..c {
@@ -164,6 +171,10 @@ impl<L: NormalPart + TangentialPart> Scheme for Run<'_, L> {
                 u[i + k] += dt * (v[i + k] - predicted[k]);
             }
         }
+        // the PML frame: its nodes' split velocities, the flux into it, its stresses of
+        // level n + 1
+        self.absorbed += self.band.nodes(u, v, &p.inv_mass, dt);
+        self.band.stresses(&g.weights, &g.derivative, v, dt);
         for cr in &mut self.cracks {
             cr.update(u, v, dt, t1, c == 1)?;
         }
@@ -240,7 +251,8 @@ impl<L: NormalPart + TangentialPart> Recorder<Run<'_, L>> for Records {
             }
         }
         self.stresses_at(n, &p.stress_probes, &s.u, c);
-        self.snapshots.take(n, n as f64 * p.dt + 0.5 * p.dt, &s.v);
+        let field = &s.v[..c * p.mesh.n_nodes()];
+        self.snapshots.take(n, n as f64 * p.dt + 0.5 * p.dt, field);
         self.crack_fields(t, n, &s.cracks);
     }
 }

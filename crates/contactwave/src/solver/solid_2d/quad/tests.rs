@@ -65,6 +65,7 @@ fn clapping_quad(
         stress_receivers: Vec::new(),
         duration: p.duration,
         crack_every: 1,
+        pml: None,
     }
 }
 
@@ -468,6 +469,7 @@ fn the_example_meshes_build_and_close_their_energy() {
             stress_receivers: Vec::new(),
             duration: 1e-6,
             crack_every: 10,
+            pml: None,
         };
         let plan = p.plan(file).unwrap_or_else(|e| panic!("{file}: {e}"));
         let out = plan.run().unwrap();
