@@ -33,6 +33,7 @@ ALL = [
     (MESH / "lap_joint" / "joint.geo", {}, "joint.msh"),
     (MESH / "curved_delamination" / "shell.geo", {}, "shell.msh"),
     (MESH / "periodic_strip" / "strip.geo", {}, "strip.msh"),
+    (MESH / "plane_wave" / "block.geo", {}, "block.msh"),
 ] + [
     (MESH / "rotated" / "plate.geo", {"theta": float(t)}, f"plate_{t}.msh")
     for t in (0, 30, 45)

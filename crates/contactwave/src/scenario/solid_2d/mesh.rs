@@ -9,8 +9,8 @@
 
 use super::closure::ClosureProfile;
 use super::{
-    gate, inv, material, positive, receivers, CrackSpec, LayerSpec, Solid2dScenario, Solid2dSpec,
-    DEFAULT_HARMONIC, DEFAULT_ORDER, PHASE_STEP,
+    gate, inv, material, parse, positive, receivers, CrackSpec, LayerSpec, Solid2dScenario,
+    Solid2dSpec, DEFAULT_HARMONIC, DEFAULT_ORDER, PHASE_STEP,
 };
 use crate::error::Result;
 use crate::excitation::Excitation;
@@ -425,12 +425,45 @@ pub(super) fn from_spec(
                     direction: [d[0] / n, d[1] / n],
                 }
             }
+            "plane_wave" => {
+                if s.z.is_some() {
+                    return Err(inv(
+                        file,
+                        format!("{key}.z"),
+                        "given",
+                        "not with [mesh]: a plane wave's line is `group`, a physical curve",
+                    ));
+                }
+                let group = s.group.as_deref().ok_or_else(|| {
+                    inv(
+                        file,
+                        format!("{key}.group"),
+                        "missing",
+                        "the physical curve the plane wave is injected across (a line of \
+                         element edges that cuts the mesh in two)",
+                    )
+                })?;
+                let incidence = parse::incidence(s, wave, file, &key)?;
+                if !(s.angle.abs() < 90.0) {
+                    return Err(inv(
+                        file,
+                        format!("{key}.angle"),
+                        s.angle,
+                        "in (-90, 90) degrees",
+                    ));
+                }
+                QuadSourceKind::PlaneWave {
+                    curve: curve(format!("{key}.group"), group)?,
+                    incidence,
+                    angle: s.angle.to_radians(),
+                }
+            }
             k => {
                 return Err(inv(
                     file,
                     format!("{key}.kind"),
                     k,
-                    "transducer or force on a mesh (a plane wave needs the rectangle's straight line across it)",
+                    "transducer, force or plane_wave",
                 ));
             }
         };

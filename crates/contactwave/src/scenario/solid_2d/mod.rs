@@ -23,8 +23,7 @@ use crate::scenario::BuildCache;
 use crate::solver::solid_2d::dispersion::element_size_for;
 use crate::solver::solid_2d::Backend;
 use crate::solver::solid_2d::{
-    pml, Crack, CrackProfile, Elastic, Incidence, Layer, Pml, Side, Solid2d, Source, SourceKind,
-    WaveType,
+    pml, Crack, CrackProfile, Elastic, Layer, Pml, Side, Solid2d, Source, SourceKind, WaveType,
 };
 use closure::ClosureProfile;
 pub use closure::{ClosureSpec, PrestressSpec};
@@ -238,8 +237,8 @@ pub struct SourceSpec {
     /// `transducer` (default), `force` or `plane_wave`.
     #[serde(default = "transducer")]
     pub kind: String,
-    /// Transducer on a mesh: the physical curve of its aperture (with `[mesh]`, instead
-    /// of x0, x1 and surface).
+    /// On a mesh (`[mesh]`): a transducer's physical curve of its aperture (instead of
+    /// x0, x1 and surface), or a plane wave's curve inside the mesh (instead of z).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub group: Option<String>,
     /// Transducer: aperture start and end along x, m.
@@ -665,20 +664,7 @@ impl Solid2dScenario {
                 }
                 "plane_wave" => {
                     // (the wave's name in any case: "P", "p", "Sv", ...)
-                    let name = s.wave.as_deref().map(str::to_ascii_uppercase);
-                    let incidence = match (name.as_deref(), wave) {
-                        (None | Some("P"), WaveType::PSv) => Incidence::P,
-                        (Some("SV"), WaveType::PSv) => Incidence::Sv,
-                        (None | Some("SH"), WaveType::Sh) => Incidence::Sh,
-                        _ => {
-                            return Err(inv(
-                                file,
-                                format!("{key}.wave"),
-                                s.wave.as_deref().unwrap_or("P"),
-                                "P or SV in a P-SV run, SH in an SH run",
-                            ));
-                        }
-                    };
+                    let incidence = parse::incidence(s, wave, file, &key)?;
                     let z = s.z.ok_or_else(|| {
                         inv(
                             file,

@@ -1,8 +1,9 @@
 //! Reading a 2D scenario's table: serde with the hints of what a key takes, and the keys of
 //! a source that belong to another kind.
 
-use super::{receivers, Solid2dSpec, SourceSpec};
+use super::{inv, receivers, Solid2dSpec, SourceSpec};
 use crate::error::Result;
+use crate::solver::solid_2d::{Incidence, WaveType};
 
 impl Solid2dSpec {
     /// Deserialize a table into a spec, naming the field path on failure. Unit strings
@@ -67,4 +68,26 @@ pub(super) fn foreign_key(s: &SourceSpec) -> Option<(&'static str, &'static str)
     set.iter()
         .find(|(name, given)| *given && !own.split(", ").any(|o| o == *name))
         .map(|(name, _)| (*name, own))
+}
+
+/// A plane-wave source's `wave` (any case; P by default in P-SV runs, SH in SH ones),
+/// refused where the run's wave type `wave` cannot carry it (the error names `key.wave`).
+pub(super) fn incidence(
+    s: &SourceSpec,
+    wave: WaveType,
+    file: &str,
+    key: &str,
+) -> Result<Incidence> {
+    let name = s.wave.as_deref().map(str::to_ascii_uppercase);
+    match (name.as_deref(), wave) {
+        (None | Some("P"), WaveType::PSv) => Ok(Incidence::P),
+        (Some("SV"), WaveType::PSv) => Ok(Incidence::Sv),
+        (None | Some("SH"), WaveType::Sh) => Ok(Incidence::Sh),
+        _ => Err(inv(
+            file,
+            format!("{key}.wave"),
+            s.wave.as_deref().unwrap_or("P"),
+            "P or SV in a P-SV run, SH in an SH run",
+        )),
+    }
 }

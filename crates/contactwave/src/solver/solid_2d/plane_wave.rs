@@ -199,7 +199,6 @@ impl Injection {
         let mut col = vec![0.0; len];
         // samples: (global dof) -> index; delays
         let mut sample_of = std::collections::BTreeMap::new();
-        let mut delay = Vec::new();
         let mut scale = Vec::new();
         let mut kx = Vec::new();
         let mut raw: Vec<(usize, usize, f64)> = Vec::new();
@@ -235,7 +234,6 @@ impl Injection {
                     let sample = *sample_of.entry(dof).or_insert_with(|| {
                         kx.push(direction[0] * pos[0] + direction[1] * pos[1]);
                         scale.push(amp * p);
-                        delay.push(0.0);
                         kx.len() - 1
                     });
                     // column j, component cj of -K_e
@@ -259,6 +257,37 @@ impl Injection {
                 }
             }
         }
+        Injection::from_couplings(
+            source,
+            (kx, scale),
+            raw,
+            (speed, direction),
+            signal,
+            (dt, duration),
+            file,
+            key,
+        )
+    }
+
+    /// The injection of source `source` from its samples (each one's `k . x`, m, and its
+    /// displacement per unit `G`, `scale`), the couplings `raw` (`(target dof, sample,
+    /// weight)`, any order), the wave's speed (m/s) and unit direction, and `signal`
+    /// tabulated over `duration` (s) at `dt / 8` (`timing = (dt, duration)`).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn from_couplings(
+        source: usize,
+        samples: (Vec<f64>, Vec<f64>),
+        mut raw: Vec<(usize, usize, f64)>,
+        wave: (f64, [f64; 2]),
+        signal: &Arc<dyn Excitation>,
+        timing: (f64, f64),
+        file: &str,
+        key: &str,
+    ) -> Result<Self> {
+        let (kx, scale) = samples;
+        let (speed, direction) = wave;
+        let (dt, duration) = timing;
+        let mut delay = vec![0.0; kx.len()];
         let origin = kx.iter().copied().fold(f64::INFINITY, f64::min);
         for (d, k) in delay.iter_mut().zip(&kx) {
             *d = (k - origin) / speed;

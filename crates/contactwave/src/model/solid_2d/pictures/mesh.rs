@@ -101,7 +101,7 @@ impl Geometry {
         g.sources = (s.mesh.iter().flat_map(|q| &q.sources))
             .filter_map(|src| match &src.kind {
                 QuadSourceKind::Traction { curve, .. } => plan.mesh.set(curve, "").ok(),
-                QuadSourceKind::Force { .. } => None,
+                QuadSourceKind::Force { .. } | QuadSourceKind::PlaneWave { .. } => None,
             })
             .flat_map(|set| &set.segments)
             .map(|(ends, _)| {

@@ -319,8 +319,8 @@ impl<L: Clone> super::QuadSolid<L> {
     /// periodic sides) on a quadrilateral mesh of its own grid mapped by `map` (a rotation:
     /// the same problem turned, where no side absorbs, the frame being Cartesian; a shear
     /// along x keeps periodic sides translates): the general path's benchmark and its check
-    /// against the rectangle's run. `None` for what it does not carry over (rigid sides,
-    /// plane waves, a crack profile).
+    /// against the rectangle's run; a plane wave's line is a curve across the width.
+    /// `None` for what it does not carry over (rigid sides, a crack profile).
     pub fn of_rectangle(
         p: &super::super::Solid2d<L>,
         map: &dyn Fn([f64; 2]) -> [f64; 2],
@@ -399,7 +399,19 @@ impl<L: Clone> super::QuadSolid<L> {
                         delay_per_m,
                     }
                 }
-                SourceKind::PlaneWave { .. } => return Ok(None),
+                SourceKind::PlaneWave {
+                    incidence,
+                    angle,
+                    z,
+                } => {
+                    lines.push((n.as_str(), [0.0, z], [p.width, z]));
+                    let (o, d) = (map([0.0; 2]), map([angle.sin(), angle.cos()]));
+                    QuadSourceKind::PlaneWave {
+                        curve: n.clone(),
+                        incidence,
+                        angle: (d[0] - o[0]).atan2(d[1] - o[1]),
+                    }
+                }
             };
             sources.push(QuadSource {
                 kind,

@@ -160,6 +160,16 @@ impl Operator {
         }
     }
 
+    /// Element `e`'s forces `-K_e u` added to `f` at its nodes (one element on this
+    /// thread: the probe of an element's operator). `f` is as long as `u`.
+    pub fn add_element_forces(&self, mesh: &Mesh, e: usize, u: &[f64], f: &mut [f64]) {
+        debug_assert_eq!(u.len(), f.len());
+        if e < self.elements() && f.len() == u.len() {
+            // SAFETY: f as long as u, written by this thread alone
+            unsafe { self.element(mesh, e, u, f.as_mut_ptr()) };
+        }
+    }
+
     /// Element `e`'s forces added at its nodes.
     ///
     /// # Safety

@@ -27,6 +27,7 @@ pub mod raster;
 pub mod refine;
 pub mod split;
 mod stepping;
+mod tfsf;
 
 #[cfg(test)]
 mod frame_tests;
@@ -34,8 +35,11 @@ mod frame_tests;
 mod periodic_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tfsf_tests;
 
 use super::crack::{CrackNodes, PointFields};
+use super::plane_wave::{Incidence, Injection};
 use super::pml::{Band, Pml};
 use super::probe::StressProbe;
 use super::{CrackProfile, Elastic, Load, WaveType};
@@ -99,6 +103,17 @@ pub enum QuadSourceKind {
         normal: bool,
         /// Linear delay law, s/m.
         delay_per_m: f64,
+    },
+    /// A plane wave injected across a named curve of element edges that cuts the mesh in
+    /// two (total-field/scattered-field, eq. 15.13j: [`tfsf`]), travelling at `angle` (rad
+    /// from +z toward +x); the signal is the wave's stress at its front (Pa).
+    PlaneWave {
+        /// The curve's name.
+        curve: String,
+        /// P, SV or SH.
+        incidence: Incidence,
+        /// Angle from +z toward +x, rad.
+        angle: f64,
     },
 }
 
@@ -179,6 +194,8 @@ pub struct QuadPlan<L> {
     pub crack_ends: Vec<[[f64; 2]; 2]>,
     loads: Vec<Load>,
     signals: Vec<Arc<dyn Excitation>>,
+    /// The plane waves' injections at rest (each run starts from a copy).
+    plane_waves: Vec<Injection>,
     dashpots: Vec<Dashpot>,
     /// The PML frame's elements and fields at rest (each run starts from a copy; empty
     /// without one).
@@ -295,6 +312,10 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
             match &s.kind {
                 QuadSourceKind::Traction { curve, .. } => {
                     on_boundary(&mesh, curve, &format!("source.{i}.group"), file)?;
+                }
+                QuadSourceKind::PlaneWave { curve, angle, .. } => {
+                    let key = format!("source.{i}");
+                    tfsf::line(&mesh, curve, *angle, &self.materials, &mirrors, file, &key)?;
                 }
                 QuadSourceKind::Force { at, .. } => {
                     if mesh.locate(*at).is_none() {
@@ -553,9 +574,31 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
         // sources
         let mut loads = Vec::new();
         let mut signals = Vec::new();
+        let mut plane_waves = Vec::new();
         for (si, s) in self.sources.iter().enumerate() {
             signals.push(s.signal.clone());
             match &s.kind {
+                QuadSourceKind::PlaneWave {
+                    curve,
+                    incidence,
+                    angle,
+                } => {
+                    let key = format!("source.{si}");
+                    let line =
+                        tfsf::line(&mesh, curve, *angle, &self.materials, &mirrors, file, &key)?;
+                    plane_waves.push(tfsf::injection(
+                        &mesh,
+                        &op,
+                        &line,
+                        *incidence,
+                        *angle,
+                        &s.signal,
+                        si,
+                        (dt, self.duration),
+                        file,
+                        &key,
+                    )?);
+                }
                 QuadSourceKind::Force { at, direction } => {
                     let Some(loc) = mesh.locate(*at) else {
                         return bad(
@@ -654,6 +697,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadSolid<L> {
             cracks,
             loads,
             signals,
+            plane_waves,
             dashpots,
             nodes,
             band,

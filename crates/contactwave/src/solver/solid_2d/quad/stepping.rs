@@ -1,5 +1,5 @@
 //! A quadrilateral-mesh plan's step as a scheme of the explicit solvers' one time loop
-//! ([`crate::solver::stepping`]): sources, the kernel's forces, the node-wise predicted
+//! ([`crate::solver::stepping`]): sources (plane waves by eq. 15.13j), the kernel's forces, the node-wise predicted
 //! motion (a periodic group moving as one node), the PML frame (section 15.7's layers,
 //! eq. 15.13i), the absorbing sides' dashpots (implicit in the velocity: `(M + dt C / 2)
 //! v^{n+1/2} = (M - dt C / 2) v^{n-1/2} + dt F`, eq. 15.13d), the cracks' split-node update
@@ -10,6 +10,7 @@ use crate::error::{Error, Result};
 use crate::law::{NormalPart, TangentialPart};
 use crate::solver::solid_2d::crack::CrackNodes;
 use crate::solver::solid_2d::kernel::advance_nodes;
+use crate::solver::solid_2d::plane_wave::Injection;
 use crate::solver::solid_2d::pml::Band;
 use crate::solver::solid_2d::stepping::Records;
 use crate::solver::solid_2d::{Energy2d, Solid2dOutput};
@@ -22,6 +23,8 @@ struct Run<'p, L> {
     cracks: Vec<CrackNodes<L>>,
     /// The PML frame's fields.
     band: Band,
+    /// The plane waves' injections (their buffers).
+    plane_waves: Vec<Injection>,
     u: Vec<f64>,
     v: Vec<f64>,
     f: Vec<f64>,
@@ -69,6 +72,7 @@ impl<L: NormalPart + TangentialPart + Clone> QuadPlan<L> {
             plan: self,
             cracks: self.cracks.clone(),
             band: self.band.clone(),
+            plane_waves: self.plane_waves.clone(),
             u: vec![0.0; len],
             v: vec![0.0; len],
             f: vec![0.0; len],
@@ -139,6 +143,9 @@ impl<L: NormalPart + TangentialPart> Scheme for Run<'_, L> {
         for l in &p.loads {
             f[l.index] += l.weight * p.signals[l.source].stress(t - l.delay);
         }
+        for pw in &mut self.plane_waves {
+            pw.add_forces(t, f);
+        }
         p.op.add_forces(u, f);
         let g = &p.mesh.gll;
         self.band.forces(&g.weights, &g.derivative, v, f);
@@ -189,6 +196,9 @@ impl<L: NormalPart + TangentialPart> Scheme for Run<'_, L> {
             let fv = l.weight * p.signals[l.source].stress(t - l.delay);
             self.input += fv * dt * 0.5 * (v[l.index] + *vo);
             *vo = v[l.index];
+        }
+        for pw in &mut self.plane_waves {
+            self.input += pw.work(v, dt);
         }
         Ok(())
     }
