@@ -195,7 +195,7 @@ pub fn run(args: Args) -> contactwave::Result<u8> {
             // the context and the kernels' compilation, outside the timing
             plan.clone().run_on(on, file, None)?;
         }
-        let mut run = plan.clone();
+        let run = plan.clone();
         let t0 = Instant::now();
         std::hint::black_box(run.run_on(on, file, None)?);
         let s = t0.elapsed().as_secs_f64();

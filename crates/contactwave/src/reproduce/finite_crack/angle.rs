@@ -270,7 +270,7 @@ fn run_job(res: Resolution, job: &Job) -> Result<Record> {
             s.signal = Arc::new(Scaled::negated(s.signal.clone()));
         }
     }
-    let mut plan = problem.plan(FILE)?;
+    let plan = problem.plan(FILE)?;
     let centre = lay.centre();
     let tau = plan
         .plane_waves

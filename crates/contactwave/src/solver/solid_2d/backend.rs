@@ -36,7 +36,7 @@ impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
     /// Run from rest on `backend`, reporting `(steps done, steps)` to `progress` every 64
     /// steps; `file` names the scenario in errors.
     pub fn run_on(
-        &mut self,
+        &self,
         backend: Backend,
         file: &str,
         progress: Option<&(dyn Fn(usize, usize) + Send + Sync)>,
@@ -59,7 +59,7 @@ impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
 
     #[cfg(not(feature = "gpu"))]
     fn run_gpu(
-        &mut self,
+        &self,
         _progress: Option<&(dyn Fn(usize, usize) + Send + Sync)>,
     ) -> Result<Solid2dOutput> {
         Err(Error::Device {

@@ -694,10 +694,9 @@ impl<L: NormalPart + TangentialPart + Clone> Recorder<GpuRun<'_, L>> for GpuReco
 impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
     /// [`Plan::run_with`] on the GPU (see the module).
     pub(super) fn run_gpu(
-        &mut self,
+        &self,
         progress: Option<&(dyn Fn(usize, usize) + Send + Sync)>,
     ) -> Result<Solid2dOutput> {
-        self.reset();
         let len = self.components * self.mesh.n_nodes;
         let mut recorder = GpuRecords {
             base: Records::new(self),
@@ -747,13 +746,16 @@ impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
             }
             None => 0.0,
         };
-        // the cracks' state back into the plan, on its own node numbers
-        let cracks = std::mem::take(&mut run.cracks);
+        // the cracks' state on the plan's own node numbers
+        let cracks: Vec<_> = std::mem::take(&mut run.cracks)
+            .into_iter()
+            .zip(&self.cracks)
+            .map(|(mut done, mine)| {
+                done.faces.clone_from(&mine.faces);
+                done
+            })
+            .collect();
         drop(run);
-        for (mine, mut done) in self.cracks.iter_mut().zip(cracks) {
-            done.faces = std::mem::take(&mut mine.faces);
-            *mine = done;
-        }
-        Ok(self.output(base, &u, &v, &mut f, input, absorbed))
+        Ok(self.output(base, &cracks, &u, &v, &mut f, input, absorbed))
     }
 }

@@ -286,12 +286,11 @@ pub struct Plan<L> {
     pub steps: usize,
     /// Components per node (1 antiplane, 2 plane strain).
     pub components: usize,
-    /// The cracks' state, reset to `cracks_at_rest` when a run starts ([`Plan::reset`]).
+    /// The cracks at rest, as planned (each run starts from a copy).
     cracks: Vec<CrackNodes<L>>,
-    /// The cracks at rest, as planned.
-    cracks_at_rest: Vec<CrackNodes<L>>,
     loads: Vec<Load>,
-    /// The absorbing sides' perfectly matched layers (their elements; none without).
+    /// The absorbing sides' perfectly matched layers (their elements and fields at rest;
+    /// each run starts from a copy; none without).
     band: pml::Band,
     signals: Vec<Arc<dyn Excitation>>,
     /// Receiver nodes.
@@ -299,7 +298,7 @@ pub struct Plan<L> {
     /// Stress receivers ([`Plan::add_stress_receivers`]).
     pub stress_probes: Vec<StressProbe>,
     crack_every: usize,
-    /// The plane-wave sources.
+    /// The plane-wave sources (at rest: each run starts from a copy).
     pub plane_waves: Vec<plane_wave::Injection>,
     /// Steps after which the whole velocity field is kept ([`Plan::capture_at`]).
     snapshot_steps: Vec<usize>,
@@ -943,7 +942,6 @@ impl<L: NormalPart + TangentialPart + Clone> Solid2d<L> {
             dt,
             steps,
             components,
-            cracks_at_rest: cracks.clone(),
             cracks,
             loads,
             band,

@@ -341,12 +341,6 @@ impl Injection {
         (self.direction[0] * at[0] + self.direction[1] * at[1] - self.origin) / self.speed
     }
 
-    /// Zero the buffers of a run.
-    pub(super) fn reset(&mut self) {
-        self.force.fill(0.0);
-        self.v_prev.fill(0.0);
-    }
-
     /// The forces at time `t` (s), added to `f` (N/m) and kept in `force`.
     pub(super) fn add_forces(&mut self, t: f64, f: &mut [f64]) {
         for ((u, &d), &s) in self.u_inc.iter_mut().zip(&self.delay).zip(&self.scale) {

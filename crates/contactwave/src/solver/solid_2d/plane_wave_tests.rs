@@ -47,7 +47,7 @@ fn leakage(wave: WaveType, incidence: Incidence, order: usize, sizes: &[f64]) ->
             )
         };
         let plan = problem.plan("<test>").unwrap();
-        let mut plan = plan;
+        let plan = plan;
         let tau = plan.plane_waves[0].delay_at([0.0, z_t]);
         let o = plan.run().unwrap();
         let scattered = o.trace(0, comp).iter().fold(0.0f64, |a, &b| a.max(b.abs()));

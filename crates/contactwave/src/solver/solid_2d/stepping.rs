@@ -6,6 +6,8 @@
 
 use super::crack::CrackNodes;
 use super::kernel::advance_nodes;
+use super::plane_wave::Injection;
+use super::pml::Band;
 use super::probe::StressProbe;
 use super::snapshot::Capture;
 use super::{CrackRecord, Energy2d, Load, Plan, Solid2dOutput};
@@ -23,9 +25,13 @@ fn check_every(values: usize) -> usize {
 }
 
 /// The state of a running 2D plan: displacements (level n), velocities (level n - 1/2),
-/// forces, and the energy terms accumulated so far.
+/// forces, the cracks', plane waves' and absorbing layers' own state (copies of the
+/// plan's at rest: the plan is not changed), and the energy terms accumulated so far.
 struct Run2d<'p, L> {
-    plan: &'p mut Plan<L>,
+    plan: &'p Plan<L>,
+    cracks: Vec<CrackNodes<L>>,
+    plane_waves: Vec<Injection>,
+    band: Band,
     u: Vec<f64>,
     v: Vec<f64>,
     f: Vec<f64>,
@@ -36,39 +42,31 @@ struct Run2d<'p, L> {
 }
 
 impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
-    /// Back to rest before a run: the cracks' state as planned (their gaps, adhesion and
-    /// extrema), the plane waves' injection, so that every run of a plan is the first
-    /// (no allocation once the plan has run).
-    pub(super) fn reset(&mut self) {
-        self.cracks.clone_from(&self.cracks_at_rest);
-        for pw in &mut self.plane_waves {
-            pw.reset();
-        }
-    }
-
     /// The signal of load `l` at time t, N/m.
     #[inline]
     pub(super) fn load_value(&self, l: &Load, t: f64) -> f64 {
         l.weight * self.signals[l.source].stress(t - l.delay)
     }
 
-    /// Run from rest (every run of a plan starts from the same state), checking for
-    /// Ctrl-C every [`check_every`] steps.
-    pub fn run(&mut self) -> Result<Solid2dOutput> {
+    /// Run from rest (every run of a plan starts from the same state: the plan is not
+    /// changed), checking for Ctrl-C every [`check_every`] steps.
+    pub fn run(&self) -> Result<Solid2dOutput> {
         self.run_with(None)
     }
 
     /// [`Plan::run`] reporting `(steps done, steps)` to `progress` every 64 steps.
     pub fn run_with(
-        &mut self,
+        &self,
         progress: Option<&(dyn Fn(usize, usize) + Send + Sync)>,
     ) -> Result<Solid2dOutput> {
         let c = self.components;
         let len = c * self.mesh.n_nodes;
         let (dt, n_t) = (self.dt, self.steps);
-        self.reset();
         let mut recorder = Records::new(self);
         let mut run = Run2d {
+            cracks: self.cracks.clone(),
+            plane_waves: self.plane_waves.clone(),
+            band: self.band.clone(),
             u: vec![0.0; len],
             v: vec![0.0; len],
             f: vec![0.0; len],
@@ -87,7 +85,7 @@ impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
         };
         stepping::run(&schedule, &mut run, &mut recorder)?;
         let Run2d {
-            plan,
+            cracks,
             u,
             v,
             mut f,
@@ -95,15 +93,17 @@ impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
             absorbed,
             ..
         } = run;
-        Ok(plan.output(recorder, &u, &v, &mut f, input, absorbed))
+        Ok(self.output(recorder, &cracks, &u, &v, &mut f, input, absorbed))
     }
 
-    /// The run's output from its recorder and last level (`u` m, `v` m/s; `f` N/m,
-    /// overwritten): the energy audit with the solid's discrete energy
+    /// The run's output from its recorder, its cracks and last level (`u` m, `v` m/s; `f`
+    /// N/m, overwritten): the energy audit with the solid's discrete energy
     /// `E^{N-1/2} = v M v / 2 + u^{N-1} K u^N / 2`, `u^{N-1} = u^N - dt v^{N-1/2}` (J/m).
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn output(
         &self,
         recorder: Records,
+        cracks: &[CrackNodes<L>],
         u: &[f64],
         v: &[f64],
         f: &mut [f64],
@@ -128,7 +128,7 @@ impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
             stress_components: recorder.stress_components,
             cracks: recorder.cracks,
             snapshots: recorder.snapshots,
-            energy: Energy2d::audit(input, solid, absorbed, &self.cracks),
+            energy: Energy2d::audit(input, solid, absorbed, cracks),
         }
     }
 }
@@ -136,7 +136,7 @@ impl<L: NormalPart + TangentialPart + Clone> Plan<L> {
 impl<L: NormalPart + TangentialPart + Clone> Scheme for Run2d<'_, L> {
     /// Levels n -> n + 1 in place: `u` and `v` hold the new level when it returns.
     fn step(&mut self, t: f64, t1: f64) -> Result<()> {
-        let p = &mut *self.plan;
+        let p = self.plan;
         let (c, dt) = (p.components, p.dt);
         let (u, v, f) = (&mut self.u, &mut self.v, &mut self.f);
         // the forces of level n other than the elements' (`f` is zero here: cleared by
@@ -145,10 +145,10 @@ impl<L: NormalPart + TangentialPart + Clone> Scheme for Run2d<'_, L> {
         for l in &p.loads {
             f[l.index] += p.load_value(l, t);
         }
-        for pw in &mut p.plane_waves {
+        for pw in &mut self.plane_waves {
             pw.add_forces(t, f);
         }
-        p.band
+        self.band
             .forces(&p.stiffness.weights, &p.stiffness.derivative, v, f);
         // the elements' forces, and the predicted velocities and displacements of the new
         // level without the cracks' tractions: the kernel's node rows as it completes them
@@ -162,10 +162,10 @@ impl<L: NormalPart + TangentialPart + Clone> Scheme for Run2d<'_, L> {
         }
         // the absorbing layers: their nodes' split velocities, the flux into them, and
         // their stresses of level n + 1
-        self.absorbed += p.band.nodes(u, v, &p.inv_mass, dt);
-        p.band
+        self.absorbed += self.band.nodes(u, v, &p.inv_mass, dt);
+        self.band
             .stresses(&p.stiffness.weights, &p.stiffness.derivative, v, dt);
-        for cr in &mut p.cracks {
+        for cr in &mut self.cracks {
             cr.update(u, v, dt, t1, c == 1)?;
         }
         // the sources' work f^n (u^{n+1} - u^{n-1}) / 2 = f^n dt (v^{n+1/2} + v^{n-1/2}) / 2
@@ -174,7 +174,7 @@ impl<L: NormalPart + TangentialPart + Clone> Scheme for Run2d<'_, L> {
             self.input += fv * dt * 0.5 * (v[l.index] + *vo);
             *vo = v[l.index];
         }
-        for pw in &mut p.plane_waves {
+        for pw in &mut self.plane_waves {
             self.input += pw.work(v, dt);
         }
         Ok(())
@@ -339,7 +339,7 @@ impl<L: NormalPart + TangentialPart + Clone> Recorder<Run2d<'_, L>> for Records 
         let Some(n) = self.next_sample(s.plan.dt) else {
             return;
         };
-        let p = &*s.plan;
+        let p = s.plan;
         let c = p.components;
         for (r, &g) in p.receiver_nodes.iter().enumerate() {
             for cc in 0..c {
@@ -348,7 +348,7 @@ impl<L: NormalPart + TangentialPart + Clone> Recorder<Run2d<'_, L>> for Records 
         }
         self.stresses_at(n, &p.stress_probes, &s.u, c);
         self.snapshots.take(n, n as f64 * p.dt + 0.5 * p.dt, &s.v);
-        self.crack_fields(t, n, &p.cracks);
+        self.crack_fields(t, n, &s.cracks);
     }
 }
 

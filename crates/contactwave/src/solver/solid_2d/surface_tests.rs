@@ -74,7 +74,7 @@ fn surface_breaking_crack_closes_the_energy_and_keeps_signorini_at_the_mouth() {
         let gll = &plan.mesh.gll;
         let half_edge = 0.5 * 0.5e-3;
         assert!((c.weight[0] - gll.weights[0] * half_edge).abs() < 1e-15);
-        let mut plan = plan;
+        let plan = plan;
         let out = plan.run().unwrap();
         let e = out.energy;
         assert!(

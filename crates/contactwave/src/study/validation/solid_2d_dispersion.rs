@@ -101,7 +101,7 @@ pub fn time_domain(branch: Branch) -> Result<(f64, f64)> {
         .unwrap_or(z1);
     let dz = ((z2 - za) / h).round() * h;
     drop(probe);
-    let mut plan = problem(vec![[0.0, za], [0.0, za + dz]]).plan("<validation>")?;
+    let plan = problem(vec![[0.0, za], [0.0, za + dz]]).plan("<validation>")?;
     let out = plan.run()?;
     let comp = usize::from(branch == Branch::P);
     let phase = |x: &[f64]| {

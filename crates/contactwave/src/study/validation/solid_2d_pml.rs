@@ -287,7 +287,7 @@ mod tests {
                         300.0 * lp / ALUMINIUM.s_speed,
                     )
                 };
-                let mut plan = problem.plan("<test>").unwrap();
+                let plan = problem.plan("<test>").unwrap();
                 let steps = plan.steps;
                 let out = plan.run().unwrap();
                 let e = out.energy;

@@ -139,7 +139,7 @@ pub fn reduction<L: NormalPart + TangentialPart + Clone>(
                 (zc - z_line) / c + 2.0 * lambda / c + 4.0 / f0,
             )
         };
-        let mut plan = problem.plan("<validation>")?;
+        let plan = problem.plan("<validation>")?;
         let tau = plan.plane_waves[0].delay_at([0.0, zc]);
         // the receivers sit on the mesh line nearest to their depth
         let node = |z: f64| {
